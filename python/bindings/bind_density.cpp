@@ -1,0 +1,256 @@
+#include <random>
+
+#include "common.hpp"
+#include "graspmix/gmm.hpp"
+#include "graspmix/kde.hpp"
+#include "graspmix/pose_mixture.hpp"
+
+namespace graspmix::py_bind {
+
+namespace {
+
+py::array_t<double> covariances_array(const std::vector<Eigen::MatrixXd>& covs) {
+  const py::ssize_t K = static_cast<py::ssize_t>(covs.size());
+  const py::ssize_t d = K ? covs[0].rows() : 0;
+  py::array_t<double> out({K, d, d});
+  auto r = out.mutable_unchecked<3>();
+  for (py::ssize_t k = 0; k < K; ++k)
+    for (py::ssize_t i = 0; i < d; ++i)
+      for (py::ssize_t j = 0; j < d; ++j) r(k, i, j) = covs[k](i, j);
+  return out;
+}
+
+std::vector<Eigen::MatrixXd> covariances_from(const py::object& obj, Eigen::Index K, Eigen::Index d) {
+  auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(obj);
+  if (!a || a.ndim() != 3 || a.shape(0) != K || a.shape(1) != d || a.shape(2) != d) {
+    throw py::value_error("covariances: expected shape (" + std::to_string(K) + ", " + std::to_string(d) + ", " +
+                          std::to_string(d) + ")");
+  }
+  std::vector<Eigen::MatrixXd> covs(K, Eigen::MatrixXd(d, d));
+  auto r = a.unchecked<3>();
+  for (Eigen::Index k = 0; k < K; ++k)
+    for (Eigen::Index i = 0; i < d; ++i)
+      for (Eigen::Index j = 0; j < d; ++j) covs[k](i, j) = r(k, i, j);
+  return covs;
+}
+
+GaussianMixture mixture_from(const py::object& weights, const py::object& means, const py::object& covariances) {
+  const Eigen::VectorXd w = to_vector(weights, "weights");
+  const RowMatrixXd mu = to_matrix(means, "means");
+  return GaussianMixture::from_parameters(w, mu, covariances_from(covariances, w.size(), mu.cols()));
+}
+
+std::vector<int> to_dims(const py::object& obj, const char* name) {
+  try {
+    return obj.cast<std::vector<int>>();
+  } catch (const py::cast_error&) {
+    throw py::value_error(std::string(name) + ": expected a sequence of integer dimensions");
+  }
+}
+
+PoseArray to_poses(const py::object& obj, const char* name) { return PoseArray(to_matrix(obj, name, 7)); }
+
+/// The methods every PoseDensity shares, bound once on the base class.
+void bind_pose_density_base(py::module_& m) {
+  py::class_<PoseDensity>(m, "PoseDensity",
+                          "A density over poses given features: PoseMixture (the paper's) or PoseKDE (the baseline).")
+      .def_property_readonly("fitted", &PoseDensity::fitted)
+      .def_property_readonly("n_features", &PoseDensity::n_features)
+      .def_property_readonly("n_kernels", &PoseDensity::n_kernels, "Components (GMM) or kernels (KDE).")
+      .def_property_readonly("kind", &PoseDensity::kind, "'gmm' or 'kde'.")
+      .def(
+          "log_density",
+          [](const PoseDensity& d, const py::object& poses, const py::object& features) {
+            const PoseArray P = to_poses(poses, "log_density: poses");
+            return d.log_density(P, to_features(features, P.rows(), d.n_features(), "log_density: features"));
+          },
+          py::arg("poses"), py::arg("features") = py::none(),
+          "log p(u | r) per row (eq:density_mixture_rigid_body). features: (N, n), or (n,) for every pose.")
+      .def(
+          "feature_log_density",
+          [](const PoseDensity& d, const py::object& features) {
+            return d.feature_log_density(to_matrix(features, "feature_log_density: features", d.n_features(), true));
+          },
+          py::arg("features"), "log p(r) per row (eq:density_mixture_features).")
+      .def(
+          "sample",
+          [](const PoseDensity& d, int n, const py::object& features, const py::object& seed) {
+            if (n < 0) throw py::value_error("sample: n must be >= 0");
+            std::mt19937_64 rng(to_seed(seed));
+            return d.sample(to_features(features, n, d.n_features(), "sample: features"), rng);
+          },
+          py::arg("n"), py::arg("features") = py::none(), py::arg("seed") = py::none(),
+          "n poses (n, 7) drawn from p(u | r); features (n_features,) for all draws or (n, n_features) one per draw.");
+}
+
+}  // namespace
+
+void bind_density(py::module_& m) {
+  py::class_<GaussianMixture>(m, "GaussianMixture",
+                              "Full-covariance Gaussian mixture fitted by weighted EM, named as scikit-learn's.")
+      .def(py::init([](int n_components, double reg_covar, int max_iter, double tol, int n_init, const py::object& seed) {
+             GmmSettings s;
+             s.n_components = n_components;
+             s.reg_covar = reg_covar;
+             s.max_iter = max_iter;
+             s.tol = tol;
+             s.n_init = n_init;
+             s.seed = to_seed(seed);
+             return GaussianMixture(s);
+           }),
+           py::arg("n_components") = 1, py::arg("reg_covar") = 1e-6, py::arg("max_iter") = 100, py::arg("tol") = 1e-3,
+           py::arg("n_init") = 1, py::arg("seed") = py::none(),
+           "seed=None means seed 0: graspmix never seeds from the clock.")
+      .def_static("from_parameters", &mixture_from, py::arg("weights"), py::arg("means"), py::arg("covariances"),
+                  "A mixture from weights (K,), means (K, d), covariances (K, d, d).")
+      .def(
+          "fit",
+          [](GaussianMixture& g, const py::object& X, const py::object& weights, const py::object& means_init) -> GaussianMixture& {
+            const RowMatrixXd x = to_matrix(X, "fit: X");
+            const RowMatrixXd mi = means_init.is_none() ? RowMatrixXd() : to_matrix(means_init, "fit: means_init", x.cols());
+            py::gil_scoped_release release;
+            g.fit(x, to_weights(weights, "fit: weights"), mi);
+            return g;
+          },
+          py::arg("X"), py::arg("weights") = py::none(), py::arg("means_init") = py::none(),
+          py::return_value_policy::reference_internal, "Weighted EM; returns self.")
+      .def("score_samples", [](const GaussianMixture& g, const py::object& X) { return g.score_samples(to_matrix(X, "score_samples: X")); },
+           py::arg("X"), "Log density of every row.")
+      .def(
+          "score",
+          [](const GaussianMixture& g, const py::object& X, const py::object& w) {
+            return g.score(to_matrix(X, "score: X"), to_weights(w, "score: weights"));
+          },
+          py::arg("X"), py::arg("weights") = py::none(), "(Weighted) mean log density.")
+      .def("predict_proba", [](const GaussianMixture& g, const py::object& X) { return g.predict_proba(to_matrix(X, "predict_proba: X")); },
+           py::arg("X"))
+      .def(
+          "predict",
+          [](const GaussianMixture& g, const py::object& X) {
+            const RowMatrixXd p = g.predict_proba(to_matrix(X, "predict: X"));
+            Eigen::VectorXi out(p.rows());
+            for (Eigen::Index i = 0; i < p.rows(); ++i) p.row(i).maxCoeff(&out[i]);
+            return out;
+          },
+          py::arg("X"))
+      .def(
+          "sample", [](const GaussianMixture& g, int n, const py::object& seed) { return g.sample(n, to_seed(seed)); },
+          py::arg("n"), py::arg("seed") = py::none(), "n draws, (n, d).")
+      .def("marginal", [](const GaussianMixture& g, const py::object& dims) { return g.marginal(to_dims(dims, "marginal: dims")); },
+           py::arg("dims"))
+      .def(
+          "condition",
+          [](const GaussianMixture& g, const py::object& dims, const py::object& values) {
+            const std::vector<int> d = to_dims(dims, "condition: given_dims");
+            return g.condition(d, to_vector(values, "condition: values", static_cast<Eigen::Index>(d.size())));
+          },
+          py::arg("given_dims"), py::arg("values"),
+          "The mixture over the other dimensions (increasing order) given x[given_dims] = values.")
+      .def_property_readonly("n_components", &GaussianMixture::n_components)
+      .def_property_readonly("weights_", &GaussianMixture::weights)
+      .def_property_readonly("means_", &GaussianMixture::means)
+      .def_property_readonly("covariances_", [](const GaussianMixture& g) { return covariances_array(g.covariances()); })
+      .def_property_readonly("converged_", [](const GaussianMixture& g) { return g.result().converged; })
+      .def_property_readonly("n_iter_", [](const GaussianMixture& g) { return g.result().n_iter; })
+      .def_property_readonly("lower_bound_", [](const GaussianMixture& g) { return g.result().lower_bound; })
+      .def_property_readonly("lower_bound_history_", [](const GaussianMixture& g) { return g.result().history; })
+      .def(py::pickle(
+          [](const GaussianMixture& g) {
+            if (!g.fitted()) throw std::runtime_error("GaussianMixture: only a fitted mixture can be pickled");
+            return py::make_tuple(g.weights(), g.means(), covariances_array(g.covariances()));
+          },
+          [](const py::tuple& t) { return mixture_from(t[0], t[1], t[2]); }))
+      .def("__repr__", [](const GaussianMixture& g) {
+        return "GaussianMixture(n_components=" + std::to_string(g.settings().n_components) +
+               (g.fitted() ? ", dim=" + std::to_string(g.dim()) + ")" : ", not fitted)");
+      });
+
+  bind_pose_density_base(m);
+
+  py::class_<PoseMixture, PoseDensity>(
+      m, "PoseMixture",
+      "The paper's mixture over (p, q, r), fitted in (p, log q, r): p(u|r) by conditioning, p(r) by marginalising.")
+      .def(py::init([](int n_components, double reg_covar, int max_iter, double tol, int n_init, const py::object& seed) {
+             GmmSettings s;
+             s.n_components = n_components;
+             s.reg_covar = reg_covar;
+             s.max_iter = max_iter;
+             s.tol = tol;
+             s.n_init = n_init;
+             s.seed = to_seed(seed);
+             return PoseMixture(s);
+           }),
+           py::arg("n_components") = 2, py::arg("reg_covar") = 1e-6, py::arg("max_iter") = 100, py::arg("tol") = 1e-3,
+           py::arg("n_init") = 1, py::arg("seed") = py::none())
+      .def(
+          "fit",
+          [](PoseMixture& d, const py::object& poses, const py::object& features, const py::object& weights) -> PoseMixture& {
+            const PoseArray P = to_poses(poses, "fit: poses");
+            const RowMatrixXd F = features.is_none() ? RowMatrixXd(P.rows(), 0) : to_matrix(features, "fit: features");
+            const Eigen::VectorXd w = to_weights(weights, "fit: weights");
+            py::gil_scoped_release release;
+            d.fit(P, F, w);
+            return d;
+          },
+          py::arg("poses"), py::arg("features") = py::none(), py::arg("weights") = py::none(),
+          py::return_value_policy::reference_internal, "Fits to poses (N, 7), features (N, n), weights (N,); returns self.")
+      .def_static(
+          "from_parameters",
+          [](const py::object& reference, const GaussianMixture& joint) {
+            const Eigen::VectorXd q = to_vector(reference, "reference", 4);
+            return PoseMixture::from_parameters(Eigen::Quaterniond(q[3], q[0], q[1], q[2]), joint);
+          },
+          py::arg("reference"), py::arg("joint"))
+      .def_property_readonly("joint", &PoseMixture::joint, "The mixture over (p, log(q_ref^-1 q), r).")
+      .def_property_readonly("reference",
+                             [](const PoseMixture& d) {
+                               const auto& q = d.reference();
+                               return Eigen::Vector4d(q.x(), q.y(), q.z(), q.w());
+                             },
+                             "The chart's reference rotation [x, y, z, w].")
+      .def(py::pickle(
+          [](const PoseMixture& d) {
+            const auto& q = d.reference();
+            return py::make_tuple(Eigen::Vector4d(q.x(), q.y(), q.z(), q.w()), d.joint());
+          },
+          [](const py::tuple& t) {
+            const Eigen::VectorXd q = to_vector(t[0], "reference", 4);
+            return PoseMixture::from_parameters(Eigen::Quaterniond(q[3], q[0], q[1], q[2]), t[1].cast<GaussianMixture>());
+          }));
+
+  py::class_<PoseKDE, PoseDensity>(m, "PoseKDE",
+                                   "Kopicki et al. 2015's non-parametric density: one weighted kernel per data point.")
+      .def(py::init([](double position_bandwidth, double orientation_bandwidth, const py::object& feature_bandwidth) {
+             KdeSettings s;
+             s.position_bandwidth = position_bandwidth;
+             s.orientation_bandwidth = orientation_bandwidth;
+             if (!feature_bandwidth.is_none()) s.feature_bandwidth = to_vector(feature_bandwidth, "feature_bandwidth");
+             return PoseKDE(s);
+           }),
+           py::arg("position_bandwidth") = 0.005, py::arg("orientation_bandwidth") = 0.15,
+           py::arg("feature_bandwidth") = py::none(),
+           "Bandwidths: position std (m), rotation-angle std (rad), feature std (one value or one per feature).")
+      .def(
+          "fit",
+          [](PoseKDE& d, const py::object& poses, const py::object& features, const py::object& weights) -> PoseKDE& {
+            const PoseArray P = to_poses(poses, "fit: poses");
+            const RowMatrixXd F = features.is_none() ? RowMatrixXd(P.rows(), 0) : to_matrix(features, "fit: features");
+            d.fit(P, F, to_weights(weights, "fit: weights"));
+            return d;
+          },
+          py::arg("poses"), py::arg("features") = py::none(), py::arg("weights") = py::none(),
+          py::return_value_policy::reference_internal)
+      .def_property_readonly("concentration", &PoseKDE::concentration)
+      .def_property_readonly("positions", &PoseKDE::positions)
+      .def_property_readonly("orientations", &PoseKDE::orientations)
+      .def_property_readonly("features", &PoseKDE::features)
+      .def_property_readonly("weights", &PoseKDE::weights)
+      .def_property_readonly("position_bandwidth", [](const PoseKDE& d) { return d.settings().position_bandwidth; })
+      .def_property_readonly("orientation_bandwidth", [](const PoseKDE& d) { return d.settings().orientation_bandwidth; })
+      .def_property_readonly("feature_bandwidth", &PoseKDE::feature_bandwidth);
+
+  m.def("log_vmf_s3_normaliser", &log_vmf_s3_normaliser, py::arg("kappa"),
+        "log of the hemisphere-restricted antipodal vMF normaliser on S^3 used by PoseKDE.");
+}
+
+}  // namespace graspmix::py_bind

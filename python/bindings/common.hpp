@@ -1,0 +1,34 @@
+#pragma once
+// Conversions at the Python boundary: every array is checked for shape and named in the error, so a
+// wrong shape is a ValueError that says which argument and what was expected, never a TypeError from
+// overload resolution.
+#include <cstdint>
+#include <string>
+
+#include <pybind11/eigen.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "graspmix/types.hpp"
+
+namespace graspmix::py_bind {
+
+namespace py = pybind11;
+
+/// A (N, cols) float64 matrix from any array-like; cols < 0 accepts any width. A 1-D input of
+/// length cols is taken as one row when one_d_as_row is true.
+RowMatrixXd to_matrix(const py::handle& obj, const char* name, int cols = -1, bool one_d_as_row = false);
+/// A 1-D float64 vector of length n (n < 0: any).
+Eigen::VectorXd to_vector(const py::handle& obj, const char* name, Eigen::Index n = -1);
+/// None -> 0; otherwise a non-negative integer.
+std::uint64_t to_seed(const py::object& seed);
+/// Features for n rows: None means no features; a 1-D vector is repeated for every row.
+RowMatrixXd to_features(const py::object& obj, Eigen::Index n_rows, int n_features, const char* name);
+/// Optional weights: None -> empty.
+Eigen::VectorXd to_weights(const py::object& obj, const char* name);
+
+void bind_se3(py::module_& m);
+void bind_density(py::module_& m);
+
+}  // namespace graspmix::py_bind

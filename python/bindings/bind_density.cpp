@@ -50,6 +50,18 @@ std::vector<int> to_dims(const py::object& obj, const char* name) {
 
 PoseArray to_poses(const py::object& obj, const char* name) { return PoseArray(to_matrix(obj, name, 7)); }
 
+GmmSettings gmm_settings(int n_components, double reg_covar, int max_iter, double tol, int n_init,
+                         const py::object& seed) {
+  GmmSettings s;
+  s.n_components = n_components;
+  s.reg_covar = reg_covar;
+  s.max_iter = max_iter;
+  s.tol = tol;
+  s.n_init = n_init;
+  s.seed = to_seed(seed);
+  return s;
+}
+
 /// The methods every PoseDensity shares, bound once on the base class.
 void bind_pose_density_base(py::module_& m) {
   py::class_<PoseDensity>(m, "PoseDensity",
@@ -89,14 +101,7 @@ void bind_density(py::module_& m) {
   py::class_<GaussianMixture>(m, "GaussianMixture",
                               "Full-covariance Gaussian mixture fitted by weighted EM, named as scikit-learn's.")
       .def(py::init([](int n_components, double reg_covar, int max_iter, double tol, int n_init, const py::object& seed) {
-             GmmSettings s;
-             s.n_components = n_components;
-             s.reg_covar = reg_covar;
-             s.max_iter = max_iter;
-             s.tol = tol;
-             s.n_init = n_init;
-             s.seed = to_seed(seed);
-             return GaussianMixture(s);
+             return GaussianMixture(gmm_settings(n_components, reg_covar, max_iter, tol, n_init, seed));
            }),
            py::arg("n_components") = 1, py::arg("reg_covar") = 1e-6, py::arg("max_iter") = 100, py::arg("tol") = 1e-3,
            py::arg("n_init") = 1, py::arg("seed") = py::none(),
@@ -171,14 +176,7 @@ void bind_density(py::module_& m) {
       m, "PoseMixture",
       "The paper's mixture over (p, q, r), fitted in (p, log q, r): p(u|r) by conditioning, p(r) by marginalising.")
       .def(py::init([](int n_components, double reg_covar, int max_iter, double tol, int n_init, const py::object& seed) {
-             GmmSettings s;
-             s.n_components = n_components;
-             s.reg_covar = reg_covar;
-             s.max_iter = max_iter;
-             s.tol = tol;
-             s.n_init = n_init;
-             s.seed = to_seed(seed);
-             return PoseMixture(s);
+             return PoseMixture(gmm_settings(n_components, reg_covar, max_iter, tol, n_init, seed));
            }),
            py::arg("n_components") = 2, py::arg("reg_covar") = 1e-6, py::arg("max_iter") = 100, py::arg("tol") = 1e-3,
            py::arg("n_init") = 1, py::arg("seed") = py::none())

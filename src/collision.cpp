@@ -103,6 +103,9 @@ CollisionExpert::CollisionExpert(std::shared_ptr<const Hand> hand, const Eigen::
     throw std::invalid_argument("point_radius must be finite and >= 0");
   }
   if (!std::isfinite(settings_.plane_margin)) throw std::invalid_argument("plane_margin must be finite");
+  if (!(settings_.contact_tolerance >= 0) || !std::isfinite(settings_.contact_tolerance)) {
+    throw std::invalid_argument("contact_tolerance must be finite and >= 0");
+  }
   if (!(settings_.cell_size >= 0) || !std::isfinite(settings_.cell_size)) {
     throw std::invalid_argument("cell_size must be finite and >= 0 (0 = automatic)");
   }
@@ -201,6 +204,7 @@ void CollisionExpert::evaluate_into(const Eigen::Isometry3d* link_poses, double*
                                     int* points_inside) const {
   const Index& ix = *index_;
   const double r = settings_.point_radius;
+  const double tol = settings_.contact_tolerance;
   const Eigen::Index N = ix.points.rows();
   for (const Shapes::Shape& sh : shapes_->shapes) {
     const Eigen::Isometry3d T = link_poses[sh.link] * sh.src->T_link_shape;
@@ -229,7 +233,7 @@ void CollisionExpert::evaluate_into(const Eigen::Isometry3d* link_poses, double*
               // Cheap rejection against the local box before the exact distance.
               if (((p - sh.centre).cwiseAbs() - sh.half).maxCoeff() >= r) continue;
               const double depth = r - signed_distance(*sh.src, p);
-              if (depth > 0) {
+              if (depth > tol) {
                 ++inside;
                 deepest = std::max(deepest, depth);
               }
@@ -254,7 +258,7 @@ void CollisionExpert::evaluate_into(const Eigen::Isometry3d* link_poses, double*
           // FCL's sign convention for half-space contacts differs between shape pairs; the depth is
           // its magnitude.
           const double depth = std::abs(result.getContact(0).penetration_depth);
-          plane_depth[sh.link] = std::max(plane_depth[sh.link], depth);
+          if (depth > tol) plane_depth[sh.link] = std::max(plane_depth[sh.link], depth);
         }
       }
     }

@@ -4,7 +4,8 @@
 // plane.
 //
 // Penetration depth (metres), per link l with collision shapes S_l posed by fk(h):
-//   * cloud:  D_l = max over cloud points p and shapes s in S_l of max(0, r - sd_s(p)), where sd_s is
+//   * cloud:  D_l = max over cloud points p and shapes s in S_l of max(0, r - sd_s(p)) (depths up to
+//     contact_tolerance count as 0), where sd_s is
 //     the signed distance from p to the surface of s (negative inside) and r = point_radius (each
 //     point is a ball of radius r). It is the depth of the deepest point inside the link: independent
 //     of the cloud's density, exact for boxes, cylinders and spheres. A mesh shape is taken as its
@@ -41,6 +42,9 @@ struct CollisionSettings {
   double plane_margin = 0.0;   ///< m: the support plane is raised by this much (negative: tolerate contact)
   double cell_size = 0.0;      ///< m: grid cell of the cloud index; 0 picks one from the cloud's extent and size
   bool orient_plane = true;    ///< flip the plane's sign so the cloud's mean lies on its free (positive) side
+  /// m: depths up to this count as touching, not penetrating (a point on a link's face is a contact,
+  /// whatever the rounding of the link's pose)
+  double contact_tolerance = 1e-9;
 };
 
 /// One configuration's penetration, per link in Hand::link_names() order.

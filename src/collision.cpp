@@ -286,14 +286,16 @@ CollisionResult CollisionExpert::evaluate(const Eigen::Isometry3d& T_world_wrist
 
 CollisionBatchResult CollisionExpert::evaluate_batch(const Eigen::Ref<const PoseArray>& T_world_wrist,
                                                      const Eigen::Ref<const RowMatrixXd>& q) const {
-  const Eigen::Index N = T_world_wrist.rows();
+  // Either side may be a single row, broadcast over the other.
+  const Eigen::Index N = T_world_wrist.rows() == 1 ? q.rows() : T_world_wrist.rows();
   const int L = hand_->n_links();
   if (q.cols() != hand_->n_dofs()) {
     throw std::invalid_argument("joints: expected " + std::to_string(hand_->n_dofs()) + " columns (one per joint), got " +
                                 std::to_string(q.cols()));
   }
   if (q.rows() != N && q.rows() != 1) {
-    throw std::invalid_argument("joints: " + std::to_string(q.rows()) + " rows for " + std::to_string(N) + " wrist poses");
+    throw std::invalid_argument("joints: " + std::to_string(q.rows()) + " rows for " +
+                                std::to_string(T_world_wrist.rows()) + " wrist poses");
   }
   require_finite(T_world_wrist, "T_world_wrist");
   require_finite(q, "joints");
@@ -309,12 +311,12 @@ CollisionBatchResult CollisionExpert::evaluate_batch(const Eigen::Ref<const Pose
   {
     std::vector<Eigen::Isometry3d> poses(static_cast<size_t>(L));
     std::vector<int> inside(static_cast<size_t>(L));
-    Eigen::VectorXd qi(hand_->n_dofs());
+    Eigen::VectorXd qi(hand_->n_dofs()), cd(L), pd(L);
 #pragma omp for schedule(dynamic, 64)
     for (Eigen::Index i = 0; i < N; ++i) {
       Eigen::Isometry3d W;
       try {
-        W = pose_from_vector(T_world_wrist.row(i).transpose());
+        W = pose_from_vector(T_world_wrist.row(T_world_wrist.rows() == 1 ? 0 : i).transpose());
       } catch (const std::invalid_argument& e) {
 #pragma omp critical
         error = "T_world_wrist row " + std::to_string(i) + ": " + e.what();
@@ -322,7 +324,8 @@ CollisionBatchResult CollisionExpert::evaluate_batch(const Eigen::Ref<const Pose
       }
       qi = q.row(q.rows() == 1 ? 0 : i).transpose();
       hand_->fk_into(W, qi.data(), poses.data());
-      Eigen::VectorXd cd = Eigen::VectorXd::Zero(L), pd = Eigen::VectorXd::Zero(L);
+      cd.setZero();
+      pd.setZero();
       std::fill(inside.begin(), inside.end(), 0);
       evaluate_into(poses.data(), cd.data(), pd.data(), inside.data());
       out.cloud_depth.row(i) = cd.transpose();

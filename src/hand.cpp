@@ -135,13 +135,15 @@ std::vector<Eigen::Isometry3d> Hand::fk(const Eigen::Isometry3d& T_world_wrist,
 }
 
 RowMatrixXd Hand::fk_batch(const Eigen::Ref<const PoseArray>& T_world_wrist, const Eigen::Ref<const RowMatrixXd>& q) const {
-  const Eigen::Index N = T_world_wrist.rows();
+  // Either side may be a single row, broadcast over the other.
+  const Eigen::Index N = T_world_wrist.rows() == 1 ? q.rows() : T_world_wrist.rows();
   if (q.cols() != n_dofs()) {
     throw std::invalid_argument("joints: expected " + std::to_string(n_dofs()) + " columns (one per joint), got " +
                                 std::to_string(q.cols()));
   }
   if (q.rows() != N && q.rows() != 1) {
-    throw std::invalid_argument("joints: " + std::to_string(q.rows()) + " rows for " + std::to_string(N) + " wrist poses");
+    throw std::invalid_argument("joints: " + std::to_string(q.rows()) + " rows for " +
+                                std::to_string(T_world_wrist.rows()) + " wrist poses");
   }
   require_finite(T_world_wrist, "T_world_wrist");
   require_finite(q, "joints");
@@ -156,7 +158,7 @@ RowMatrixXd Hand::fk_batch(const Eigen::Ref<const PoseArray>& T_world_wrist, con
     for (Eigen::Index i = 0; i < N; ++i) {
       Eigen::Isometry3d W;
       try {
-        W = pose_from_vector(T_world_wrist.row(i).transpose());
+        W = pose_from_vector(T_world_wrist.row(T_world_wrist.rows() == 1 ? 0 : i).transpose());
       } catch (const std::invalid_argument& e) {
 #pragma omp critical
         error = "T_world_wrist row " + std::to_string(i) + ": " + e.what();

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <functional>
 #include <limits>
+#include <mutex>
 #include <sstream>
 #include <stdexcept>
 
@@ -196,6 +197,9 @@ Hand Hand::from_urdf_string(const std::string& xml, const std::string& base_dir,
   const std::string what = "URDF '" + source + "'";
   urdf::ModelInterfaceSharedPtr model;
   {
+    // console_bridge's output handler is process-wide: one parse at a time.
+    static std::mutex parse_mutex;
+    const std::lock_guard<std::mutex> lock(parse_mutex);
     CapturedLog log;
     model = urdf::parseURDF(xml);
     if (!model) {

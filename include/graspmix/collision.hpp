@@ -79,7 +79,7 @@ class CollisionExpert {
 
   /// W(h) for the wrist pose and configuration (joint_names() order).
   CollisionResult evaluate(const Eigen::Isometry3d& T_world_wrist, const Eigen::Ref<const Eigen::VectorXd>& q) const;
-  /// The same over N configurations: wrists (N, 7), q (N, n_dofs) or one row for all. Parallel (OpenMP).
+  /// The same over N configurations: wrists (N, 7), q (N, n_dofs); either may be one row. Parallel (OpenMP).
   CollisionBatchResult evaluate_batch(const Eigen::Ref<const PoseArray>& T_world_wrist,
                                       const Eigen::Ref<const RowMatrixXd>& q) const;
 

@@ -126,7 +126,7 @@ class Hand {
                                     const Eigen::Ref<const Eigen::VectorXd>& q) const;
   /// The same into caller storage of n_links() isometries (no allocation; q unchecked: the hot path).
   void fk_into(const Eigen::Isometry3d& T_world_wrist, const double* q, Eigen::Isometry3d* out) const;
-  /// Batched fk over N hands: wrists (N, 7), q (N, n_dofs) (one row is broadcast) ->
+  /// Batched fk over N hands: wrists (N, 7), q (N, n_dofs) (either may be one row, broadcast) ->
   /// (N, n_links * 7), row i holding the poses of hand i's links one after another. Parallel (OpenMP).
   RowMatrixXd fk_batch(const Eigen::Ref<const PoseArray>& T_world_wrist, const Eigen::Ref<const RowMatrixXd>& q) const;
 

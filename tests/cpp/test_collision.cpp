@@ -190,3 +190,17 @@ TEST(Collision, BadInputThrows) {
   const CollisionExpert e(finger(), box_surface());
   EXPECT_THROW(e.evaluate(Eigen::Isometry3d::Identity(), Eigen::VectorXd::Zero(2)), std::invalid_argument);
 }
+
+TEST(Collision, BatchBroadcastsASingleWristOrConfiguration) {
+  const CollisionExpert expert(finger(), box_surface());
+  graspmix::PoseArray one(1, 7);
+  one << 0.005 - 0.01, 0, -1.5, 0, 0, 0, 1;
+  graspmix::RowMatrixXd qs(3, 1);
+  qs << 0.5, 0.0, 0.5;  // the ball at the object's face, 0.5 m away from it, at the face again
+  const auto r = expert.evaluate_batch(one, qs);
+  ASSERT_EQ(r.total_depth.size(), 3);
+  EXPECT_NEAR(r.total_depth[0], 0.005, 1e-12);
+  EXPECT_EQ(r.total_depth[1], 0.0);
+  EXPECT_NEAR(r.total_depth[2], 0.005, 1e-12);
+  EXPECT_THROW(expert.evaluate_batch(graspmix::PoseArray(2, 7), qs), std::invalid_argument);
+}

@@ -157,6 +157,11 @@ def test_joint_mappings():
     # Batches accept a list of mappings and broadcast one configuration.
     wrists = np.tile([0, 0, 0, 0, 0, 0, 1.0], (3, 1))
     np.testing.assert_allclose(hand.fk_batch(wrists, [as_dict] * 3), hand.fk_batch(wrists, q))
+    # ... and one wrist for many configurations.
+    many = np.stack([q, hand.clamp(q + 0.1), hand.clamp(q - 0.1)])
+    out = hand.fk_batch(wrists[0], many)
+    assert out.shape == (3, hand.n_links, 7)
+    np.testing.assert_allclose(out[1], hand.fk(wrists[0], many[1]), atol=1e-12)
 
 
 def test_errors_name_the_input(tmp_path):

@@ -105,6 +105,20 @@ const char* joint_type_name(JointType t) {
 }  // namespace
 
 void bind_hand(py::module_& m) {
+  m.def(
+      "load_mesh",
+      [](const py::object& path, const py::object& scale) {
+        const std::string p = to_path(path, "path");
+        const Eigen::Vector3d sc = scale.is_none() ? Eigen::Vector3d::Ones() : Eigen::Vector3d(to_vector(scale, "scale", 3));
+        TriangleMesh mesh;
+        {
+          py::gil_scoped_release release;
+          mesh = Hand::load_mesh(p, sc);
+        }
+        return py::make_tuple(mesh.vertices, mesh.triangles);
+      },
+      py::arg("path"), py::arg("scale") = py::none(),
+      "(vertices (V, 3), triangles (T, 3)) of every triangle in a mesh file (STL, OBJ, ... via assimp), scaled.");
   py::class_<Hand, HandPtr>(m, "Hand",
                             "A hand as a kinematic tree from a URDF (urdfdom): fk (eq:fk_function) and collision geometry.\n"
                             "The wrist is the root link; joint_names are the independent joints (mimic joints follow\n"
@@ -126,6 +140,20 @@ void bind_hand(py::module_& m) {
           "Reads a URDF. Mesh files (STL, OBJ, ... via assimp) resolve against the URDF's folder; package://\n"
           "paths also against its parents and package_dirs. ValueError names a missing file, a URDF without\n"
           "links, an unsupported joint or an unreadable mesh.")
+      .def_static(
+          "from_urdf_string",
+          [](const std::string& xml, const py::object& base_dir, const py::object& package_dirs, bool load_meshes) {
+            HandLoadSettings s;
+            s.load_meshes = load_meshes;
+            if (!package_dirs.is_none()) {
+              for (const auto& d : package_dirs) s.package_dirs.push_back(to_path(py::reinterpret_borrow<py::object>(d), "package_dirs"));
+            }
+            const std::string dir = to_path(base_dir, "base_dir");
+            py::gil_scoped_release release;
+            return std::make_shared<Hand>(Hand::from_urdf_string(xml, dir, s));
+          },
+          py::arg("xml"), py::arg("base_dir") = ".", py::arg("package_dirs") = py::none(), py::arg("load_meshes") = true,
+          "A hand from URDF text; relative mesh paths resolve against base_dir.")
       .def_property_readonly("name", &Hand::name)
       .def_property_readonly("source", &Hand::source, "The URDF file it was read from.")
       .def_property_readonly("joint_names", &Hand::joint_names, "Independent joints, the order of joint arrays.")

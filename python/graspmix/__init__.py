@@ -62,6 +62,6 @@ __all__ = [
 ]
 
 # ---- hands and the collision expert (issue 4) ----
-from ._core import CollisionBatchResult, CollisionExpert, CollisionResult, Hand  # noqa: E402
+from ._core import CollisionBatchResult, CollisionExpert, CollisionResult, Hand, load_mesh  # noqa: E402
 
-__all__ += ["CollisionBatchResult", "CollisionExpert", "CollisionResult", "Hand"]
+__all__ += ["CollisionBatchResult", "CollisionExpert", "CollisionResult", "Hand", "load_mesh"]

@@ -120,6 +120,27 @@ def test_wsg50_model():
     assert v[:, 0].max() == pytest.approx(0.0, abs=1e-12)
 
 
+def test_wsg50_dimensions_match_pybullet_datas_wsg50_meshes():
+    """The palm and finger boxes bound the meshes of pybullet_data's WSG 50 (new_free_base SDF)."""
+    hand = graspmix.Hand.from_urdf(WSG50)
+    meshes = DATA / "gripper" / "meshes"
+    palm, _ = graspmix.load_mesh(meshes / "WSG50_110.stl")  # metres, in the palm frame
+    palm_box = hand.collision_shapes("palm")[0]
+    np.testing.assert_allclose(palm.min(0), palm_box["origin"][:3] - 0.5 * palm_box["size"], atol=2e-4)
+    np.testing.assert_allclose(palm.max(0), palm_box["origin"][:3] + 0.5 * palm_box["size"], atol=2e-4)
+    # The SDF's left jaw frame sits at x = -0.055 + s, z = 0.06, with the finger mesh (mm) 0.037 below it.
+    # graspmix's joint value q (half the opening) corresponds to s = 0.052 - q.
+    fmf, _ = graspmix.load_mesh(meshes / "WSG-FMF.stl", scale=[0.001] * 3)
+    for q in (0.0, 0.03, 0.055):
+        s = 0.052 - q
+        sdf_finger = fmf + [-0.055 + s, 0.0, 0.06 - 0.037]
+        pose = hand.fk(np.r_[0, 0, 0, 0, 0, 0, 1.0], [q])[hand.link_index("finger_left")]
+        box = hand.collision_shapes("finger_left")[0]
+        centre = pose[:3] + box["origin"][:3]  # finger_left is not rotated relative to the palm
+        np.testing.assert_allclose(sdf_finger.min(0), centre - 0.5 * box["size"], atol=2e-4)
+        np.testing.assert_allclose(sdf_finger.max(0), centre + 0.5 * box["size"], atol=2e-4)
+
+
 def test_meshes_of_pybullet_hands_load_with_geometry():
     panda = graspmix.Hand.from_urdf(URDFS["panda"])
     finger = panda.collision_shapes("panda_leftfinger")[0]
@@ -162,6 +183,13 @@ def test_joint_mappings():
     out = hand.fk_batch(wrists[0], many)
     assert out.shape == (3, hand.n_links, 7)
     np.testing.assert_allclose(out[1], hand.fk(wrists[0], many[1]), atol=1e-12)
+
+
+def test_from_urdf_string_and_load_mesh_errors(tmp_path):
+    hand = graspmix.Hand.from_urdf_string(WSG50.read_text())
+    assert hand.link_names == ["palm", "finger_left", "finger_right"] and hand.source == "<string>"
+    with pytest.raises(ValueError, match="gone.obj"):
+        graspmix.load_mesh(tmp_path / "gone.obj")
 
 
 def test_errors_name_the_input(tmp_path):

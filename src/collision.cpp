@@ -163,7 +163,10 @@ CollisionExpert::CollisionExpert(std::shared_ptr<const Hand> hand, const Eigen::
   auto shapes = std::make_shared<Shapes>();
   for (int l = 0; l < hand_->n_links(); ++l) {
     for (const CollisionShape& s : hand_->links()[static_cast<size_t>(l)].collisions) {
-      if (s.type == ShapeType::Mesh && !s.hull_planes) continue;  // loaded without geometry
+      if (s.type == ShapeType::Mesh && !s.hull_planes) {
+        throw std::invalid_argument("hand: link '" + hand_->link_names()[static_cast<size_t>(l)] +
+                                    "' has a mesh without geometry (the hand was read with load_meshes = false)");
+      }
       Shapes::Shape sh;
       sh.link = l;
       sh.src = &s;

@@ -1,5 +1,7 @@
 // The collision expert against analytic penetration depths.
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <memory>
 #include <random>
 #include <stdexcept>
@@ -187,6 +189,16 @@ TEST(Collision, BadInputThrows) {
   CollisionSettings s;
   s.point_radius = -1;
   EXPECT_THROW(CollisionExpert(finger(), box_surface(), std::nullopt, s), std::invalid_argument);
+  // A hand read without mesh geometry cannot feed the expert (the file need only exist).
+  graspmix::HandLoadSettings no_meshes;
+  no_meshes.load_meshes = false;
+  const auto dir = std::filesystem::temp_directory_path();
+  std::ofstream(dir / "graspmix_test_unread.stl") << "solid x\nendsolid x\n";
+  const auto mesh_hand = std::make_shared<Hand>(Hand::from_urdf_string(
+      R"(<robot name="m"><link name="a"><collision><geometry><mesh filename="graspmix_test_unread.stl"/></geometry></collision></link></robot>)",
+      dir.string(), no_meshes));
+  EXPECT_THROW(CollisionExpert(mesh_hand, box_surface()), std::invalid_argument);
+  std::filesystem::remove(dir / "graspmix_test_unread.stl");
   const CollisionExpert e(finger(), box_surface());
   EXPECT_THROW(e.evaluate(Eigen::Isometry3d::Identity(), Eigen::VectorXd::Zero(2)), std::invalid_argument);
 }

@@ -244,3 +244,23 @@ TEST(Hand, CollisionMeshOfPrimitivesIsClosedAndOutward) {
     EXPECT_NEAR(volume, expected, 0.05 * expected) << link;
   }
 }
+
+TEST(Hand, MimicChainsResolveToTheirIndependentJoint) {
+  const Hand h = Hand::from_urdf_string(R"(<robot name="r">
+    <link name="a"/><link name="b"/><link name="c"/><link name="d"/>
+    <joint name="j1" type="prismatic"><parent link="a"/><child link="b"/><axis xyz="1 0 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+    <joint name="j2" type="prismatic"><parent link="a"/><child link="c"/><axis xyz="1 0 0"/><limit lower="-9" upper="9" effort="1" velocity="1"/><mimic joint="j1" multiplier="2" offset="0.1"/></joint>
+    <joint name="j3" type="prismatic"><parent link="a"/><child link="d"/><axis xyz="1 0 0"/><limit lower="-9" upper="9" effort="1" velocity="1"/><mimic joint="j2" multiplier="-3" offset="0.5"/></joint>
+  </robot>)", ".");
+  ASSERT_EQ(h.n_dofs(), 1);
+  const auto P = h.fk(Eigen::Isometry3d::Identity(), Eigen::VectorXd::Constant(1, 0.2));
+  EXPECT_NEAR(P[static_cast<size_t>(h.link_index("c"))].translation().x(), 2 * 0.2 + 0.1, 1e-12);
+  EXPECT_NEAR(P[static_cast<size_t>(h.link_index("d"))].translation().x(), -3 * (2 * 0.2 + 0.1) + 0.5, 1e-12);
+  try {
+    Hand::from_urdf_string(R"(<robot name="r"><link name="a"/><link name="b"/>
+      <joint name="j" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/><mimic joint="ghost"/></joint></robot>)", ".");
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("'ghost'"), std::string::npos);
+  }
+}

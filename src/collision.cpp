@@ -118,8 +118,10 @@ CollisionExpert::CollisionExpert(std::shared_ptr<const Hand> hand, const Eigen::
     index->lo = cloud.colwise().minCoeff().transpose();
     index->hi = cloud.colwise().maxCoeff().transpose();
     const Eigen::Vector3d ext = (index->hi - index->lo).cwiseMax(1e-6);
-    // About one point per cell over the bounding box (a surface cloud then fills a few per cell).
-    double h = settings_.cell_size > 0 ? settings_.cell_size : std::cbrt(ext.prod() / static_cast<double>(N));
+    // About one point per cell over the bounding box (a surface cloud then fills a few per cell); thin
+    // sides count as 5% of the longest so a flat cloud does not get a needlessly fine grid.
+    const Eigen::Vector3d thick = ext.cwiseMax(0.05 * ext.maxCoeff());
+    double h = settings_.cell_size > 0 ? settings_.cell_size : std::cbrt(thick.prod() / static_cast<double>(N));
     h = std::max(h, 1e-4 * ext.maxCoeff());
     auto dims_for = [&](double hh) { return ((ext / hh).array().floor().cast<int>() + 1).matrix().eval(); };
     Eigen::Vector3i dims = dims_for(h);

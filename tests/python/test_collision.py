@@ -142,3 +142,26 @@ def test_bad_input_is_a_value_error(wsg):
         expert.evaluate(IDENTITY, {"thumb": 0.1})
     with pytest.raises(ValueError, match="joints"):
         expert.evaluate_batch(np.tile(IDENTITY, (3, 1)), np.zeros((2, 1)))
+
+
+def test_plane_depth_of_pybullet_panda_meshes_matches_their_lowest_vertex():
+    """FCL's half-space depth for mesh links (as hulls) = how far the lowest mesh vertex is below the plane."""
+    import pybullet_data
+
+    hand = graspmix.Hand.from_urdf(Path(pybullet_data.getDataPath()) / "franka_panda" / "panda.urdf")
+    expert = graspmix.CollisionExpert(hand, np.zeros((0, 3)), plane=[0, 0, 1, -0.3])
+    rng = np.random.default_rng(4)
+    lim = hand.joint_limits
+    for _ in range(10):
+        T = np.r_[rng.uniform(-0.2, 0.2, 3), Rotation.random(random_state=rng).as_quat()]
+        q = rng.uniform(lim[:, 0], lim[:, 1])
+        r = expert.evaluate(T, q)
+        poses = hand.fk(T, q)
+        for l, link in enumerate(hand.link_names):
+            lowest = np.inf
+            for shape in hand.collision_shapes(link):
+                S = graspmix.pose_multiply(poses[l], shape["origin"])
+                lowest = min(lowest, (Rotation.from_quat(S[3:]).apply(shape["vertices"]) + S[:3])[:, 2].min())
+            expected = max(0.0, 0.3 - lowest) if np.isfinite(lowest) else 0.0
+            assert r.plane_depth[l] == pytest.approx(expected, abs=1e-9), link
+        assert r.cloud_depth.sum() == 0.0

@@ -50,6 +50,12 @@ add_library(graspmix_assimp INTERFACE)
 target_link_libraries(graspmix_assimp INTERFACE assimp::assimp)
 add_library(graspmix::assimp ALIAS graspmix_assimp)
 
+# Convex hulls of mesh collision geometry (hands, objects): qhull, which PCL depends on already.
+find_package(Qhull REQUIRED CONFIG)
+add_library(graspmix_qhull INTERFACE)
+target_link_libraries(graspmix_qhull INTERFACE Qhull::qhullcpp Qhull::qhull_r)
+add_library(graspmix::qhull ALIAS graspmix_qhull)
+
 set(GRASPMIX_DEP_VERSIONS
   "GRASPMIX_PCL_VERSION=\"${PCL_VERSION}\""
   "GRASPMIX_FCL_VERSION=\"${fcl_VERSION}\""

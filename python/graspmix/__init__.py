@@ -60,3 +60,8 @@ __all__ = [
     "quat_exp",
     "quat_log",
 ]
+
+# ---- hands and the collision expert (issue 4) ----
+from ._core import CollisionBatchResult, CollisionExpert, CollisionResult, Hand, load_mesh  # noqa: E402
+
+__all__ += ["CollisionBatchResult", "CollisionExpert", "CollisionResult", "Hand", "load_mesh"]

@@ -98,4 +98,5 @@ PYBIND11_MODULE(_core, m) {
       "Versions of graspmix and of every library it was built against.");
   bind_se3(m);
   bind_density(m);
+  bind_surface(m);
 }

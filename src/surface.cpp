@@ -3,20 +3,23 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <queue>
 #include <stdexcept>
 #include <tuple>
+#include <unordered_map>
 #include <vector>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
-#include <pcl/features/normal_3d_omp.h>
 #include <pcl/features/principal_curvatures.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
-#include <pcl/search/kdtree.h>
 
 namespace graspmix {
 
@@ -34,69 +37,130 @@ Eigen::Vector3d tangent_reference(const Eigen::Vector3d& n) {
   return (a - a.dot(n) * n).normalized();
 }
 
+/// The points in a canonical order (by grid cell of side `radius`, then by coordinates) and a hash
+/// from cell to its contiguous range. A radius query visits the 27 surrounding cells in a fixed
+/// order, so neighbour lists, every sum over them and hence the results are the same for any
+/// permutation of the input; and on surfaces it is several times faster than a sorted kd-tree search.
+class RadiusGrid {
+ public:
+  RadiusGrid(const Vec3Array& P, double radius) : r2_(radius * radius) {
+    const Eigen::Index N = P.rows();
+    const Eigen::Vector3d lo = P.colwise().minCoeff().transpose();
+    const Eigen::Vector3d extent = P.colwise().maxCoeff().transpose() - lo;
+    if ((extent / radius).maxCoeff() >= static_cast<double>(kCells - 2)) {
+      bad("the cloud spans more than 2^21 radii; use a larger radius or crop the cloud");
+    }
+    std::vector<std::array<std::int64_t, 3>> cell(static_cast<std::size_t>(N));
+    for (Eigen::Index i = 0; i < N; ++i)
+      for (int k = 0; k < 3; ++k)
+        cell[static_cast<std::size_t>(i)][static_cast<std::size_t>(k)] =
+            static_cast<std::int64_t>(std::floor((P(i, k) - lo[k]) / radius));
+    order_.resize(static_cast<std::size_t>(N));
+    for (Eigen::Index i = 0; i < N; ++i) order_[static_cast<std::size_t>(i)] = i;
+    std::sort(order_.begin(), order_.end(), [&](Eigen::Index a, Eigen::Index b) {
+      const auto& ca = cell[static_cast<std::size_t>(a)];
+      const auto& cb = cell[static_cast<std::size_t>(b)];
+      if (ca != cb) return ca < cb;
+      return std::make_tuple(P(a, 0), P(a, 1), P(a, 2), a) < std::make_tuple(P(b, 0), P(b, 1), P(b, 2), b);
+    });
+    p_.resize(static_cast<std::size_t>(N));
+    cells_.resize(static_cast<std::size_t>(N));
+    ranges_.reserve(static_cast<std::size_t>(N));
+    for (std::size_t s = 0; s < order_.size(); ++s) {
+      p_[s] = P.row(order_[s]).transpose();
+      cells_[s] = cell[static_cast<std::size_t>(order_[s])];
+      const std::uint64_t key = pack(cells_[s][0], cells_[s][1], cells_[s][2]);
+      auto it = ranges_.find(key);
+      if (it == ranges_.end()) ranges_.emplace(key, std::make_pair(static_cast<int>(s), static_cast<int>(s) + 1));
+      else it->second.second = static_cast<int>(s) + 1;
+    }
+  }
+  int size() const { return static_cast<int>(p_.size()); }
+  /// canonical position -> input row
+  Eigen::Index row(int i) const { return order_[static_cast<std::size_t>(i)]; }
+  const Eigen::Vector3d& point(int i) const { return p_[static_cast<std::size_t>(i)]; }
+
+  /// Every j (itself included) with |p_j - p_i|^2 <= radius^2, in canonical order, with that distance.
+  void neighbours(int i, std::vector<int>& nn, std::vector<double>& d2) const {
+    nn.clear();
+    d2.clear();
+    const auto& c = cells_[static_cast<std::size_t>(i)];
+    const Eigen::Vector3d& p = point(i);
+    for (std::int64_t dx = -1; dx <= 1; ++dx)
+      for (std::int64_t dy = -1; dy <= 1; ++dy)
+        for (std::int64_t dz = -1; dz <= 1; ++dz) {
+          const std::int64_t x = c[0] + dx, y = c[1] + dy, z = c[2] + dz;
+          if (x < 0 || y < 0 || z < 0) continue;
+          const auto it = ranges_.find(pack(x, y, z));
+          if (it == ranges_.end()) continue;
+          for (int j = it->second.first; j < it->second.second; ++j) {
+            const double d = (p_[static_cast<std::size_t>(j)] - p).squaredNorm();
+            if (d <= r2_) {
+              nn.push_back(j);
+              d2.push_back(d);
+            }
+          }
+        }
+  }
+
+ private:
+  static constexpr std::int64_t kCells = std::int64_t{1} << 21;
+  static std::uint64_t pack(std::int64_t x, std::int64_t y, std::int64_t z) {
+    return (static_cast<std::uint64_t>(x) << 42) | (static_cast<std::uint64_t>(y) << 21) | static_cast<std::uint64_t>(z);
+  }
+  double r2_;
+  std::vector<Eigen::Index> order_;
+  std::vector<Eigen::Vector3d> p_;
+  std::vector<std::array<std::int64_t, 3>> cells_;
+  std::unordered_map<std::uint64_t, std::pair<int, int>> ranges_;
+};
+
 /// Hoppe-style orientation: each connected part of the k-NN graph is seeded at its point farthest
 /// from the cloud's centroid (there the surface is convex and the outward normal points away from
 /// the centroid) and oriented along a minimum spanning tree. The edge cost prefers neighbours with
 /// parallel normals that lie in each other's tangent planes, so the tree follows the surface and
 /// does not jump across thin walls, where neighbours sit along the normal.
-void orient_by_propagation(const pcl::PointCloud<pcl::PointXYZ>& cloud, const pcl::search::KdTree<pcl::PointXYZ>& tree,
-                           std::vector<Eigen::Vector3d>& n, const std::vector<char>& valid, int k, int n_threads) {
-  const int N = static_cast<int>(cloud.size());
-  std::vector<std::vector<int>> knn(static_cast<std::size_t>(N));
-#pragma omp parallel for schedule(dynamic, 256) num_threads(n_threads)
-  for (int i = 0; i < N; ++i) {
-    if (!valid[static_cast<std::size_t>(i)]) continue;
-    pcl::Indices idx;
-    std::vector<float> d2;
-    tree.nearestKSearch(static_cast<pcl::index_t>(i), k + 1, idx, d2);
-    for (const auto j : idx)
-      if (j != i && valid[static_cast<std::size_t>(j)]) knn[static_cast<std::size_t>(i)].push_back(static_cast<int>(j));
-  }
+void orient_by_propagation(const RadiusGrid& grid, const std::vector<std::vector<int>>& knn, std::vector<Eigen::Vector3d>& n,
+                           const std::vector<char>& valid) {
+  const int N = grid.size();
   std::vector<std::vector<int>> adj(static_cast<std::size_t>(N));
   for (int i = 0; i < N; ++i)
     for (const int j : knn[static_cast<std::size_t>(i)]) {
+      if (!valid[static_cast<std::size_t>(i)] || !valid[static_cast<std::size_t>(j)]) continue;
       adj[static_cast<std::size_t>(i)].push_back(j);
       adj[static_cast<std::size_t>(j)].push_back(i);
     }
-  auto P = [&](int i) { return cloud[static_cast<std::size_t>(i)].getVector3fMap().cast<double>(); };
   auto cost = [&](int i, int j) {
     const Eigen::Vector3d& ni = n[static_cast<std::size_t>(i)];
     const Eigen::Vector3d& nj = n[static_cast<std::size_t>(j)];
-    Eigen::Vector3d d = P(j) - P(i);
+    const Eigen::Vector3d d = grid.point(j) - grid.point(i);
     const double len = d.norm();
     double c = 1.0 - std::abs(ni.dot(nj));
     if (len > 0) c += 0.5 * (std::abs(ni.dot(d)) + std::abs(nj.dot(d))) / len;
     return c;
   };
-
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   int n_valid = 0;
   for (int i = 0; i < N; ++i)
     if (valid[static_cast<std::size_t>(i)]) {
-      centroid += P(i);
+      centroid += grid.point(i);
       ++n_valid;
     }
   centroid /= std::max(n_valid, 1);
-  // Seeds in order of decreasing distance from the centroid; ties broken by coordinates so that
-  // the order of the input does not matter.
-  std::vector<int> order;
+  std::vector<int> seeds;
   for (int i = 0; i < N; ++i)
-    if (valid[static_cast<std::size_t>(i)]) order.push_back(i);
+    if (valid[static_cast<std::size_t>(i)]) seeds.push_back(i);
   std::vector<double> dist(static_cast<std::size_t>(N), 0.0);
-  for (const int i : order) dist[static_cast<std::size_t>(i)] = (P(i) - centroid).squaredNorm();
-  std::sort(order.begin(), order.end(), [&](int a, int b) {
-    if (dist[static_cast<std::size_t>(a)] != dist[static_cast<std::size_t>(b)])
-      return dist[static_cast<std::size_t>(a)] > dist[static_cast<std::size_t>(b)];
-    const Eigen::Vector3d pa = P(a), pb = P(b);
-    return std::tie(pa.x(), pa.y(), pa.z()) < std::tie(pb.x(), pb.y(), pb.z());
-  });
-
+  for (const int i : seeds) dist[static_cast<std::size_t>(i)] = (grid.point(i) - centroid).squaredNorm();
+  // Farthest first; equal distances keep the canonical order (stable sort).
+  std::stable_sort(seeds.begin(), seeds.end(),
+                   [&](int a, int b) { return dist[static_cast<std::size_t>(a)] > dist[static_cast<std::size_t>(b)]; });
   std::vector<char> done(static_cast<std::size_t>(N), 0);
   using Item = std::tuple<double, int, int>;  // cost, node, parent
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap;
-  for (const int seed : order) {
+  for (const int seed : seeds) {
     if (done[static_cast<std::size_t>(seed)]) continue;
-    if (n[static_cast<std::size_t>(seed)].dot(P(seed) - centroid) < 0) n[static_cast<std::size_t>(seed)] *= -1.0;
+    if (n[static_cast<std::size_t>(seed)].dot(grid.point(seed) - centroid) < 0) n[static_cast<std::size_t>(seed)] *= -1.0;
     done[static_cast<std::size_t>(seed)] = 1;
     for (const int j : adj[static_cast<std::size_t>(seed)]) heap.emplace(cost(seed, j), j, seed);
     while (!heap.empty()) {
@@ -173,6 +237,7 @@ SurfaceCloud compute_surface_features(const Vec3Array& points, const FeatureSett
   const auto t_start = Clock::now();
   const Eigen::Index N = points.rows();
   if (N == 0) bad("points: the cloud is empty");
+  if (N >= std::numeric_limits<int>::max()) bad("points: too many points");
   for (Eigen::Index i = 0; i < N; ++i)
     if (!points.row(i).allFinite()) bad("points: row " + std::to_string(i) + " is not finite (load_cloud drops NaN points)");
   if (!(s.radius > 0) || !std::isfinite(s.radius)) bad("radius must be > 0 (metres), got " + std::to_string(s.radius));
@@ -188,6 +253,12 @@ SurfaceCloud compute_surface_features(const Vec3Array& points, const FeatureSett
         std::to_string(viewpoints.rows()));
   }
   if (!viewpoints.allFinite()) bad("viewpoints: contains NaN or infinite values");
+  if (given) {
+    for (Eigen::Index i = 0; i < N; ++i) {
+      const Eigen::Vector3d v = normals_in.row(i).transpose();
+      if (!v.allFinite() || v.norm() < 1e-12) bad("normals: row " + std::to_string(i) + " is not a finite non-zero vector");
+    }
+  }
   NormalOrientation rule = s.orientation;
   if (rule == NormalOrientation::Auto) {
     rule = viewpoints.rows() > 0 ? NormalOrientation::Viewpoint
@@ -197,37 +268,63 @@ SurfaceCloud compute_surface_features(const Vec3Array& points, const FeatureSett
   if (rule == NormalOrientation::AsGiven && !given) bad("orientation 'given' needs normals");
   const int n_threads = s.n_threads > 0 ? s.n_threads : omp_get_max_threads();
 
-  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>);
-  cloud->resize(static_cast<std::size_t>(N));
-  for (Eigen::Index i = 0; i < N; ++i) {
-    (*cloud)[static_cast<std::size_t>(i)] =
-        pcl::PointXYZ(static_cast<float>(points(i, 0)), static_cast<float>(points(i, 1)), static_cast<float>(points(i, 2)));
-  }
-  pcl::search::KdTree<pcl::PointXYZ>::Ptr tree(new pcl::search::KdTree<pcl::PointXYZ>);
-  tree->setInputCloud(cloud);
+  // Everything below works in the grid's canonical order; rows are mapped back at the end.
+  const RadiusGrid grid(points, s.radius);
+  const int M = grid.size();
+  const bool propagate = rule == NormalOrientation::Propagate;
+  const int k = s.orientation_neighbours;
 
-  // ---- normals (PCL's NormalEstimationOMP, or the caller's) --------------------------------------
+  // ---- normals: PCL NormalEstimation's definition (smallest eigenvector of the neighbourhood's
+  // covariance within radius), in double about the query point; or the caller's ---------------------
   auto t = Clock::now();
-  std::vector<Eigen::Vector3d> n(static_cast<std::size_t>(N));
-  std::vector<char> valid(static_cast<std::size_t>(N), 1);
-  if (given) {
-    for (Eigen::Index i = 0; i < N; ++i) {
-      const Eigen::Vector3d v = normals_in.row(i).transpose();
-      if (!v.allFinite() || v.norm() < 1e-12) bad("normals: row " + std::to_string(i) + " is not a finite non-zero vector");
-      n[static_cast<std::size_t>(i)] = v.normalized();
-    }
-  } else {
-    pcl::NormalEstimationOMP<pcl::PointXYZ, pcl::Normal> ne(static_cast<unsigned>(n_threads));
-    ne.setInputCloud(cloud);
-    ne.setSearchMethod(tree);
-    ne.setRadiusSearch(s.radius);
-    pcl::PointCloud<pcl::Normal> est;
-    ne.compute(est);
-    for (Eigen::Index i = 0; i < N; ++i) {
-      const auto& e = est[static_cast<std::size_t>(i)];
-      const Eigen::Vector3d v(e.normal_x, e.normal_y, e.normal_z);
-      valid[static_cast<std::size_t>(i)] = v.allFinite() && v.norm() > 0.5;
-      n[static_cast<std::size_t>(i)] = valid[static_cast<std::size_t>(i)] ? v.normalized() : Eigen::Vector3d::Zero();
+  std::vector<Eigen::Vector3d> n(static_cast<std::size_t>(M), Eigen::Vector3d::Zero());
+  std::vector<char> valid(static_cast<std::size_t>(M), 1);
+  std::vector<std::vector<int>> knn(propagate ? static_cast<std::size_t>(M) : 0);
+#pragma omp parallel num_threads(n_threads)
+  {
+    std::vector<int> nn;
+    std::vector<double> d2;
+    std::vector<std::pair<double, int>> near;
+#pragma omp for schedule(dynamic, 256)
+    for (int i = 0; i < M; ++i) {
+      if (given) {
+        n[static_cast<std::size_t>(i)] = normals_in.row(grid.row(i)).transpose().normalized();
+        if (!propagate) continue;
+      }
+      grid.neighbours(i, nn, d2);
+      if (!given) {
+        if (nn.size() < 3) {
+          valid[static_cast<std::size_t>(i)] = 0;
+          continue;
+        }
+        Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+        Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
+        for (const int j : nn) {
+          const Eigen::Vector3d d = grid.point(j) - grid.point(i);
+          mean += d;
+          C.noalias() += d * d.transpose();
+        }
+        const double inv = 1.0 / static_cast<double>(nn.size());
+        mean *= inv;
+        C = C * inv - mean * mean.transpose();
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
+        es.computeDirect(C);
+        const Eigen::Vector3d v = es.eigenvectors().col(0);
+        if (!v.allFinite() || v.norm() < 0.5) {
+          valid[static_cast<std::size_t>(i)] = 0;
+          continue;
+        }
+        n[static_cast<std::size_t>(i)] = v.normalized();
+      }
+      if (propagate) {
+        near.clear();
+        for (std::size_t a = 0; a < nn.size(); ++a)
+          if (nn[a] != i) near.emplace_back(d2[a], nn[a]);
+        const std::size_t kk = std::min<std::size_t>(static_cast<std::size_t>(k), near.size());
+        std::partial_sort(near.begin(), near.begin() + static_cast<std::ptrdiff_t>(kk), near.end());
+        auto& out = knn[static_cast<std::size_t>(i)];
+        for (std::size_t a = 0; a < kk; ++a) out.push_back(near[a].second);
+      }
     }
   }
   const double t_normals = since(t);
@@ -235,90 +332,96 @@ SurfaceCloud compute_surface_features(const Vec3Array& points, const FeatureSett
   // ---- outward orientation: before the curvatures, whose projected normals need consistent signs --
   t = Clock::now();
   if (rule == NormalOrientation::Viewpoint) {
-    for (Eigen::Index i = 0; i < N; ++i) {
-      const Eigen::Vector3d v = viewpoints.row(viewpoints.rows() == 1 ? 0 : i).transpose();
-      if (n[static_cast<std::size_t>(i)].dot(v - points.row(i).transpose()) < 0) n[static_cast<std::size_t>(i)] *= -1.0;
+    for (int i = 0; i < M; ++i) {
+      const Eigen::Vector3d v = viewpoints.row(viewpoints.rows() == 1 ? 0 : grid.row(i)).transpose();
+      if (n[static_cast<std::size_t>(i)].dot(v - grid.point(i)) < 0) n[static_cast<std::size_t>(i)] *= -1.0;
     }
   } else if (rule == NormalOrientation::Centroid) {
-    const Eigen::Vector3d c = points.colwise().mean().transpose();
-    for (Eigen::Index i = 0; i < N; ++i)
-      if (n[static_cast<std::size_t>(i)].dot(points.row(i).transpose() - c) < 0) n[static_cast<std::size_t>(i)] *= -1.0;
-  } else if (rule == NormalOrientation::Propagate) {
-    orient_by_propagation(*cloud, *tree, n, valid, s.orientation_neighbours, n_threads);
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (int i = 0; i < M; ++i) c += grid.point(i);
+    c /= M;
+    for (int i = 0; i < M; ++i)
+      if (n[static_cast<std::size_t>(i)].dot(grid.point(i) - c) < 0) n[static_cast<std::size_t>(i)] *= -1.0;
+  } else if (propagate) {
+    orient_by_propagation(grid, knn, n, valid);
   }
   const double t_orient = since(t);
 
-  // ---- principal curvatures: PCL's estimator has no OpenMP variant, so one estimator per thread
-  // on the shared kd-tree; every point is independent, so the thread count cannot change results.
+  // ---- principal curvatures: PCL's PrincipalCurvaturesEstimation has no OpenMP variant, so one
+  // estimator per thread over the shared grid; points are independent, so threads cannot change results.
   t = Clock::now();
   pcl::PointCloud<pcl::Normal> ncloud;
-  ncloud.resize(static_cast<std::size_t>(N));
-  for (Eigen::Index i = 0; i < N; ++i) {
+  ncloud.resize(static_cast<std::size_t>(M));
+  for (int i = 0; i < M; ++i) {
     const auto& v = n[static_cast<std::size_t>(i)];
     ncloud[static_cast<std::size_t>(i)] = pcl::Normal(static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z()));
   }
-  Eigen::VectorXi count = Eigen::VectorXi::Zero(N);
-  Eigen::Matrix<double, Eigen::Dynamic, 5, Eigen::RowMajor> pc(N, 5);  // pcx pcy pcz pc1 pc2
-  std::vector<char> ok(static_cast<std::size_t>(N), 0);
+  std::vector<int> count(static_cast<std::size_t>(M), 0);
+  std::vector<std::array<double, 5>> pc(static_cast<std::size_t>(M));  // pcx pcy pcz pc1 pc2
+  std::vector<char> ok(static_cast<std::size_t>(M), 0);
 #pragma omp parallel num_threads(n_threads)
   {
     pcl::PrincipalCurvaturesEstimation<pcl::PointXYZ, pcl::Normal, pcl::PrincipalCurvatures> pce;
-    pcl::Indices nn, nn_valid;
-    std::vector<float> d2;
-#pragma omp for schedule(dynamic, 128)
-    for (Eigen::Index i = 0; i < N; ++i) {
+    std::vector<int> nn;
+    std::vector<double> d2;
+    pcl::Indices nn_valid;
+#pragma omp for schedule(dynamic, 256)
+    for (int i = 0; i < M; ++i) {
       if (!valid[static_cast<std::size_t>(i)]) continue;
-      tree->radiusSearch(static_cast<pcl::index_t>(i), s.radius, nn, d2);
+      grid.neighbours(i, nn, d2);
       nn_valid.clear();
-      for (const auto j : nn)
-        if (valid[static_cast<std::size_t>(j)]) nn_valid.push_back(j);
-      count[i] = static_cast<int>(nn_valid.size());
-      if (count[i] < s.min_neighbours) continue;
+      for (const int j : nn)
+        if (valid[static_cast<std::size_t>(j)]) nn_valid.push_back(static_cast<pcl::index_t>(j));
+      count[static_cast<std::size_t>(i)] = static_cast<int>(nn_valid.size());
+      if (count[static_cast<std::size_t>(i)] < s.min_neighbours) continue;
       float x, y, z, k1, k2;
-      pce.computePointPrincipalCurvatures(ncloud, static_cast<int>(i), nn_valid, x, y, z, k1, k2);
+      pce.computePointPrincipalCurvatures(ncloud, i, nn_valid, x, y, z, k1, k2);
       // All neighbour normals parallel (a perfect plane): PCL's eigenvector of the zero matrix is NaN
       // while k1 = k2 = 0 is right; the frame rule then picks x.
       if (!(std::isfinite(x) && std::isfinite(y) && std::isfinite(z))) x = y = z = 0.0f;
-      pc.row(i) << x, y, z, std::max(k1, 0.0f), std::max(std::min(k2, k1), 0.0f);
-      ok[static_cast<std::size_t>(i)] = pc.row(i).allFinite();
+      pc[static_cast<std::size_t>(i)] = {x, y, z, std::max(k1, 0.0f), std::max(std::min(k2, k1), 0.0f)};
+      ok[static_cast<std::size_t>(i)] = std::isfinite(k1) && std::isfinite(k2);
     }
   }
   const double t_curv = since(t);
 
-  // ---- keep the stable points ------------------------------------------------------------------
-  std::vector<Eigen::Index> keep;
-  for (Eigen::Index i = 0; i < N; ++i)
-    if (ok[static_cast<std::size_t>(i)]) keep.push_back(i);
+  // ---- keep the stable points, in input order -----------------------------------------------------
+  std::vector<int> pos(static_cast<std::size_t>(N));
+  for (int i = 0; i < M; ++i) pos[static_cast<std::size_t>(grid.row(i))] = i;
+  std::vector<int> keep;
+  for (Eigen::Index r = 0; r < N; ++r)
+    if (ok[static_cast<std::size_t>(pos[static_cast<std::size_t>(r)])]) keep.push_back(pos[static_cast<std::size_t>(r)]);
   if (keep.empty()) {
-    std::vector<int> c(count.data(), count.data() + N);
-    std::nth_element(c.begin(), c.begin() + N / 2, c.end());
+    std::vector<int> c = count;
+    std::nth_element(c.begin(), c.begin() + M / 2, c.end());
     bad("no point has a stable neighbourhood: " + std::to_string(s.min_neighbours) + " neighbours within radius " +
-        std::to_string(s.radius) + " m are needed, the median point has " + std::to_string(c[static_cast<std::size_t>(N / 2)]) +
+        std::to_string(s.radius) + " m are needed, the median point has " + std::to_string(c[static_cast<std::size_t>(M / 2)]) +
         "; use a larger radius or a denser cloud");
   }
-  const Eigen::Index M = static_cast<Eigen::Index>(keep.size());
+  const Eigen::Index K = static_cast<Eigen::Index>(keep.size());
   SurfaceCloud out;
   out.n_input = static_cast<std::size_t>(N);
-  out.n_dropped = static_cast<std::size_t>(N - M);
+  out.n_dropped = static_cast<std::size_t>(N - K);
   out.radius = s.radius;
   out.orientation = to_string(rule);
-  out.points.resize(M, 3);
-  out.normals.resize(M, 3);
-  out.curvatures.resize(M, 2);
-  out.indices.resize(M);
-  out.neighbours.resize(M);
-  out.isotropic.resize(M);
-  out.frame_ambiguity.resize(M);
-  Vec3Array dirs(M, 3);
-  for (Eigen::Index r = 0; r < M; ++r) {
-    const Eigen::Index i = keep[static_cast<std::size_t>(r)];
-    out.points.row(r) = points.row(i);
+  out.points.resize(K, 3);
+  out.normals.resize(K, 3);
+  out.curvatures.resize(K, 2);
+  out.indices.resize(K);
+  out.neighbours.resize(K);
+  out.isotropic.resize(K);
+  out.frame_ambiguity.resize(K);
+  Vec3Array dirs(K, 3);
+  for (Eigen::Index r = 0; r < K; ++r) {
+    const int i = keep[static_cast<std::size_t>(r)];
+    const auto& v = pc[static_cast<std::size_t>(i)];
+    out.points.row(r) = points.row(grid.row(i));
     out.normals.row(r) = n[static_cast<std::size_t>(i)].transpose();
-    const double k1 = pc(i, 3), k2 = pc(i, 4);
+    const double k1 = v[3], k2 = v[4];
     out.curvatures.row(r) << k1, k2;
-    dirs.row(r) = pc.row(i).head<3>();
-    out.indices[r] = static_cast<int>(i);
-    out.neighbours[r] = count[i];
+    dirs.row(r) << v[0], v[1], v[2];
+    out.indices[r] = static_cast<int>(grid.row(i));
+    out.neighbours[r] = count[static_cast<std::size_t>(i)];
     const double anisotropy = (k1 >= s.flat_curvature && k1 > 0) ? (k1 - k2) / k1 : 0.0;  // flat: fully ambiguous
     out.isotropic[r] = k1 < s.flat_curvature || anisotropy < s.min_anisotropy;
     out.frame_ambiguity[r] = M_PI * std::exp(-100.0 * anisotropy * anisotropy);

@@ -9,6 +9,12 @@
 // k1 ~ k2 ~ (radius / 2R)^2; on a cylinder k1 ~ (radius / 2R)^2, k2 ~ 0; on a plane both ~ 0.
 // Demonstration and query clouds must use the same radius and sampling density.
 //
+// Normals follow PCL's NormalEstimation (smallest eigenvector of the covariance of the neighbours
+// within radius, computed here in double); curvatures are PCL's PrincipalCurvaturesEstimation run
+// per point, one estimator per OpenMP thread. Neighbours come from a uniform grid over the points
+// in a canonical order, so results are bit-identical for any permutation of the input and any
+// thread count.
+//
 // Where k1 ~ k2 (spheres, planes) the principal direction is noise, so the frame's x axis is
 // chosen deterministically from the normal instead (see FeatureSettings and `isotropic`):
 // x = the world z axis projected on the tangent plane, or the world x axis where the normal is

@@ -34,7 +34,10 @@ enum class NormalOrientation {
   Auto,       ///< towards the viewpoints when given; else given normals as they are; else Propagate
   Viewpoint,  ///< towards the viewpoint(s): right for clouds seen by cameras
   Propagate,  ///< outward at the point farthest from the centroid, then propagated along a minimum
-              ///< spanning tree of the k-nearest-neighbour graph (Hoppe et al. 1992); concave parts ok
+              ///< spanning tree of the k-nearest-neighbour graph (Hoppe et al. 1992); concave parts
+              ///< (a torus's inside, a cup's inner wall) come out right as long as walls are thicker
+              ///< than the radius. A thinner wall is not resolved by radius-sized normals at all: its
+              ///< two sides get the same normal, so give viewpoints or normals for such objects.
   Centroid,   ///< away from the centroid: only for star-shaped (e.g. convex) objects
   AsGiven,    ///< keep the signs of the given normals
 };

@@ -163,3 +163,18 @@ def test_save_errors(tmp_path, points):
         graspmix.save_cloud(tmp_path / "x.pcd", points, points[:5])
     with pytest.raises(ValueError, match="can only write"):
         graspmix.save_cloud(tmp_path / "x.txt", points)
+
+
+def test_double_and_integer_pcd_fields(tmp_path):
+    # x y z as float64 (PCL's PointXYZ templates would skip them) and a uint8 label, binary_compressed-free.
+    rng = np.random.default_rng(4)
+    P = rng.normal(size=(20, 3))
+    rec = np.zeros(20, dtype=[("x", "<f8"), ("y", "<f8"), ("z", "<f8"), ("label", "u1")])
+    rec["x"], rec["y"], rec["z"] = P.T
+    rec["label"] = 7
+    path = tmp_path / "double.pcd"
+    path.write_bytes(_pcd_header(["x", "y", "z", "label"], [8, 8, 8, 1], ["F", "F", "F", "U"], 20, 1, "binary") +
+                     rec.tobytes())
+    c = graspmix.load_cloud(path)
+    np.testing.assert_array_equal(c.points, P)
+    assert c.fields == ["x", "y", "z", "label"]

@@ -14,6 +14,13 @@ from ._core import (
     PoseKDE,
     PoseMixture,
     build_info,
+    CloudData,
+    SceneResult,
+    SurfaceCloud,
+    compute_surface_features,
+    load_cloud,
+    prepare_cloud,
+    save_cloud,
 )
 
 try:
@@ -59,6 +66,13 @@ __all__ = [
     "pose_multiply",
     "quat_exp",
     "quat_log",
+    "CloudData",
+    "SceneResult",
+    "SurfaceCloud",
+    "compute_surface_features",
+    "load_cloud",
+    "prepare_cloud",
+    "save_cloud",
 ]
 
 # ---- hands and the collision expert (issue 4) ----

@@ -69,6 +69,58 @@ def _cmd_fit_gmm(args: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_features(args: argparse.Namespace) -> int:
+    """O(v, r) of a cloud file: outward normals, curvatures [k1, k2] and frames, saved as .npz."""
+    t0 = time.perf_counter()
+    cloud = graspmix.load_cloud(args.cloud)
+    points = cloud.points
+    print(f"{args.cloud}: {len(points)} points ({cloud.format}"
+          + (f", {cloud.n_invalid} NaN points dropped" if cloud.n_invalid else "") + ")")
+    scene = None
+    if args.voxel_size > 0 or args.remove_outliers or args.remove_plane or args.crop:
+        crop = args.crop or [None] * 6
+        scene = graspmix.prepare_cloud(points, crop_min=None if args.crop is None else crop[:3],
+                                       crop_max=None if args.crop is None else crop[3:], voxel_size=args.voxel_size,
+                                       remove_outliers=args.remove_outliers, remove_plane=args.remove_plane,
+                                       seed=args.seed)
+        points = scene.points
+        print(f"prepared: {scene.n_input} -> {scene.n_output} points"
+              + (f", support plane {np.array2string(scene.plane, precision=4)}" if scene.plane_found else ""))
+    normals = None
+    if args.file_normals:
+        if cloud.normals is None:
+            raise CliError(f"{args.cloud}: --file-normals given but the file has no normal_x/y/z fields")
+        if scene is not None:
+            raise CliError("--file-normals cannot be combined with clean-up steps (the points change)")
+        normals = cloud.normals
+    viewpoints = None
+    if args.viewpoint is not None:
+        viewpoints = np.asarray(args.viewpoint, dtype=float)
+    elif cloud.has_viewpoint and args.orientation in ("auto", "viewpoint"):
+        viewpoints = np.asarray(cloud.viewpoint[:3])
+    s = graspmix.compute_surface_features(points, args.radius, normals=normals, viewpoints=viewpoints,
+                                          min_neighbours=args.min_neighbours, orientation=args.orientation)
+    k = s.curvatures
+    print(f"features: {len(s)} points kept, {s.n_dropped} dropped (fewer than {args.min_neighbours} neighbours "
+          f"within {args.radius} m), normals oriented by {s.orientation}, {s.timings['total'] * 1e3:.0f} ms")
+    print(f"  k1 median {np.median(k[:, 0]):.4g} (5-95%: {np.quantile(k[:, 0], 0.05):.4g}-{np.quantile(k[:, 0], 0.95):.4g}),"
+          f" k2 median {np.median(k[:, 1]):.4g}; {np.mean(s.isotropic) * 100:.0f}% of frames by the isotropic rule")
+    if args.out:
+        extra = {"plane": scene.plane if scene is not None and scene.plane_found else np.zeros(0)}
+        np.savez_compressed(args.out, points=s.points, normals=s.normals, curvatures=s.curvatures, frames=s.frames,
+                            indices=s.indices, neighbours=s.neighbours, isotropic=s.isotropic,
+                            frame_ambiguity=s.frame_ambiguity, radius=s.radius, orientation=s.orientation,
+                            cloud=str(args.cloud), **extra)
+        print(f"wrote {args.out}")
+    if args.plot:
+        from .plots import plot_surface_features
+
+        plot_surface_features(s, args.plot, title=f"{Path(args.cloud).name}: radius {args.radius} m", normals=args.plot_normals)
+        print(f"wrote {args.plot}")
+    print(f"total {time.perf_counter() - t0:.2f} s")
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="graspmix_cli", description=__doc__.splitlines()[0])
     p.add_argument("--version", action="version", version=f"graspmix {graspmix.__version__}")
@@ -87,6 +139,25 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("--seed", type=int, default=0)
     s.add_argument("--out", help="write the fitted parameters as JSON")
     s.set_defaults(func=_cmd_fit_gmm)
+
+    s = sub.add_parser("features", help="outward normals, principal curvatures [k1, k2] and frames of a cloud (.pcd/.ply/.npy)")
+    s.add_argument("--cloud", required=True, help="the object cloud (.pcd, .ply, or .npy (N, 3))")
+    s.add_argument("--radius", type=float, default=0.01, help="neighbourhood radius in metres (default 0.01, as the paper)")
+    s.add_argument("--out", help="write the features as .npz (points, normals, curvatures, frames, indices, ...)")
+    s.add_argument("--plot", help="write a picture of the cloud coloured by k1 and k2 (.png/.pdf/.svg)")
+    s.add_argument("--plot-normals", type=int, default=0, metavar="N", help="draw N normals in the picture")
+    s.add_argument("--orientation", default="auto", choices=["auto", "viewpoint", "propagate", "centroid", "given"],
+                   help="how normals are turned outward (auto: the file's or --viewpoint camera, else propagation)")
+    s.add_argument("--viewpoint", type=float, nargs=3, metavar=("X", "Y", "Z"), help="camera position for the normals")
+    s.add_argument("--file-normals", action="store_true", help="use the file's normals instead of estimating them")
+    s.add_argument("--min-neighbours", type=int, default=10, help="drop points with fewer neighbours within radius")
+    s.add_argument("--voxel-size", type=float, default=0.0, help="voxel-grid down-sampling first (m; 0 = off)")
+    s.add_argument("--remove-outliers", action="store_true", help="statistical outlier removal first")
+    s.add_argument("--remove-plane", action="store_true", help="remove the dominant support plane (RANSAC) first")
+    s.add_argument("--crop", type=float, nargs=6, metavar=("XMIN", "YMIN", "ZMIN", "XMAX", "YMAX", "ZMAX"),
+                   help="keep only points inside this box first")
+    s.add_argument("--seed", type=int, default=0, help="seed of the RANSAC plane search")
+    s.set_defaults(func=_cmd_features)
     return p
 
 

@@ -312,7 +312,9 @@ CollisionBatchResult CollisionExpert::evaluate_batch(const Eigen::Ref<const Pose
   out.w.resize(N);
   out.collision_free.resize(N);
   std::string error;
-#pragma omp parallel
+  // Small batches (annealing scores ~10 hands at a time) stay on one thread: waking a team costs more
+  // than it saves, and its spinning threads stall badly on a loaded machine.
+#pragma omp parallel if (N >= 64)
   {
     std::vector<Eigen::Isometry3d> poses(static_cast<size_t>(L));
     std::vector<int> inside(static_cast<size_t>(L));
@@ -345,4 +347,27 @@ CollisionBatchResult CollisionExpert::evaluate_batch(const Eigen::Ref<const Pose
   return out;
 }
 
+Eigen::VectorXd link_signed_distances(const Hand& hand, int link, const Eigen::Isometry3d& T_world_link,
+                                      const Eigen::Ref<const Vec3Array>& points) {
+  if (link < 0 || link >= hand.n_links()) {
+    throw std::invalid_argument("link_signed_distances: link index " + std::to_string(link) + " outside [0, " +
+                                std::to_string(hand.n_links()) + ")");
+  }
+  for (const CollisionShape& s : hand.links()[link].collisions) {
+    if (s.type == ShapeType::Mesh && !s.hull_planes) {
+      throw std::invalid_argument("link_signed_distances: link '" + hand.link_names()[link] +
+                                  "' has a mesh read without geometry");
+    }
+  }
+  Eigen::VectorXd out = Eigen::VectorXd::Constant(points.rows(), std::numeric_limits<double>::infinity());
+  for (const CollisionShape& s : hand.links()[link].collisions) {
+    const Eigen::Isometry3d T_shape_world = (T_world_link * s.T_link_shape).inverse();
+    for (Eigen::Index i = 0; i < points.rows(); ++i) {
+      out[i] = std::min(out[i], signed_distance(s, T_shape_world * Eigen::Vector3d(points.row(i).transpose())));
+    }
+  }
+  return out;
+}
+
 }  // namespace graspmix
+

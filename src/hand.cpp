@@ -150,7 +150,8 @@ RowMatrixXd Hand::fk_batch(const Eigen::Ref<const PoseArray>& T_world_wrist, con
   const int L = n_links();
   RowMatrixXd out(N, 7 * L);
   std::string error;
-#pragma omp parallel
+  // fk is a fraction of a microsecond per hand: only large batches are worth a thread team.
+#pragma omp parallel if (N >= 2048)
   {
     std::vector<Eigen::Isometry3d> poses(static_cast<size_t>(L));
     Eigen::VectorXd qi(n_dofs());

@@ -105,4 +105,11 @@ class CollisionExpert {
   std::shared_ptr<const Shapes> shapes_;
 };
 
+/// Signed distance (m, negative inside) from every point (N, 3, world frame) to a link's collision
+/// geometry posed at T_world_link: the minimum over the link's shapes, each as the collision expert
+/// sees it (meshes as their convex hulls). +inf for a link without collision geometry. Contact models
+/// use it to find the object points near each link of a demonstrated grasp.
+Eigen::VectorXd link_signed_distances(const Hand& hand, int link, const Eigen::Isometry3d& T_world_link,
+                                      const Eigen::Ref<const Vec3Array>& points);
+
 }  // namespace graspmix

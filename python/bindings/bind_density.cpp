@@ -64,7 +64,7 @@ GmmSettings gmm_settings(int n_components, double reg_covar, int max_iter, doubl
 
 /// The methods every PoseDensity shares, bound once on the base class.
 void bind_pose_density_base(py::module_& m) {
-  py::class_<PoseDensity>(m, "PoseDensity",
+  py::class_<PoseDensity, std::shared_ptr<PoseDensity>>(m, "PoseDensity",
                           "A density over poses given features: PoseMixture (the paper's) or PoseKDE (the baseline).")
       .def_property_readonly("fitted", &PoseDensity::fitted)
       .def_property_readonly("n_features", &PoseDensity::n_features)
@@ -172,7 +172,7 @@ void bind_density(py::module_& m) {
 
   bind_pose_density_base(m);
 
-  py::class_<PoseMixture, PoseDensity>(
+  py::class_<PoseMixture, PoseDensity, std::shared_ptr<PoseMixture>>(
       m, "PoseMixture",
       "The paper's mixture over (p, q, r), fitted in (p, log q, r): p(u|r) by conditioning, p(r) by marginalising.")
       .def(py::init([](int n_components, double reg_covar, int max_iter, double tol, int n_init, const py::object& seed) {
@@ -216,7 +216,7 @@ void bind_density(py::module_& m) {
             return PoseMixture::from_parameters(Eigen::Quaterniond(q[3], q[0], q[1], q[2]), t[1].cast<GaussianMixture>());
           }));
 
-  py::class_<PoseKDE, PoseDensity>(m, "PoseKDE",
+  py::class_<PoseKDE, PoseDensity, std::shared_ptr<PoseKDE>>(m, "PoseKDE",
                                    "Kopicki et al. 2015's non-parametric density: one weighted kernel per data point.")
       .def(py::init([](double position_bandwidth, double orientation_bandwidth, const py::object& feature_bandwidth) {
              KdeSettings s;

@@ -10,8 +10,6 @@
 
 namespace graspmix::py_bind {
 
-namespace {
-
 using HandPtr = std::shared_ptr<Hand>;
 
 std::string to_path(const py::object& obj, const char* name) {
@@ -74,6 +72,8 @@ RowMatrixXd to_configurations(const Hand& hand, const py::handle& obj, const cha
 Eigen::Isometry3d to_pose(const py::handle& obj, const char* name) {
   return pose_from_vector(to_vector(obj, name, 7));
 }
+
+namespace {
 
 py::array_t<double> poses_3d(const RowMatrixXd& flat, Eigen::Index n_links) {
   const py::ssize_t N = flat.rows(), L = n_links;

@@ -10,6 +10,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include "graspmix/hand.hpp"
 #include "graspmix/types.hpp"
 
 namespace graspmix::py_bind {
@@ -28,9 +29,19 @@ RowMatrixXd to_features(const py::object& obj, Eigen::Index n_rows, int n_featur
 /// Optional weights: None -> empty.
 Eigen::VectorXd to_weights(const py::object& obj, const char* name);
 
+/// A filesystem path from str or os.PathLike.
+std::string to_path(const py::object& obj, const char* name);
+/// One configuration of `hand` from a name -> value mapping or an array in joint_names() order.
+Eigen::VectorXd to_configuration(const Hand& hand, const py::handle& obj, const char* what);
+/// N configurations: an (N, n_dofs) array, a sequence of mappings, or one configuration for all.
+RowMatrixXd to_configurations(const Hand& hand, const py::handle& obj, const char* what);
+/// A 7-vector pose.
+Eigen::Isometry3d to_pose(const py::handle& obj, const char* name);
+
 void bind_se3(py::module_& m);
 void bind_density(py::module_& m);
 void bind_hand(py::module_& m);
 void bind_surface(py::module_& m);
+void bind_synthesis(py::module_& m);
 
 }  // namespace graspmix::py_bind

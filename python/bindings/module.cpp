@@ -100,4 +100,5 @@ PYBIND11_MODULE(_core, m) {
   bind_density(m);
   bind_hand(m);
   bind_surface(m);
+  bind_synthesis(m);
 }

@@ -1,7 +1,7 @@
 """graspmix: generative grasp synthesis from one demonstration with parametric mixtures.
 
 The C++ core lives in ``graspmix._core``; this package re-exports it and adds the Python-side tools
-(command line, plots, experiment protocol).
+(learning and synthesis front end, acquisition, command line, plots).
 """
 from importlib import metadata as _metadata
 
@@ -9,11 +9,13 @@ import numpy as _np
 
 from . import _core
 from ._core import (
+    # densities (foundation)
     GaussianMixture,
     PoseDensity,
     PoseKDE,
     PoseMixture,
     build_info,
+    # object representation
     CloudData,
     SceneResult,
     SurfaceCloud,
@@ -21,7 +23,27 @@ from ._core import (
     load_cloud,
     prepare_cloud,
     save_cloud,
+    # hands and the collision expert
+    CollisionBatchResult,
+    CollisionExpert,
+    CollisionResult,
+    Hand,
+    load_mesh,
+    # contact models, configuration model, experts, synthesis
+    AxisAlignmentExpert,
+    ConfigModel,
+    ConfigModelSettings,
+    ContactModel,
+    ContactSettings,
+    Expert,
+    FunctionExpert,
+    GraspSynthesizer,
+    KinematicFeasibilityExpert,
+    SynthesisSettings,
+    contact_data,
+    learn_contact_models,
 )
+from .model import Demonstration, FeatureSettings, GraspModel, GraspSet, data_path, default_model_path, expert, learn
 
 try:
     __version__ = _metadata.version("graspmix")
@@ -29,7 +51,7 @@ except _metadata.PackageNotFoundError:  # running from a source tree
     __version__ = build_info()["graspmix"]
 
 
-def _rowwise(fn, name, *arrays):
+def _rowwise(fn, *arrays):
     """Calls a batched (N, d) core function; 1-D inputs are taken as one row and the result is 1-D."""
     single = all(_np.ndim(a) == 1 for a in arrays)
     out = fn(*[_np.atleast_2d(_np.asarray(a, dtype=float)) if _np.ndim(a) == 1 else a for a in arrays])
@@ -38,44 +60,22 @@ def _rowwise(fn, name, *arrays):
 
 def quat_log(q):
     """eq:log_map on quaternions [x, y, z, w], (N, 4) or (4,), canonicalised to w >= 0 first."""
-    return _rowwise(_core.quat_log, "quat_log", q)
+    return _rowwise(_core.quat_log, q)
 
 
 def quat_exp(w):
     """eq:exp_map on rotation vectors (N, 3) or (3,), half-angle convention."""
-    return _rowwise(_core.quat_exp, "quat_exp", w)
+    return _rowwise(_core.quat_exp, w)
 
 
 def pose_multiply(a, b):
     """a o b on poses [x, y, z, qx, qy, qz, qw], (N, 7) or (7,); a single pose is broadcast."""
-    return _rowwise(_core.pose_multiply, "pose_multiply", a, b)
+    return _rowwise(_core.pose_multiply, a, b)
 
 
 def pose_inverse(a):
     """The inverse of poses (N, 7) or (7,)."""
-    return _rowwise(_core.pose_inverse, "pose_inverse", a)
+    return _rowwise(_core.pose_inverse, a)
 
 
-__all__ = [
-    "GaussianMixture",
-    "PoseDensity",
-    "PoseKDE",
-    "PoseMixture",
-    "build_info",
-    "pose_inverse",
-    "pose_multiply",
-    "quat_exp",
-    "quat_log",
-    "CloudData",
-    "SceneResult",
-    "SurfaceCloud",
-    "compute_surface_features",
-    "load_cloud",
-    "prepare_cloud",
-    "save_cloud",
-]
-
-# ---- hands and the collision expert (issue 4) ----
-from ._core import CollisionBatchResult, CollisionExpert, CollisionResult, Hand, load_mesh  # noqa: E402
-
-__all__ += ["CollisionBatchResult", "CollisionExpert", "CollisionResult", "Hand", "load_mesh"]
+__all__ = [name for name in dir() if not name.startswith("_") and name not in ("annotations",)]

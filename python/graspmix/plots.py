@@ -56,3 +56,52 @@ def plot_surface_features(surface, path, *, max_points: int = 20000, seed: int =
     fig.savefig(Path(path), dpi=120)
     plt.close(fig)
     return Path(path)
+
+
+def plot_grasps(grasps, hand, path, *, top: int = 3, max_points: int = 8000, seed: int = 0, title: str | None = None):
+    """The object's cloud with the collision geometry of the best `top` grasps' hands (the first drawn
+    strongest), from two viewpoints. grasps: a GraspSet (its surface is drawn) or anything with
+    ``surface.points`` and ``grasps`` as in grasps.json; hand: the graspmix.Hand they are for."""
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+
+    from . import _core
+
+    plt = _pyplot()
+    P = np.asarray(grasps.surface.points)
+    rows = grasps.grasps[:top]
+    if not rows:
+        raise ValueError("plot_grasps: there are no grasps to draw")
+    rng = np.random.default_rng(seed)
+    idx = np.arange(len(P)) if len(P) <= max_points else rng.choice(len(P), max_points, replace=False)
+    meshes = {name: hand.collision_mesh(name) for name in hand.link_names}
+    colours = ["tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple"]
+    fig = plt.figure(figsize=(12, 6))
+    everything = [P[idx]]
+    for view, (elev, azim) in enumerate([(25, -60), (70, 30)]):
+        ax = fig.add_subplot(1, 2, view + 1, projection="3d")
+        ax.scatter(P[idx, 0], P[idx, 1], P[idx, 2], s=1, c="0.35", linewidths=0)
+        for k, g in enumerate(rows):
+            links = hand.fk(np.asarray(g["T_world_wrist"]), g["grasp_joints"])
+            for name, pose in zip(hand.link_names, links):
+                V, T = meshes[name]
+                if len(T) == 0:
+                    continue
+                W = _core.pose_multiply(np.tile(pose, (len(V), 1)), np.hstack([V, np.tile([0, 0, 0, 1.0], (len(V), 1))]))[:, :3]
+                everything.append(W)
+                ax.add_collection3d(Poly3DCollection(W[T], alpha=0.35 if k else 0.55, facecolor=colours[k % len(colours)],
+                                                     edgecolor="none"))
+        allp = np.vstack(everything)
+        centre, span = (allp.max(0) + allp.min(0)) / 2, (allp.max(0) - allp.min(0)).max() / 2
+        for setter, c in zip((ax.set_xlim, ax.set_ylim, ax.set_zlim), centre):
+            setter(c - span, c + span)
+        ax.set_box_aspect((1, 1, 1))
+        ax.view_init(elev=elev, azim=azim)
+        ax.set_xlabel("x (m)")
+        ax.set_ylabel("y (m)")
+        ax.set_zlabel("z (m)")
+    labels = ", ".join(f"#{g['rank']} ({colours[k % len(colours)].split(':')[1]}): log L {g['log_likelihood']:.2f}"
+                       for k, g in enumerate(rows))
+    fig.suptitle((title + "\n" if title else "") + labels, fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)

@@ -31,5 +31,6 @@ Eigen::VectorXd to_weights(const py::object& obj, const char* name);
 void bind_se3(py::module_& m);
 void bind_density(py::module_& m);
 void bind_hand(py::module_& m);
+void bind_sim(py::module_& m);
 
 }  // namespace graspmix::py_bind

@@ -99,4 +99,5 @@ PYBIND11_MODULE(_core, m) {
   bind_se3(m);
   bind_density(m);
   bind_hand(m);
+  bind_sim(m);
 }

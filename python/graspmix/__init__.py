@@ -65,3 +65,9 @@ __all__ = [
 from ._core import CollisionBatchResult, CollisionExpert, CollisionResult, Hand, load_mesh  # noqa: E402
 
 __all__ += ["CollisionBatchResult", "CollisionExpert", "CollisionResult", "Hand", "load_mesh"]
+
+# ---- simulation: acquisition and grasp execution (issue 6) ----
+from ._core import SimObject, SimResult, SimSettings  # noqa: E402
+from . import acquisition, sim  # noqa: E402
+
+__all__ += ["SimObject", "SimResult", "SimSettings", "acquisition", "sim"]

@@ -16,6 +16,7 @@ import dataclasses
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Callable
 
 import numpy as np
 
@@ -189,11 +190,14 @@ class Scene:
 
 
 def acquire(object_path: str | Path, noise: bool = False, seed: int = 0,
-            settings: AcquisitionSettings | None = None) -> Acquisition:
+            settings: AcquisitionSettings | None = None,
+            postprocess: Callable[[Acquisition], Acquisition] | None = None) -> Acquisition:
     """Renders every camera, applies the noise model if asked (seeded), back-projects and stitches.
 
     With settings.keep == "object", only pixels whose (noise-free) ray hits the object are kept, as
     a segmented sensor would give; "scene" keeps the support plane too, for prepare_cloud to remove.
+    postprocess: the clean-up of the stitched cloud (crop, voxel grid, outliers, plane removal), called
+    on the Acquisition and returning one (e.g. with fewer points); None keeps the stitched cloud.
     """
     settings = settings or AcquisitionSettings()
     if settings.keep not in ("object", "scene"):
@@ -219,5 +223,53 @@ def acquire(object_path: str | Path, noise: bool = False, seed: int = 0,
     points = np.vstack(pts)
     if len(points) == 0:
         raise ValueError(f"{object_path}: no camera sees the object (check camera and object placement)")
-    return Acquisition(points=points, viewpoints=np.vstack(views), camera_index=np.concatenate(idx),
-                       depth_images=images, object_pose=pose, cameras=list(settings.cameras), noise=noise, seed=seed)
+    acq = Acquisition(points=points, viewpoints=np.vstack(views), camera_index=np.concatenate(idx),
+                      depth_images=images, object_pose=pose, cameras=list(settings.cameras), noise=noise, seed=seed)
+    if postprocess is not None:
+        acq = postprocess(acq)
+        if not isinstance(acq, Acquisition) or len(acq.points) == 0:
+            raise ValueError(f"{object_path}: the clean-up left no points (or returned no Acquisition)")
+    return acq
+
+
+def write_pcd(path: str | Path, points: np.ndarray, viewpoint=None) -> None:
+    """Writes (N, 3) points as a binary PCD (x y z float32), the format PCL reads as PointXYZ."""
+    pts = np.ascontiguousarray(np.asarray(points, dtype="<f4"))
+    if pts.ndim != 2 or pts.shape[1] != 3:
+        raise ValueError(f"points: expected shape (N, 3), got {pts.shape}")
+    vp = "0 0 0 1 0 0 0" if viewpoint is None else " ".join(f"{v:.9g}" for v in [*viewpoint[:3], 1, 0, 0, 0])
+    header = (f"# .PCD v0.7 - Point Cloud Data file format\nVERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\n"
+              f"COUNT 1 1 1\nWIDTH {len(pts)}\nHEIGHT 1\nVIEWPOINT {vp}\nPOINTS {len(pts)}\nDATA binary\n")
+    with open(path, "wb") as f:
+        f.write(header.encode("ascii"))
+        f.write(pts.tobytes())
+
+
+def read_pcd_binary(path: str | Path) -> np.ndarray:
+    """Reads back what write_pcd writes (binary x y z float32): for tests and quick looks."""
+    data = Path(path).read_bytes()
+    end = data.index(b"DATA binary\n") + len(b"DATA binary\n")
+    n = int([l for l in data[:end].decode().splitlines() if l.startswith("POINTS")][0].split()[1])
+    return np.frombuffer(data[end:end + 12 * n], dtype="<f4").reshape(n, 3).astype(float)
+
+
+def plot_depth_images(acq: Acquisition, path: str | Path) -> None:
+    """A picture of the depth images, one panel per camera (metres; white: no return)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    n = len(acq.depth_images)
+    fig, axes = plt.subplots(1, n, figsize=(3.2 * n, 2.8), squeeze=False)
+    finite = np.concatenate([d[np.isfinite(d)] for d in acq.depth_images])
+    lo, hi = (np.percentile(finite, 1), np.percentile(finite, 99)) if len(finite) else (0, 1)
+    for i, (ax, d) in enumerate(zip(axes[0], acq.depth_images)):
+        im = ax.imshow(np.where(np.isfinite(d), d, np.nan), vmin=lo, vmax=hi, cmap="viridis")
+        ax.set_title(f"camera {i}", fontsize=9)
+        ax.set_xticks([])
+        ax.set_yticks([])
+    fig.colorbar(im, ax=axes[0].tolist(), shrink=0.8, label="depth (m)")
+    fig.suptitle(f"{len(acq.points)} points, noise {'on' if acq.noise else 'off'} (seed {acq.seed})", fontsize=10)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)

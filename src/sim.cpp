@@ -69,6 +69,8 @@ struct World {
     // The solver settings pybullet's physics server uses.
     auto& info = world->getSolverInfo();
     info.m_numIterations = s.solver_iterations;
+    info.m_erp2 = 0.08;         // contact error reduction
+    info.m_frictionERP = 0.2;
     info.m_linearSlop = 0.00001;
     info.m_warmstartingFactor = 0.1;
     info.m_minimumSolverBatchSize = 0;
@@ -404,6 +406,7 @@ SimResult execute(const Hand& hand, const SimObject& object, const Eigen::Isomet
   struct Drive {
     int link;
     double target;
+    double speed;
     btMultiBodyJointMotor* motor;
   };
   std::vector<Drive> fingers;
@@ -426,7 +429,9 @@ SimResult execute(const Hand& hand, const SimObject& object, const Eigen::Isomet
       w.world->addMultiBodyConstraint(limit.get());
       w.constraints.push_back(std::move(limit));
     }
-    fingers.push_back({i, target, add_motor(i, s.grip_force)});
+    // Fast enough to reach the grasp joints within half the closing time, whatever the joint's travel.
+    const double speed = std::max(s.close_speed, 2.0 * std::abs(q_grasp[ji] - q_start[ji]) / std::max(s.close_time, dt));
+    fingers.push_back({i, target, speed, add_motor(i, s.grip_force)});
   }
 
   SimResult r;
@@ -474,7 +479,7 @@ SimResult execute(const Hand& hand, const SimObject& object, const Eigen::Isomet
   auto step = [&]() {
     for (auto& f : fingers) {
       const double err = f.target - hbody->getJointPos(f.link);
-      f.motor->setVelocityTarget(std::clamp(s.position_gain * err, -s.close_speed, s.close_speed));
+      f.motor->setVelocityTarget(std::clamp(s.position_gain * err, -f.speed, f.speed));
     }
     const double err = lift_target - hbody->getJointPos(0);
     lift_motor->setVelocityTarget(std::clamp(s.position_gain * err, -s.lift_speed, s.lift_speed));

@@ -12,7 +12,7 @@
 //      the support deeper than `start_penetration`, the result is "start in collision";
 //   2. close: every movable joint (mimic joints too, to their mimicked targets) is driven by a velocity
 //      motor towards a target past the grasp joints (grasp + close_overshoot * (grasp - pregrasp)),
-//      speed-limited by close_speed and force-limited by grip_force; no hand-object contact at the end
+//      speed-limited (close_speed, or faster for long travels) and force-limited by grip_force; no hand-object contact at the end
 //      of this phase is "no contact";
 //   3. lift: the lift joint raises the wrist by lift_height; 4. hold for hold_time, fingers still pressing;
 //   5. success: the object rose by at least success_fraction * lift_height and still touches the hand;
@@ -37,7 +37,9 @@ struct SimSettings {
   double support_friction = 1.0;  ///< the plane (pybullet_data's plane.urdf uses 1)
   double object_mass = -1.0;      ///< kg; < 0: the URDF's <inertial><mass>
   double grip_force = 40.0;       ///< N (N m for revolute joints): force limit of every finger joint motor
-  double close_speed = 0.2;       ///< m/s (rad/s): joint speed limit while closing
+  /// m/s (rad/s): joint speed limit while closing; a joint whose travel from pregrasp to grasp needs
+  /// more to get there within close_time / 2 moves at that faster speed.
+  double close_speed = 0.2;
   double close_overshoot = 0.5;   ///< the motors aim this fraction of (grasp - pregrasp) past the grasp joints
   double close_time = 0.5;        ///< s spent closing before the lift
   double position_gain = 20.0;    ///< 1/s: joint velocity command = gain * position error (then clamped)

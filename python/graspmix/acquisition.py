@@ -96,6 +96,7 @@ class Acquisition:
     cameras: list[Camera]
     noise: bool
     seed: int
+    object_masks: list[np.ndarray] = field(default_factory=list)  # per camera: pixels whose ray hits the object
 
 
 def _depth_from_buffer(buffer: np.ndarray, near: float, far: float) -> np.ndarray:
@@ -206,12 +207,13 @@ def acquire(object_path: str | Path, noise: bool = False, seed: int = 0,
         raise ValueError("at least one camera is needed")
     rng = np.random.default_rng(seed)
     with Scene(object_path, settings) as scene:
-        pts, views, idx, images = [], [], [], []
+        pts, views, idx, images, masks = [], [], [], [], []
         for i, cam in enumerate(settings.cameras):
             depth, seg = scene.render_depth(cam)
             if noise:
                 depth = apply_noise(depth, rng, settings.pixel_noise_std, settings.depth_noise_std)
             images.append(depth)
+            masks.append(seg == scene.body)
             world, flat = back_project(depth, cam)
             if settings.keep == "object":
                 keep = seg.ravel()[flat] == scene.body
@@ -224,7 +226,8 @@ def acquire(object_path: str | Path, noise: bool = False, seed: int = 0,
     if len(points) == 0:
         raise ValueError(f"{object_path}: no camera sees the object (check camera and object placement)")
     acq = Acquisition(points=points, viewpoints=np.vstack(views), camera_index=np.concatenate(idx),
-                      depth_images=images, object_pose=pose, cameras=list(settings.cameras), noise=noise, seed=seed)
+                      depth_images=images, object_pose=pose, cameras=list(settings.cameras), noise=noise, seed=seed,
+                      object_masks=masks)
     if postprocess is not None:
         acq = postprocess(acq)
         if not isinstance(acq, Acquisition) or len(acq.points) == 0:
@@ -254,18 +257,27 @@ def read_pcd_binary(path: str | Path) -> np.ndarray:
 
 
 def plot_depth_images(acq: Acquisition, path: str | Path) -> None:
-    """A picture of the depth images, one panel per camera (metres; white: no return)."""
+    """A picture of the depth images, one panel per camera, cropped to the object (its depth in colour,
+    metres; the rest grey; white: no return)."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     n = len(acq.depth_images)
-    fig, axes = plt.subplots(1, n, figsize=(3.2 * n, 2.8), squeeze=False)
-    finite = np.concatenate([d[np.isfinite(d)] for d in acq.depth_images])
-    lo, hi = (np.percentile(finite, 1), np.percentile(finite, 99)) if len(finite) else (0, 1)
-    for i, (ax, d) in enumerate(zip(axes[0], acq.depth_images)):
-        im = ax.imshow(np.where(np.isfinite(d), d, np.nan), vmin=lo, vmax=hi, cmap="viridis")
+    fig, axes = plt.subplots(1, n, figsize=(3.2 * n, 3.0), squeeze=False)
+    masks = acq.object_masks or [np.isfinite(d) for d in acq.depth_images]
+    obj = np.concatenate([d[m & np.isfinite(d)] for d, m in zip(acq.depth_images, masks)])
+    lo, hi = (np.percentile(obj, 1), np.percentile(obj, 99)) if len(obj) else (0, 1)
+    for i, (ax, d, m) in enumerate(zip(axes[0], acq.depth_images, masks)):
+        # The object in colour (its own depth range), the rest grey, cropped around the object.
+        ax.imshow(np.where(np.isfinite(d) & ~m, 1.0, np.nan), cmap="gray", vmin=0, vmax=1.6)
+        im = ax.imshow(np.where(m & np.isfinite(d), d, np.nan), vmin=lo, vmax=hi, cmap="viridis")
+        if m.any():
+            rows, cols = np.flatnonzero(m.any(1)), np.flatnonzero(m.any(0))
+            pad = 10
+            ax.set_xlim(max(cols[0] - pad, 0) - 0.5, min(cols[-1] + pad, d.shape[1] - 1) + 0.5)
+            ax.set_ylim(min(rows[-1] + pad, d.shape[0] - 1) + 0.5, max(rows[0] - pad, 0) - 0.5)
         ax.set_title(f"camera {i}", fontsize=9)
         ax.set_xticks([])
         ax.set_yticks([])

@@ -190,13 +190,22 @@ def execute_file(obj, grasps_path, rank: int = 1, hand=None, settings: SimSettin
 def _lifted_urdf(hand: _core.Hand, T_world_wrist: np.ndarray, out_dir: Path) -> Path:
     """The hand's URDF under a fixed base at the wrist with a prismatic 'lift' joint along world +z,
     the same structure the C++ simulation builds."""
-    src = Path(hand.source)
-    tree = ET.parse(src)
+    tree = ET.parse(hand.source)
     robot = tree.getroot()
-    for mesh in robot.iter("mesh"):
-        fn = mesh.get("filename", "")
-        if fn and "://" not in fn and not Path(fn).is_absolute():
-            mesh.set("filename", str((src.parent / fn).resolve()))
+    # The copy lives elsewhere: visuals go (nothing is rendered) and every collision mesh gets the file
+    # graspmix resolved for it (relative and package:// paths alike), in the same order.
+    for link in robot.findall("link"):
+        for vis in link.findall("visual"):
+            link.remove(vis)
+        shapes = iter(hand.collision_shapes(link.get("name")))
+        for col in link.findall("collision"):
+            geom = col.find("geometry")
+            if geom is None or len(geom) == 0:
+                continue
+            shape = next(shapes)
+            mesh = geom.find("mesh")
+            if mesh is not None:
+                mesh.set("filename", shape["file"])
     from scipy.spatial.transform import Rotation
 
     axis = Rotation.from_quat(T_world_wrist[3:]).inv().apply([0.0, 0.0, 1.0])
@@ -242,14 +251,15 @@ def execute_pybullet(obj, grasp: Mapping, *, hand=None, object_pose=None, settin
             com = _core.pose_multiply(pose[None], np.r_[dyn[3], dyn[4]][None])[0]
             p.resetBasePositionAndOrientation(body, com[:3], com[3:], **kw)
             friction = s.object_friction if s.object_friction >= 0 else (o.lateral_friction if o.lateral_friction >= 0 else 0.5)
-            p.changeDynamics(body, -1, lateralFriction=friction, restitution=0.0,
+            p.changeDynamics(body, -1, lateralFriction=friction, restitution=0.0, spinningFriction=0.0, rollingFriction=0.0,
                              activationState=p.ACTIVATION_STATE_DISABLE_SLEEPING, **kw)
             if s.object_mass >= 0:
                 p.changeDynamics(body, -1, mass=s.object_mass, **kw)
             hid = p.loadURDF(str(_lifted_urdf(h, wrist, Path(tmp))), wrist[:3], wrist[3:], useFixedBase=True, **kw)
         joints = {p.getJointInfo(hid, j, **kw)[1].decode(): j for j in range(p.getNumJoints(hid, **kw))}
         for j in joints.values():
-            p.changeDynamics(hid, j, lateralFriction=s.hand_friction, restitution=0.0, **kw)
+            p.changeDynamics(hid, j, lateralFriction=s.hand_friction, restitution=0.0, spinningFriction=0.0,
+                             rollingFriction=0.0, **kw)
             p.setJointMotorControl2(hid, j, p.VELOCITY_CONTROL, force=0.0, **kw)
         start = h.all_joint_values(pre)
         goal = h.all_joint_values(fin)
@@ -261,7 +271,8 @@ def execute_pybullet(obj, grasp: Mapping, *, hand=None, object_pose=None, settin
             lo, hi = limits[name]
             if math.isfinite(lo) and math.isfinite(hi) and lo <= hi:
                 target = min(max(target, lo), hi)
-            drives.append((joints[name], target))
+            speed = max(s.close_speed, 2.0 * abs(goal[name] - q0) / max(s.close_time, dt))
+            drives.append((joints[name], target, speed))
         lift = joints["graspmix_lift"]
 
         def contacts(below):
@@ -290,9 +301,9 @@ def execute_pybullet(obj, grasp: Mapping, *, hand=None, object_pose=None, settin
         state = {"lift": 0.0}
 
         def step():
-            for j, target in drives:
+            for j, target, speed in drives:
                 err = target - p.getJointState(hid, j, **kw)[0]
-                v = min(max(s.position_gain * err, -s.close_speed), s.close_speed)
+                v = min(max(s.position_gain * err, -speed), speed)
                 p.setJointMotorControl2(hid, j, p.VELOCITY_CONTROL, targetVelocity=v, force=s.grip_force, **kw)
             err = state["lift"] - p.getJointState(hid, lift, **kw)[0]
             v = min(max(s.position_gain * err, -s.lift_speed), s.lift_speed)

@@ -16,6 +16,9 @@ AGREEMENT_OBJECTS = ["cube_small.urdf", "random_urdfs/033/033.urdf", "random_urd
                      "objects/mug.urdf"]
 
 
+PR2 = graspmix.acquisition.pybullet_data_path() / "pr2_gripper.urdf"
+
+
 def object_box(obj):
     """World bounding box (lo, hi) of the object's collision geometry at its rest pose."""
     o = sim.load_object(obj)
@@ -43,6 +46,17 @@ def agreement_grasps():
         out.append((obj, "off the object", sim.top_grasp(c + [0.0, (hi[1] - lo[1]) / 2 + 0.05], 0.04, 0.0, tip_height=0.01)))
         out.append((obj, "in collision", sim.top_grasp(c, 0.004, 0.0, tip_height=tip)))
         out.append((obj, "weak", sim.top_grasp(c, 0.055, 0.0, yaw=rng.uniform(0, math.pi), tip_height=tip)))
+    # Another hand: the PR2 gripper (two revolute fingers with STL meshes and fixed tips), pole pointing down.
+    from scipy.spatial.transform import Rotation
+
+    for obj, z, yaw, closed in [("cube_small.urdf", 0.335, 0.0, 0.0), ("cube_small.urdf", 0.335, 1.5, 0.3),
+                                ("cube_small.urdf", 0.345, 0.0, 0.3), ("cube_small.urdf", 0.345, 1.5, 0.15),
+                                ("random_urdfs/033/033.urdf", 0.335, 0.5, 0.15), ("random_urdfs/033/033.urdf", 0.335, 0.5, 0.3),
+                                ("random_urdfs/033/033.urdf", 0.335, 0.0, 0.3), ("random_urdfs/033/033.urdf", 0.345, 1.5, 0.0)]:
+        q = (Rotation.from_euler("z", yaw) * Rotation.from_euler("y", math.pi / 2)).as_quat()
+        out.append((obj, "pr2 gripper", {"T_world_wrist": [0.0, 0.0, z, *q],
+                                         "pregrasp_joints": {"left_gripper_joint": 0.5, "right_gripper_joint": 0.5},
+                                         "grasp_joints": {"left_gripper_joint": closed, "right_gripper_joint": closed}}))
     return out
 
 
@@ -53,8 +67,9 @@ def test_agreement_with_pybullet():
     kinds = {}
     for obj, kind, g in grasps:
         settings = sim.make_settings(grip_force=0.5) if kind == "weak" else None
-        ours = sim.execute(obj, g, settings=settings)
-        ref = sim.execute_pybullet(obj, g, settings=settings)
+        hand = PR2 if kind == "pr2 gripper" else None
+        ours = sim.execute(obj, g, settings=settings, hand=hand)
+        ref = sim.execute_pybullet(obj, g, settings=settings, hand=hand)
         agree = ours.success == ref["success"]
         same += agree
         same_reason += ours.reason == ref["reason"]

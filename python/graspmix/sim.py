@@ -129,13 +129,24 @@ def grasp_by_rank(doc: Mapping, rank: int = 1) -> dict:
     raise ValueError(f"no grasp of rank {rank} (ranks {doc['grasps'][0]['rank']}..{doc['grasps'][-1]['rank']})")
 
 
-def _check_hand_matches(hand: _core.Hand, doc_hand: str | None):
+def _doc_hand_file(doc_hand: str | None, grasps_path) -> Path | None:
+    """The grasps file's hand URDF if it exists (as given, or relative to the grasps file)."""
+    if not doc_hand:
+        return None
+    for p in (Path(doc_hand), Path(grasps_path).resolve().parent / doc_hand):
+        if p.is_file():
+            return p
+    return None
+
+
+def _check_hand_matches(hand: _core.Hand, doc_hand: str | None, grasps_path="."):
     """A grasps file names its hand; a grasp for another hand is an error, not a silent misfire."""
     if not doc_hand:
         return
     name = Path(doc_hand).stem
+    found = _doc_hand_file(doc_hand, grasps_path)
     try:
-        other = _core.Hand.from_urdf(doc_hand).name if Path(doc_hand).is_file() else None
+        other = _core.Hand.from_urdf(found).name if found else None
     except ValueError:
         other = None
     if other is not None and other != hand.name:
@@ -178,10 +189,14 @@ def execute(obj, grasp: Mapping | None = None, *, hand=None, T_world_wrist=None,
 
 
 def execute_file(obj, grasps_path, rank: int = 1, hand=None, settings: SimSettings | None = None, **overrides) -> SimResult:
-    """Executes the grasp of the given rank from a grasps.json."""
+    """Executes the grasp of the given rank from a grasps.json. hand: a Hand or URDF; None: the file's
+    hand if it can be found (as given or relative to the grasps file), else the bundled WSG 50; either way
+    the file's hand must be the one used (ValueError otherwise)."""
     doc = load_grasps(grasps_path)
+    if hand is None:
+        hand = _doc_hand_file(doc.get("hand"), grasps_path)
     h = load_hand(hand)
-    _check_hand_matches(h, doc.get("hand"))
+    _check_hand_matches(h, doc.get("hand"), grasps_path)
     return execute(obj, grasp_by_rank(doc, rank), hand=h, settings=settings, **overrides)
 
 

@@ -138,6 +138,48 @@ TEST(Sim, Deterministic) {
   EXPECT_TRUE(a.T_world_object_final.matrix() == b.T_world_object_final.matrix());
 }
 
+// Two 3 x 3 x 3 cm blocks 4 cm apart as the two parts ("o" groups) of one OBJ, like pybullet_data's
+// random_urdfs: pybullet hulls each part, so the gap between them is free space.
+std::string two_blocks_obj() {
+  std::string out;
+  int base = 0;
+  for (double cx : {-0.035, 0.035}) {
+    out += "o block_" + std::to_string(base) + "\n";
+    for (int k = 0; k < 8; ++k) {
+      out += "v " + std::to_string(cx + ((k & 1) ? 0.015 : -0.015)) + " " + std::to_string((k & 2) ? 0.015 : -0.015) + " " +
+             std::to_string((k & 4) ? 0.015 : -0.015) + "\n";
+    }
+    const int f[12][3] = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                          {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+    for (const auto& t : f) {
+      out += "f " + std::to_string(base + t[0] + 1) + " " + std::to_string(base + t[1] + 1) + " " + std::to_string(base + t[2] + 1) + "\n";
+    }
+    base += 8;
+  }
+  return out;
+}
+
+TEST(Sim, MeshPartsAreSeparateHullsLikePybullet) {
+  TempDir dir;
+  dir.write("blocks.obj", two_blocks_obj());
+  const std::string urdf = dir.write("blocks.urdf", R"(<?xml version="1.0"?>
+<robot name="blocks"><link name="blocks">
+  <inertial><mass value="0.1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial>
+  <collision><geometry><mesh filename="blocks.obj" scale="1 1 1"/></geometry></collision>
+</link></robot>)");
+  const SimObject blocks = SimObject::from_urdf(urdf);
+  const Hand hand = wsg50();
+  // Closed fingers turned 90 degrees (their 30 mm width along x) reach down into the 4 cm gap: free
+  // between two hulls, deep inside one hull of everything.
+  Eigen::Isometry3d W = top_wrist(0, 0, 0.01);
+  W.prerotate(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()));
+  const SimResult r = execute(hand, blocks, blocks.rest_pose(0, 0), W, q(0.0), q(0.0));
+  EXPECT_EQ(r.reason, "no contact");
+  // Across both blocks (outer faces 10 cm apart) the grasp holds them as one object.
+  const SimResult across = execute(hand, blocks, blocks.rest_pose(0, 0), top_wrist(0, 0, 0.01), q(0.055), q(0.04));
+  EXPECT_TRUE(across.success) << across.reason;
+}
+
 TEST(Sim, ErrorsNameTheInput) {
   TempDir dir;
   const Hand hand = wsg50();

@@ -137,6 +137,9 @@ def test_errors(tmp_path):
     panda = graspmix.acquisition.pybullet_data_path() / "franka_panda" / "panda.urdf"
     path.write_text(json.dumps({"format": "graspmix.grasps/1", "hand": str(panda), "grasps": [dict(g, rank=1)]}))
     with pytest.raises(ValueError, match="grasps are for hand"):
+        sim.execute_file("cube_small.urdf", path, hand=sim.default_hand_path())
+    # Without a hand given, the file's hand is used, and the WSG 50's joints do not fit it.
+    with pytest.raises(ValueError, match="does not fit hand 'panda'"):
         sim.execute_file("cube_small.urdf", path)
     path.write_text(json.dumps({"format": "something/2", "grasps": []}))
     with pytest.raises(ValueError, match="expected format"):

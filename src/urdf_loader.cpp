@@ -220,6 +220,13 @@ Hand Hand::from_urdf_string(const std::string& xml, const std::string& base_dir,
     LinkInfo info;
     info.name = link->name;
     info.parent_joint = parent_joint;
+    if (link->inertial) {
+      const auto& in = *link->inertial;
+      info.has_inertial = true;
+      info.mass = in.mass;
+      info.T_link_inertial = to_isometry(in.origin);
+      info.inertia << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
+    }
     for (const auto& col : link->collision_array) {
       if (!col || !col->geometry) continue;
       CollisionShape s;

@@ -70,6 +70,12 @@ struct LinkInfo {
   std::string name;
   int parent_joint = -1;  ///< index into joints(); -1 for the root
   std::vector<CollisionShape> collisions;
+  /// The <inertial> element (for simulators): mass (kg; 0 if absent), its frame in the link frame,
+  /// and the inertia tensor in that frame (kg m^2).
+  double mass = 0.0;
+  Eigen::Isometry3d T_link_inertial = Eigen::Isometry3d::Identity();
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
+  bool has_inertial = false;
 };
 
 /// How a URDF is read.

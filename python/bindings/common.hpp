@@ -43,5 +43,6 @@ void bind_density(py::module_& m);
 void bind_hand(py::module_& m);
 void bind_surface(py::module_& m);
 void bind_synthesis(py::module_& m);
+void bind_sim(py::module_& m);
 
 }  // namespace graspmix::py_bind

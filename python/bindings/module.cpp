@@ -101,4 +101,5 @@ PYBIND11_MODULE(_core, m) {
   bind_hand(m);
   bind_surface(m);
   bind_synthesis(m);
+  bind_sim(m);
 }

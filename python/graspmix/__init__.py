@@ -29,6 +29,10 @@ from ._core import (
     CollisionResult,
     Hand,
     load_mesh,
+    # simulation
+    SimObject,
+    SimResult,
+    SimSettings,
     # contact models, configuration model, experts, synthesis
     AxisAlignmentExpert,
     ConfigModel,
@@ -43,6 +47,7 @@ from ._core import (
     contact_data,
     learn_contact_models,
 )
+from . import acquisition, sim
 from .model import Demonstration, FeatureSettings, GraspModel, GraspSet, data_path, default_model_path, expert, learn
 
 try:

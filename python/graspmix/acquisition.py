@@ -16,6 +16,7 @@ import dataclasses
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Callable
 
 import numpy as np
 
@@ -95,6 +96,7 @@ class Acquisition:
     cameras: list[Camera]
     noise: bool
     seed: int
+    object_masks: list[np.ndarray] = field(default_factory=list)  # per camera: pixels whose ray hits the object
 
 
 def _depth_from_buffer(buffer: np.ndarray, near: float, far: float) -> np.ndarray:
@@ -189,11 +191,14 @@ class Scene:
 
 
 def acquire(object_path: str | Path, noise: bool = False, seed: int = 0,
-            settings: AcquisitionSettings | None = None) -> Acquisition:
+            settings: AcquisitionSettings | None = None,
+            postprocess: Callable[[Acquisition], Acquisition] | None = None) -> Acquisition:
     """Renders every camera, applies the noise model if asked (seeded), back-projects and stitches.
 
     With settings.keep == "object", only pixels whose (noise-free) ray hits the object are kept, as
     a segmented sensor would give; "scene" keeps the support plane too, for prepare_cloud to remove.
+    postprocess: the clean-up of the stitched cloud (crop, voxel grid, outliers, plane removal), called
+    on the Acquisition and returning one (e.g. with fewer points); None keeps the stitched cloud.
     """
     settings = settings or AcquisitionSettings()
     if settings.keep not in ("object", "scene"):
@@ -202,12 +207,13 @@ def acquire(object_path: str | Path, noise: bool = False, seed: int = 0,
         raise ValueError("at least one camera is needed")
     rng = np.random.default_rng(seed)
     with Scene(object_path, settings) as scene:
-        pts, views, idx, images = [], [], [], []
+        pts, views, idx, images, masks = [], [], [], [], []
         for i, cam in enumerate(settings.cameras):
             depth, seg = scene.render_depth(cam)
             if noise:
                 depth = apply_noise(depth, rng, settings.pixel_noise_std, settings.depth_noise_std)
             images.append(depth)
+            masks.append(seg == scene.body)
             world, flat = back_project(depth, cam)
             if settings.keep == "object":
                 keep = seg.ravel()[flat] == scene.body
@@ -219,5 +225,63 @@ def acquire(object_path: str | Path, noise: bool = False, seed: int = 0,
     points = np.vstack(pts)
     if len(points) == 0:
         raise ValueError(f"{object_path}: no camera sees the object (check camera and object placement)")
-    return Acquisition(points=points, viewpoints=np.vstack(views), camera_index=np.concatenate(idx),
-                       depth_images=images, object_pose=pose, cameras=list(settings.cameras), noise=noise, seed=seed)
+    acq = Acquisition(points=points, viewpoints=np.vstack(views), camera_index=np.concatenate(idx),
+                      depth_images=images, object_pose=pose, cameras=list(settings.cameras), noise=noise, seed=seed,
+                      object_masks=masks)
+    if postprocess is not None:
+        acq = postprocess(acq)
+        if not isinstance(acq, Acquisition) or len(acq.points) == 0:
+            raise ValueError(f"{object_path}: the clean-up left no points (or returned no Acquisition)")
+    return acq
+
+
+def write_pcd(path: str | Path, points: np.ndarray, viewpoint=None) -> None:
+    """Writes (N, 3) points as a binary PCD (x y z float32), the format PCL reads as PointXYZ."""
+    pts = np.ascontiguousarray(np.asarray(points, dtype="<f4"))
+    if pts.ndim != 2 or pts.shape[1] != 3:
+        raise ValueError(f"points: expected shape (N, 3), got {pts.shape}")
+    vp = "0 0 0 1 0 0 0" if viewpoint is None else " ".join(f"{v:.9g}" for v in [*viewpoint[:3], 1, 0, 0, 0])
+    header = (f"# .PCD v0.7 - Point Cloud Data file format\nVERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\n"
+              f"COUNT 1 1 1\nWIDTH {len(pts)}\nHEIGHT 1\nVIEWPOINT {vp}\nPOINTS {len(pts)}\nDATA binary\n")
+    with open(path, "wb") as f:
+        f.write(header.encode("ascii"))
+        f.write(pts.tobytes())
+
+
+def read_pcd_binary(path: str | Path) -> np.ndarray:
+    """Reads back what write_pcd writes (binary x y z float32): for tests and quick looks."""
+    data = Path(path).read_bytes()
+    end = data.index(b"DATA binary\n") + len(b"DATA binary\n")
+    n = int([l for l in data[:end].decode().splitlines() if l.startswith("POINTS")][0].split()[1])
+    return np.frombuffer(data[end:end + 12 * n], dtype="<f4").reshape(n, 3).astype(float)
+
+
+def plot_depth_images(acq: Acquisition, path: str | Path) -> None:
+    """A picture of the depth images, one panel per camera, cropped to the object (its depth in colour,
+    metres; the rest grey; white: no return)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    n = len(acq.depth_images)
+    fig, axes = plt.subplots(1, n, figsize=(3.2 * n, 3.0), squeeze=False)
+    masks = acq.object_masks or [np.isfinite(d) for d in acq.depth_images]
+    obj = np.concatenate([d[m & np.isfinite(d)] for d, m in zip(acq.depth_images, masks)])
+    lo, hi = (np.percentile(obj, 1), np.percentile(obj, 99)) if len(obj) else (0, 1)
+    for i, (ax, d, m) in enumerate(zip(axes[0], acq.depth_images, masks)):
+        # The object in colour (its own depth range), the rest grey, cropped around the object.
+        ax.imshow(np.where(np.isfinite(d) & ~m, 1.0, np.nan), cmap="gray", vmin=0, vmax=1.6)
+        im = ax.imshow(np.where(m & np.isfinite(d), d, np.nan), vmin=lo, vmax=hi, cmap="viridis")
+        if m.any():
+            rows, cols = np.flatnonzero(m.any(1)), np.flatnonzero(m.any(0))
+            pad = 10
+            ax.set_xlim(max(cols[0] - pad, 0) - 0.5, min(cols[-1] + pad, d.shape[1] - 1) + 0.5)
+            ax.set_ylim(min(rows[-1] + pad, d.shape[0] - 1) + 0.5, max(rows[0] - pad, 0) - 0.5)
+        ax.set_title(f"camera {i}", fontsize=9)
+        ax.set_xticks([])
+        ax.set_yticks([])
+    fig.colorbar(im, ax=axes[0].tolist(), shrink=0.8, label="depth (m)")
+    fig.suptitle(f"{len(acq.points)} points, noise {'on' if acq.noise else 'off'} (seed {acq.seed})", fontsize=10)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)

@@ -218,6 +218,37 @@ def _cmd_synthesize(args: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_acquire(args: argparse.Namespace) -> int:
+    from graspmix import acquisition
+
+    settings = acquisition.AcquisitionSettings(keep=args.keep)
+    t0 = time.perf_counter()
+    acq = acquisition.acquire(args.object, noise=args.noise, seed=args.seed, settings=settings)
+    dt = time.perf_counter() - t0
+    acquisition.write_pcd(args.out, acq.points)
+    print(f"acquired {len(acq.points)} points of {args.object} from {len(acq.cameras)} cameras "
+          f"(noise {'on' if args.noise else 'off'}, seed {args.seed}) in {dt * 1e3:.0f} ms; wrote {args.out}")
+    if args.picture:
+        acquisition.plot_depth_images(acq, args.picture)
+        print(f"wrote {args.picture}")
+    return 0
+
+
+def _cmd_execute(args: argparse.Namespace) -> int:
+    from graspmix import sim
+
+    overrides = {k: v for k, v in (("grip_force", args.grip_force), ("lift_height", args.lift_height),
+                                   ("hold_time", args.hold_time)) if v is not None}
+    r = sim.execute_file(args.object, args.grasps, rank=args.rank, hand=args.hand, **overrides)
+    if args.json:
+        print(json.dumps(dict(sim.result_dict(r), object=args.object, rank=args.rank)))
+    else:
+        print(f"grasp {args.rank} on {args.object}: {'SUCCESS' if r.success else 'FAILURE'} ({r.reason}); "
+              f"object lifted {r.lift_height * 100:.1f} cm, {r.contact_count} contacts; "
+              f"{r.steps} steps = {r.simulated_time:.2f} s simulated in {r.wall_time * 1e3:.0f} ms")
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="graspmix_cli", description=__doc__.splitlines()[0])
     p.add_argument("--version", action="version", version=f"graspmix {graspmix.__version__}")
@@ -293,6 +324,27 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("--out", default="grasps.json", help="grasps file (default grasps.json)")
     s.add_argument("--png", help="draw the cloud and the best grasps' hands")
     s.set_defaults(func=_cmd_synthesize)
+
+    s = sub.add_parser("acquire", help="a stitched point cloud of an object from 4 simulated depth cameras (pybullet)")
+    s.add_argument("--object", required=True, help="object URDF: a path, or relative to pybullet_data (random_urdfs/012/012.urdf)")
+    s.add_argument("--noise", action="store_true", help="apply the depth noise model (sigma_p = 1 px, sigma_d = 1 mm)")
+    s.add_argument("--seed", type=int, default=0, help="seed of the noise")
+    s.add_argument("--keep", choices=["object", "scene"], default="object",
+                   help="object: the pixels that see the object (segmentation); scene: the support plane too")
+    s.add_argument("--out", required=True, help="output cloud (.pcd)")
+    s.add_argument("--picture", help="also save a picture of the depth images (.png)")
+    s.set_defaults(func=_cmd_acquire)
+
+    s = sub.add_parser("execute", help="execute a grasp from grasps.json on an object in Bullet physics")
+    s.add_argument("--object", required=True, help="object URDF: a path, or relative to pybullet_data")
+    s.add_argument("--grasps", required=True, help="grasps.json (format graspmix.grasps/1)")
+    s.add_argument("--rank", type=int, default=1, help="which grasp (1 = the best)")
+    s.add_argument("--hand", help="hand URDF (default: the bundled WSG 50)")
+    s.add_argument("--grip-force", type=float, help="N (default 40)")
+    s.add_argument("--lift-height", type=float, help="m (default 0.2)")
+    s.add_argument("--hold-time", type=float, help="s (default 0.5)")
+    s.add_argument("--json", action="store_true", help="print the result as JSON")
+    s.set_defaults(func=_cmd_execute)
     return p
 
 

@@ -13,6 +13,7 @@
 #include <pcl/exceptions.h>
 #include <pcl/io/pcd_io.h>
 #include <pcl/io/ply_io.h>
+#include <pcl/console/print.h>
 
 namespace graspmix {
 
@@ -105,7 +106,23 @@ CloudData from_pcl(const pcl::PCLPointCloud2& c, const Eigen::Vector4f& origin, 
   return out;
 }
 
+namespace {
+/// PCL's readers print their own diagnostics on stderr; graspmix reports every problem as an exception
+/// naming the file instead, so they are silenced while a file is read (one line on stderr, not three).
+class QuietPcl {
+ public:
+  QuietPcl() : previous_(pcl::console::getVerbosityLevel()) { pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS); }
+  ~QuietPcl() { pcl::console::setVerbosityLevel(previous_); }
+  QuietPcl(const QuietPcl&) = delete;
+  QuietPcl& operator=(const QuietPcl&) = delete;
+
+ private:
+  pcl::console::VERBOSITY_LEVEL previous_;
+};
+}  // namespace
+
 CloudData load_pcd(const std::string& path) {
+  const QuietPcl quiet;
   pcl::PCDReader reader;
   pcl::PCLPointCloud2 cloud;
   Eigen::Vector4f origin;
@@ -165,6 +182,7 @@ CloudData load_ply(const std::string& path) {
     std::getline(in, magic);
     if (magic.rfind("ply", 0) != 0) fail(path, "not a valid PLY header (the file does not start with 'ply')");
   }
+  const QuietPcl quiet;
   pcl::PLYReader reader;
   pcl::PCLPointCloud2 cloud;
   Eigen::Vector4f origin = Eigen::Vector4f::Zero();

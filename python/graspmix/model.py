@@ -390,7 +390,8 @@ class GraspModel:
     # -- synthesis
     def synthesize(self, cloud, *, n_samples: int = 200, n_optimise: int = 10, optimise: bool = True,
                    seed: int = 0, remove_plane: bool = True, plane=None, viewpoints=None,
-                   approach_axis: Sequence[float] | None = None, reachable: Callable | None = None,
+                   approach_axis: Sequence[float] | None = None, approach_concentration: float = 20.0,
+                   reachable: Callable | None = None,
                    experts: Iterable = (), query_samples: int = 500, kinematic: bool = True,
                    clear_pregrasp: bool = True, collision_beta: float = 2000.0, contact_tolerance: float = 0.001,
                    annealing: dict | None = None) -> GraspSet:
@@ -429,7 +430,10 @@ class GraspModel:
         elif reachable is not None:
             raise ValueError("reachable needs the kinematic expert (kinematic=True)")
         if approach_axis is not None:
-            all_experts.append(_core.AxisAlignmentExpert(np.asarray(approach_axis, float)))
+            # log E = concentration (cos - 1): 20 makes a 90-degree deviation cost 20 nats, comparable
+            # to the contact terms, so the preference decides between otherwise similar grasps.
+            all_experts.append(_core.AxisAlignmentExpert(np.asarray(approach_axis, float),
+                                                         concentration=approach_concentration))
         all_experts.extend(experts)
         s = _core.SynthesisSettings()
         s.n_samples, s.n_optimise, s.optimise, s.seed = n_samples, n_optimise, optimise, seed

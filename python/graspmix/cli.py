@@ -352,6 +352,9 @@ def main(argv: list[str] | None = None) -> int:
     args = build_parser().parse_args(argv)
     try:
         return args.func(args)
+    except BrokenPipeError:  # the reader went away (e.g. `| head`): nothing more to say
+        sys.stderr.close()
+        return 0
     except (CliError, ValueError) as e:
         message = " ".join(str(e).split())  # one line, whatever the exception's text
         print(f"graspmix_cli {args.command}: error: {message}", file=sys.stderr)

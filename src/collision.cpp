@@ -291,59 +291,37 @@ CollisionResult CollisionExpert::evaluate(const Eigen::Isometry3d& T_world_wrist
 
 CollisionBatchResult CollisionExpert::evaluate_batch(const Eigen::Ref<const PoseArray>& T_world_wrist,
                                                      const Eigen::Ref<const RowMatrixXd>& q) const {
-  // Either side may be a single row, broadcast over the other.
-  const Eigen::Index N = T_world_wrist.rows() == 1 ? q.rows() : T_world_wrist.rows();
+  const Eigen::Index n = std::max(T_world_wrist.rows(), q.rows());
   const int L = hand_->n_links();
-  if (q.cols() != hand_->n_dofs()) {
-    throw std::invalid_argument("joints: expected " + std::to_string(hand_->n_dofs()) + " columns (one per joint), got " +
-                                std::to_string(q.cols()));
-  }
-  if (q.rows() != N && q.rows() != 1) {
-    throw std::invalid_argument("joints: " + std::to_string(q.rows()) + " rows for " +
-                                std::to_string(T_world_wrist.rows()) + " wrist poses");
-  }
-  require_finite(T_world_wrist, "T_world_wrist");
-  require_finite(q, "joints");
   CollisionBatchResult out;
-  out.cloud_depth = RowMatrixXd::Zero(N, L);
-  out.plane_depth = RowMatrixXd::Zero(N, L);
-  out.total_depth.resize(N);
-  out.log_w.resize(N);
-  out.w.resize(N);
-  out.collision_free.resize(N);
-  std::string error;
+  out.cloud_depth = RowMatrixXd::Zero(n, L);
+  out.plane_depth = RowMatrixXd::Zero(n, L);
+  out.total_depth.resize(n);
+  out.log_w.resize(n);
+  out.w.resize(n);
+  out.collision_free.resize(n);
   // Small batches (annealing scores ~10 hands at a time) stay on one thread: waking a team costs more
   // than it saves, and its spinning threads stall badly on a loaded machine.
-#pragma omp parallel if (N >= 64)
-  {
-    std::vector<Eigen::Isometry3d> poses(static_cast<size_t>(L));
-    std::vector<int> inside(static_cast<size_t>(L));
-    Eigen::VectorXd qi(hand_->n_dofs()), cd(L), pd(L);
-#pragma omp for schedule(dynamic, 64)
-    for (Eigen::Index i = 0; i < N; ++i) {
-      Eigen::Isometry3d W;
-      try {
-        W = pose_from_vector(T_world_wrist.row(T_world_wrist.rows() == 1 ? 0 : i).transpose());
-      } catch (const std::invalid_argument& e) {
-#pragma omp critical
-        error = "T_world_wrist row " + std::to_string(i) + ": " + e.what();
-        continue;
-      }
-      qi = q.row(q.rows() == 1 ? 0 : i).transpose();
-      hand_->fk_into(W, qi.data(), poses.data());
-      cd.setZero();
-      pd.setZero();
-      std::fill(inside.begin(), inside.end(), 0);
-      evaluate_into(poses.data(), cd.data(), pd.data(), inside.data());
-      out.cloud_depth.row(i) = cd.transpose();
-      out.plane_depth.row(i) = pd.transpose();
-      out.total_depth[i] = cd.sum() + pd.sum();
-      out.log_w[i] = -settings_.beta * out.total_depth[i];
-      out.w[i] = std::exp(out.log_w[i]);
-      out.collision_free[i] = out.total_depth[i] <= 0.0;
-    }
+  const Eigen::Index N = hand_->fk_each(T_world_wrist, q, 64, [&](Eigen::Index i, const Eigen::VectorXd&,
+                                                                   const Eigen::Isometry3d* poses) {
+    std::vector<int> inside(static_cast<size_t>(L), 0);
+    Eigen::VectorXd cd = Eigen::VectorXd::Zero(L), pd = Eigen::VectorXd::Zero(L);
+    evaluate_into(poses, cd.data(), pd.data(), inside.data());
+    out.cloud_depth.row(i) = cd.transpose();
+    out.plane_depth.row(i) = pd.transpose();
+    out.total_depth[i] = cd.sum() + pd.sum();
+    out.log_w[i] = -settings_.beta * out.total_depth[i];
+    out.w[i] = std::exp(out.log_w[i]);
+    out.collision_free[i] = out.total_depth[i] <= 0.0;
+  });
+  if (N != n) {  // an empty side broadcasts to no hands
+    out.cloud_depth.conservativeResize(N, Eigen::NoChange);
+    out.plane_depth.conservativeResize(N, Eigen::NoChange);
+    out.total_depth.conservativeResize(N);
+    out.log_w.conservativeResize(N);
+    out.w.conservativeResize(N);
+    out.collision_free.conservativeResize(N);
   }
-  if (!error.empty()) throw std::invalid_argument(error);
   return out;
 }
 

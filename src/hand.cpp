@@ -134,7 +134,9 @@ std::vector<Eigen::Isometry3d> Hand::fk(const Eigen::Isometry3d& T_world_wrist,
   return out;
 }
 
-RowMatrixXd Hand::fk_batch(const Eigen::Ref<const PoseArray>& T_world_wrist, const Eigen::Ref<const RowMatrixXd>& q) const {
+Eigen::Index Hand::fk_each(
+    const Eigen::Ref<const PoseArray>& T_world_wrist, const Eigen::Ref<const RowMatrixXd>& q, Eigen::Index parallel_from,
+    const std::function<void(Eigen::Index, const Eigen::VectorXd&, const Eigen::Isometry3d*)>& visit) const {
   // Either side may be a single row, broadcast over the other.
   const Eigen::Index N = T_world_wrist.rows() == 1 ? q.rows() : T_world_wrist.rows();
   if (q.cols() != n_dofs()) {
@@ -147,15 +149,12 @@ RowMatrixXd Hand::fk_batch(const Eigen::Ref<const PoseArray>& T_world_wrist, con
   }
   require_finite(T_world_wrist, "T_world_wrist");
   require_finite(q, "joints");
-  const int L = n_links();
-  RowMatrixXd out(N, 7 * L);
   std::string error;
-  // fk is a fraction of a microsecond per hand: only large batches are worth a thread team.
-#pragma omp parallel if (N >= 2048)
+#pragma omp parallel if (N >= parallel_from)
   {
-    std::vector<Eigen::Isometry3d> poses(static_cast<size_t>(L));
+    std::vector<Eigen::Isometry3d> poses(links_.size());
     Eigen::VectorXd qi(n_dofs());
-#pragma omp for schedule(static)
+#pragma omp for schedule(dynamic, 64)
     for (Eigen::Index i = 0; i < N; ++i) {
       Eigen::Isometry3d W;
       try {
@@ -167,10 +166,21 @@ RowMatrixXd Hand::fk_batch(const Eigen::Ref<const PoseArray>& T_world_wrist, con
       }
       qi = q.row(q.rows() == 1 ? 0 : i).transpose();
       fk_into(W, qi.data(), poses.data());
-      for (int l = 0; l < L; ++l) out.block<1, 7>(i, 7 * l) = pose_to_vector(poses[static_cast<size_t>(l)]).transpose();
+      visit(i, qi, poses.data());
     }
   }
   if (!error.empty()) throw std::invalid_argument(error);
+  return N;
+}
+
+RowMatrixXd Hand::fk_batch(const Eigen::Ref<const PoseArray>& T_world_wrist, const Eigen::Ref<const RowMatrixXd>& q) const {
+  const int L = n_links();
+  RowMatrixXd out(std::max(T_world_wrist.rows(), q.rows()), 7 * L);
+  // fk is a fraction of a microsecond per hand: only large batches are worth a thread team.
+  const Eigen::Index N = fk_each(T_world_wrist, q, 2048, [&](Eigen::Index i, const Eigen::VectorXd&, const Eigen::Isometry3d* poses) {
+    for (int l = 0; l < L; ++l) out.block<1, 7>(i, 7 * l) = pose_to_vector(poses[l]).transpose();
+  });
+  out.conservativeResize(N, Eigen::NoChange);
   return out;
 }
 

@@ -13,6 +13,7 @@
 //
 // Frames: every pose is the URDF *link frame* (not the inertial/centre-of-mass frame). The wrist
 // pose T_world_wrist is the root link's frame.
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -135,6 +136,13 @@ class Hand {
   /// Batched fk over N hands: wrists (N, 7), q (N, n_dofs) (either may be one row, broadcast) ->
   /// (N, n_links * 7), row i holding the poses of hand i's links one after another. Parallel (OpenMP).
   RowMatrixXd fk_batch(const Eigen::Ref<const PoseArray>& T_world_wrist, const Eigen::Ref<const RowMatrixXd>& q) const;
+  /// The batched loop under fk_batch and the collision expert: checks wrists (N, 7) and q (N, n_dofs)
+  /// (either may be one row, broadcast), then calls visit(i, q_i, link poses of hand i) for every hand,
+  /// spread over OpenMP threads when N >= parallel_from (visit must then be safe for distinct i).
+  /// Returns N. A bad wrist row throws std::invalid_argument naming it.
+  Eigen::Index fk_each(const Eigen::Ref<const PoseArray>& T_world_wrist, const Eigen::Ref<const RowMatrixXd>& q,
+                       Eigen::Index parallel_from,
+                       const std::function<void(Eigen::Index, const Eigen::VectorXd&, const Eigen::Isometry3d*)>& visit) const;
 
   /// A triangle mesh of every collision shape of a link, in the link frame (boxes exactly, cylinders
   /// and spheres tessellated, meshes as loaded), for drawing and for building simulator shapes.

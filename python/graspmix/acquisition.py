@@ -97,6 +97,8 @@ class Acquisition:
     noise: bool
     seed: int
     object_masks: list[np.ndarray] = field(default_factory=list)  # per camera: pixels whose ray hits the object
+    keep: str = "object"  # what the acquisition kept (AcquisitionSettings.keep)
+    plane: np.ndarray | None = None  # [a, b, c, d] of the support plane when a clean-up found it
 
 
 def _depth_from_buffer(buffer: np.ndarray, near: float, far: float) -> np.ndarray:
@@ -227,7 +229,7 @@ def acquire(object_path: str | Path, noise: bool = False, seed: int = 0,
         raise ValueError(f"{object_path}: no camera sees the object (check camera and object placement)")
     acq = Acquisition(points=points, viewpoints=np.vstack(views), camera_index=np.concatenate(idx),
                       depth_images=images, object_pose=pose, cameras=list(settings.cameras), noise=noise, seed=seed,
-                      object_masks=masks)
+                      object_masks=masks, keep=settings.keep)
     if postprocess is not None:
         acq = postprocess(acq)
         if not isinstance(acq, Acquisition) or len(acq.points) == 0:
@@ -235,25 +237,24 @@ def acquire(object_path: str | Path, noise: bool = False, seed: int = 0,
     return acq
 
 
-def write_pcd(path: str | Path, points: np.ndarray, viewpoint=None) -> None:
-    """Writes (N, 3) points as a binary PCD (x y z float32), the format PCL reads as PointXYZ."""
-    pts = np.ascontiguousarray(np.asarray(points, dtype="<f4"))
-    if pts.ndim != 2 or pts.shape[1] != 3:
-        raise ValueError(f"points: expected shape (N, 3), got {pts.shape}")
-    vp = "0 0 0 1 0 0 0" if viewpoint is None else " ".join(f"{v:.9g}" for v in [*viewpoint[:3], 1, 0, 0, 0])
-    header = (f"# .PCD v0.7 - Point Cloud Data file format\nVERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\n"
-              f"COUNT 1 1 1\nWIDTH {len(pts)}\nHEIGHT 1\nVIEWPOINT {vp}\nPOINTS {len(pts)}\nDATA binary\n")
-    with open(path, "wb") as f:
-        f.write(header.encode("ascii"))
-        f.write(pts.tobytes())
+def clean_up(voxel_size: float = 0.003, remove_outliers: bool = True, remove_plane: bool | None = None,
+             seed: int = 0) -> Callable[[Acquisition], Acquisition]:
+    """The clean-up of the object representation (graspmix.prepare_cloud) as an acquire() postprocess:
+    voxel grid, statistical outlier removal and, for a scene acquisition, RANSAC removal of the support
+    plane (remove_plane=None: only when settings.keep == "scene" left the plane in; the plane found is
+    kept in Acquisition.plane). Viewpoints and camera indices follow the points that survive."""
+    from . import _core
 
+    def run(acq: Acquisition) -> Acquisition:
+        plane_too = remove_plane if remove_plane is not None else acq.keep == "scene"
+        scene = _core.prepare_cloud(acq.points, voxel_size=voxel_size, remove_outliers=remove_outliers,
+                                    remove_plane=plane_too, seed=seed)
+        rows = np.asarray(scene.indices)
+        return dataclasses.replace(acq, points=np.asarray(scene.points), viewpoints=acq.viewpoints[rows],
+                                   camera_index=acq.camera_index[rows],
+                                   plane=np.asarray(scene.plane) if scene.plane_found else acq.plane)
 
-def read_pcd_binary(path: str | Path) -> np.ndarray:
-    """Reads back what write_pcd writes (binary x y z float32): for tests and quick looks."""
-    data = Path(path).read_bytes()
-    end = data.index(b"DATA binary\n") + len(b"DATA binary\n")
-    n = int([l for l in data[:end].decode().splitlines() if l.startswith("POINTS")][0].split()[1])
-    return np.frombuffer(data[end:end + 12 * n], dtype="<f4").reshape(n, 3).astype(float)
+    return run
 
 
 def plot_depth_images(acq: Acquisition, path: str | Path) -> None:

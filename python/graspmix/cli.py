@@ -222,12 +222,15 @@ def _cmd_acquire(args: argparse.Namespace) -> int:
     from graspmix import acquisition
 
     settings = acquisition.AcquisitionSettings(keep=args.keep)
+    post = acquisition.clean_up(voxel_size=args.voxel_size, seed=args.seed) if args.clean else None
     t0 = time.perf_counter()
-    acq = acquisition.acquire(args.object, noise=args.noise, seed=args.seed, settings=settings)
+    acq = acquisition.acquire(args.object, noise=args.noise, seed=args.seed, settings=settings, postprocess=post)
     dt = time.perf_counter() - t0
-    acquisition.write_pcd(args.out, acq.points)
+    graspmix.save_cloud(args.out, acq.points)
     print(f"acquired {len(acq.points)} points of {args.object} from {len(acq.cameras)} cameras "
-          f"(noise {'on' if args.noise else 'off'}, seed {args.seed}) in {dt * 1e3:.0f} ms; wrote {args.out}")
+          f"(noise {'on' if args.noise else 'off'}, seed {args.seed}"
+          + (", cleaned up" + (", support plane removed" if acq.plane is not None else "") if args.clean else "")
+          + f") in {dt * 1e3:.0f} ms; wrote {args.out}")
     if args.picture:
         acquisition.plot_depth_images(acq, args.picture)
         print(f"wrote {args.picture}")
@@ -333,6 +336,9 @@ def build_parser() -> argparse.ArgumentParser:
                    help="object: the pixels that see the object (segmentation); scene: the support plane too")
     s.add_argument("--out", required=True, help="output cloud (.pcd)")
     s.add_argument("--picture", help="also save a picture of the depth images (.png)")
+    s.add_argument("--clean", action="store_true",
+                   help="clean up: voxel grid, outlier removal, and (with --keep scene) support-plane removal")
+    s.add_argument("--voxel-size", type=float, default=0.003, help="m, voxel grid of --clean (default 0.003)")
     s.set_defaults(func=_cmd_acquire)
 
     s = sub.add_parser("execute", help="execute a grasp from grasps.json on an object in Bullet physics")

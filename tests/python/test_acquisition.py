@@ -138,10 +138,23 @@ def test_cli_acquire(tmp_path, capsys):
     assert cli.main(["acquire", "--object", "random_urdfs/012/012.urdf", "--noise", "--seed", "3", "--out", str(out),
                      "--picture", str(pic)]) == 0
     assert "points" in capsys.readouterr().out
-    pts = acq_mod.read_pcd_binary(out)
+    pts = graspmix.load_cloud(str(out)).points
     ref = acq_mod.acquire("random_urdfs/012/012.urdf", noise=True, seed=3).points
     np.testing.assert_allclose(pts, ref, atol=1e-6)
     assert pic.stat().st_size > 10_000
     assert cli.main(["acquire", "--object", "missing/thing.urdf", "--out", str(out)]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "missing/thing.urdf" in err
+
+
+def test_clean_up_removes_the_table_of_a_scene_and_keeps_viewpoints_aligned():
+    raw = acq_mod.acquire("random_urdfs/012/012.urdf", settings=acq_mod.AcquisitionSettings(keep="scene"))
+    clean = acq_mod.acquire("random_urdfs/012/012.urdf", settings=acq_mod.AcquisitionSettings(keep="scene"),
+                            postprocess=acq_mod.clean_up())
+    assert (raw.points[:, 2] < 0.002).mean() > 0.3  # the table dominates the raw scene
+    assert clean.plane is not None and abs(abs(clean.plane[2]) - 1) < 1e-3 and abs(clean.plane[3]) < 2e-3
+    assert (clean.points[:, 2] < 0.002).mean() < 0.02
+    assert len(clean.viewpoints) == len(clean.points) == len(clean.camera_index)
+    # Every kept point is seen from its camera: the camera lies on the outer side of the point.
+    eyes = np.array([c.eye for c in clean.cameras])
+    np.testing.assert_allclose(clean.viewpoints, eyes[clean.camera_index])

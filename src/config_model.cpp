@@ -25,6 +25,13 @@ ConfigModel::ConfigModel(const Eigen::VectorXd& pregrasp, const Eigen::VectorXd&
     throw std::invalid_argument("ConfigModel: limits must be (" + std::to_string(D) + ", 2)");
   }
   if (!pregrasp.allFinite() || !grasp.allFinite()) throw std::invalid_argument("ConfigModel: joints contain NaN or inf");
+  for (Eigen::Index j = 0; j < D; ++j) {
+    if (std::isnan(limits(j, 0)) || std::isnan(limits(j, 1)) || limits(j, 0) > limits(j, 1)) {
+      throw std::invalid_argument("ConfigModel: joint " + std::to_string(j) + " has limits [" +
+                                  std::to_string(limits(j, 0)) + ", " + std::to_string(limits(j, 1)) +
+                                  "]: lower must not exceed upper");
+    }
+  }
   if (s.n_kernels < 1) throw std::invalid_argument("ConfigModel: n_kernels must be >= 1");
   if (!(s.beta >= 0.0) || !(s.alpha >= 0.0) || !(s.bandwidth > 0.0) || !(s.min_bandwidth > 0.0)) {
     throw std::invalid_argument("ConfigModel: beta and alpha must be >= 0, bandwidth and min_bandwidth > 0");
@@ -73,6 +80,10 @@ RowMatrixXd ConfigModel::sample(int n, std::mt19937_64& rng) const {
 }
 
 Eigen::VectorXd ConfigModel::pregrasp_for(const Eigen::Ref<const Eigen::VectorXd>& q) const {
+  if (q.size() != dim()) {
+    throw std::invalid_argument("ConfigModel.pregrasp_for: " + std::to_string(q.size()) + " joints, the model " +
+                                std::to_string(dim()));
+  }
   Eigen::VectorXd out = q + (pregrasp_ - grasp_);
   for (int j = 0; j < dim(); ++j) out[j] = std::clamp(out[j], limits_(j, 0), limits_(j, 1));
   return out;

@@ -19,6 +19,10 @@ ContactData contact_data(const Hand& hand, int link, const Eigen::Isometry3d& T_
   if (!(s.max_distance > 0.0) || !(s.lambda >= 0.0)) {
     throw std::invalid_argument("contact settings: max_distance must be > 0 and lambda >= 0");
   }
+  if (link < 0 || link >= hand.n_links()) {
+    throw std::invalid_argument("contact_data: link index " + std::to_string(link) + " outside [0, " +
+                                std::to_string(hand.n_links()) + ") of hand '" + hand.name() + "'");
+  }
   require_finite(frames, "contact_data: frames");
   require_finite(features, "contact_data: features");
   hand.check_configuration(q, "grasp joints");

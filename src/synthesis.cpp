@@ -51,6 +51,11 @@ GraspSynthesizer::GraspSynthesizer(std::shared_ptr<const Hand> hand, std::vector
                                   std::to_string(m.link) + " of hand '" + hand_->name() + "'");
     }
     if (m.density->kind() != kind) throw std::invalid_argument("GraspSynthesizer: contact models mix GMM and KDE densities");
+    for (const ContactModel& other : contact_models_) {
+      if (&other != &m && other.link == m.link) {
+        throw std::invalid_argument("GraspSynthesizer: two contact models for link '" + m.link_name + "'");
+      }
+    }
   }
 }
 
@@ -143,12 +148,25 @@ Evaluation GraspSynthesizer::evaluate(const std::vector<QueryDensity>& query, co
   }
   const PoseArray wrists = wrists_in;
   const RowMatrixXd joints = joints_in;
+  // Bad rows fail here, named by the caller's row, before any expert or subset sees them.
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (!wrists.row(i).allFinite() || !(wrists.row(i).tail<4>().norm() > 1e-12)) {
+      throw std::invalid_argument("evaluate: wrist pose " + std::to_string(i) + " is not finite or has a zero quaternion");
+    }
+  }
+  require_finite(joints, "evaluate: joints");
   Evaluation e;
   // The experts first: a grasp a hard expert rejects costs nothing more (its other terms stay NaN,
   // "not evaluated"), which keeps rejection sampling cheap.
   e.log_experts.resize(n, experts.size());
   const GraspBatch batch{wrists, joints};
-  for (size_t k = 0; k < experts.size(); ++k) e.log_experts.col(k) = experts[k]->log_value(batch);
+  for (size_t k = 0; k < experts.size(); ++k) {
+    const Eigen::VectorXd v = experts[k]->log_value(batch);
+    if (v.size() != n || v.array().isNaN().any() || (v.array() == std::numeric_limits<double>::infinity()).any()) {
+      throw std::invalid_argument("expert '" + experts[k]->name() + "' returned NaN, +inf or the wrong number of values");
+    }
+    e.log_experts.col(k) = v;
+  }
   e.total = e.log_experts.rowwise().sum();
   std::vector<Eigen::Index> alive;
   for (Eigen::Index i = 0; i < n; ++i)
@@ -212,7 +230,7 @@ int GraspSynthesizer::anneal(const std::vector<QueryDensity>& query, const Colli
     for (Eigen::Index i = 0; i < n; ++i) {
       const Eigen::Vector3d dp(normal(rng), normal(rng), normal(rng));
       const Eigen::Vector3d dr(normal(rng), normal(rng), normal(rng));
-      const Eigen::Quaterniond q = quat_row(wrists, i) * quat_exp(0.5 * s.rotation_step * T * dr);
+      const Eigen::Quaterniond q = canonical((quat_row(wrists, i) * quat_exp(0.5 * s.rotation_step * T * dr)).normalized());
       prop_w.row(i).head<3>() = wrists.row(i).head<3>() + s.position_step * T * dp.transpose();
       prop_w.row(i).tail<4>() << q.x(), q.y(), q.z(), q.w();
       for (Eigen::Index j = 0; j < joints.cols(); ++j) {
@@ -247,6 +265,143 @@ int GraspSynthesizer::anneal(const std::vector<QueryDensity>& query, const Colli
   return static_cast<int>(n) * (s.iterations + 1);
 }
 
+namespace {
+
+/// The rows `rows` of an evaluation.
+Evaluation rows_of(const Evaluation& e, const std::vector<Eigen::Index>& rows) {
+  const Eigen::Index n = static_cast<Eigen::Index>(rows.size());
+  Evaluation out;
+  out.total.resize(n);
+  out.log_collision.resize(n);
+  out.log_config.resize(n);
+  out.log_pregrasp.resize(n);
+  out.log_contact.resize(n, e.log_contact.cols());
+  out.log_experts.resize(n, e.log_experts.cols());
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const Eigen::Index i = rows[k];
+    out.total[k] = e.total[i];
+    out.log_collision[k] = e.log_collision[i];
+    out.log_config[k] = e.log_config[i];
+    out.log_pregrasp[k] = e.log_pregrasp[i];
+    out.log_contact.row(k) = e.log_contact.row(i);
+    out.log_experts.row(k) = e.log_experts.row(i);
+  }
+  return out;
+}
+
+/// Writes src's rows into dst at `rows`.
+void set_rows(Evaluation& dst, const std::vector<Eigen::Index>& rows, const Evaluation& src) {
+  for (size_t k = 0; k < rows.size(); ++k) {
+    const Eigen::Index i = rows[k], j = static_cast<Eigen::Index>(k);
+    dst.total[i] = src.total[j];
+    dst.log_collision[i] = src.log_collision[j];
+    dst.log_config[i] = src.log_config[j];
+    dst.log_pregrasp[i] = src.log_pregrasp[j];
+    dst.log_contact.row(i) = src.log_contact.row(j);
+    dst.log_experts.row(i) = src.log_experts.row(j);
+  }
+}
+
+/// Indices best first; NaN (never expected: evaluate rejects it) ranks with -inf, ties keep their order.
+std::vector<int> rank_best_first(const Eigen::VectorXd& total) {
+  std::vector<int> order(total.size());
+  std::iota(order.begin(), order.end(), 0);
+  auto key = [&](int i) { return std::isnan(total[i]) ? -std::numeric_limits<double>::infinity() : total[i]; };
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return key(a) > key(b); });
+  return order;
+}
+
+void check_expert_names(const std::vector<std::shared_ptr<const Expert>>& experts) {
+  std::vector<std::string> seen;
+  for (const auto& e : experts) {
+    if (!e) throw std::invalid_argument("synthesize: an expert is null");
+    const std::string n = e->name();
+    if (n == "collision" || n == "config" || n == "pregrasp_clear" || n.rfind("contact/", 0) == 0) {
+      throw std::invalid_argument("synthesize: expert name '" + n + "' is reserved for a built-in term");
+    }
+    if (std::find(seen.begin(), seen.end(), n) != seen.end()) {
+      throw std::invalid_argument("synthesize: two experts are named '" + n + "'; names key the grasps' expert table");
+    }
+    seen.push_back(n);
+  }
+}
+
+}  // namespace
+
+GraspSynthesizer::Candidates GraspSynthesizer::sample_passing(const std::vector<QueryDensity>& query,
+                                                              const CollisionExpert& collision,
+                                                              const std::vector<std::shared_ptr<const Expert>>& experts,
+                                                              const SynthesisSettings& s, std::mt19937_64& rng,
+                                                              SynthesisResult& res) const {
+  std::vector<PoseArray> batch_w;
+  std::vector<RowMatrixXd> batch_q;
+  std::vector<Evaluation> batch_e;
+  std::vector<std::pair<int, Eigen::Index>> passed, rejected;  // (batch, row)
+  for (int round = 0; round < s.max_sampling_rounds && static_cast<int>(passed.size()) < s.n_samples; ++round) {
+    PoseArray w;
+    RowMatrixXd q;
+    sample_grasps(query, s.n_samples, rng, w, q);
+    batch_e.push_back(evaluate(query, collision, experts, w, q, s.clear_pregrasp));
+    batch_w.push_back(std::move(w));
+    batch_q.push_back(std::move(q));
+    res.evaluations += s.n_samples;
+    const Evaluation& e = batch_e.back();
+    for (Eigen::Index i = 0; i < e.total.size(); ++i) {
+      if (e.total[i] > -std::numeric_limits<double>::infinity()) {
+        if (static_cast<int>(passed.size()) < s.n_samples) passed.emplace_back(round, i);
+      } else {
+        ++res.rejected;
+        rejected.emplace_back(round, i);
+      }
+    }
+  }
+  // Too few passed: rejected samples fill up (ranked last; still optimised if among the best).
+  for (size_t k = 0; static_cast<int>(passed.size()) < s.n_samples && k < rejected.size(); ++k) passed.push_back(rejected[k]);
+  Candidates c;
+  const Eigen::Index n = static_cast<Eigen::Index>(passed.size());
+  c.wrists.resize(n, 7);
+  c.joints.resize(n, hand_->n_dofs());
+  c.eval.total.resize(n);
+  c.eval.log_collision.resize(n);
+  c.eval.log_config.resize(n);
+  c.eval.log_pregrasp.resize(n);
+  c.eval.log_contact.resize(n, query.size());
+  c.eval.log_experts.resize(n, experts.size());
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const auto [b, i] = passed[k];
+    c.wrists.row(k) = batch_w[b].row(i);
+    c.joints.row(k) = batch_q[b].row(i);
+    set_rows(c.eval, {k}, rows_of(batch_e[b], {i}));
+  }
+  return c;
+}
+
+std::vector<bool> GraspSynthesizer::optimise_best(const std::vector<QueryDensity>& query, const CollisionExpert& collision,
+                                                  const std::vector<std::shared_ptr<const Expert>>& experts,
+                                                  const SynthesisSettings& s, const std::vector<int>& order,
+                                                  std::mt19937_64& rng, Candidates& c, SynthesisResult& res) const {
+  std::vector<bool> optimised(c.wrists.rows(), false);
+  const int n_opt = s.optimise ? std::min<int>(s.n_optimise, static_cast<int>(c.wrists.rows())) : 0;
+  if (n_opt == 0) return optimised;
+  std::vector<Eigen::Index> rows(order.begin(), order.begin() + n_opt);
+  PoseArray w(n_opt, 7);
+  RowMatrixXd q(n_opt, c.joints.cols());
+  for (int k = 0; k < n_opt; ++k) {
+    w.row(k) = c.wrists.row(rows[k]);
+    q.row(k) = c.joints.row(rows[k]);
+  }
+  res.evaluations += anneal(query, collision, experts, s.annealing, rng, w, q, s.clear_pregrasp);
+  const Evaluation e = evaluate(query, collision, experts, w, q, s.clear_pregrasp);
+  res.evaluations += n_opt;
+  for (int k = 0; k < n_opt; ++k) {
+    c.wrists.row(rows[k]) = w.row(k);
+    c.joints.row(rows[k]) = q.row(k);
+    optimised[rows[k]] = true;
+  }
+  set_rows(c.eval, rows, e);
+  return optimised;
+}
+
 SynthesisResult GraspSynthesizer::synthesize(const Eigen::Ref<const PoseArray>& frames,
                                              const Eigen::Ref<const RowMatrixXd>& features,
                                              const CollisionExpert& collision,
@@ -254,10 +409,12 @@ SynthesisResult GraspSynthesizer::synthesize(const Eigen::Ref<const PoseArray>& 
                                              const SynthesisSettings& s) const {
   if (s.n_samples < 1) throw std::invalid_argument("synthesize: n_samples must be >= 1");
   if (s.n_optimise < 0) throw std::invalid_argument("synthesize: n_optimise must be >= 0");
-  if (&collision.hand() != hand_.get() && collision.hand().name() != hand_->name()) {
+  if (s.max_sampling_rounds < 1) throw std::invalid_argument("synthesize: max_sampling_rounds must be >= 1");
+  if (collision.hand().name() != hand_->name() || collision.hand().link_names() != hand_->link_names()) {
     throw std::invalid_argument("synthesize: the collision expert was built for hand '" + collision.hand().name() +
                                 "', the model for '" + hand_->name() + "'");
   }
+  check_expert_names(experts);
   const auto t0 = std::chrono::steady_clock::now();
   std::mt19937_64 rng(s.seed);
   SynthesisResult res;
@@ -265,81 +422,29 @@ SynthesisResult GraspSynthesizer::synthesize(const Eigen::Ref<const PoseArray>& 
   res.timing.query = seconds_since(t0);
 
   const auto t1 = std::chrono::steady_clock::now();
-  // Rejection sampling: draw batches until n_samples grasps pass the hard constraints (finite log L).
-  PoseArray wrists(0, 7);
-  RowMatrixXd joints(0, hand_->n_dofs());
-  PoseArray rejected_w(0, 7);
-  RowMatrixXd rejected_q(0, hand_->n_dofs());
-  for (int round = 0; round < std::max(1, s.max_sampling_rounds) && wrists.rows() < s.n_samples; ++round) {
-    PoseArray w;
-    RowMatrixXd q;
-    sample_grasps(query, s.n_samples, rng, w, q);
-    const Evaluation e = evaluate(query, collision, experts, w, q, s.clear_pregrasp);
-    res.evaluations += s.n_samples;
-    for (Eigen::Index i = 0; i < w.rows(); ++i) {
-      const bool ok = std::isfinite(e.total[i]);
-      PoseArray& W = ok ? wrists : rejected_w;
-      RowMatrixXd& Q = ok ? joints : rejected_q;
-      if (ok && W.rows() >= s.n_samples) continue;
-      if (!ok) ++res.rejected;
-      W.conservativeResize(W.rows() + 1, 7);
-      W.row(W.rows() - 1) = w.row(i);
-      Q.conservativeResize(Q.rows() + 1, Eigen::NoChange);
-      Q.row(Q.rows() - 1) = q.row(i);
-    }
-  }
-  // Too few passed: fill up with rejected samples (ranked last, still optimised if among the best).
-  for (Eigen::Index i = 0; wrists.rows() < s.n_samples && i < rejected_w.rows(); ++i) {
-    wrists.conservativeResize(wrists.rows() + 1, 7);
-    wrists.row(wrists.rows() - 1) = rejected_w.row(i);
-    joints.conservativeResize(joints.rows() + 1, Eigen::NoChange);
-    joints.row(joints.rows() - 1) = rejected_q.row(i);
-  }
-  Evaluation ev = evaluate(query, collision, experts, wrists, joints, s.clear_pregrasp);
-  auto ranking = [](const Eigen::VectorXd& total) {
-    std::vector<int> order(total.size());
-    std::iota(order.begin(), order.end(), 0);
-    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return total[a] > total[b]; });
-    return order;
-  };
-  std::vector<int> order = ranking(ev.total);
+  Candidates c = sample_passing(query, collision, experts, s, rng, res);
+  std::vector<int> order = rank_best_first(c.eval.total);
   res.timing.sampling = seconds_since(t1);
 
   const auto t2 = std::chrono::steady_clock::now();
-  std::vector<bool> optimised(s.n_samples, false);
-  const int n_opt = s.optimise ? std::min(s.n_optimise, s.n_samples) : 0;
-  if (n_opt > 0) {
-    PoseArray w(n_opt, 7);
-    RowMatrixXd q(n_opt, joints.cols());
-    for (int k = 0; k < n_opt; ++k) {
-      w.row(k) = wrists.row(order[k]);
-      q.row(k) = joints.row(order[k]);
-    }
-    res.evaluations += anneal(query, collision, experts, s.annealing, rng, w, q, s.clear_pregrasp);
-    for (int k = 0; k < n_opt; ++k) {
-      wrists.row(order[k]) = w.row(k);
-      joints.row(order[k]) = q.row(k);
-      optimised[order[k]] = true;
-    }
-    ev = evaluate(query, collision, experts, wrists, joints, s.clear_pregrasp);
-    order = ranking(ev.total);
-  }
+  const std::vector<bool> optimised = optimise_best(query, collision, experts, s, order, rng, c, res);
+  if (s.optimise) order = rank_best_first(c.eval.total);
   res.timing.optimisation = seconds_since(t2);
 
   for (const QueryDensity& q : query) res.contact_links.push_back(q.link_name);
   for (const auto& e : experts) res.expert_names.push_back(e->name());
-  res.grasps.reserve(s.n_samples);
+  res.grasps.reserve(order.size());
   for (int i : order) {
     Grasp g;
-    g.T_world_wrist = wrists.row(i).transpose();
-    g.joints = joints.row(i).transpose();
+    g.T_world_wrist = c.wrists.row(i).transpose();
+    g.joints = c.joints.row(i).transpose();
     g.pregrasp = config_.pregrasp_for(g.joints);
-    g.log_likelihood = ev.total[i];
-    g.log_collision = ev.log_collision[i];
-    g.log_config = ev.log_config[i];
-    g.log_pregrasp = ev.log_pregrasp[i];
-    g.log_contact = ev.log_contact.row(i).transpose();
-    g.log_experts = ev.log_experts.row(i).transpose();
+    g.log_likelihood = c.eval.total[i];
+    g.log_collision = c.eval.log_collision[i];
+    g.log_config = c.eval.log_config[i];
+    g.log_pregrasp = c.eval.log_pregrasp[i];
+    g.log_contact = c.eval.log_contact.row(i).transpose();
+    g.log_experts = c.eval.log_experts.row(i).transpose();
     g.optimised = optimised[i];
     res.grasps.push_back(std::move(g));
   }

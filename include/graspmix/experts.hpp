@@ -68,8 +68,8 @@ class AxisAlignmentExpert : public Expert {
   std::string name_;
 };
 
-/// A user-defined expert: a function of the whole batch returning log E_k (N). The Python front end
-/// wraps Python callables (which return probabilities in [0, 1] or booleans) into it.
+/// A user-defined expert: a function of the whole batch returning log E_k (N). graspmix.expert() in
+/// Python turns a callable returning probabilities in [0, 1] or booleans into one.
 class FunctionExpert : public Expert {
  public:
   using Function = std::function<Eigen::VectorXd(const PoseArray&, const RowMatrixXd&)>;

@@ -141,6 +141,23 @@ class GraspSynthesizer {
   std::string method() const;
 
  private:
+  /// Grasps with their evaluation, rows aligned.
+  struct Candidates {
+    PoseArray wrists;
+    RowMatrixXd joints;
+    Evaluation eval;
+  };
+  /// Rejection sampling: batches of settings.n_samples until that many pass the hard experts (at most
+  /// max_sampling_rounds batches; then rejected samples fill up). Counts evaluations and rejections.
+  Candidates sample_passing(const std::vector<QueryDensity>& query, const CollisionExpert& collision,
+                            const std::vector<std::shared_ptr<const Expert>>& experts, const SynthesisSettings& s,
+                            std::mt19937_64& rng, SynthesisResult& res) const;
+  /// Anneals the best n_optimise candidates in place (rows `order[0..]`), re-scoring only those.
+  std::vector<bool> optimise_best(const std::vector<QueryDensity>& query, const CollisionExpert& collision,
+                                  const std::vector<std::shared_ptr<const Expert>>& experts, const SynthesisSettings& s,
+                                  const std::vector<int>& order, std::mt19937_64& rng, Candidates& c,
+                                  SynthesisResult& res) const;
+
   std::shared_ptr<const Hand> hand_;
   std::vector<ContactModel> contact_models_;
   ConfigModel config_;

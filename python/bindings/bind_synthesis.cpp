@@ -158,8 +158,11 @@ void bind_synthesis(py::module_& m) {
                fn = [f](const PoseArray& w, const RowMatrixXd& q) {
                  py::gil_scoped_acquire gil;
                  const py::object r = f(w, q);
-                 auto a = py::array_t<bool, py::array::c_style | py::array::forcecast>::ensure(r);
-                 if (!a || a.ndim() != 1) throw py::value_error("reachable must return a 1-D array of booleans");
+                 auto raw = py::array::ensure(r);
+                 if (!raw || raw.ndim() != 1 || raw.dtype().kind() != 'b') {
+                   throw py::value_error("reachable must return a 1-D array of booleans (one per grasp)");
+                 }
+                 auto a = py::array_t<bool, py::array::c_style | py::array::forcecast>::ensure(raw);
                  Eigen::Matrix<bool, Eigen::Dynamic, 1> out(a.shape(0));
                  for (py::ssize_t i = 0; i < a.shape(0); ++i) out[i] = a.at(i);
                  return out;
@@ -277,7 +280,10 @@ void bind_synthesis(py::module_& m) {
           [](const GraspSynthesizer& g, const py::object& frames, const py::object& features, const QuerySettings& s,
              const py::object& seed) {
             std::mt19937_64 rng(to_seed(seed));
-            return g.query_densities(to_poses(frames, "frames"), to_matrix(features, "features"), s, rng);
+            const PoseArray v = to_poses(frames, "frames");
+            const RowMatrixXd r = to_matrix(features, "features");
+            py::gil_scoped_release release;
+            return g.query_densities(v, r, s, rng);
           },
           py::arg("frames"), py::arg("features"), py::arg("settings") = QuerySettings(), py::arg("seed") = py::none())
       .def(

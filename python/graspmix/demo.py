@@ -59,6 +59,9 @@ def record_demonstration(object_path: str | Path, hand_path: str | Path, T_world
             still = still + 1 if v < 5e-3 else 0
             if still >= 20:
                 break
+        if still < 20:
+            raise ValueError(f"the hand's joints did not come to rest within {max_steps} steps; "
+                             "raise max_steps or check the object and the closing target")
         reached = {n: p.getJointState(body, joints[n], physicsClientId=c)[0] for n in hand.joint_names}
         touching = bool(p.getContactPoints(body, scene.body, physicsClientId=c))
     if not touching:

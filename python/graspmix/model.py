@@ -162,9 +162,22 @@ class FeatureSettings:
 
     voxel_size: float = 0.003  # m
     radius: float = 0.01  # m, the paper's 1 cm
+    plane_distance: float = 0.005  # m: points this close to a known support plane (or below it) are the table
 
-    def surface(self, points: np.ndarray, *, remove_plane: bool, seed: int = 0, viewpoints=None):
-        """(SurfaceCloud, SceneResult) of raw points: clean-up, then features."""
+    def surface(self, points: np.ndarray, *, remove_plane: bool, seed: int = 0, viewpoints=None, plane=None):
+        """(SurfaceCloud, SceneResult) of raw points: clean-up, then features. With a known support
+        plane [a, b, c, d], the points on it or below it are dropped first (the table of a scene)."""
+        if plane is not None:
+            n = np.asarray(plane, dtype=float)
+            dist = (points @ n[:3] + n[3]) / np.linalg.norm(n[:3])
+            if np.median(dist) < 0:
+                dist = -dist
+            keep = dist > self.plane_distance
+            points = points[keep]
+            if viewpoints is not None and np.ndim(viewpoints) == 2:
+                viewpoints = np.asarray(viewpoints)[keep]
+            if len(points) == 0:
+                raise ValueError("no point of the cloud lies above the given support plane")
         scene = _core.prepare_cloud(points, voxel_size=self.voxel_size, remove_plane=remove_plane, seed=seed)
         if len(scene.points) == 0:
             raise ValueError("the cloud is empty after clean-up")
@@ -235,8 +248,14 @@ class GraspSet:
     def best(self) -> dict:
         return self.grasps[0]
 
-    def to_json(self) -> dict:
-        return {"format": GRASPS_FORMAT, "hand": str(self.hand_path), "method": self.method, "cloud": self.cloud,
+    def to_json(self, base: Path | None = None) -> dict:
+        """The grasps.json content; paths are written relative to `base` (the file's folder) when given."""
+        hand, cloud = str(self.hand_path), self.cloud
+        if base is not None:
+            hand = _relative(self.hand_path, base)
+            if Path(cloud).exists():
+                cloud = _relative(Path(cloud), base)
+        return {"format": GRASPS_FORMAT, "hand": hand, "method": self.method, "cloud": cloud,
                 "timing_s": self.timing, "grasps": self.grasps}
 
     def save(self, path: str | Path) -> None:
@@ -249,7 +268,9 @@ class GraspSet:
                 return [clean(v) for v in x]
             return x
 
-        Path(path).write_text(json.dumps(clean(self.to_json()), indent=1) + "\n")
+        # Non-finite log values (a grasp a hard expert rejected) are written as the strings "-inf"/"inf".
+        path = Path(path)
+        path.write_text(json.dumps(clean(self.to_json(path.resolve().parent)), indent=1) + "\n")
 
     @staticmethod
     def load(path: str | Path) -> dict:
@@ -384,8 +405,9 @@ class GraspModel:
             raise ValueError(f"{path}: config_model misses {e}") from None
         except ValueError as e:
             raise ValueError(f"{path}: config_model: {e} (was the model learnt for another hand?)") from None
+        demo = data.get("demonstration")
         return cls(hand, hand_path, _core.GraspSynthesizer(hand, models, cfg), feats, data.get("learn_settings", {}),
-                   data.get("demonstration"))
+                   str(_resolve(demo, base)) if demo else None)
 
     # -- synthesis
     def synthesize(self, cloud, *, n_samples: int = 200, n_optimise: int = 10, optimise: bool = True,
@@ -410,14 +432,14 @@ class GraspModel:
                 viewpoints = loaded.viewpoint[:3]
         else:
             points = _as_points(cloud)
-        surface, scene = self.features.surface(points, remove_plane=remove_plane and plane is None, seed=seed,
-                                               viewpoints=viewpoints)
-        if plane is None and scene.plane_found:
-            plane = np.asarray(scene.plane)
         if plane is not None:
             plane = np.asarray(plane, dtype=float)
-            if plane.shape != (4,) or not np.all(np.isfinite(plane)):
-                raise ValueError("plane must be 4 finite numbers [a, b, c, d]")
+            if plane.shape != (4,) or not np.all(np.isfinite(plane)) or not np.linalg.norm(plane[:3]) > 0:
+                raise ValueError("plane must be 4 finite numbers [a, b, c, d] with a non-zero normal")
+        surface, scene = self.features.surface(points, remove_plane=remove_plane and plane is None, seed=seed,
+                                               viewpoints=viewpoints, plane=plane)
+        if plane is None and scene.plane_found:
+            plane = np.asarray(scene.plane)
         t_features = time.perf_counter() - t0
         hand = self.hand
         # Depths up to contact_tolerance are touching, not penetrating: a cloud is a noisy surface.

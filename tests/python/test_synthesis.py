@@ -197,3 +197,33 @@ def test_cli_synthesize_runs_with_defaults_and_fails_cleanly(tmp_path):
                        capture_output=True, text=True, cwd=tmp_path)
     assert r.returncode == 2
     assert len(r.stderr.strip().splitlines()) == 1 and "bad.pcd" in r.stderr
+
+
+def test_review_regressions(gmm, tmp_path, demo):
+    """Cases a review found: NaN from an expert, reserved or repeated expert names, canonical
+    quaternions after annealing, paths surviving a load/save round trip, tables removed with a given plane."""
+    cloud = graspmix.data_path("mug.pcd")
+    nan_expert = graspmix.expert("nan", lambda w, q: np.full(len(w), np.nan), kind="log")
+    with pytest.raises(ValueError, match="nan"):
+        gmm.synthesize(cloud, n_samples=20, experts=[nan_expert])
+    with pytest.raises(ValueError, match="reserved"):
+        gmm.synthesize(cloud, n_samples=20, experts=[graspmix.expert("collision", lambda w, q: np.ones(len(w)))])
+    twice = [graspmix.expert("a", lambda w, q: np.ones(len(w))), graspmix.expert("a", lambda w, q: np.ones(len(w)))]
+    with pytest.raises(ValueError, match="two experts"):
+        gmm.synthesize(cloud, n_samples=20, experts=twice)
+    grasps = gmm.synthesize(cloud, seed=2)
+    assert all(g["T_world_wrist"][6] >= 0 for g in grasps)
+    # A saved, loaded and saved again model still finds its demonstration.
+    first, second = tmp_path / "a" / "m.json", tmp_path / "b" / "c" / "m.json"
+    first.parent.mkdir()
+    second.parent.mkdir(parents=True)
+    gmm.save(first)
+    graspmix.GraspModel.load(first).save(second)
+    assert graspmix.GraspModel.load(second).demo == str(demo.source)
+    # A scene cloud with a known plane: the table points do not reach the features.
+    scene = graspmix.load_cloud(str(cloud)).points
+    with_plane = gmm.synthesize(scene, remove_plane=False, plane=[0, 0, 1, 0], n_samples=20, optimise=False)
+    assert with_plane.surface.points[:, 2].min() > 0.004
+    # grasps.json refers to the hand by the bundled package path.
+    with_plane.save(tmp_path / "g.json")
+    assert json.loads((tmp_path / "g.json").read_text())["hand"] == "package://graspmix/hands/wsg50.urdf"

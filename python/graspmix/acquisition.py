@@ -22,35 +22,27 @@ import numpy as np
 
 
 def _import_pybullet_quietly() -> None:
-    """pybullet prints its build time on stdout when first imported, which would land in the middle of
-    a CLI's output or a user's piped results; import it once with stdout pointed at /dev/null."""
+    """pybullet prints its build time on stderr when first imported, which would turn a CLI's one-line
+    error into two; import it once with stderr pointed at /dev/null."""
     import os
     import sys
 
     if "pybullet" in sys.modules:
         return
     try:
-        sys.stdout.flush()
-        saved = os.dup(1)
-    except (OSError, ValueError):  # no real stdout (embedded interpreters): leave the import to its users
+        sys.stderr.flush()
+        saved = os.dup(2)
+    except (OSError, ValueError):  # no real stderr (embedded interpreters): leave the import to its users
         return
     try:
         devnull = os.open(os.devnull, os.O_WRONLY)
-        os.dup2(devnull, 1)
+        os.dup2(devnull, 2)
         os.close(devnull)
-        try:
-            import pybullet  # noqa: F401
-        except ImportError:
-            pass  # reported by the first function that needs it
-        finally:
-            try:  # the message sits in C's stdout buffer: flush it into /dev/null too
-                import ctypes
-
-                ctypes.CDLL(None).fflush(None)
-            except (OSError, AttributeError):
-                pass
+        import pybullet  # noqa: F401
+    except ImportError:
+        pass  # reported by the first function that needs it
     finally:
-        os.dup2(saved, 1)
+        os.dup2(saved, 2)
         os.close(saved)
 
 

@@ -270,7 +270,7 @@ def _cmd_experiment(args: argparse.Namespace) -> int:
     if args.jobs < 1:
         raise CliError(f"--jobs must be at least 1, got {args.jobs}")
     protocol = experiment.Protocol.preset(args.preset, objects=objects, trials=args.trials, conditions=conditions,
-                                          methods=methods, seed=args.seed)
+                                          methods=methods, seed=args.seed, closing=args.closing)
     command = "graspmix_cli " + " ".join(shlex.quote(a) for a in (args.argv or []))
     n = len(protocol.all_attempts())
     print(f"experiment: {len(protocol.objects)} objects x {protocol.trials} trials x conditions "
@@ -425,6 +425,9 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("--conditions", help="comma-separated subset of A,B,C,D (default: all)")
     s.add_argument("--methods", help="comma-separated subset of gmm,kde (default: both)")
     s.add_argument("--seed", type=int, default=None, help="base of every derived seed (default 0)")
+    s.add_argument("--closing", choices=["full", "learnt"], default=None,
+                   help="full (default): the fingers close until they stop on the object, force-limited; learnt: "
+                        "the simulation's default target just past the synthesised grasp joints")
     s.add_argument("--jobs", type=int, default=1, help="parallel worker processes (or Ray tasks)")
     s.add_argument("--executor", choices=["local", "ray"], default="local",
                    help="local processes, or a Ray cluster (a local Ray instance unless --ray-address)")

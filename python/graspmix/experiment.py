@@ -58,6 +58,13 @@ CONDITIONS = {
     "D": Condition("D", True, False, "depth noise, no optimisation"),
 }
 METHODS = ("gmm", "kde")
+# How an executed grasp closes. "full": the fingers close, force-limited, until they stop on the object or
+# reach their closed limit, as a parallel gripper's grasp command does (the simulation's motor target is
+# pushed past the grasp joints far enough to be clamped to the closed limit). "learnt": the simulation's
+# default, a target 0.5 x (grasp - pregrasp) past the synthesised grasp joints; with a configuration
+# model learnt from one 6 cm box, the fingers then stop about 4.4 cm apart and cannot hold anything
+# narrower, whatever the method.
+CLOSING = {"full": {"close_overshoot": 1000.0}, "learnt": {}}
 PRESETS = ("smoke", "paper")
 # The smoke preset's objects: three of the test set with different shapes (a mug, a small block-like
 # part, an elongated part), so the smoke run exercises more than one kind of grasp.
@@ -111,6 +118,7 @@ class Protocol:
     initial_temperature: float = 1.0  # the paper's 1.0, linear decay
     query_samples: int = 500  # N_Q samples per link for the query densities
     min_height: float = 0.004  # m: clean-up drops points closer than this to the known support plane z = 0
+    closing: str = "full"  # how the executed grasp closes: see CLOSING
     seed: int = 0  # base of every derived seed
     models: dict = field(default_factory=dict)  # method -> model file; empty: the bundled box models
 
@@ -158,6 +166,8 @@ class Protocol:
         for name in ("n_samples", "n_optimise", "annealing_iterations", "query_samples"):
             if int(getattr(self, name)) < 1:
                 raise ValueError(f"{name} must be at least 1, got {getattr(self, name)}")
+        if self.closing not in CLOSING:
+            raise ValueError(f"closing must be one of {', '.join(CLOSING)}, got {self.closing!r}")
         for m in self.models:
             if m not in METHODS:
                 raise ValueError(f"models: unknown method {m!r}")
@@ -299,7 +309,7 @@ def run_unit(protocol: dict, unit: tuple, todo: Iterable[tuple] | None = None) -
             continue
         best = grasps.best()
         t2 = time.perf_counter()
-        r = sim.execute(obj, best, hand=model.hand, object_pose=pose)
+        r = sim.execute(obj, best, hand=model.hand, object_pose=pose, **CLOSING[p.closing])
         t_exec = time.perf_counter() - t2
         tm = grasps.timing
         grasp = {"T_world_wrist": best["T_world_wrist"], "pregrasp_joints": best["pregrasp_joints"],
@@ -556,28 +566,33 @@ def run(protocol: Protocol, out: str | Path, *, jobs: int = 1, executor: str = "
     return result
 
 
+def _unit_job(args):
+    return run_unit(*args)
+
+
 def _run_pool(pdoc: dict, work: list, jobs: int, record: Callable) -> None:
-    import concurrent.futures as cf
     import multiprocessing as mp
 
     # Fresh interpreters (spawn) with one OpenMP thread each: jobs workers share the cores.
     old = os.environ.get("OMP_NUM_THREADS")
     os.environ["OMP_NUM_THREADS"] = "1"
     try:
-        pool = cf.ProcessPoolExecutor(max_workers=jobs, mp_context=mp.get_context("spawn"))
+        pool = mp.get_context("spawn").Pool(jobs)
     finally:
         if old is None:
             os.environ.pop("OMP_NUM_THREADS", None)
         else:
             os.environ["OMP_NUM_THREADS"] = old
     try:
-        futures = [pool.submit(run_unit, pdoc, u, todo) for u, todo in work]
-        for f in cf.as_completed(futures):
-            record(f.result())
+        for rows in pool.imap_unordered(_unit_job, [(pdoc, u, todo) for u, todo in work], chunksize=1):
+            record(rows)
     except BaseException:
-        pool.shutdown(wait=False, cancel_futures=True)
+        # Stopped (Ctrl-C) or failed: the workers' unfinished units are lost anyway, so end them now.
+        pool.terminate()
+        pool.join()
         raise
-    pool.shutdown(wait=True)
+    pool.close()
+    pool.join()
 
 
 def _run_ray(pdoc: dict, work: list, jobs: int, record: Callable, address: str | None) -> None:

@@ -286,7 +286,12 @@ def _blocks(summary: dict) -> list[tuple]:
                     f"{att['done']} of {att['expected']} attempts" + ("" if att["complete"] else " (INCOMPLETE run)")
                     + f". {proto['n_samples']} grasps sampled per attempt, the best {proto['n_optimise']} annealed "
                     f"({proto['annealing_iterations']} iterations, initial temperature {proto['initial_temperature']}, "
-                    f"linear decay) in conditions with optimisation; the best grasp is executed. graspmix "
+                    f"linear decay) in conditions with optimisation; the best grasp is executed "
+                    + ("with the fingers closing until they stop on the object (force-limited). "
+                       if proto.get("closing", "full") == "full" else
+                       "with the simulation's default closing (just past the synthesised grasp joints). ")
+                    + f"Clouds: 4 cameras, points within {1000 * proto['min_height']:.0f} mm of the support plane "
+                    f"dropped, the same for both methods. graspmix "
                     f"{prov.get('graspmix', '?')}, commit {prov.get('commit') or 'unknown'}."),
               ]
     if prov.get("command"):

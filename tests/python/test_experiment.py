@@ -1,6 +1,7 @@
 """The paper's experiment: statistics against scipy, seeds, the frame shared by acquisition and execution,
 resuming, 1 vs 2 jobs vs Ray, the report from a CSV, the smoke preset end to end, and bad input."""
 import json
+import math
 import os
 import signal
 import subprocess
@@ -105,6 +106,8 @@ def test_protocol_rejects_bad_values():
         ex.Protocol(objects=["cube_small.urdf"], trials=0)
     with pytest.raises(ValueError, match="twice"):
         ex.Protocol(objects=["cube_small.urdf", "cube_small.urdf"])
+    with pytest.raises(ValueError, match="closing"):
+        ex.Protocol(objects=["cube_small.urdf"], closing="half")
     with pytest.raises(ValueError, match="not found"):
         ex.Protocol(objects=["cube_small.urdf", "no/such/object.urdf"]).check_inputs()
 
@@ -245,6 +248,27 @@ def test_resume_after_the_process_is_killed(reference_run, tmp_path):
     assert comparable(rows) == comparable(ex.read_rows(reference_run / ex.CSV_NAME))
 
 
+def test_ctrl_c_stops_a_parallel_run_promptly(tmp_path):
+    """SIGINT (Ctrl-C) ends a 2-job run at once: workers are ended, the finished rows kept, exit status 130."""
+    out = tmp_path / "run"
+    proc = subprocess.Popen([sys.executable, "-m", "graspmix.cli", "experiment", "--preset", "smoke", "--out", str(out),
+                             "--jobs", "2", "--quiet"], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    csv_path = out / ex.CSV_NAME
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and proc.poll() is None:
+        if csv_path.is_file() and csv_path.read_text().count("\n") >= 2:
+            break
+        time.sleep(0.01)
+    if proc.poll() is not None:
+        pytest.skip("the run finished before it could be interrupted")
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == 130
+    assert "the same command resumes" in err
+    rows = ex.read_rows(csv_path)
+    assert 1 <= len(rows) < 48 and len({(r["object"], r["trial"], r["condition"], r["method"]) for r in rows}) == len(rows)
+
+
 def test_folder_of_another_protocol_is_refused_before_any_work(reference_run, tmp_path):
     import shutil
 
@@ -380,3 +404,24 @@ def test_cli_benchmark(tmp_path, capsys):
         assert res["median_s"][m]["total"] == pytest.approx(np.median(res["per_object_s"][m]["total"]))
     assert res["ratio_kde_over_gmm"]["total"] == pytest.approx(res["median_s"]["kde"]["total"] / res["median_s"]["gmm"]["total"])
     assert (tmp_path / "b" / "benchmark.png").stat().st_size > 1000
+
+
+def test_full_closing_holds_what_the_learnt_closing_misses():
+    """A top grasp whose synthesised grasp joints (4 cm per finger, the demo box's width) are wider than a
+    narrow object: the simulation's default target stops the fingers before they reach it; the protocol's
+    "full" closing goes on until they stop on the object."""
+    obj = "random_urdfs/675/675.urdf"  # 3 cm thin, 9 cm wide and tall
+    o = sim.load_object(obj)
+    pose = sim.rest_pose(obj)
+    v, _ = o.model.collision_mesh(o.model.link_names[0])
+    from scipy.spatial.transform import Rotation
+
+    w = Rotation.from_quat(pose[3:]).apply(v) + pose[:3]
+    lo, hi = w.min(0), w.max(0)
+    half = (hi[:2] - lo[:2]).min() / 2
+    yaw = 0.0 if hi[0] - lo[0] < hi[1] - lo[1] else math.pi / 2  # close across the narrow side
+    g = sim.top_grasp((lo[:2] + hi[:2]) / 2, 0.055, 0.04, yaw=yaw, tip_height=max(0.01, hi[2] - 0.03))
+    assert half < 0.04 - 0.5 * (0.055 - 0.04) - 0.005  # the default target stops short of the object
+    assert not sim.execute(obj, g, object_pose=pose).success
+    r = sim.execute(obj, g, object_pose=pose, **ex.CLOSING["full"])
+    assert r.success, r.reason

@@ -8,6 +8,7 @@ so the README's numbers always come from a run, never from a hand.
 
     python scripts/findings_table.py results/paper/summary.json [--benchmark results/paper/benchmark.json]
                                      [--extra results/paper-learnt-closing/summary.json] [--readme README.md]
+(--benchmark and --extra can be given more than once.)
 """
 import argparse
 import json
@@ -45,7 +46,7 @@ def verdict(summary: dict) -> str:
     return "; ".join(parts)
 
 
-def render(summary_path: Path, bench_path: Path | None, extra: list[Path]) -> str:
+def render(summary_path: Path, bench_paths: list[Path], extra: list[Path]) -> str:
     s = json.loads(summary_path.read_text())
     prov = s["provenance"]
     out = [f"Run: `{prov.get('command', '?')}` on commit `{prov.get('commit', '?')}` "
@@ -59,9 +60,14 @@ def render(summary_path: Path, bench_path: Path | None, extra: list[Path]) -> st
         out += [f"Synthesis time in the run (conditions {','.join(rt['conditions'])}, two jobs sharing two cores; "
                 f"median over objects): GMM {g['total'] * 1e3:.0f} ms, KDE {k['total'] * 1e3:.0f} ms, "
                 f"KDE / GMM = {rt['ratio_kde_over_gmm']['total']:.2f}.", ""]
-    if bench_path is not None:
+    for bench_path in bench_paths:
         b = json.loads(bench_path.read_text())
-        out += [f"`graspmix_cli benchmark` (one process, idle machine, commit `{b.get('commit', '?')}`):", "",
+        m = b.get("machine", {})
+        threads = m.get("OMP_NUM_THREADS") or f"unset (OpenMP's default: {m.get('cpu_count', '?')} threads)"
+        load = m.get("load_average_before", [None])[0]
+        out += [f"`graspmix_cli benchmark` ({bench_path.parent.name}/{bench_path.name}): one process, "
+                f"OMP_NUM_THREADS {threads}, machine load average {load:.1f} at the start, commit "
+                f"`{b.get('commit', '?')}`:" if load is not None else f"`graspmix_cli benchmark` ({bench_path}):", "",
                 runtime_table_md(b), "",
                 f"The paper: GMM nearly 5x faster. Here: {b['ratio_kde_over_gmm']['total']:.2f}x in total.", ""]
     for e in extra:
@@ -76,7 +82,7 @@ def render(summary_path: Path, bench_path: Path | None, extra: list[Path]) -> st
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("summary", type=Path)
-    ap.add_argument("--benchmark", type=Path)
+    ap.add_argument("--benchmark", type=Path, action="append", default=[], help="benchmark.json files to list")
     ap.add_argument("--extra", type=Path, action="append", default=[], help="more runs' summary.json to list")
     ap.add_argument("--readme", type=Path, help="write the text between the findings markers of this file")
     args = ap.parse_args()

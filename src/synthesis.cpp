@@ -267,39 +267,30 @@ int GraspSynthesizer::anneal(const std::vector<QueryDensity>& query, const Colli
 
 namespace {
 
-/// The rows `rows` of an evaluation.
-Evaluation rows_of(const Evaluation& e, const std::vector<Eigen::Index>& rows) {
-  const Eigen::Index n = static_cast<Eigen::Index>(rows.size());
-  Evaluation out;
-  out.total.resize(n);
-  out.log_collision.resize(n);
-  out.log_config.resize(n);
-  out.log_pregrasp.resize(n);
-  out.log_contact.resize(n, e.log_contact.cols());
-  out.log_experts.resize(n, e.log_experts.cols());
-  for (Eigen::Index k = 0; k < n; ++k) {
-    const Eigen::Index i = rows[k];
-    out.total[k] = e.total[i];
-    out.log_collision[k] = e.log_collision[i];
-    out.log_config[k] = e.log_config[i];
-    out.log_pregrasp[k] = e.log_pregrasp[i];
-    out.log_contact.row(k) = e.log_contact.row(i);
-    out.log_experts.row(k) = e.log_experts.row(i);
+/// dst's rows `to` = src's rows `from` (same length).
+void copy_rows(const Evaluation& src, const std::vector<Eigen::Index>& from, Evaluation& dst,
+               const std::vector<Eigen::Index>& to) {
+  for (size_t k = 0; k < from.size(); ++k) {
+    const Eigen::Index i = from[k], j = to[k];
+    dst.total[j] = src.total[i];
+    dst.log_collision[j] = src.log_collision[i];
+    dst.log_config[j] = src.log_config[i];
+    dst.log_pregrasp[j] = src.log_pregrasp[i];
+    dst.log_contact.row(j) = src.log_contact.row(i);
+    dst.log_experts.row(j) = src.log_experts.row(i);
   }
-  return out;
 }
 
-/// Writes src's rows into dst at `rows`.
-void set_rows(Evaluation& dst, const std::vector<Eigen::Index>& rows, const Evaluation& src) {
-  for (size_t k = 0; k < rows.size(); ++k) {
-    const Eigen::Index i = rows[k], j = static_cast<Eigen::Index>(k);
-    dst.total[i] = src.total[j];
-    dst.log_collision[i] = src.log_collision[j];
-    dst.log_config[i] = src.log_config[j];
-    dst.log_pregrasp[i] = src.log_pregrasp[j];
-    dst.log_contact.row(i) = src.log_contact.row(j);
-    dst.log_experts.row(i) = src.log_experts.row(j);
-  }
+/// An evaluation of n grasps over n_contact links and n_experts experts, to be filled.
+Evaluation empty_evaluation(Eigen::Index n, Eigen::Index n_contact, Eigen::Index n_experts) {
+  Evaluation e;
+  e.total.resize(n);
+  e.log_collision.resize(n);
+  e.log_config.resize(n);
+  e.log_pregrasp.resize(n);
+  e.log_contact.resize(n, n_contact);
+  e.log_experts.resize(n, n_experts);
+  return e;
 }
 
 /// Indices best first; NaN (never expected: evaluate rejects it) ranks with -inf, ties keep their order.
@@ -361,17 +352,12 @@ GraspSynthesizer::Candidates GraspSynthesizer::sample_passing(const std::vector<
   const Eigen::Index n = static_cast<Eigen::Index>(passed.size());
   c.wrists.resize(n, 7);
   c.joints.resize(n, hand_->n_dofs());
-  c.eval.total.resize(n);
-  c.eval.log_collision.resize(n);
-  c.eval.log_config.resize(n);
-  c.eval.log_pregrasp.resize(n);
-  c.eval.log_contact.resize(n, query.size());
-  c.eval.log_experts.resize(n, experts.size());
+  c.eval = empty_evaluation(n, query.size(), experts.size());
   for (Eigen::Index k = 0; k < n; ++k) {
     const auto [b, i] = passed[k];
     c.wrists.row(k) = batch_w[b].row(i);
     c.joints.row(k) = batch_q[b].row(i);
-    set_rows(c.eval, {k}, rows_of(batch_e[b], {i}));
+    copy_rows(batch_e[b], {i}, c.eval, {k});
   }
   return c;
 }
@@ -398,7 +384,9 @@ std::vector<bool> GraspSynthesizer::optimise_best(const std::vector<QueryDensity
     c.joints.row(rows[k]) = q.row(k);
     optimised[rows[k]] = true;
   }
-  set_rows(c.eval, rows, e);
+  std::vector<Eigen::Index> all(n_opt);
+  std::iota(all.begin(), all.end(), 0);
+  copy_rows(e, all, c.eval, rows);
   return optimised;
 }
 

@@ -475,11 +475,10 @@ def load_protocol(run_dir: str | Path) -> dict:
     path = Path(run_dir) / PROTOCOL_NAME
     if not path.is_file():
         raise ValueError(f"{run_dir}: no {PROTOCOL_NAME} (not an experiment folder)")
-    try:
-        doc = json.loads(path.read_text())
-    except json.JSONDecodeError as e:
-        raise ValueError(f"{path}: not valid JSON ({e})") from None
-    if not isinstance(doc, dict) or doc.get("format") != PROTOCOL_FORMAT:
+    from .model import _read_json
+
+    doc = _read_json(path, "protocol")
+    if doc.get("format") != PROTOCOL_FORMAT:
         raise ValueError(f"{path}: not a {PROTOCOL_FORMAT} file")
     return doc
 

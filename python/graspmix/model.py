@@ -272,20 +272,6 @@ class GraspSet:
         path = Path(path)
         path.write_text(json.dumps(clean(self.to_json(path.resolve().parent)), indent=1) + "\n")
 
-    @staticmethod
-    def load(path: str | Path) -> dict:
-        """grasps.json as a dict (checked for its format and fields)."""
-        path = Path(path)
-        data = _read_json(path, "grasps")
-        if data.get("format") != GRASPS_FORMAT:
-            raise ValueError(f"{path}: format is {data.get('format')!r}, expected {GRASPS_FORMAT!r}")
-        grasps = _field(data, "grasps", path, list)
-        for i, g in enumerate(grasps):
-            for key in ("T_world_wrist", "pregrasp_joints", "grasp_joints"):
-                if key not in g:
-                    raise ValueError(f"{path}: grasp {i} misses '{key}'")
-        return data
-
 
 # ---- the model ---------------------------------------------------------------------------------
 

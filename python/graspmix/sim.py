@@ -22,12 +22,12 @@ import numpy as np
 
 from . import _core
 from .acquisition import AcquisitionSettings, Scene, resolve_object
+from .model import GRASPS_FORMAT, _read_json, _resolve
 
 SimSettings = _core.SimSettings
 SimResult = _core.SimResult
 SimObject = _core.SimObject
 
-GRASPS_FORMAT = "graspmix.grasps/1"
 DATA = Path(__file__).resolve().parent / "data"
 
 
@@ -101,15 +101,9 @@ def rest_pose(obj, settings: AcquisitionSettings | None = None) -> np.ndarray:
 
 def load_grasps(path) -> dict:
     """Reads and checks a grasps.json (format graspmix.grasps/1); grasps come back sorted by rank."""
-    p = Path(path)
-    if not p.is_file():
-        raise ValueError(f"{path}: no such grasps file")
-    try:
-        doc = json.loads(p.read_text())
-    except json.JSONDecodeError as e:
-        raise ValueError(f"{path}: not JSON ({e})") from None
-    if not isinstance(doc, dict) or doc.get("format") != GRASPS_FORMAT:
-        raise ValueError(f"{path}: expected format {GRASPS_FORMAT!r}, got {doc.get('format') if isinstance(doc, dict) else type(doc).__name__!r}")
+    doc = _read_json(Path(path), "grasps")
+    if doc.get("format") != GRASPS_FORMAT:
+        raise ValueError(f"{path}: expected format {GRASPS_FORMAT!r}, got {doc.get('format')!r}")
     grasps = doc.get("grasps")
     if not isinstance(grasps, list) or not grasps:
         raise ValueError(f"{path}: no grasps")
@@ -133,10 +127,8 @@ def _doc_hand_file(doc_hand: str | None, grasps_path) -> Path | None:
     """The grasps file's hand URDF if it exists (as given, or relative to the grasps file)."""
     if not doc_hand:
         return None
-    for p in (Path(doc_hand), Path(grasps_path).resolve().parent / doc_hand):
-        if p.is_file():
-            return p
-    return None
+    p = _resolve(doc_hand, Path(grasps_path).resolve().parent)  # package://graspmix/..., absolute or relative
+    return p if p.is_file() else None
 
 
 def _check_hand_matches(hand: _core.Hand, doc_hand: str | None, grasps_path="."):

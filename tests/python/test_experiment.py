@@ -133,11 +133,12 @@ def test_grasp_synthesised_on_an_acquired_cloud_executes_in_the_same_frame():
                          approach_axis=(0, 0, -1))
     best = g.best()
     assert Rotation.from_quat(best["T_world_wrist"][3:]).apply([0, 0, 1])[2] < -0.9  # palm down: a top grasp
-    r = sim.execute(obj, best, object_pose=pose)
+    # Executed as the experiment executes grasps (closing until the fingers stop on the object).
+    r = sim.execute(obj, best, object_pose=pose, **ex.CLOSING["full"])
     assert r.success, r.reason
     # The same grasp moved 10 cm sideways touches nothing: the frame is not off by a shift the grasp survives.
     moved = dict(best, T_world_wrist=[best["T_world_wrist"][0] + 0.1, *best["T_world_wrist"][1:]])
-    assert not sim.execute(obj, moved, object_pose=pose).success
+    assert not sim.execute(obj, moved, object_pose=pose, **ex.CLOSING["full"]).success
 
 
 # ---- runs: a small protocol --------------------------------------------------------------------

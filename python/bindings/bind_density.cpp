@@ -48,8 +48,6 @@ std::vector<int> to_dims(const py::object& obj, const char* name) {
   }
 }
 
-PoseArray to_poses(const py::object& obj, const char* name) { return PoseArray(to_matrix(obj, name, 7)); }
-
 GmmSettings gmm_settings(int n_components, double reg_covar, int max_iter, double tol, int n_init,
                          const py::object& seed) {
   GmmSettings s;

@@ -10,7 +10,6 @@
 
 namespace graspmix::py_bind {
 
-using HandPtr = std::shared_ptr<Hand>;
 
 std::string to_path(const py::object& obj, const char* name) {
   try {

@@ -11,10 +11,7 @@ namespace graspmix::py_bind {
 
 namespace {
 
-using HandPtr = std::shared_ptr<Hand>;
 using ExpertList = std::vector<std::shared_ptr<const Expert>>;
-
-PoseArray to_poses(const py::handle& obj, const char* name) { return PoseArray(to_matrix(obj, name, 7)); }
 
 ExpertList to_experts(const py::object& obj) {
   ExpertList out;

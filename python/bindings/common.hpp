@@ -3,6 +3,7 @@
 // wrong shape is a ValueError that says which argument and what was expected, never a TypeError from
 // overload resolution.
 #include <cstdint>
+#include <memory>
 #include <string>
 
 #include <pybind11/eigen.h>
@@ -29,6 +30,10 @@ RowMatrixXd to_features(const py::object& obj, Eigen::Index n_rows, int n_featur
 /// Optional weights: None -> empty.
 Eigen::VectorXd to_weights(const py::object& obj, const char* name);
 
+using HandPtr = std::shared_ptr<Hand>;
+
+/// A batch of poses (N, 7), checked for shape.
+inline PoseArray to_poses(const py::handle& obj, const char* name) { return PoseArray(to_matrix(obj, name, 7)); }
 /// A filesystem path from str or os.PathLike.
 std::string to_path(const py::object& obj, const char* name);
 /// One configuration of `hand` from a name -> value mapping or an array in joint_names() order.

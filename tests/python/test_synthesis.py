@@ -227,3 +227,26 @@ def test_review_regressions(gmm, tmp_path, demo):
     # grasps.json refers to the hand by the bundled package path.
     with_plane.save(tmp_path / "g.json")
     assert json.loads((tmp_path / "g.json").read_text())["hand"] == "package://graspmix/hands/wsg50.urdf"
+
+
+def test_demo_and_learn_commands_record_and_learn_the_box_grasp(tmp_path):
+    """graspmix_cli demo closes the WSG 50 on the box in pybullet: the fingers stop on its 60 mm sides
+    (a joint value of half the width, to within pybullet's contact margin); learn then finds contact
+    models for the links near the box."""
+    from graspmix import cli
+
+    demo, cloud, model = tmp_path / "demo.json", tmp_path / "box.pcd", tmp_path / "model.json"
+    assert cli.main(["demo", "--wrist", "0,0,0.2185,1,0,0,0", "--pregrasp", "finger_left_joint=0.05",
+                     "--close", "finger_left_joint=0.0", "--out", str(demo), "--cloud-out", str(cloud)]) == 0
+    d = graspmix.Demonstration.load(demo)
+    assert d.grasp_joints["finger_left_joint"] == pytest.approx(BOX_HALF[0], abs=0.002)
+    # The recorded cloud is the box's surface, in the world frame the wrist pose is given in.
+    local = np.abs(d.cloud - [0, 0, 0.07])
+    assert np.all(local <= BOX_HALF + 0.001)
+    assert np.all(np.min(BOX_HALF - local, axis=1) < 0.001)
+    assert cli.main(["learn", "--demo", str(demo), "--method", "kde", "--out", str(model)]) == 0
+    learnt = graspmix.GraspModel.load(model)
+    assert learnt.method == "kde" and learnt.contact_links == ["palm", "finger_left", "finger_right"]
+    # The hand must touch the object: closing in the air is an error, one line from the CLI.
+    assert cli.main(["demo", "--wrist", "0.5,0,0.2185,1,0,0,0", "--pregrasp", "finger_left_joint=0.05",
+                     "--close", "finger_left_joint=0.0", "--out", str(tmp_path / "air.json")]) == 2

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 
@@ -103,6 +104,9 @@ CollisionExpert::CollisionExpert(std::shared_ptr<const Hand> hand, const Eigen::
     throw std::invalid_argument("point_radius must be finite and >= 0");
   }
   if (!std::isfinite(settings_.plane_margin)) throw std::invalid_argument("plane_margin must be finite");
+  if (!(settings_.inside_weight >= 0) || !std::isfinite(settings_.inside_weight)) {
+    throw std::invalid_argument("inside_weight must be finite and >= 0");
+  }
   if (!(settings_.contact_tolerance >= 0) || !std::isfinite(settings_.contact_tolerance)) {
     throw std::invalid_argument("contact_tolerance must be finite and >= 0");
   }
@@ -282,7 +286,7 @@ CollisionResult CollisionExpert::evaluate(const Eigen::Isometry3d& T_world_wrist
   res.plane_depth = Eigen::VectorXd::Zero(L);
   res.points_inside = Eigen::VectorXi::Zero(L);
   evaluate_into(poses.data(), res.cloud_depth.data(), res.plane_depth.data(), res.points_inside.data());
-  res.total_depth = res.cloud_depth.sum() + res.plane_depth.sum();
+  res.total_depth = res.cloud_depth.sum() + res.plane_depth.sum() + settings_.inside_weight * res.points_inside.sum();
   res.log_w = -settings_.beta * res.total_depth;
   res.w = std::exp(res.log_w);
   res.collision_free = res.total_depth <= 0.0;
@@ -309,7 +313,7 @@ CollisionBatchResult CollisionExpert::evaluate_batch(const Eigen::Ref<const Pose
     evaluate_into(poses, cd.data(), pd.data(), inside.data());
     out.cloud_depth.row(i) = cd.transpose();
     out.plane_depth.row(i) = pd.transpose();
-    out.total_depth[i] = cd.sum() + pd.sum();
+    out.total_depth[i] = cd.sum() + pd.sum() + settings_.inside_weight * std::accumulate(inside.begin(), inside.end(), 0);
     out.log_w[i] = -settings_.beta * out.total_depth[i];
     out.w[i] = std::exp(out.log_w[i]);
     out.collision_free[i] = out.total_depth[i] <= 0.0;

@@ -15,7 +15,8 @@
 //   * plane:  P_l = max over shapes s in S_l of the depth of the deepest point of s below the plane
 //     raised by plane_margin, found by FCL (each shape against an fcl::Halfspace; meshes as fcl::Convex
 //     of their hull).
-//   total = sum_l (D_l + P_l),  log W(h) = -beta * total,  W(h) = exp(log W),
+//   total = sum_l (D_l + P_l + inside_weight * n_l),  log W(h) = -beta * total,  W(h) = exp(log W),
+//   with n_l the number of cloud points penetrating link l (inside_weight is 0 by default),
 //   A cloud samples the object's surface only: a link wholly inside the object, touching no point, has
 //   D_l = 0. Grasp sampling starts links at the surface, so this rarely matters; a denser cloud or a
 //   larger point_radius narrows the gap.
@@ -45,6 +46,11 @@ struct CollisionSettings {
   /// m: depths up to this count as touching, not penetrating (a point on a link's face is a contact,
   /// whatever the rounding of the link's pose)
   double contact_tolerance = 1e-9;
+  /// m per point: each cloud point inside a link adds this much to the total depth. The deepest-point
+  /// depth saturates at half a link's thickness (a finger right through a thin object costs no more
+  /// than a shallow one); counting the points it swallows measures how much of the link is inside.
+  /// 0 (the default) keeps W a function of depths alone.
+  double inside_weight = 0.0;
 };
 
 /// One configuration's penetration, per link in Hand::link_names() order.

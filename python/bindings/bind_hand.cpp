@@ -309,7 +309,8 @@ void bind_hand(py::module_& m) {
       "cylinders, spheres; meshes as their convex hulls); plane depth: the deepest point of the link below the\n"
       "plane (FCL half-space). The cloud is indexed once at construction.")
       .def(py::init([](HandPtr hand, const py::object& cloud, const py::object& plane, double beta, double point_radius,
-                       double plane_margin, double cell_size, bool orient_plane, double contact_tolerance) {
+                       double plane_margin, double cell_size, bool orient_plane, double contact_tolerance,
+                       double inside_weight) {
              if (!hand) throw py::value_error("hand: expected a Hand, got None");
              CollisionSettings s;
              s.beta = beta;
@@ -318,6 +319,7 @@ void bind_hand(py::module_& m) {
              s.cell_size = cell_size;
              s.orient_plane = orient_plane;
              s.contact_tolerance = contact_tolerance;
+             s.inside_weight = inside_weight;
              const Vec3Array pts = cloud.is_none() ? Vec3Array(0, 3) : Vec3Array(to_matrix(cloud, "cloud", 3));
              std::optional<Eigen::Vector4d> pl;
              if (!plane.is_none()) pl = Eigen::Vector4d(to_vector(plane, "plane", 4));
@@ -326,11 +328,12 @@ void bind_hand(py::module_& m) {
            }),
            py::arg("hand"), py::arg("cloud"), py::arg("plane") = py::none(), py::arg("beta") = 1000.0,
            py::arg("point_radius") = 0.0, py::arg("plane_margin") = 0.0, py::arg("cell_size") = 0.0,
-           py::arg("orient_plane") = true, py::arg("contact_tolerance") = 1e-9,
+           py::arg("orient_plane") = true, py::arg("contact_tolerance") = 1e-9, py::arg("inside_weight") = 0.0,
            "hand: Hand; cloud: (N, 3) points (world frame); plane: [a, b, c, d] of a x + b y + c z + d = 0 or None;\n"
            "beta (1/m); point_radius (m, points as balls); plane_margin (m, the plane raised by it); cell_size (m,\n"
            "0 = automatic); orient_plane: flip the plane so the cloud lies on its positive side; contact_tolerance\n"
-           "(m): depths up to it count as touching, not penetrating.")
+           "(m): depths up to it count as touching, not penetrating; inside_weight (m per point): each cloud point\n"
+           "inside a link adds this to the total depth.")
       .def(
           "evaluate",
           [](const CollisionExpert& e, const py::object& T_world_wrist, const py::object& joints) {

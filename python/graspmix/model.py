@@ -402,7 +402,7 @@ class GraspModel:
                    reachable: Callable | None = None,
                    experts: Iterable = (), query_samples: int = 500, kinematic: bool = True,
                    clear_pregrasp: bool = True, collision_beta: float = 2000.0, contact_tolerance: float = 0.001,
-                   annealing: dict | None = None) -> GraspSet:
+                   collision_inside_weight: float = 0.0, annealing: dict | None = None) -> GraspSet:
         """Grasps on a novel object's cloud: a path (PCD/PLY/npy) or an (N, 3) array of points.
 
         remove_plane: find and remove the support plane (a scene cloud); plane: give it instead
@@ -430,7 +430,7 @@ class GraspModel:
         hand = self.hand
         # Depths up to contact_tolerance are touching, not penetrating: a cloud is a noisy surface.
         collision = _core.CollisionExpert(hand, surface.points, plane=plane, beta=collision_beta,
-                                          contact_tolerance=contact_tolerance)
+                                          contact_tolerance=contact_tolerance, inside_weight=collision_inside_weight)
         all_experts = []
         if kinematic:
             all_experts.append(_core.KinematicFeasibilityExpert(hand, plane=_oriented(plane, surface.points),

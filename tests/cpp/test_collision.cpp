@@ -216,3 +216,24 @@ TEST(Collision, BatchBroadcastsASingleWristOrConfiguration) {
   EXPECT_NEAR(r.total_depth[2], 0.005, 1e-12);
   EXPECT_THROW(expert.evaluate_batch(graspmix::PoseArray(2, 7), qs), std::invalid_argument);
 }
+
+TEST(Collision, InsideWeightAddsPerPenetratingPoint) {
+  CollisionSettings s;
+  s.inside_weight = 0.0005;
+  const CollisionExpert weighted(finger(), box_surface(), std::nullopt, s);
+  const CollisionExpert plain(finger(), box_surface());
+  const Eigen::VectorXd q = Eigen::VectorXd::Zero(1);
+  for (double x : {-0.0101, -0.006, 0.0}) {
+    const auto a = weighted.evaluate(at(x), q), b = plain.evaluate(at(x), q);
+    EXPECT_EQ(a.points_inside.sum(), b.points_inside.sum());
+    EXPECT_NEAR(a.total_depth, b.total_depth + 0.0005 * b.points_inside.sum(), 1e-12) << x;
+    EXPECT_EQ(a.collision_free, b.collision_free);
+  }
+  // Past the face's mid-plane the deepest depth falls again (the finger is nearly through the sheet of
+  // points); the number of points inside does not.
+  const double through_plain = plain.evaluate(at(0.008), q).total_depth;
+  EXPECT_LT(through_plain, 0.0021);
+  EXPECT_GT(weighted.evaluate(at(0.008), q).total_depth, 10.0 * through_plain);
+  s.inside_weight = -1.0;
+  EXPECT_THROW(CollisionExpert(finger(), box_surface(), std::nullopt, s), std::invalid_argument);
+}

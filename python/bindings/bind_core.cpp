@@ -1,9 +1,9 @@
 #include "common.hpp"
-#include "graspmix/se3.hpp"
+#include "graspmix/core/se3.hpp"
 
 namespace graspmix::py_bind {
 
-void bind_se3(py::module_& m) {
+void bind_core(py::module_& m) {
   m.def(
       "quat_log", [](const py::object& q) { return batch_quat_log(QuatArray(to_matrix(q, "quat_log: q", 4))); }, py::arg("q"),
       "eq:log_map on (N, 4) quaternions [x, y, z, w]: arccos(w) v/|v| after canonicalising w >= 0 -> (N, 3).");

@@ -2,21 +2,13 @@
 #include <limits>
 
 #include "common.hpp"
-#include "graspmix/cloud_io.hpp"
-#include "graspmix/scene.hpp"
-#include "graspmix/surface.hpp"
+#include "graspmix/perception/cloud_io.hpp"
+#include "graspmix/perception/scene.hpp"
+#include "graspmix/perception/surface.hpp"
 
 namespace graspmix::py_bind {
 
 namespace {
-
-std::string to_path(const py::object& path) {
-  try {
-    return py::str(py::module_::import("os").attr("fspath")(path)).cast<std::string>();
-  } catch (const py::error_already_set&) {
-    throw py::value_error("path: expected a str or os.PathLike");
-  }
-}
 
 py::object optional_rows(const Vec3Array& a) { return a.rows() ? py::cast(a) : py::none(); }
 
@@ -33,7 +25,7 @@ Eigen::Vector3d to_vec3(const py::object& obj, const char* name, double fill) {
 
 }  // namespace
 
-void bind_surface(py::module_& m) {
+void bind_perception(py::module_& m) {
   // ---- clouds ----------------------------------------------------------------------------------
   py::class_<CloudData>(m, "CloudData", "A point cloud read from a file, with what the file said about it.")
       .def_readonly("points", &CloudData::points, "(N, 3) finite points (m); NaN points of the file are dropped.")
@@ -57,7 +49,7 @@ void bind_surface(py::module_& m) {
   m.def(
       "load_cloud",
       [](const py::object& path) {
-        const std::string p = to_path(path);
+        const std::string p = to_path(path, "path");
         py::gil_scoped_release release;
         return load_cloud(p);
       },
@@ -68,7 +60,7 @@ void bind_surface(py::module_& m) {
       "save_cloud",
       [](const py::object& path, const py::object& points, const py::object& normals, const std::string& encoding,
          const py::object& viewpoint) {
-        const std::string p = to_path(path);
+        const std::string p = to_path(path, "path");
         const Vec3Array P(to_matrix(points, "save_cloud: points", 3));
         const Vec3Array N = normals.is_none() ? Vec3Array(0, 3) : Vec3Array(to_matrix(normals, "save_cloud: normals", 3));
         Eigen::Matrix<double, 7, 1> vp;
@@ -188,7 +180,7 @@ void bind_surface(py::module_& m) {
       py::arg("points"), py::arg("radius") = 0.01, py::arg("normals") = py::none(), py::arg("viewpoints") = py::none(),
       py::kw_only(), py::arg("min_neighbours") = 10, py::arg("orientation") = "auto", py::arg("min_anisotropy") = 0.25,
       py::arg("flat_curvature") = 1e-4, py::arg("orientation_neighbours") = 10, py::arg("n_threads") = 0,
-      "O(v, r) of a cloud (N, 3): normals (PCL NormalEstimationOMP, or the given (N, 3)), outward by `orientation` "
+      "O(v, r) of a cloud (N, 3): normals (the smallest eigenvector of each radius neighbourhood's covariance, PCL NormalEstimation's definition, computed in parallel here; or the given (N, 3)), outward by `orientation` "
       "(auto: towards viewpoints (3,) / (N, 3) when given, else given normals as they are, else propagated "
       "outward over the surface; or 'viewpoint', 'propagate', 'centroid', 'given'), principal curvatures (PCL, "
       "radius in m) and frames. Points with fewer than min_neighbours neighbours within radius are dropped "

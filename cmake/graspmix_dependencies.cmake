@@ -1,27 +1,17 @@
-# Finds every system library graspmix links and wraps each in an imported target, so that
+# Finds every system library graspmix links and wraps each in an interface target, so that
 # src/ links graspmix::pcl, graspmix::fcl, ... and no dependency leaks into the public headers.
+include(graspmix_find_dependencies)
 
-find_package(Eigen3 3.3 REQUIRED NO_MODULE)
-find_package(OpenMP REQUIRED COMPONENTS CXX)
-
-# PCL's config still declares very old policy versions; CMake >= 4 refuses those by default.
-if(NOT DEFINED CMAKE_POLICY_VERSION_MINIMUM)
-  set(CMAKE_POLICY_VERSION_MINIMUM 3.5)
-endif()
-find_package(PCL 1.10 REQUIRED COMPONENTS common io filters features kdtree search sample_consensus segmentation)
 add_library(graspmix_pcl INTERFACE)
 target_include_directories(graspmix_pcl SYSTEM INTERFACE ${PCL_INCLUDE_DIRS})
 target_link_libraries(graspmix_pcl INTERFACE ${PCL_LIBRARIES})
 target_compile_definitions(graspmix_pcl INTERFACE ${PCL_DEFINITIONS})
 add_library(graspmix::pcl ALIAS graspmix_pcl)
 
-find_package(fcl 0.6 REQUIRED)
 add_library(graspmix_fcl INTERFACE)
 target_link_libraries(graspmix_fcl INTERFACE fcl)
 add_library(graspmix::fcl ALIAS graspmix_fcl)
 
-# Bullet in double precision, as pybullet is built, so that both simulate the same numbers.
-find_package(Bullet REQUIRED CONFIGS BulletConfig-float64.cmake)
 add_library(graspmix_bullet INTERFACE)
 target_include_directories(graspmix_bullet SYSTEM INTERFACE ${BULLET_ROOT_DIR}/${BULLET_INCLUDE_DIR})
 target_compile_definitions(graspmix_bullet INTERFACE BT_USE_DOUBLE_PRECISION)
@@ -33,7 +23,6 @@ endforeach()
 target_link_libraries(graspmix_bullet INTERFACE ${_graspmix_bullet_libs})
 add_library(graspmix::bullet ALIAS graspmix_bullet)
 
-find_package(urdfdom REQUIRED)
 # urdfdom's CMake config carries no version; its pkg-config file does.
 find_package(PkgConfig QUIET)
 if(PkgConfig_FOUND)
@@ -44,14 +33,10 @@ target_include_directories(graspmix_urdfdom SYSTEM INTERFACE ${urdfdom_INCLUDE_D
 target_link_libraries(graspmix_urdfdom INTERFACE ${urdfdom_LIBRARIES})
 add_library(graspmix::urdfdom ALIAS graspmix_urdfdom)
 
-# Mesh loading (STL/OBJ collision geometry of hands and objects) goes through assimp.
-find_package(assimp REQUIRED)
 add_library(graspmix_assimp INTERFACE)
 target_link_libraries(graspmix_assimp INTERFACE assimp::assimp)
 add_library(graspmix::assimp ALIAS graspmix_assimp)
 
-# Convex hulls of mesh collision geometry (hands, objects): qhull, which PCL depends on already.
-find_package(Qhull REQUIRED CONFIG)
 add_library(graspmix_qhull INTERFACE)
 target_link_libraries(graspmix_qhull INTERFACE Qhull::qhullcpp Qhull::qhull_r)
 add_library(graspmix::qhull ALIAS graspmix_qhull)

@@ -1,9 +1,9 @@
 #include <random>
 
 #include "common.hpp"
-#include "graspmix/gmm.hpp"
-#include "graspmix/kde.hpp"
-#include "graspmix/pose_mixture.hpp"
+#include "graspmix/density/gmm.hpp"
+#include "graspmix/density/kde.hpp"
+#include "graspmix/density/pose_mixture.hpp"
 
 namespace graspmix::py_bind {
 

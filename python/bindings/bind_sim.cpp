@@ -2,8 +2,8 @@
 #include <memory>
 
 #include "common.hpp"
-#include "graspmix/se3.hpp"
-#include "graspmix/sim.hpp"
+#include "graspmix/core/se3.hpp"
+#include "graspmix/sim/sim.hpp"
 
 namespace graspmix::py_bind {
 
@@ -45,7 +45,7 @@ void bind_sim(py::module_& m) {
       .def_static(
           "from_urdf",
           [](const py::object& path) {
-            const std::string p = py::str(py::module_::import("os").attr("fspath")(path)).cast<std::string>();
+            const std::string p = to_path(path, "path");
             py::gil_scoped_release release;
             return std::make_shared<SimObject>(SimObject::from_urdf(p));
           },

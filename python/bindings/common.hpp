@@ -11,8 +11,8 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include "graspmix/hand.hpp"
-#include "graspmix/types.hpp"
+#include "graspmix/robot/hand.hpp"
+#include "graspmix/core/types.hpp"
 
 namespace graspmix::py_bind {
 
@@ -43,11 +43,12 @@ RowMatrixXd to_configurations(const Hand& hand, const py::handle& obj, const cha
 /// A 7-vector pose.
 Eigen::Isometry3d to_pose(const py::handle& obj, const char* name);
 
-void bind_se3(py::module_& m);
+// One binder per layer, called in layer order by module.cpp.
+void bind_core(py::module_& m);
 void bind_density(py::module_& m);
-void bind_hand(py::module_& m);
-void bind_surface(py::module_& m);
-void bind_synthesis(py::module_& m);
+void bind_perception(py::module_& m);
+void bind_robot(py::module_& m);
+void bind_grasp(py::module_& m);
 void bind_sim(py::module_& m);
 
 }  // namespace graspmix::py_bind

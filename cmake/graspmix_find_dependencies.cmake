@@ -1,0 +1,19 @@
+# Finds every system library graspmix links. Included by graspmix_dependencies.cmake when building and by
+# the installed graspmixConfig.cmake when a program links the installed library (one list for both).
+
+find_package(Eigen3 3.3 REQUIRED NO_MODULE)
+find_package(OpenMP REQUIRED COMPONENTS CXX)
+
+# PCL's config still declares very old policy versions; CMake >= 4 refuses those by default.
+if(NOT DEFINED CMAKE_POLICY_VERSION_MINIMUM)
+  set(CMAKE_POLICY_VERSION_MINIMUM 3.5)
+endif()
+find_package(PCL 1.10 REQUIRED COMPONENTS common io filters features kdtree search sample_consensus segmentation)
+find_package(fcl 0.6 REQUIRED)
+# Bullet in double precision, as pybullet is built, so that both simulate the same numbers.
+find_package(Bullet REQUIRED CONFIGS BulletConfig-float64.cmake)
+find_package(urdfdom REQUIRED)
+# Mesh loading (STL/OBJ collision geometry of hands and objects) goes through assimp.
+find_package(assimp REQUIRED)
+# Convex hulls of mesh collision geometry (hands, objects): qhull, which PCL depends on already.
+find_package(Qhull REQUIRED CONFIG)

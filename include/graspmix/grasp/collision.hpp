@@ -1,0 +1,121 @@
+#pragma once
+// The collision expert W(h) of eq:opt_criterion_std_col (after Kopicki et al. 2015): a soft penalty,
+// exponential in how deep the hand's links go through the object's point cloud and below its support
+// plane.
+//
+// Penetration depth (metres), per link l with collision shapes S_l posed by fk(h):
+//   * cloud:  D_l = max over cloud points p and shapes s in S_l of max(0, r - sd_s(p)) (depths up to
+//     contact_tolerance count as 0), where sd_s is
+//     the signed distance from p to the surface of s (negative inside) and r = point_radius (each
+//     point is a ball of radius r). It is the depth of the deepest point inside the link: independent
+//     of the cloud's density, exact for boxes, cylinders and spheres. A mesh shape is taken as its
+//     convex hull (as Bullet does for moving bodies): inside the hull sd is exact; just outside it,
+//     the max over the hull's face planes is used, which is exact off faces and a lower bound of the
+//     distance near edges and corners (matters only when r > 0).
+//   * plane:  P_l = max over shapes s in S_l of the depth of the deepest point of s below the plane
+//     raised by plane_margin, found by FCL (each shape against an fcl::Halfspace; meshes as fcl::Convex
+//     of their hull).
+//   total = sum_l (D_l + P_l + inside_weight * n_l),  log W(h) = -beta * total,  W(h) = exp(log W),
+//   with n_l the number of cloud points penetrating link l (inside_weight is 0 by default),
+//   A cloud samples the object's surface only: a link wholly inside the object, touching no point, has
+//   D_l = 0. Grasp sampling starts links at the surface, so this rarely matters; a denser cloud or a
+//   larger point_radius narrows the gap.
+//   collision_free = no cloud point lies strictly inside any link (ball overlap when r > 0) and no
+//   link reaches below the raised plane, i.e. total == 0.
+//
+// The cloud is indexed once, in the constructor, into a uniform grid whose cells are ordered so that
+// a row of cells is one contiguous run of points; an evaluation visits only the cells under each
+// shape's world bounding box, so a hand away from the object costs little more than its fk.
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "graspmix/robot/hand.hpp"
+#include "graspmix/core/types.hpp"
+
+namespace graspmix {
+
+struct CollisionSettings {
+  double beta = 1000.0;        ///< 1/m: log W = -beta * total depth (1 mm of penetration costs one nat)
+  double point_radius = 0.0;   ///< m: cloud points are balls of this radius (>= 0)
+  double plane_margin = 0.0;   ///< m: the support plane is raised by this much (negative: tolerate contact)
+  double cell_size = 0.0;      ///< m: grid cell of the cloud index; 0 picks one from the cloud's extent and size
+  bool orient_plane = true;    ///< flip the plane's sign so the cloud's mean lies on its free (positive) side
+  /// m: depths up to this count as touching, not penetrating (a point on a link's face is a contact,
+  /// whatever the rounding of the link's pose)
+  double contact_tolerance = 1e-9;
+  /// m per point: each cloud point inside a link adds this much to the total depth. The deepest-point
+  /// depth saturates at half a link's thickness (a finger right through a thin object costs no more
+  /// than a shallow one); counting the points it swallows measures how much of the link is inside.
+  /// 0 (the default) keeps W a function of depths alone.
+  double inside_weight = 0.0;
+};
+
+/// One configuration's penetration, per link in Hand::link_names() order.
+struct CollisionResult {
+  Eigen::VectorXd cloud_depth;   ///< D_l (m)
+  Eigen::VectorXd plane_depth;   ///< P_l (m)
+  Eigen::VectorXi points_inside; ///< cloud points that penetrate each link
+  double total_depth = 0.0;      ///< sum_l D_l + P_l + inside_weight * n_l (m; see the header comment)
+  double log_w = 0.0;            ///< -beta * total_depth
+  double w = 1.0;                ///< exp(log_w)
+  bool collision_free = true;
+};
+
+/// Many configurations at once: (N, n_links) depths and (N) totals.
+struct CollisionBatchResult {
+  RowMatrixXd cloud_depth;
+  RowMatrixXd plane_depth;
+  Eigen::VectorXd total_depth;
+  Eigen::VectorXd log_w;
+  Eigen::VectorXd w;
+  Eigen::Matrix<bool, Eigen::Dynamic, 1> collision_free;
+};
+
+class CollisionExpert {
+ public:
+  /// cloud: (N, 3) object points in the world frame (may be empty when only the plane matters).
+  /// plane: [a, b, c, d] with a x + b y + c z + d = 0 (the support plane, e.g. from prepare_cloud); it
+  /// is normalised, and (with orient_plane) its sign chosen so the cloud lies above it.
+  /// Throws std::invalid_argument for non-finite points, a degenerate plane or bad settings.
+  CollisionExpert(std::shared_ptr<const Hand> hand, const Eigen::Ref<const Vec3Array>& cloud,
+                  const std::optional<Eigen::Vector4d>& plane = std::nullopt, CollisionSettings settings = {});
+
+  /// W(h) for the wrist pose and configuration (joint_names() order).
+  CollisionResult evaluate(const Eigen::Isometry3d& T_world_wrist, const Eigen::Ref<const Eigen::VectorXd>& q) const;
+  /// The same over N configurations: wrists (N, 7), q (N, n_dofs); either may be one row. Parallel (OpenMP).
+  CollisionBatchResult evaluate_batch(const Eigen::Ref<const PoseArray>& T_world_wrist,
+                                      const Eigen::Ref<const RowMatrixXd>& q) const;
+
+  const Hand& hand() const { return *hand_; }
+  const CollisionSettings& settings() const { return settings_; }
+  bool has_plane() const { return plane_.has_value(); }
+  /// The normalised, oriented plane [n, d] (n . x + d >= 0 is free space).
+  Eigen::Vector4d plane() const { return plane_.value_or(Eigen::Vector4d::Zero()); }
+  Eigen::Index n_points() const;
+  double cell_size() const;
+
+  struct Index;   ///< the cloud's grid (defined in src/)
+  struct Shapes;  ///< per-shape FCL geometry and bounds (defined in src/)
+
+ private:
+  void evaluate_into(const Eigen::Isometry3d* link_poses, double* cloud_depth, double* plane_depth,
+                     int* points_inside) const;
+
+  std::shared_ptr<const Hand> hand_;
+  CollisionSettings settings_;
+  std::optional<Eigen::Vector4d> plane_;
+  std::shared_ptr<const Index> index_;
+  std::shared_ptr<const Shapes> shapes_;
+};
+
+/// Signed distance (m, negative inside) from every point (N, 3, world frame) to a link's collision
+/// geometry posed at T_world_link: the minimum over the link's shapes, each as the collision expert
+/// sees it (meshes as their convex hulls). +inf for a link without collision geometry. Contact models
+/// use it to find the object points near each link of a demonstrated grasp.
+Eigen::VectorXd link_signed_distances(const Hand& hand, int link, const Eigen::Isometry3d& T_world_link,
+                                      const Eigen::Ref<const Vec3Array>& points);
+
+}  // namespace graspmix

@@ -1,0 +1,85 @@
+#pragma once
+// Task-constraint experts E_k of eq:opt_criterion_extended. Each maps a batch of grasps to log E_k:
+// 0 where the constraint holds, -inf where a hard constraint rejects the grasp (rejection sampling),
+// and in between for soft constraints. Working in log space keeps a product of experts free of
+// underflow and NaN.
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <Eigen/Core>
+
+#include "graspmix/grasp/collision.hpp"
+#include "graspmix/robot/hand.hpp"
+#include "graspmix/core/types.hpp"
+
+namespace graspmix {
+
+/// Grasps to score: wrist poses (N, 7) and configurations (N, D) in Hand::joint_names() order.
+struct GraspBatch {
+  const PoseArray& wrists;
+  const RowMatrixXd& joints;
+};
+
+class Expert {
+ public:
+  virtual ~Expert() = default;
+  /// The key of this expert's term in a grasp's "experts" table.
+  virtual std::string name() const = 0;
+  /// log E_k for every grasp of the batch (N).
+  virtual Eigen::VectorXd log_value(const GraspBatch& batch) const = 0;
+};
+
+/// The hard kinematic-feasibility expert: joint limits, no link touching the support plane, and an
+/// optional user test of reachability (e.g. an arm's inverse kinematics) called once per batch with
+/// the wrist poses and configurations and returning true for reachable grasps.
+class KinematicFeasibilityExpert : public Expert {
+ public:
+  using Reachability = std::function<Eigen::Matrix<bool, Eigen::Dynamic, 1>(const PoseArray&, const RowMatrixXd&)>;
+  /// plane: [a, b, c, d] (oriented so the object is on its positive side); plane_margin (m): links
+  /// must stay this far above it; limit_tolerance: joint slack allowed past the limits.
+  KinematicFeasibilityExpert(std::shared_ptr<const Hand> hand, const std::optional<Eigen::Vector4d>& plane = std::nullopt,
+                             double plane_margin = 0.0, Reachability reachable = nullptr,
+                             double limit_tolerance = 1e-9);
+  std::string name() const override { return "kinematic"; }
+  Eigen::VectorXd log_value(const GraspBatch& batch) const override;
+
+ private:
+  std::shared_ptr<const Hand> hand_;
+  std::optional<CollisionExpert> plane_check_;
+  Reachability reachable_;
+  double limit_tolerance_;
+};
+
+/// The soft principal-axis alignment expert: log E = concentration * (cos theta - 1), theta the angle
+/// between the hand's axis (in the wrist frame; the WSG 50's approach axis is its palm z) and the
+/// desired world axis. E = 1 when aligned, exp(-2 concentration) when opposite.
+class AxisAlignmentExpert : public Expert {
+ public:
+  AxisAlignmentExpert(const Eigen::Vector3d& world_axis, const Eigen::Vector3d& hand_axis = Eigen::Vector3d::UnitZ(),
+                      double concentration = 5.0, std::string name = "approach_axis");
+  std::string name() const override { return name_; }
+  Eigen::VectorXd log_value(const GraspBatch& batch) const override;
+
+ private:
+  Eigen::Vector3d world_axis_, hand_axis_;
+  double concentration_;
+  std::string name_;
+};
+
+/// A user-defined expert: a function of the whole batch returning log E_k (N). graspmix.expert() in
+/// Python turns a callable returning probabilities in [0, 1] or booleans into one.
+class FunctionExpert : public Expert {
+ public:
+  using Function = std::function<Eigen::VectorXd(const PoseArray&, const RowMatrixXd&)>;
+  FunctionExpert(std::string name, Function fn);
+  std::string name() const override { return name_; }
+  Eigen::VectorXd log_value(const GraspBatch& batch) const override;
+
+ private:
+  std::string name_;
+  Function fn_;
+};
+
+}  // namespace graspmix

@@ -1,0 +1,166 @@
+#pragma once
+// Grasp synthesis for a novel object (sections "Grasp synthesis for novel objects" and "Grasp
+// optimisation" of the paper), identical for both methods but for the density type:
+//   1. contact query densities Q_i (eq:query_density_approx): sample surface frames v with probability
+//      proportional to M_i(r) (importance resampling of the paper's weights w = M_i(r)), draw
+//      u ~ M_i(u | r), form s = v o u, and fit a PoseMixture with K_Q components (GMM models) or a PoseKDE
+//      with one kernel per sample (KDE models);
+//   2. grasp sampling: a link pose s ~ Q_i for a random link i, joints h_c ~ C, the wrist through fk;
+//   3. ranking by log L(h) = log W + log C + sum_i log Q_i(fk_i(h)) + sum_k log E_k
+//      (eq:opt_criterion_extended);
+//   4. simulated annealing of the best candidates with the paper's schedule (temperature falling
+//      linearly from its initial value over the iterations).
+#include <cstdint>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "graspmix/grasp/collision.hpp"
+#include "graspmix/grasp/config_model.hpp"
+#include "graspmix/grasp/contact_model.hpp"
+#include "graspmix/grasp/experts.hpp"
+#include "graspmix/density/gmm.hpp"
+#include "graspmix/robot/hand.hpp"
+#include "graspmix/density/kde.hpp"
+#include "graspmix/density/pose_density.hpp"
+
+namespace graspmix {
+
+struct QuerySettings {
+  int n_samples = 500;      ///< N_Q: samples per link to fit each query density from
+  int n_components = 5;     ///< K_Q for GMM models
+  int max_iter = 100;       ///< EM iterations of the query mixtures
+  double reg_covar = 1e-6;
+  KdeSettings kde;          ///< kernels of KDE query densities (features unused)
+  /// Rotate each sampled surface frame about its normal by a random angle of size
+  /// pi * exp(-jitter_sharpness ((k1 - k2) / k1)^2) (Kopicki's rule): where k1 ~ k2 the first principal
+  /// direction is arbitrary, so the frame's heading carries no information. Needs features [k1, k2].
+  bool frame_jitter = true;
+  double jitter_sharpness = 100.0;
+};
+
+struct AnnealingSettings {
+  int iterations = 100;              ///< the paper's 100
+  double initial_temperature = 1.0;  ///< the paper's 1.0, falling linearly to 0
+  double position_step = 0.005;      ///< m: std of wrist translation proposals at temperature 1
+  double rotation_step = 0.1;        ///< rad: std of wrist rotation proposals at temperature 1
+  double joint_step = 0.5;           ///< std of joint proposals at temperature 1, in units of the config model's kernel std
+};
+
+struct SynthesisSettings {
+  int n_samples = 200;   ///< grasps sampled and ranked
+  int n_optimise = 10;   ///< the best this many are optimised
+  bool optimise = true;
+  /// An extra collision expert on the grasp's pre-grasp configuration (the hand starts there, so a
+  /// pre-grasp in collision cannot be executed): log W of the opened hand, soft like W itself.
+  bool clear_pregrasp = true;
+  /// Hard constraints act by rejection sampling (the paper's definition): batches of n_samples are drawn
+  /// until n_samples grasps pass them all, for at most this many batches; the rest are then kept rejected.
+  int max_sampling_rounds = 10;
+  QuerySettings query;
+  AnnealingSettings annealing;
+  std::uint64_t seed = 0;
+};
+
+struct Grasp {
+  Eigen::Matrix<double, 7, 1> T_world_wrist;
+  Eigen::VectorXd joints;     ///< grasp configuration h_c (Hand::joint_names() order)
+  Eigen::VectorXd pregrasp;   ///< the configuration to approach with
+  double log_likelihood = 0.0;
+  double log_collision = 0.0;        ///< log W
+  double log_config = 0.0;           ///< log C
+  double log_pregrasp = 0.0;         ///< log W of the pre-grasp configuration (clear_pregrasp)
+  Eigen::VectorXd log_contact;       ///< log Q_i per query link (SynthesisResult::contact_links)
+  Eigen::VectorXd log_experts;       ///< log E_k per expert (SynthesisResult::expert_names)
+  bool optimised = false;
+};
+
+struct SynthesisTiming {
+  double query = 0.0;         ///< s: query density estimation
+  double sampling = 0.0;      ///< s: sampling and ranking
+  double optimisation = 0.0;  ///< s: annealing the best candidates
+  double total = 0.0;
+};
+
+struct SynthesisResult {
+  std::vector<Grasp> grasps;              ///< best first
+  std::vector<std::string> contact_links;
+  std::vector<std::string> expert_names;
+  SynthesisTiming timing;
+  int evaluations = 0;                    ///< grasps scored in all
+  int rejected = 0;                       ///< samples a hard constraint rejected (rejection sampling)
+};
+
+/// One link's query density Q_i.
+struct QueryDensity {
+  int link = -1;
+  std::string link_name;
+  std::shared_ptr<const PoseDensity> density;
+};
+
+/// Log-likelihood terms of a batch of grasps.
+struct Evaluation {
+  Eigen::VectorXd total, log_collision, log_config, log_pregrasp;
+  RowMatrixXd log_contact;   ///< (N, n query links)
+  RowMatrixXd log_experts;   ///< (N, n experts)
+};
+
+class GraspSynthesizer {
+ public:
+  GraspSynthesizer(std::shared_ptr<const Hand> hand, std::vector<ContactModel> contact_models, ConfigModel config);
+
+  /// Everything: query densities on the object (frames (N, 7), features (N, n)), sampling, ranking,
+  /// optimisation. The collision expert is built on the same object's cloud (and support plane).
+  SynthesisResult synthesize(const Eigen::Ref<const PoseArray>& frames, const Eigen::Ref<const RowMatrixXd>& features,
+                             const CollisionExpert& collision,
+                             const std::vector<std::shared_ptr<const Expert>>& experts,
+                             const SynthesisSettings& settings) const;
+
+  // ---- the stages, for tests, benchmarks and custom pipelines ----
+  std::vector<QueryDensity> query_densities(const Eigen::Ref<const PoseArray>& frames,
+                                            const Eigen::Ref<const RowMatrixXd>& features,
+                                            const QuerySettings& settings, std::mt19937_64& rng) const;
+  /// n grasps: wrists (n, 7) and joints (n, D).
+  void sample_grasps(const std::vector<QueryDensity>& query, int n, std::mt19937_64& rng, PoseArray& wrists,
+                     RowMatrixXd& joints) const;
+  Evaluation evaluate(const std::vector<QueryDensity>& query, const CollisionExpert& collision,
+                      const std::vector<std::shared_ptr<const Expert>>& experts, const Eigen::Ref<const PoseArray>& wrists,
+                      const Eigen::Ref<const RowMatrixXd>& joints, bool clear_pregrasp = true) const;
+  /// Anneals every row of (wrists, joints) in place; returns the evaluations spent.
+  int anneal(const std::vector<QueryDensity>& query, const CollisionExpert& collision,
+             const std::vector<std::shared_ptr<const Expert>>& experts, const AnnealingSettings& settings,
+             std::mt19937_64& rng, PoseArray& wrists, RowMatrixXd& joints, bool clear_pregrasp = true) const;
+
+  const Hand& hand() const { return *hand_; }
+  const std::vector<ContactModel>& contact_models() const { return contact_models_; }
+  const ConfigModel& config_model() const { return config_; }
+  /// "gmm" or "kde": the density type of the contact models.
+  std::string method() const;
+
+ private:
+  /// Grasps with their evaluation, rows aligned.
+  struct Candidates {
+    PoseArray wrists;
+    RowMatrixXd joints;
+    Evaluation eval;
+  };
+  /// Rejection sampling: batches of settings.n_samples until that many pass the hard experts (at most
+  /// max_sampling_rounds batches; then rejected samples fill up). Counts evaluations and rejections.
+  Candidates sample_passing(const std::vector<QueryDensity>& query, const CollisionExpert& collision,
+                            const std::vector<std::shared_ptr<const Expert>>& experts, const SynthesisSettings& s,
+                            std::mt19937_64& rng, SynthesisResult& res) const;
+  /// Anneals the best n_optimise candidates in place (rows `order[0..]`), re-scoring only those.
+  std::vector<bool> optimise_best(const std::vector<QueryDensity>& query, const CollisionExpert& collision,
+                                  const std::vector<std::shared_ptr<const Expert>>& experts, const SynthesisSettings& s,
+                                  const std::vector<int>& order, std::mt19937_64& rng, Candidates& c,
+                                  SynthesisResult& res) const;
+
+  std::shared_ptr<const Hand> hand_;
+  std::vector<ContactModel> contact_models_;
+  ConfigModel config_;
+};
+
+}  // namespace graspmix

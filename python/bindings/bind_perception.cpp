@@ -1,0 +1,191 @@
+// Object representation: cloud files, scene clean-up and surface features (O(v, r)).
+#include <limits>
+
+#include "common.hpp"
+#include "graspmix/perception/cloud_io.hpp"
+#include "graspmix/perception/scene.hpp"
+#include "graspmix/perception/surface.hpp"
+
+namespace graspmix::py_bind {
+
+namespace {
+
+py::object optional_rows(const Vec3Array& a) { return a.rows() ? py::cast(a) : py::none(); }
+
+/// (3,) as one row, (M, 3) as given; None -> empty.
+Vec3Array to_points3(const py::object& obj, const char* name) {
+  if (obj.is_none()) return Vec3Array(0, 3);
+  return Vec3Array(to_matrix(obj, name, 3, true));
+}
+
+Eigen::Vector3d to_vec3(const py::object& obj, const char* name, double fill) {
+  if (obj.is_none()) return Eigen::Vector3d::Constant(fill);
+  return to_vector(obj, name, 3);
+}
+
+}  // namespace
+
+void bind_perception(py::module_& m) {
+  // ---- clouds ----------------------------------------------------------------------------------
+  py::class_<CloudData>(m, "CloudData", "A point cloud read from a file, with what the file said about it.")
+      .def_readonly("points", &CloudData::points, "(N, 3) finite points (m); NaN points of the file are dropped.")
+      .def_property_readonly("normals", [](const CloudData& c) { return optional_rows(c.normals); },
+                             "(N, 3) normals from the file (normal_x/y/z or nx/ny/nz), or None.")
+      .def_readonly("viewpoint", &CloudData::viewpoint,
+                    "Sensor pose [x, y, z, qx, qy, qz, qw] from the PCD VIEWPOINT (identity when absent).")
+      .def_readonly("has_viewpoint", &CloudData::has_viewpoint, "True when the file's viewpoint is not the identity.")
+      .def_readonly("fields", &CloudData::fields, "Every field of the file (x, y, z, rgb, ...).")
+      .def_readonly("width", &CloudData::width)
+      .def_readonly("height", &CloudData::height, "> 1 for organised clouds")
+      .def_readonly("n_invalid", &CloudData::n_invalid, "Points dropped for a NaN or infinite coordinate.")
+      .def_readonly("format", &CloudData::format)
+      .def_readonly("path", &CloudData::path)
+      .def("__len__", [](const CloudData& c) { return c.points.rows(); })
+      .def("__repr__", [](const CloudData& c) {
+        return "<CloudData " + std::to_string(c.points.rows()) + " points from '" + c.path + "' (" + c.format + ")" +
+               (c.normals.rows() ? ", normals" : "") + (c.n_invalid ? ", " + std::to_string(c.n_invalid) + " invalid dropped" : "") + ">";
+      });
+
+  m.def(
+      "load_cloud",
+      [](const py::object& path) {
+        const std::string p = to_path(path, "path");
+        py::gil_scoped_release release;
+        return load_cloud(p);
+      },
+      py::arg("path"),
+      "Reads a .pcd (ascii, binary, binary_compressed), .ply or .npy (N, 3) cloud. NaN points are dropped "
+      "(counted in n_invalid); extra fields are listed in `fields`. ValueError names the file and the problem.");
+  m.def(
+      "save_cloud",
+      [](const py::object& path, const py::object& points, const py::object& normals, const std::string& encoding,
+         const py::object& viewpoint) {
+        const std::string p = to_path(path, "path");
+        const Vec3Array P(to_matrix(points, "save_cloud: points", 3));
+        const Vec3Array N = normals.is_none() ? Vec3Array(0, 3) : Vec3Array(to_matrix(normals, "save_cloud: normals", 3));
+        Eigen::Matrix<double, 7, 1> vp;
+        vp << 0, 0, 0, 0, 0, 0, 1;
+        if (!viewpoint.is_none()) vp = to_vector(viewpoint, "save_cloud: viewpoint", 7);
+        py::gil_scoped_release release;
+        save_cloud(p, P, N, encoding, vp);
+      },
+      py::arg("path"), py::arg("points"), py::arg("normals") = py::none(), py::arg("encoding") = "binary",
+      py::arg("viewpoint") = py::none(),
+      "Writes float32 x y z (+ normal_x normal_y normal_z) to .pcd (encoding ascii | binary | binary_compressed) "
+      "or .ply (ascii | binary); viewpoint [x, y, z, qx, qy, qz, qw] goes into the header.");
+
+  // ---- scene clean-up ----------------------------------------------------------------------------
+  py::class_<SceneResult>(m, "SceneResult", "The object points of a scene and the support plane.")
+      .def_readonly("points", &SceneResult::points, "(N, 3) object points (m)")
+      .def_readonly("indices", &SceneResult::indices, "(N) input row of every point (-1 after voxel averaging)")
+      .def_property_readonly("plane", [](const SceneResult& r) { return r.plane_found ? py::cast(r.plane) : py::none(); },
+                             "[a, b, c, d] of a x + b y + c z + d = 0, (a, b, c) unit towards the object; None if none found")
+      .def_readonly("plane_found", &SceneResult::plane_found)
+      .def_readonly("n_input", &SceneResult::n_input)
+      .def_readonly("n_after_crop", &SceneResult::n_after_crop)
+      .def_readonly("n_after_voxel", &SceneResult::n_after_voxel)
+      .def_readonly("n_after_outliers", &SceneResult::n_after_outliers)
+      .def_readonly("n_plane_inliers", &SceneResult::n_plane_inliers)
+      .def_readonly("n_output", &SceneResult::n_output)
+      .def_readonly("seconds", &SceneResult::seconds)
+      .def("__repr__", [](const SceneResult& r) {
+        return "<SceneResult " + std::to_string(r.n_input) + " -> " + std::to_string(r.n_output) + " points, plane " +
+               (r.plane_found ? "found" : "not found") + ">";
+      });
+  m.def(
+      "prepare_cloud",
+      [](const py::object& points, const py::object& crop_min, const py::object& crop_max, double voxel_size,
+         bool remove_outliers, int outlier_neighbours, double outlier_std_ratio, bool remove_plane, double plane_distance,
+         int plane_max_iterations, double plane_min_fraction, bool remove_below_plane, const py::object& seed) {
+        const Vec3Array P(to_matrix(points, "prepare_cloud: points", 3));
+        SceneSettings s;
+        s.crop = !crop_min.is_none() || !crop_max.is_none();
+        const double inf = std::numeric_limits<double>::infinity();
+        s.crop_min = to_vec3(crop_min, "prepare_cloud: crop_min", -inf);
+        s.crop_max = to_vec3(crop_max, "prepare_cloud: crop_max", inf);
+        s.voxel_size = voxel_size;
+        s.remove_outliers = remove_outliers;
+        s.outlier_neighbours = outlier_neighbours;
+        s.outlier_std_ratio = outlier_std_ratio;
+        s.remove_plane = remove_plane;
+        s.plane_distance = plane_distance;
+        s.plane_max_iterations = plane_max_iterations;
+        s.plane_min_fraction = plane_min_fraction;
+        s.remove_below_plane = remove_below_plane;
+        s.seed = to_seed(seed);
+        py::gil_scoped_release release;
+        return prepare_cloud(P, s);
+      },
+      py::arg("points"), py::kw_only(), py::arg("crop_min") = py::none(), py::arg("crop_max") = py::none(),
+      py::arg("voxel_size") = 0.003, py::arg("remove_outliers") = true, py::arg("outlier_neighbours") = 20,
+      py::arg("outlier_std_ratio") = 2.0, py::arg("remove_plane") = true, py::arg("plane_distance") = 0.005,
+      py::arg("plane_max_iterations") = 1000, py::arg("plane_min_fraction") = 0.2, py::arg("remove_below_plane") = true,
+      py::arg("seed") = 0,
+      "Scene clean-up before features, in this order: crop box [crop_min, crop_max] (m; on when either is given), "
+      "voxel grid (voxel_size m, 0 = off), statistical outlier removal (outlier_neighbours, outlier_std_ratio), "
+      "and removal of the dominant plane by seeded RANSAC (plane_distance m; it must hold plane_min_fraction of "
+      "the points) together with the points below it.");
+
+  // ---- surface features --------------------------------------------------------------------------
+  py::class_<SurfaceCloud>(m, "SurfaceCloud",
+                           "The object representation O(v, r): points, outward normals, curvatures [k1, k2] and frames.")
+      .def_readonly("points", &SurfaceCloud::points, "(N, 3) metres")
+      .def_readonly("normals", &SurfaceCloud::normals, "(N, 3) unit, outward")
+      .def_readonly("curvatures", &SurfaceCloud::curvatures, "(N, 2) PCL's [pc1, pc2] = [k1, k2], k1 >= k2 >= 0")
+      .def_readonly("frames", &SurfaceCloud::frames,
+                    "(N, 7) T_world_feature [x, y, z, qx, qy, qz, qw]: z = normal, x = principal direction, y = z x x")
+      .def_readonly("indices", &SurfaceCloud::indices, "(N) input row of every kept point")
+      .def_readonly("neighbours", &SurfaceCloud::neighbours, "(N) neighbours within radius, itself included")
+      .def_readonly("isotropic", &SurfaceCloud::isotropic,
+                    "(N) True where x came from the deterministic rule (k1 ~ k2 or flat)")
+      .def_readonly("frame_ambiguity", &SurfaceCloud::frame_ambiguity,
+                    "(N) radians a sampler may rotate the frame about z: pi exp(-100 ((k1 - k2) / k1)^2)")
+      .def_readonly("n_input", &SurfaceCloud::n_input)
+      .def_readonly("n_dropped", &SurfaceCloud::n_dropped, "points without a stable neighbourhood")
+      .def_readonly("radius", &SurfaceCloud::radius)
+      .def_readonly("orientation", &SurfaceCloud::orientation, "rule that oriented the normals")
+      .def_property_readonly("timings", [](const SurfaceCloud& s) {
+        py::dict d;
+        d["normals"] = s.seconds_normals;
+        d["orientation"] = s.seconds_orientation;
+        d["curvatures"] = s.seconds_curvatures;
+        d["total"] = s.seconds_total;
+        return d;
+      }, "seconds per stage")
+      .def("__len__", [](const SurfaceCloud& s) { return s.points.rows(); })
+      .def("__repr__", [](const SurfaceCloud& s) {
+        return "<SurfaceCloud " + std::to_string(s.points.rows()) + " points (" + std::to_string(s.n_dropped) +
+               " dropped), radius " + std::to_string(s.radius) + " m, normals by " + s.orientation + ">";
+      });
+  m.def(
+      "compute_surface_features",
+      [](const py::object& points, double radius, const py::object& normals, const py::object& viewpoints,
+         int min_neighbours, const std::string& orientation, double min_anisotropy, double flat_curvature,
+         int orientation_neighbours, int n_threads) {
+        const Vec3Array P(to_matrix(points, "compute_surface_features: points", 3));
+        const Vec3Array N = normals.is_none() ? Vec3Array(0, 3)
+                                              : Vec3Array(to_matrix(normals, "compute_surface_features: normals", 3));
+        const Vec3Array V = to_points3(viewpoints, "compute_surface_features: viewpoints");
+        FeatureSettings s;
+        s.radius = radius;
+        s.min_neighbours = min_neighbours;
+        s.orientation = normal_orientation_from_string(orientation);
+        s.min_anisotropy = min_anisotropy;
+        s.flat_curvature = flat_curvature;
+        s.orientation_neighbours = orientation_neighbours;
+        s.n_threads = n_threads;
+        py::gil_scoped_release release;
+        return compute_surface_features(P, s, N, V);
+      },
+      py::arg("points"), py::arg("radius") = 0.01, py::arg("normals") = py::none(), py::arg("viewpoints") = py::none(),
+      py::kw_only(), py::arg("min_neighbours") = 10, py::arg("orientation") = "auto", py::arg("min_anisotropy") = 0.25,
+      py::arg("flat_curvature") = 1e-4, py::arg("orientation_neighbours") = 10, py::arg("n_threads") = 0,
+      "O(v, r) of a cloud (N, 3): normals (the smallest eigenvector of each radius neighbourhood's covariance, PCL NormalEstimation's definition, computed in parallel here; or the given (N, 3)), outward by `orientation` "
+      "(auto: towards viewpoints (3,) / (N, 3) when given, else given normals as they are, else propagated "
+      "outward over the surface; or 'viewpoint', 'propagate', 'centroid', 'given'), principal curvatures (PCL, "
+      "radius in m) and frames. Points with fewer than min_neighbours neighbours within radius are dropped "
+      "(see indices, n_dropped). x is PCL's principal direction where (k1 - k2) / k1 >= min_anisotropy and "
+      "k1 >= flat_curvature, else world z projected on the tangent plane (world x near +-z).");
+}
+
+}  // namespace graspmix::py_bind

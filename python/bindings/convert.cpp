@@ -1,0 +1,149 @@
+// Conversions at the Python boundary (declared in common.hpp): shapes checked, inputs named in errors.
+#include <map>
+
+#include "common.hpp"
+#include "graspmix/core/se3.hpp"
+
+namespace graspmix::py_bind {
+
+RowMatrixXd to_matrix(const py::handle& obj, const char* name, int cols, bool one_d_as_row) {
+  if (obj.is_none()) throw py::value_error(std::string(name) + ": expected an array, got None");
+  py::array_t<double, py::array::c_style | py::array::forcecast> a;
+  try {
+    a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(obj);
+  } catch (const py::error_already_set&) {
+    a = {};
+  }
+  if (!a) throw py::value_error(std::string(name) + ": could not be read as an array of numbers");
+  Eigen::Index rows, width;
+  if (a.ndim() == 2) {
+    rows = a.shape(0);
+    width = a.shape(1);
+  } else if (a.ndim() == 1 && one_d_as_row) {
+    rows = 1;
+    width = a.shape(0);
+  } else {
+    throw py::value_error(std::string(name) + ": expected a 2-D array" +
+                          (cols >= 0 ? " of shape (N, " + std::to_string(cols) + ")" : std::string()) + ", got " +
+                          std::to_string(a.ndim()) + "-D");
+  }
+  if (cols >= 0 && width != cols) {
+    throw py::value_error(std::string(name) + ": expected shape (N, " + std::to_string(cols) + "), got (" +
+                          std::to_string(rows) + ", " + std::to_string(width) + ")");
+  }
+  return Eigen::Map<const RowMatrixXd>(a.data(), rows, width);
+}
+
+Eigen::VectorXd to_vector(const py::handle& obj, const char* name, Eigen::Index n) {
+  auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(obj);
+  if (!a) throw py::value_error(std::string(name) + ": could not be read as an array of numbers");
+  if (a.ndim() == 0) {
+    Eigen::VectorXd v(1);
+    v[0] = *a.data();
+    if (n >= 0 && n != 1) throw py::value_error(std::string(name) + ": expected " + std::to_string(n) + " values, got 1");
+    return v;
+  }
+  if (a.ndim() != 1) throw py::value_error(std::string(name) + ": expected a 1-D array, got " + std::to_string(a.ndim()) + "-D");
+  if (n >= 0 && a.shape(0) != n) {
+    throw py::value_error(std::string(name) + ": expected " + std::to_string(n) + " values, got " +
+                          std::to_string(a.shape(0)));
+  }
+  return Eigen::Map<const Eigen::VectorXd>(a.data(), a.shape(0));
+}
+
+std::uint64_t to_seed(const py::object& seed) {
+  if (seed.is_none()) return 0;
+  const long long s = seed.cast<long long>();
+  if (s < 0) throw py::value_error("seed must be a non-negative integer, got " + std::to_string(s));
+  return static_cast<std::uint64_t>(s);
+}
+
+RowMatrixXd to_features(const py::object& obj, Eigen::Index n_rows, int n_features, const char* name) {
+  if (obj.is_none()) {
+    if (n_features != 0) {
+      throw py::value_error(std::string(name) + ": the density was fitted with " + std::to_string(n_features) +
+                            " features, so features are required");
+    }
+    return RowMatrixXd(n_rows, 0);
+  }
+  auto a = py::array::ensure(obj);
+  if (a && a.ndim() == 1) {
+    const Eigen::VectorXd v = to_vector(obj, name, n_features);
+    return v.transpose().replicate(n_rows, 1);
+  }
+  RowMatrixXd f = to_matrix(obj, name, n_features);
+  if (f.rows() != n_rows) {
+    throw py::value_error(std::string(name) + ": " + std::to_string(f.rows()) + " feature rows for " +
+                          std::to_string(n_rows) + " poses");
+  }
+  return f;
+}
+
+Eigen::VectorXd to_weights(const py::object& obj, const char* name) {
+  return obj.is_none() ? Eigen::VectorXd() : to_vector(obj, name);
+}
+
+std::string to_path(const py::object& obj, const char* name) {
+  try {
+    return py::str(py::module_::import("os").attr("fspath")(obj)).cast<std::string>();
+  } catch (const py::error_already_set&) {
+    throw py::value_error(std::string(name) + ": expected a path (str or os.PathLike)");
+  }
+}
+
+namespace {
+bool is_mapping(const py::handle& obj) {
+  return py::isinstance(obj, py::module_::import("collections.abc").attr("Mapping"));
+}
+
+std::map<std::string, double> to_joint_map(const py::handle& obj, const char* what) {
+  std::map<std::string, double> out;
+  for (const auto& item : py::reinterpret_borrow<py::dict>(py::dict(py::reinterpret_borrow<py::object>(obj)))) {
+    std::string key;
+    try {
+      key = item.first.cast<std::string>();
+    } catch (const py::cast_error&) {
+      throw py::value_error(std::string(what) + ": joint names must be strings");
+    }
+    try {
+      out[key] = item.second.cast<double>();
+    } catch (const py::cast_error&) {
+      throw py::value_error(std::string(what) + ": joint '" + key + "' has a value that is not a number");
+    }
+  }
+  return out;
+}
+}  // namespace
+
+/// One configuration from a name -> value mapping or an array in joint_names() order.
+Eigen::VectorXd to_configuration(const Hand& hand, const py::handle& obj, const char* what) {
+  if (obj.is_none()) throw py::value_error(std::string(what) + ": expected joint values, got None");
+  if (is_mapping(obj)) return hand.joints_from_map(to_joint_map(obj, what));
+  const Eigen::VectorXd q = to_vector(obj, what);
+  hand.check_configuration(q, what);
+  return q;
+}
+
+/// N configurations: an (N, n_dofs) array, a sequence of mappings, or one configuration for all.
+RowMatrixXd to_configurations(const Hand& hand, const py::handle& obj, const char* what) {
+  if (obj.is_none()) throw py::value_error(std::string(what) + ": expected joint values, got None");
+  if (is_mapping(obj)) return to_configuration(hand, obj, what).transpose();
+  if (py::isinstance<py::sequence>(obj) && !py::isinstance<py::str>(obj) && py::len(obj) > 0 &&
+      is_mapping(py::reinterpret_borrow<py::sequence>(obj)[0])) {
+    const auto seq = py::reinterpret_borrow<py::sequence>(obj);
+    RowMatrixXd out(static_cast<Eigen::Index>(py::len(seq)), hand.n_dofs());
+    for (size_t i = 0; i < py::len(seq); ++i) {
+      out.row(static_cast<Eigen::Index>(i)) = to_configuration(hand, seq[i], what).transpose();
+    }
+    return out;
+  }
+  const auto a = py::array::ensure(obj);
+  if (a && a.ndim() <= 1) return to_configuration(hand, obj, what).transpose();
+  return to_matrix(obj, what, hand.n_dofs());
+}
+
+Eigen::Isometry3d to_pose(const py::handle& obj, const char* name) {
+  return pose_from_vector(to_vector(obj, name, 7));
+}
+
+}  // namespace graspmix::py_bind

@@ -1,0 +1,355 @@
+// The collision expert W(h): exact point-in-shape depths against a grid index of the cloud, and the
+// support plane as an fcl::Halfspace against every link shape.
+#include "graspmix/grasp/collision.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+
+#include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/convex.h>
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/geometry/shape/halfspace.h>
+#include <fcl/geometry/shape/sphere.h>
+#include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/collision_request.h>
+#include <fcl/narrowphase/collision_result.h>
+
+#include "graspmix/core/se3.hpp"
+
+namespace graspmix {
+
+/// Points sorted by grid cell (x fastest), with the first point of every cell.
+struct CollisionExpert::Index {
+  Eigen::Vector3d lo = Eigen::Vector3d::Zero(), hi = Eigen::Vector3d::Zero();
+  double h = 1.0;
+  Eigen::Vector3i dims = Eigen::Vector3i::Ones();
+  std::vector<Eigen::Index> start;  ///< size cells + 1
+  Vec3Array points;
+};
+
+struct CollisionExpert::Shapes {
+  struct Shape {
+    int link = -1;
+    const CollisionShape* src = nullptr;
+    Eigen::Vector3d half = Eigen::Vector3d::Zero();    ///< half extents of the local bounding box
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< centre of the local bounding box
+    std::shared_ptr<fcl::CollisionGeometryd> fcl_geometry;
+  };
+  std::vector<Shape> shapes;
+  std::shared_ptr<fcl::Halfspaced> halfspace;
+};
+
+namespace {
+
+/// Signed distance from p (shape frame) to the shape's surface, negative inside.
+inline double signed_distance(const CollisionShape& s, const Eigen::Vector3d& p) {
+  switch (s.type) {
+    case ShapeType::Box: {
+      const Eigen::Vector3d q = p.cwiseAbs() - 0.5 * s.size;
+      return q.cwiseMax(0.0).norm() + std::min(q.maxCoeff(), 0.0);
+    }
+    case ShapeType::Cylinder: {
+      const Eigen::Vector2d d(std::hypot(p.x(), p.y()) - s.size.x(), std::abs(p.z()) - 0.5 * s.size.y());
+      return d.cwiseMax(0.0).norm() + std::min(d.maxCoeff(), 0.0);
+    }
+    case ShapeType::Sphere:
+      return p.norm() - s.size.x();
+    case ShapeType::Mesh: {
+      const RowMatrixXd& P = *s.hull_planes;
+      double best = -std::numeric_limits<double>::infinity();
+      for (Eigen::Index f = 0; f < P.rows(); ++f) {
+        best = std::max(best, P(f, 0) * p.x() + P(f, 1) * p.y() + P(f, 2) * p.z() - P(f, 3));
+      }
+      return best;
+    }
+  }
+  return std::numeric_limits<double>::infinity();
+}
+
+std::shared_ptr<fcl::CollisionGeometryd> make_fcl_geometry(const CollisionShape& s) {
+  switch (s.type) {
+    case ShapeType::Box:
+      return std::make_shared<fcl::Boxd>(s.size.x(), s.size.y(), s.size.z());
+    case ShapeType::Cylinder:
+      return std::make_shared<fcl::Cylinderd>(s.size.x(), s.size.y());
+    case ShapeType::Sphere:
+      return std::make_shared<fcl::Sphered>(s.size.x());
+    case ShapeType::Mesh: {
+      if (!s.hull) return nullptr;
+      auto verts = std::make_shared<std::vector<Eigen::Vector3d>>();
+      for (Eigen::Index i = 0; i < s.hull->vertices.rows(); ++i) verts->push_back(s.hull->vertices.row(i).transpose());
+      auto faces = std::make_shared<std::vector<int>>();
+      for (Eigen::Index i = 0; i < s.hull->triangles.rows(); ++i) {
+        faces->push_back(3);
+        for (int k = 0; k < 3; ++k) faces->push_back(s.hull->triangles(i, k));
+      }
+      return std::make_shared<fcl::Convexd>(verts, static_cast<int>(s.hull->triangles.rows()), faces);
+    }
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+CollisionExpert::CollisionExpert(std::shared_ptr<const Hand> hand, const Eigen::Ref<const Vec3Array>& cloud,
+                                 const std::optional<Eigen::Vector4d>& plane, CollisionSettings settings)
+    : hand_(std::move(hand)), settings_(settings) {
+  if (!hand_) throw std::invalid_argument("hand: expected a Hand, got none");
+  if (!(settings_.beta >= 0) || !std::isfinite(settings_.beta)) throw std::invalid_argument("beta must be finite and >= 0");
+  if (!(settings_.point_radius >= 0) || !std::isfinite(settings_.point_radius)) {
+    throw std::invalid_argument("point_radius must be finite and >= 0");
+  }
+  if (!std::isfinite(settings_.plane_margin)) throw std::invalid_argument("plane_margin must be finite");
+  if (!(settings_.inside_weight >= 0) || !std::isfinite(settings_.inside_weight)) {
+    throw std::invalid_argument("inside_weight must be finite and >= 0");
+  }
+  if (!(settings_.contact_tolerance >= 0) || !std::isfinite(settings_.contact_tolerance)) {
+    throw std::invalid_argument("contact_tolerance must be finite and >= 0");
+  }
+  if (!(settings_.cell_size >= 0) || !std::isfinite(settings_.cell_size)) {
+    throw std::invalid_argument("cell_size must be finite and >= 0 (0 = automatic)");
+  }
+  require_finite(cloud, "cloud");
+
+  // ---- the grid over the cloud ----
+  auto index = std::make_shared<Index>();
+  const Eigen::Index N = cloud.rows();
+  if (N > 0) {
+    index->lo = cloud.colwise().minCoeff().transpose();
+    index->hi = cloud.colwise().maxCoeff().transpose();
+    const Eigen::Vector3d ext = (index->hi - index->lo).cwiseMax(1e-6);
+    // About one point per cell over the bounding box (a surface cloud then fills a few per cell); thin
+    // sides count as 5% of the longest so a flat cloud does not get a needlessly fine grid.
+    const Eigen::Vector3d thick = ext.cwiseMax(0.05 * ext.maxCoeff());
+    double h = settings_.cell_size > 0 ? settings_.cell_size : std::cbrt(thick.prod() / static_cast<double>(N));
+    h = std::max(h, 1e-4 * ext.maxCoeff());
+    auto dims_for = [&](double hh) { return ((ext / hh).array().floor().cast<int>() + 1).matrix().eval(); };
+    Eigen::Vector3i dims = dims_for(h);
+    while (static_cast<double>(dims[0]) * dims[1] * dims[2] > 4e6) dims = dims_for(h *= 1.5);
+    index->h = h;
+    index->dims = dims;
+    const Eigen::Index cells = static_cast<Eigen::Index>(dims[0]) * dims[1] * dims[2];
+    std::vector<Eigen::Index> cell_of(static_cast<size_t>(N));
+    index->start.assign(static_cast<size_t>(cells + 1), 0);
+    for (Eigen::Index i = 0; i < N; ++i) {
+      const Eigen::Vector3i c = ((cloud.row(i).transpose() - index->lo) / h).array().floor().cast<int>().matrix();
+      const Eigen::Vector3i cc = c.cwiseMax(0).cwiseMin(dims - Eigen::Vector3i::Ones());
+      cell_of[static_cast<size_t>(i)] = (static_cast<Eigen::Index>(cc[2]) * dims[1] + cc[1]) * dims[0] + cc[0];
+      ++index->start[static_cast<size_t>(cell_of[static_cast<size_t>(i)] + 1)];
+    }
+    for (Eigen::Index c = 0; c < cells; ++c) index->start[static_cast<size_t>(c + 1)] += index->start[static_cast<size_t>(c)];
+    std::vector<Eigen::Index> fill(index->start.begin(), index->start.end() - 1);
+    index->points.resize(N, 3);
+    for (Eigen::Index i = 0; i < N; ++i) index->points.row(fill[static_cast<size_t>(cell_of[static_cast<size_t>(i)])]++) = cloud.row(i);
+  } else {
+    index->points.resize(0, 3);
+    index->start.assign(2, 0);
+  }
+  index_ = index;
+
+  // ---- the plane ----
+  if (plane) {
+    Eigen::Vector4d p = *plane;
+    if (!p.allFinite()) throw std::invalid_argument("plane: must be finite");
+    const double n = p.head<3>().norm();
+    if (!(n > 1e-12)) throw std::invalid_argument("plane: the normal [a, b, c] is zero");
+    p /= n;
+    if (settings_.orient_plane && N > 0) {
+      const double mean_height = (cloud * p.head<3>()).array().mean() + p[3];
+      if (mean_height < 0) p = -p;
+    }
+    plane_ = p;
+  }
+
+  // ---- the shapes ----
+  auto shapes = std::make_shared<Shapes>();
+  for (int l = 0; l < hand_->n_links(); ++l) {
+    for (const CollisionShape& s : hand_->links()[static_cast<size_t>(l)].collisions) {
+      if (s.type == ShapeType::Mesh && !s.hull_planes) {
+        throw std::invalid_argument("hand: link '" + hand_->link_names()[static_cast<size_t>(l)] +
+                                    "' has a mesh without geometry (the hand was read with load_meshes = false)");
+      }
+      Shapes::Shape sh;
+      sh.link = l;
+      sh.src = &s;
+      switch (s.type) {
+        case ShapeType::Box:
+          sh.half = 0.5 * s.size;
+          break;
+        case ShapeType::Cylinder:
+          sh.half = Eigen::Vector3d(s.size.x(), s.size.x(), 0.5 * s.size.y());
+          break;
+        case ShapeType::Sphere:
+          sh.half = Eigen::Vector3d::Constant(s.size.x());
+          break;
+        case ShapeType::Mesh: {
+          const Eigen::Vector3d lo = s.hull->vertices.colwise().minCoeff().transpose();
+          const Eigen::Vector3d hi = s.hull->vertices.colwise().maxCoeff().transpose();
+          sh.centre = 0.5 * (lo + hi);
+          sh.half = 0.5 * (hi - lo);
+          break;
+        }
+      }
+      if (plane_) sh.fcl_geometry = make_fcl_geometry(s);
+      shapes->shapes.push_back(std::move(sh));
+    }
+  }
+  if (plane_) {
+    // FCL's half-space is {x : n . x <= d}: the table below the (raised) plane n . x + d0 = margin.
+    shapes->halfspace = std::make_shared<fcl::Halfspaced>(Eigen::Vector3d(plane_->head<3>()),
+                                                           settings_.plane_margin - (*plane_)[3]);
+  }
+  shapes_ = shapes;
+}
+
+Eigen::Index CollisionExpert::n_points() const { return index_->points.rows(); }
+double CollisionExpert::cell_size() const { return index_->h; }
+
+void CollisionExpert::evaluate_into(const Eigen::Isometry3d* link_poses, double* cloud_depth, double* plane_depth,
+                                    int* points_inside) const {
+  const Index& ix = *index_;
+  const double r = settings_.point_radius;
+  const double tol = settings_.contact_tolerance;
+  const Eigen::Index N = ix.points.rows();
+  for (const Shapes::Shape& sh : shapes_->shapes) {
+    const Eigen::Isometry3d T = link_poses[sh.link] * sh.src->T_link_shape;
+    const Eigen::Matrix3d& R = T.linear();
+    const Eigen::Vector3d t = T.translation();
+    const Eigen::Vector3d centre = T * sh.centre;
+    const Eigen::Vector3d half = R.cwiseAbs() * sh.half;
+
+    // Cloud: the points in the cells under the shape's world box (grown by r).
+    if (N > 0) {
+      const Eigen::Vector3d lo = (centre - half).array() - r, hi = (centre + half).array() + r;
+      if ((lo.array() <= ix.hi.array()).all() && (hi.array() >= ix.lo.array()).all()) {
+        const Eigen::Vector3i c0 =
+            ((lo - ix.lo) / ix.h).array().floor().cast<int>().max(0).min((ix.dims.array() - 1)).matrix();
+        const Eigen::Vector3i c1 =
+            ((hi - ix.lo) / ix.h).array().floor().cast<int>().max(0).min((ix.dims.array() - 1)).matrix();
+        double deepest = cloud_depth[sh.link];
+        int inside = 0;
+        for (int cz = c0[2]; cz <= c1[2]; ++cz) {
+          for (int cy = c0[1]; cy <= c1[1]; ++cy) {
+            const Eigen::Index row = (static_cast<Eigen::Index>(cz) * ix.dims[1] + cy) * ix.dims[0];
+            const Eigen::Index b = ix.start[static_cast<size_t>(row + c0[0])];
+            const Eigen::Index e = ix.start[static_cast<size_t>(row + c1[0] + 1)];
+            for (Eigen::Index i = b; i < e; ++i) {
+              const Eigen::Vector3d p = R.transpose() * (ix.points.row(i).transpose() - t);
+              // Cheap rejection against the local box before the exact distance.
+              if (((p - sh.centre).cwiseAbs() - sh.half).maxCoeff() >= r) continue;
+              const double depth = r - signed_distance(*sh.src, p);
+              if (depth > tol) {
+                ++inside;
+                deepest = std::max(deepest, depth);
+              }
+            }
+          }
+        }
+        cloud_depth[sh.link] = deepest;
+        points_inside[sh.link] += inside;
+      }
+    }
+
+    // Plane: skip FCL when even the shape's bounding box clears the raised plane.
+    if (plane_) {
+      const Eigen::Vector3d n = plane_->head<3>();
+      const double lowest = n.dot(centre) + (*plane_)[3] - half.dot(n.cwiseAbs());
+      if (lowest < settings_.plane_margin && sh.fcl_geometry) {
+        fcl::CollisionRequestd request(1, true);
+        fcl::CollisionResultd result;
+        fcl::collide(sh.fcl_geometry.get(), fcl::Transform3d(T.matrix()), shapes_->halfspace.get(),
+                     fcl::Transform3d::Identity(), request, result);
+        if (result.isCollision()) {
+          // FCL's sign convention for half-space contacts differs between shape pairs; the depth is
+          // its magnitude.
+          const double depth = std::abs(result.getContact(0).penetration_depth);
+          if (depth > tol) plane_depth[sh.link] = std::max(plane_depth[sh.link], depth);
+        }
+      }
+    }
+  }
+}
+
+CollisionResult CollisionExpert::evaluate(const Eigen::Isometry3d& T_world_wrist,
+                                          const Eigen::Ref<const Eigen::VectorXd>& q) const {
+  hand_->check_configuration(q);
+  const int L = hand_->n_links();
+  std::vector<Eigen::Isometry3d> poses(static_cast<size_t>(L));
+  const Eigen::VectorXd qq = q;
+  hand_->fk_into(T_world_wrist, qq.data(), poses.data());
+  CollisionResult res;
+  res.cloud_depth = Eigen::VectorXd::Zero(L);
+  res.plane_depth = Eigen::VectorXd::Zero(L);
+  res.points_inside = Eigen::VectorXi::Zero(L);
+  evaluate_into(poses.data(), res.cloud_depth.data(), res.plane_depth.data(), res.points_inside.data());
+  res.total_depth = res.cloud_depth.sum() + res.plane_depth.sum() + settings_.inside_weight * res.points_inside.sum();
+  res.log_w = -settings_.beta * res.total_depth;
+  res.w = std::exp(res.log_w);
+  res.collision_free = res.total_depth <= 0.0;
+  return res;
+}
+
+CollisionBatchResult CollisionExpert::evaluate_batch(const Eigen::Ref<const PoseArray>& T_world_wrist,
+                                                     const Eigen::Ref<const RowMatrixXd>& q) const {
+  const Eigen::Index n = std::max(T_world_wrist.rows(), q.rows());
+  const int L = hand_->n_links();
+  CollisionBatchResult out;
+  out.cloud_depth = RowMatrixXd::Zero(n, L);
+  out.plane_depth = RowMatrixXd::Zero(n, L);
+  out.total_depth.resize(n);
+  out.log_w.resize(n);
+  out.w.resize(n);
+  out.collision_free.resize(n);
+  // Small batches (annealing scores ~10 hands at a time) stay on one thread: waking a team costs more
+  // than it saves, and its spinning threads stall badly on a loaded machine.
+  const Eigen::Index N = hand_->fk_each(T_world_wrist, q, 64, [&](Eigen::Index i, const Eigen::VectorXd&,
+                                                                   const Eigen::Isometry3d* poses) {
+    std::vector<int> inside(static_cast<size_t>(L), 0);
+    Eigen::VectorXd cd = Eigen::VectorXd::Zero(L), pd = Eigen::VectorXd::Zero(L);
+    evaluate_into(poses, cd.data(), pd.data(), inside.data());
+    out.cloud_depth.row(i) = cd.transpose();
+    out.plane_depth.row(i) = pd.transpose();
+    out.total_depth[i] = cd.sum() + pd.sum() + settings_.inside_weight * std::accumulate(inside.begin(), inside.end(), 0);
+    out.log_w[i] = -settings_.beta * out.total_depth[i];
+    out.w[i] = std::exp(out.log_w[i]);
+    out.collision_free[i] = out.total_depth[i] <= 0.0;
+  });
+  if (N != n) {  // an empty side broadcasts to no hands
+    out.cloud_depth.conservativeResize(N, Eigen::NoChange);
+    out.plane_depth.conservativeResize(N, Eigen::NoChange);
+    out.total_depth.conservativeResize(N);
+    out.log_w.conservativeResize(N);
+    out.w.conservativeResize(N);
+    out.collision_free.conservativeResize(N);
+  }
+  return out;
+}
+
+Eigen::VectorXd link_signed_distances(const Hand& hand, int link, const Eigen::Isometry3d& T_world_link,
+                                      const Eigen::Ref<const Vec3Array>& points) {
+  if (link < 0 || link >= hand.n_links()) {
+    throw std::invalid_argument("link_signed_distances: link index " + std::to_string(link) + " outside [0, " +
+                                std::to_string(hand.n_links()) + ")");
+  }
+  for (const CollisionShape& s : hand.links()[link].collisions) {
+    if (s.type == ShapeType::Mesh && !s.hull_planes) {
+      throw std::invalid_argument("link_signed_distances: link '" + hand.link_names()[link] +
+                                  "' has a mesh read without geometry");
+    }
+  }
+  Eigen::VectorXd out = Eigen::VectorXd::Constant(points.rows(), std::numeric_limits<double>::infinity());
+  for (const CollisionShape& s : hand.links()[link].collisions) {
+    const Eigen::Isometry3d T_shape_world = (T_world_link * s.T_link_shape).inverse();
+    for (Eigen::Index i = 0; i < points.rows(); ++i) {
+      out[i] = std::min(out[i], signed_distance(s, T_shape_world * Eigen::Vector3d(points.row(i).transpose())));
+    }
+  }
+  return out;
+}
+
+}  // namespace graspmix
+

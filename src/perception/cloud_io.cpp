@@ -1,0 +1,414 @@
+#include "graspmix/perception/cloud_io.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <stdexcept>
+#include <sys/stat.h>
+
+#include <pcl/PCLPointCloud2.h>
+#include <pcl/exceptions.h>
+#include <pcl/io/pcd_io.h>
+#include <pcl/io/ply_io.h>
+#include <pcl/console/print.h>
+
+namespace graspmix {
+
+namespace {
+
+[[noreturn]] void fail(const std::string& path, const std::string& what) {
+  throw std::invalid_argument(path + ": " + what);
+}
+
+std::string lower_extension(const std::string& path) {
+  const auto slash = path.find_last_of("/\\");
+  const auto dot = path.find_last_of('.');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return {};
+  std::string ext = path.substr(dot);
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+/// Reads one scalar of a PCL field type as double.
+double read_scalar(const std::uint8_t* p, std::uint8_t datatype) {
+  switch (datatype) {
+    case pcl::PCLPointField::INT8: { std::int8_t v; std::memcpy(&v, p, 1); return v; }
+    case pcl::PCLPointField::UINT8: { std::uint8_t v; std::memcpy(&v, p, 1); return v; }
+    case pcl::PCLPointField::INT16: { std::int16_t v; std::memcpy(&v, p, 2); return v; }
+    case pcl::PCLPointField::UINT16: { std::uint16_t v; std::memcpy(&v, p, 2); return v; }
+    case pcl::PCLPointField::INT32: { std::int32_t v; std::memcpy(&v, p, 4); return v; }
+    case pcl::PCLPointField::UINT32: { std::uint32_t v; std::memcpy(&v, p, 4); return v; }
+    case pcl::PCLPointField::FLOAT32: { float v; std::memcpy(&v, p, 4); return v; }
+    case pcl::PCLPointField::FLOAT64: { double v; std::memcpy(&v, p, 8); return v; }
+    default: return std::numeric_limits<double>::quiet_NaN();
+  }
+}
+
+const pcl::PCLPointField* find_field(const pcl::PCLPointCloud2& c, std::initializer_list<const char*> names) {
+  for (const char* n : names)
+    for (const auto& f : c.fields)
+      if (f.name == n) return &f;
+  return nullptr;
+}
+
+/// Column `field` of every point as doubles; any field type PCL reads (the PCL templates would
+/// silently skip a float64 x, which real PLY files have).
+Eigen::VectorXd column(const pcl::PCLPointCloud2& c, const pcl::PCLPointField& f, std::size_t n) {
+  Eigen::VectorXd out(static_cast<Eigen::Index>(n));
+  for (std::size_t i = 0; i < n; ++i) out[static_cast<Eigen::Index>(i)] = read_scalar(&c.data[i * c.point_step + f.offset], f.datatype);
+  return out;
+}
+
+CloudData from_pcl(const pcl::PCLPointCloud2& c, const Eigen::Vector4f& origin, const Eigen::Quaternionf& orientation,
+                   const std::string& path, const std::string& format) {
+  CloudData out;
+  out.path = path;
+  out.format = format;
+  out.width = c.width;
+  out.height = c.height;
+  for (const auto& f : c.fields) out.fields.push_back(f.name);
+  const std::size_t n = static_cast<std::size_t>(c.width) * c.height;
+  if (n == 0) fail(path, "the cloud is empty (0 points)");
+  if (c.data.size() < n * c.point_step) fail(path, "the data section is shorter than the header declares (truncated file)");
+  const auto* fx = find_field(c, {"x"});
+  const auto* fy = find_field(c, {"y"});
+  const auto* fz = find_field(c, {"z"});
+  if (!fx || !fy || !fz) {
+    std::string names;
+    for (const auto& f : out.fields) names += (names.empty() ? "" : " ") + f;
+    fail(path, "has no x, y, z fields (fields: " + (names.empty() ? std::string("none") : names) + ")");
+  }
+  RowMatrixXd P(static_cast<Eigen::Index>(n), 3);
+  P.col(0) = column(c, *fx, n);
+  P.col(1) = column(c, *fy, n);
+  P.col(2) = column(c, *fz, n);
+  RowMatrixXd N;
+  const auto* nx = find_field(c, {"normal_x", "nx"});
+  const auto* ny = find_field(c, {"normal_y", "ny"});
+  const auto* nz = find_field(c, {"normal_z", "nz"});
+  if (nx && ny && nz) {
+    N.resize(static_cast<Eigen::Index>(n), 3);
+    N.col(0) = column(c, *nx, n);
+    N.col(1) = column(c, *ny, n);
+    N.col(2) = column(c, *nz, n);
+  }
+  CloudData arrays = cloud_from_arrays(P, N, path);
+  out.points = std::move(arrays.points);
+  out.normals = std::move(arrays.normals);
+  out.n_invalid = arrays.n_invalid;
+  out.viewpoint << origin.x(), origin.y(), origin.z(), orientation.x(), orientation.y(), orientation.z(),
+      orientation.w();
+  if (out.viewpoint[6] < 0) out.viewpoint.tail<4>() *= -1.0;
+  out.has_viewpoint = origin.head<3>().norm() > 0 || std::abs(std::abs(orientation.w()) - 1.0f) > 1e-6f;
+  return out;
+}
+
+namespace {
+/// PCL's readers print their own diagnostics on stderr; graspmix reports every problem as an exception
+/// naming the file instead, so they are silenced while a file is read (one line on stderr, not three).
+class QuietPcl {
+ public:
+  QuietPcl() : previous_(pcl::console::getVerbosityLevel()) { pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS); }
+  ~QuietPcl() { pcl::console::setVerbosityLevel(previous_); }
+  QuietPcl(const QuietPcl&) = delete;
+  QuietPcl& operator=(const QuietPcl&) = delete;
+
+ private:
+  pcl::console::VERBOSITY_LEVEL previous_;
+};
+}  // namespace
+
+CloudData load_pcd(const std::string& path) {
+  const QuietPcl quiet;
+  pcl::PCDReader reader;
+  pcl::PCLPointCloud2 cloud;
+  Eigen::Vector4f origin;
+  Eigen::Quaternionf orientation;
+  int version = 0, data_type = 0;
+  unsigned int data_idx = 0;
+  try {
+    if (reader.readHeader(path, cloud, origin, orientation, version, data_type, data_idx) < 0) {
+      fail(path, "not a valid PCD header (expected FIELDS, SIZE, TYPE, COUNT, WIDTH, HEIGHT, POINTS and DATA lines that agree)");
+    }
+  } catch (const pcl::PCLException& e) {
+    fail(path, std::string("not a valid PCD header (") + e.what() + ")");
+  }
+  const char* encodings[] = {"ascii", "binary", "binary_compressed"};
+  const std::string format = std::string("pcd ") + (data_type >= 0 && data_type <= 2 ? encodings[data_type] : "?");
+  const std::size_t declared = static_cast<std::size_t>(cloud.width) * cloud.height;
+  if (declared == 0) fail(path, "the cloud is empty (the header declares 0 points)");
+  if (data_type == 0) {
+    // PCL's ASCII reader accepts a short body with only a warning; a truncated file must not pass.
+    std::ifstream in(path);
+    std::string line;
+    std::size_t lines = 0;
+    while (std::getline(in, line) && line.rfind("DATA", 0) != 0) {
+    }
+    while (std::getline(in, line)) {
+      if (line.find_first_not_of(" \t\r") != std::string::npos) ++lines;
+    }
+    if (lines < declared) {
+      fail(path, "the data section is truncated: " + std::to_string(lines) + " of " + std::to_string(declared) +
+                     " declared points present");
+    }
+  }
+  if (data_type == 1) {
+    // PCL maps a short binary body without noticing; check the size the header promises.
+    struct stat st {};
+    ::stat(path.c_str(), &st);
+    const std::size_t need = data_idx + declared * cloud.point_step;
+    if (static_cast<std::size_t>(st.st_size) < need) {
+      fail(path, "the data section is truncated: " + std::to_string(st.st_size) + " bytes, the header needs " +
+                     std::to_string(need));
+    }
+  }
+  int rc = -1;
+  try {
+    rc = reader.read(path, cloud, origin, orientation, version);
+  } catch (const pcl::PCLException& e) {
+    fail(path, std::string("cannot read the data section (") + e.what() + ")");
+  }
+  if (rc < 0) fail(path, "cannot read the data section (truncated or corrupt " + format.substr(4) + " data)");
+  return from_pcl(cloud, origin, orientation, path, format);
+}
+
+CloudData load_ply(const std::string& path) {
+  {
+    std::ifstream in(path, std::ios::binary);
+    std::string magic;
+    std::getline(in, magic);
+    if (magic.rfind("ply", 0) != 0) fail(path, "not a valid PLY header (the file does not start with 'ply')");
+  }
+  const QuietPcl quiet;
+  pcl::PLYReader reader;
+  pcl::PCLPointCloud2 cloud;
+  Eigen::Vector4f origin = Eigen::Vector4f::Zero();
+  Eigen::Quaternionf orientation = Eigen::Quaternionf::Identity();
+  int version = 0;
+  int rc = -1;
+  try {
+    rc = reader.read(path, cloud, origin, orientation, version);
+  } catch (const pcl::PCLException& e) {
+    fail(path, std::string("cannot read PLY (") + e.what() + ")");
+  }
+  if (rc < 0) fail(path, "cannot read PLY (a wrong header, or a data section truncated or not matching the header)");
+  const std::size_t n = static_cast<std::size_t>(cloud.width) * cloud.height;
+  if (n > 0 && cloud.data.size() < n * cloud.point_step) fail(path, "the data section is truncated");
+  return from_pcl(cloud, origin, orientation, path, "ply");
+}
+
+/// The minimal .npy reader numpy's format spec needs for an (N, 3) float or int array.
+CloudData load_npy(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  char magic[8];
+  if (!in.read(magic, 8) || std::memcmp(magic, "\x93NUMPY", 6) != 0) fail(path, "not a .npy file (bad magic)");
+  std::uint32_t header_len = 0;
+  if (magic[6] == 1) {
+    unsigned char b[2];
+    if (!in.read(reinterpret_cast<char*>(b), 2)) fail(path, "truncated .npy header");
+    header_len = b[0] | (b[1] << 8);
+  } else {
+    unsigned char b[4];
+    if (!in.read(reinterpret_cast<char*>(b), 4)) fail(path, "truncated .npy header");
+    header_len = b[0] | (b[1] << 8) | (b[2] << 16) | (static_cast<std::uint32_t>(b[3]) << 24);
+  }
+  std::string header(header_len, '\0');
+  if (!in.read(header.data(), header_len)) fail(path, "truncated .npy header");
+  auto value_of = [&](const std::string& key) {
+    const auto k = header.find("'" + key + "'");
+    if (k == std::string::npos) fail(path, "the .npy header has no '" + key + "'");
+    auto v = header.find(':', k);
+    return header.substr(v + 1);
+  };
+  std::string descr = value_of("descr");
+  descr = descr.substr(descr.find('\'') + 1);
+  descr = descr.substr(0, descr.find('\''));
+  const bool fortran = value_of("fortran_order").find("True") < value_of("fortran_order").find("False");
+  std::string shape = value_of("shape");
+  shape = shape.substr(shape.find('(') + 1, shape.find(')') - shape.find('(') - 1);
+  std::vector<long long> dims;
+  for (std::size_t pos = 0; pos < shape.size();) {
+    const auto comma = shape.find(',', pos);
+    const std::string tok = shape.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
+    if (tok.find_first_of("0123456789") != std::string::npos) dims.push_back(std::stoll(tok));
+    if (comma == std::string::npos) break;
+    pos = comma + 1;
+  }
+  if (dims.size() != 2 || dims[1] != 3) {
+    std::string s;
+    for (auto d : dims) s += (s.empty() ? "" : ", ") + std::to_string(d);
+    fail(path, "expected an (N, 3) array, got shape (" + s + ")");
+  }
+  if (descr.size() < 3 || descr[0] == '>') fail(path, "unsupported .npy dtype '" + descr + "' (use little-endian float or int)");
+  const char kind = descr[1];
+  const int size = std::stoi(descr.substr(2));
+  std::uint8_t type = 0;
+  if (kind == 'f' && size == 4) type = pcl::PCLPointField::FLOAT32;
+  if (kind == 'f' && size == 8) type = pcl::PCLPointField::FLOAT64;
+  if (kind == 'i' && size == 4) type = pcl::PCLPointField::INT32;
+  if (kind == 'i' && size == 2) type = pcl::PCLPointField::INT16;
+  if (type == 0) fail(path, "unsupported .npy dtype '" + descr + "' (use float32, float64, int16 or int32)");
+  const std::size_t n = static_cast<std::size_t>(dims[0]);
+  std::vector<std::uint8_t> data(n * 3 * size);
+  if (!in.read(reinterpret_cast<char*>(data.data()), static_cast<std::streamsize>(data.size()))) {
+    fail(path, "the data section is truncated (shape (" + std::to_string(n) + ", 3) declared)");
+  }
+  RowMatrixXd P(static_cast<Eigen::Index>(n), 3);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < 3; ++j) {
+      const std::size_t k = fortran ? j * n + i : i * 3 + j;
+      P(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = read_scalar(&data[k * size], type);
+    }
+  if (n == 0) fail(path, "the cloud is empty (0 points)");
+  CloudData out = cloud_from_arrays(P, {}, path);
+  out.format = "npy";
+  out.fields = {"x", "y", "z"};
+  out.width = static_cast<std::uint32_t>(n);
+  out.height = 1;
+  return out;
+}
+
+}  // namespace
+
+CloudData cloud_from_arrays(const RowMatrixXd& points, const RowMatrixXd& normals, const std::string& source) {
+  if (points.cols() != 3) {
+    throw std::invalid_argument(source + ": expected points of shape (N, 3), got (" + std::to_string(points.rows()) +
+                                ", " + std::to_string(points.cols()) + ")");
+  }
+  const Eigen::Index n = points.rows();
+  if (n == 0) throw std::invalid_argument(source + ": the cloud is empty (0 points)");
+  const bool with_normals = normals.rows() > 0;
+  if (with_normals && (normals.rows() != n || normals.cols() != 3)) {
+    throw std::invalid_argument(source + ": normals must have shape (" + std::to_string(n) + ", 3)");
+  }
+  std::vector<Eigen::Index> keep;
+  keep.reserve(static_cast<std::size_t>(n));
+  for (Eigen::Index i = 0; i < n; ++i)
+    if (points.row(i).allFinite()) keep.push_back(i);
+  if (keep.empty()) {
+    throw std::invalid_argument(source + ": no valid point: all " + std::to_string(n) + " points are NaN or infinite");
+  }
+  CloudData out;
+  out.path = source;
+  out.n_invalid = static_cast<std::size_t>(n) - keep.size();
+  out.points.resize(static_cast<Eigen::Index>(keep.size()), 3);
+  bool normals_ok = with_normals;
+  for (std::size_t k = 0; k < keep.size(); ++k) {
+    out.points.row(static_cast<Eigen::Index>(k)) = points.row(keep[k]);
+    if (normals_ok && !normals.row(keep[k]).allFinite()) normals_ok = false;
+  }
+  // Normals are all-or-nothing: a partial set would silently mix given and estimated normals.
+  if (normals_ok) {
+    out.normals.resize(static_cast<Eigen::Index>(keep.size()), 3);
+    for (std::size_t k = 0; k < keep.size(); ++k) out.normals.row(static_cast<Eigen::Index>(k)) = normals.row(keep[k]);
+  }
+  out.width = static_cast<std::uint32_t>(n);
+  out.height = 1;
+  return out;
+}
+
+CloudData load_cloud(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) fail(path, "no such file");
+  if (!S_ISREG(st.st_mode)) fail(path, "not a regular file");
+  if (st.st_size == 0) fail(path, "the file is empty (0 bytes)");
+  const std::string ext = lower_extension(path);
+  if (ext == ".pcd") return load_pcd(path);
+  if (ext == ".ply") return load_ply(path);
+  if (ext == ".npy") return load_npy(path);
+  fail(path, "unknown cloud format '" + ext + "' (expected .pcd, .ply or .npy)");
+}
+
+void save_cloud(const std::string& path, const Vec3Array& points, const Vec3Array& normals, const std::string& encoding,
+                const Eigen::Matrix<double, 7, 1>& viewpoint) {
+  const std::string ext = lower_extension(path);
+  if (ext != ".pcd" && ext != ".ply") fail(path, "can only write .pcd or .ply, got '" + ext + "'");
+  const bool pcd = ext == ".pcd";
+  if (pcd && encoding != "ascii" && encoding != "binary" && encoding != "binary_compressed") {
+    fail(path, "unknown PCD encoding '" + encoding + "' (expected ascii, binary or binary_compressed)");
+  }
+  if (!pcd && encoding != "ascii" && encoding != "binary") {
+    fail(path, "unknown PLY encoding '" + encoding + "' (expected ascii or binary)");
+  }
+  const Eigen::Index n = points.rows();
+  if (n == 0) fail(path, "points: the cloud is empty, nothing to write");
+  if (!points.allFinite()) fail(path, "points: contains NaN or infinite values");
+  const bool with_normals = normals.rows() > 0;
+  if (with_normals && normals.rows() != n) {
+    fail(path, "normals: " + std::to_string(normals.rows()) + " rows for " + std::to_string(n) + " points");
+  }
+  if (with_normals && !normals.allFinite()) fail(path, "normals: contains NaN or infinite values");
+  if (!viewpoint.allFinite()) fail(path, "viewpoint: contains NaN or infinite values");
+
+  pcl::PCLPointCloud2 cloud;
+  const char* names[] = {"x", "y", "z", "normal_x", "normal_y", "normal_z"};
+  const int n_fields = with_normals ? 6 : 3;
+  for (int f = 0; f < n_fields; ++f) {
+    pcl::PCLPointField field;
+    field.name = names[f];
+    field.offset = static_cast<std::uint32_t>(4 * f);
+    field.datatype = pcl::PCLPointField::FLOAT32;
+    field.count = 1;
+    cloud.fields.push_back(field);
+  }
+  cloud.width = static_cast<std::uint32_t>(n);
+  cloud.height = 1;
+  cloud.is_dense = true;
+  cloud.point_step = static_cast<std::uint32_t>(4 * n_fields);
+  cloud.row_step = cloud.point_step * cloud.width;
+  cloud.data.resize(static_cast<std::size_t>(cloud.row_step));
+  for (Eigen::Index i = 0; i < n; ++i) {
+    float v[6];
+    for (int j = 0; j < 3; ++j) v[j] = static_cast<float>(points(i, j));
+    if (with_normals)
+      for (int j = 0; j < 3; ++j) v[3 + j] = static_cast<float>(normals(i, j));
+    std::memcpy(&cloud.data[static_cast<std::size_t>(i) * cloud.point_step], v, cloud.point_step);
+  }
+  const Eigen::Vector4f origin(static_cast<float>(viewpoint[0]), static_cast<float>(viewpoint[1]),
+                               static_cast<float>(viewpoint[2]), 0.0f);
+  Eigen::Quaternionf orientation(static_cast<float>(viewpoint[6]), static_cast<float>(viewpoint[3]),
+                                 static_cast<float>(viewpoint[4]), static_cast<float>(viewpoint[5]));
+  if (orientation.norm() < 1e-6f) fail(path, "viewpoint: the quaternion has zero length");
+  orientation.normalize();
+  int rc = -1;
+  try {
+    if (pcd) {
+      pcl::PCDWriter w;
+      if (encoding == "ascii") rc = w.writeASCII(path, cloud, origin, orientation, 9);
+      else if (encoding == "binary") rc = w.writeBinary(path, cloud, origin, orientation);
+      else rc = w.writeBinaryCompressed(path, cloud, origin, orientation);
+    } else {
+      pcl::PLYWriter w;
+      // No camera element: PCL writes intrinsics its own reader then complains about; PLY keeps no viewpoint.
+      if (encoding == "binary") {
+        rc = w.writeBinary(path, cloud, origin, orientation, false);
+      } else {
+        // PCL's ASCII PLY writer keeps 6 significant digits (1 um at 1 m); float32 needs 9.
+        std::ofstream out(path);
+        if (!out) fail(path, "cannot open for writing (is the directory there and writable?)");
+        out << "ply\nformat ascii 1.0\ncomment graspmix\nelement vertex " << n << "\n";
+        const char* ply_names[] = {"x", "y", "z", "nx", "ny", "nz"};
+        for (int f = 0; f < n_fields; ++f) out << "property float " << ply_names[f] << "\n";
+        out << "end_header\n";
+        char buf[48];
+        for (Eigen::Index i = 0; i < n; ++i) {
+          float v[6];
+          std::memcpy(v, &cloud.data[static_cast<std::size_t>(i) * cloud.point_step], cloud.point_step);
+          for (int f = 0; f < n_fields; ++f) {
+            std::snprintf(buf, sizeof buf, f + 1 < n_fields ? "%.9g " : "%.9g\n", static_cast<double>(v[f]));
+            out << buf;
+          }
+        }
+        rc = out.good() ? 0 : -1;
+      }
+    }
+  } catch (const pcl::PCLException& e) {
+    fail(path, std::string("cannot write (") + e.what() + ")");
+  }
+  if (rc < 0) fail(path, "cannot write (is the directory there and writable?)");
+}
+
+}  // namespace graspmix

@@ -1,0 +1,182 @@
+#include "graspmix/perception/scene.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <pcl/filters/crop_box.h>
+#include <pcl/filters/statistical_outlier_removal.h>
+#include <pcl/filters/voxel_grid.h>
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+#include <pcl/sample_consensus/ransac.h>
+#include <pcl/sample_consensus/sac_model_plane.h>
+
+namespace graspmix {
+
+namespace {
+
+using Cloud = pcl::PointCloud<pcl::PointXYZ>;
+
+/// PCL's SAC classes seed their generators with 12345 (or the clock); these reseed them from the
+/// caller's seed so that RANSAC is both deterministic and under the caller's control.
+class SeededPlaneModel : public pcl::SampleConsensusModelPlane<pcl::PointXYZ> {
+ public:
+  SeededPlaneModel(const Cloud::ConstPtr& cloud, unsigned seed) : pcl::SampleConsensusModelPlane<pcl::PointXYZ>(cloud) {
+    rng_alg_.seed(seed);
+  }
+};
+
+class SeededRansac : public pcl::RandomSampleConsensus<pcl::PointXYZ> {
+ public:
+  SeededRansac(const pcl::SampleConsensusModel<pcl::PointXYZ>::Ptr& model, double threshold, unsigned seed)
+      : pcl::RandomSampleConsensus<pcl::PointXYZ>(model, threshold) {
+    rng_->base().seed(seed);
+    threads_ = -1;  // PCL's parallel RANSAC races on the best model: results would depend on timing
+  }
+};
+
+unsigned fold_seed(std::uint64_t s) { return static_cast<unsigned>((s ^ (s >> 32)) & 0xffffffffu); }
+
+Cloud::Ptr subset(const Cloud& c, const pcl::Indices& idx, std::vector<int>& origin) {
+  Cloud::Ptr out(new Cloud);
+  out->reserve(idx.size());
+  std::vector<int> o;
+  o.reserve(idx.size());
+  for (const auto i : idx) {
+    out->push_back(c[static_cast<std::size_t>(i)]);
+    o.push_back(origin[static_cast<std::size_t>(i)]);
+  }
+  origin.swap(o);
+  return out;
+}
+
+}  // namespace
+
+SceneResult prepare_cloud(const Vec3Array& points, const SceneSettings& s) {
+  const auto t0 = std::chrono::steady_clock::now();
+  auto bad = [](const std::string& m) { throw std::invalid_argument("prepare_cloud: " + m); };
+  if (points.rows() == 0) bad("points: the cloud is empty");
+  if (!points.allFinite()) bad("points: contains NaN or infinite values (load_cloud drops them)");
+  if (s.voxel_size < 0 || !std::isfinite(s.voxel_size)) bad("voxel_size must be >= 0 (0 switches it off)");
+  if (s.remove_outliers && (s.outlier_neighbours < 1 || !(s.outlier_std_ratio > 0))) {
+    bad("outlier_neighbours must be >= 1 and outlier_std_ratio > 0");
+  }
+  if (s.remove_plane && (!(s.plane_distance > 0) || s.plane_max_iterations < 1 || s.plane_min_fraction < 0 ||
+                         s.plane_min_fraction > 1)) {
+    bad("plane_distance must be > 0, plane_max_iterations >= 1 and plane_min_fraction in [0, 1]");
+  }
+  if (s.crop && (s.crop_min.array() > s.crop_max.array()).any()) bad("crop_min must be <= crop_max in every axis");
+
+  SceneResult r;
+  r.n_input = static_cast<std::size_t>(points.rows());
+  Cloud::Ptr cloud(new Cloud);
+  cloud->resize(r.n_input);
+  std::vector<int> origin(r.n_input);
+  for (Eigen::Index i = 0; i < points.rows(); ++i) {
+    (*cloud)[static_cast<std::size_t>(i)] = pcl::PointXYZ(static_cast<float>(points(i, 0)), static_cast<float>(points(i, 1)),
+                                                          static_cast<float>(points(i, 2)));
+    origin[static_cast<std::size_t>(i)] = static_cast<int>(i);
+  }
+
+  if (s.crop) {
+    pcl::CropBox<pcl::PointXYZ> box;
+    const float big = std::numeric_limits<float>::max();
+    Eigen::Vector4f lo, hi;
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = static_cast<float>(std::max<double>(s.crop_min[k], -big));
+      hi[k] = static_cast<float>(std::min<double>(s.crop_max[k], big));
+    }
+    lo[3] = hi[3] = 1.0f;
+    box.setMin(lo);
+    box.setMax(hi);
+    box.setInputCloud(cloud);
+    pcl::Indices kept;
+    box.filter(kept);
+    cloud = subset(*cloud, kept, origin);
+  }
+  r.n_after_crop = cloud->size();
+  if (cloud->empty()) bad("no point is inside the crop box");
+
+  if (s.voxel_size > 0) {
+    pcl::VoxelGrid<pcl::PointXYZ> grid;
+    grid.setLeafSize(static_cast<float>(s.voxel_size), static_cast<float>(s.voxel_size), static_cast<float>(s.voxel_size));
+    grid.setInputCloud(cloud);
+    Cloud::Ptr down(new Cloud);
+    grid.filter(*down);
+    if (down->empty()) bad("the voxel grid returned no point (voxel_size too small for the cloud's extent?)");
+    cloud = down;
+    origin.assign(cloud->size(), -1);
+  }
+  r.n_after_voxel = cloud->size();
+
+  if (s.remove_outliers && cloud->size() > static_cast<std::size_t>(s.outlier_neighbours)) {
+    pcl::StatisticalOutlierRemoval<pcl::PointXYZ> sor;
+    sor.setMeanK(s.outlier_neighbours);
+    sor.setStddevMulThresh(s.outlier_std_ratio);
+    sor.setInputCloud(cloud);
+    pcl::Indices kept;
+    sor.filter(kept);
+    cloud = subset(*cloud, kept, origin);
+  }
+  r.n_after_outliers = cloud->size();
+
+  if (s.remove_plane && cloud->size() >= 3) {
+    SeededPlaneModel::Ptr model(new SeededPlaneModel(cloud, fold_seed(s.seed)));
+    SeededRansac ransac(model, s.plane_distance, fold_seed(s.seed) ^ 0x9e3779b9u);
+    ransac.setMaxIterations(s.plane_max_iterations);
+    if (ransac.computeModel()) {
+      pcl::Indices inliers;
+      ransac.getInliers(inliers);
+      Eigen::VectorXf coeffs;
+      ransac.getModelCoefficients(coeffs);
+      // A least-squares refit on the inliers, then the inliers of the refined plane.
+      Eigen::VectorXf refined = coeffs;
+      model->optimizeModelCoefficients(inliers, coeffs, refined);
+      if (refined.allFinite() && refined.head<3>().norm() > 0) coeffs = refined;
+      coeffs /= coeffs.head<3>().norm();
+      model->selectWithinDistance(coeffs, s.plane_distance, inliers);
+      if (static_cast<double>(inliers.size()) >= s.plane_min_fraction * static_cast<double>(cloud->size())) {
+        std::vector<char> is_inlier(cloud->size(), 0);
+        for (const auto i : inliers) is_inlier[static_cast<std::size_t>(i)] = 1;
+        // Orient the plane towards the side most of the other points (the object) are on.
+        Eigen::Vector4d plane = coeffs.cast<double>().head<4>();
+        long side = 0;
+        for (std::size_t i = 0; i < cloud->size(); ++i) {
+          if (is_inlier[i]) continue;
+          const auto& p = (*cloud)[i];
+          const double dist = plane[0] * p.x + plane[1] * p.y + plane[2] * p.z + plane[3];
+          side += dist > 0 ? 1 : -1;
+        }
+        if (side < 0) plane = -plane;
+        pcl::Indices kept;
+        for (std::size_t i = 0; i < cloud->size(); ++i) {
+          if (is_inlier[i]) continue;
+          const auto& p = (*cloud)[i];
+          const double dist = plane[0] * p.x + plane[1] * p.y + plane[2] * p.z + plane[3];
+          if (s.remove_below_plane && dist < 0) continue;
+          kept.push_back(static_cast<pcl::index_t>(i));
+        }
+        r.plane = plane;
+        r.plane_found = true;
+        r.n_plane_inliers = inliers.size();
+        cloud = subset(*cloud, kept, origin);
+      }
+    }
+  }
+  r.n_output = cloud->size();
+  if (cloud->empty()) bad("no point is left after the clean-up (the plane took everything?)");
+  r.points.resize(static_cast<Eigen::Index>(cloud->size()), 3);
+  r.indices.resize(static_cast<Eigen::Index>(cloud->size()));
+  for (std::size_t i = 0; i < cloud->size(); ++i) {
+    const auto& p = (*cloud)[i];
+    r.points.row(static_cast<Eigen::Index>(i)) << p.x, p.y, p.z;
+    r.indices[static_cast<Eigen::Index>(i)] = origin[i];
+  }
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+}  // namespace graspmix

@@ -1,0 +1,379 @@
+// Reading hands: URDF with urdfdom, meshes with assimp, convex hulls of meshes with qhull.
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <mutex>
+#include <sstream>
+#include <stdexcept>
+
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <console_bridge/console.h>
+#include <libqhullcpp/Qhull.h>
+#include <libqhullcpp/QhullError.h>
+#include <libqhullcpp/QhullFacetList.h>
+#include <libqhullcpp/QhullVertexSet.h>
+#include <urdf_parser/urdf_parser.h>
+
+#include "graspmix/robot/hand.hpp"
+
+namespace fs = std::filesystem;
+
+namespace graspmix {
+
+namespace {
+
+/// Collects urdfdom's console_bridge messages during one parse, so that its complaint ends up in our
+/// exception instead of on stderr.
+class CapturedLog : public console_bridge::OutputHandler {
+ public:
+  CapturedLog() { console_bridge::useOutputHandler(this); }
+  ~CapturedLog() override { console_bridge::restorePreviousOutputHandler(); }
+  CapturedLog(const CapturedLog&) = delete;
+  CapturedLog& operator=(const CapturedLog&) = delete;
+  void log(const std::string& text, console_bridge::LogLevel level, const char*, int) override {
+    if (level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR) errors_ += (errors_.empty() ? "" : "; ") + text;
+  }
+  const std::string& errors() const { return errors_; }
+
+ private:
+  std::string errors_;
+};
+
+Eigen::Isometry3d to_isometry(const urdf::Pose& p) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.translation() = Eigen::Vector3d(p.position.x, p.position.y, p.position.z);
+  Eigen::Quaterniond q(p.rotation.w, p.rotation.x, p.rotation.y, p.rotation.z);
+  if (q.norm() < 1e-12) q = Eigen::Quaterniond::Identity();
+  T.linear() = q.normalized().toRotationMatrix();
+  return T;
+}
+
+bool has_prefix(const std::string& s, const std::string& prefix) { return s.rfind(prefix, 0) == 0; }
+
+/// The convex hull of a mesh's vertices as outward half-spaces and oriented triangles.
+void convex_hull(const TriangleMesh& mesh, const std::string& what, RowMatrixXd& planes, TriangleMesh& hull) {
+  std::vector<double> coords(mesh.vertices.data(), mesh.vertices.data() + mesh.vertices.size());
+  const int n = static_cast<int>(mesh.vertices.rows());
+  orgQhull::Qhull qh;
+  try {
+    qh.runQhull("", 3, n, coords.data(), "Qt");
+  } catch (const orgQhull::QhullError&) {
+    // Flat or degenerate input: joggle it into a full-dimensional hull.
+    try {
+      qh.runQhull("", 3, n, coords.data(), "QJ");
+    } catch (const orgQhull::QhullError& e) {
+      throw std::invalid_argument(what + ": cannot compute the convex hull of the mesh (" + e.what() + ")");
+    }
+  }
+  std::vector<Eigen::Vector4d> pl;
+  std::vector<Eigen::Vector3i> tris;
+  std::map<int, int> vertex_index;
+  std::vector<Eigen::Vector3d> verts;
+  for (const orgQhull::QhullFacet& f : qh.facetList()) {
+    if (!f.isGood()) continue;
+    const orgQhull::QhullHyperplane h = f.hyperplane();
+    const Eigen::Vector3d nrm(h.coordinates()[0], h.coordinates()[1], h.coordinates()[2]);
+    // qhull: n . x + offset <= 0 inside.
+    pl.emplace_back(nrm.x(), nrm.y(), nrm.z(), -h.offset());
+    std::vector<int> ids;
+    for (const orgQhull::QhullVertex& v : f.vertices()) {
+      const orgQhull::QhullPoint p = v.point();
+      const int id = p.id();
+      auto it = vertex_index.find(id);
+      if (it == vertex_index.end()) {
+        it = vertex_index.emplace(id, static_cast<int>(verts.size())).first;
+        verts.emplace_back(p[0], p[1], p[2]);
+      }
+      ids.push_back(it->second);
+    }
+    if (ids.size() != 3) continue;
+    const Eigen::Vector3d c = (verts[ids[1]] - verts[ids[0]]).cross(verts[ids[2]] - verts[ids[0]]);
+    if (c.dot(nrm) < 0) std::swap(ids[1], ids[2]);
+    tris.emplace_back(ids[0], ids[1], ids[2]);
+  }
+  // Coplanar facets of a triangulated hull repeat one plane: keep each plane once (it is the hot loop).
+  std::vector<Eigen::Vector4d> unique;
+  for (const auto& p : pl) {
+    bool seen = false;
+    for (const auto& u : unique) seen = seen || (u - p).cwiseAbs().maxCoeff() < 1e-12;
+    if (!seen) unique.push_back(p);
+  }
+  planes.resize(static_cast<Eigen::Index>(unique.size()), 4);
+  for (size_t i = 0; i < unique.size(); ++i) planes.row(static_cast<Eigen::Index>(i)) = unique[i].transpose();
+  hull.vertices.resize(static_cast<Eigen::Index>(verts.size()), 3);
+  for (size_t i = 0; i < verts.size(); ++i) hull.vertices.row(static_cast<Eigen::Index>(i)) = verts[i].transpose();
+  hull.triangles.resize(static_cast<Eigen::Index>(tris.size()), 3);
+  for (size_t i = 0; i < tris.size(); ++i) hull.triangles.row(static_cast<Eigen::Index>(i)) = tris[i].transpose();
+}
+
+}  // namespace
+
+std::string Hand::resolve_mesh_path(const std::string& filename, const std::string& base_dir,
+                                    const std::vector<std::string>& package_dirs) {
+  std::vector<fs::path> tries;
+  std::string name = filename;
+  if (has_prefix(name, "file://")) name = name.substr(7);
+  if (has_prefix(name, "package://")) {
+    const std::string rest = name.substr(10);
+    const auto slash = rest.find('/');
+    const std::string pkg = slash == std::string::npos ? std::string() : rest.substr(0, slash);
+    const std::string tail = slash == std::string::npos ? rest : rest.substr(slash + 1);
+    // pybullet_data style: package://meshes/x.obj next to the URDF; ROS style: package://pkg/meshes/x.obj
+    // with the URDF somewhere inside pkg.
+    tries.push_back(fs::path(base_dir) / rest);
+    for (fs::path dir = fs::absolute(fs::path(base_dir)); !dir.empty(); dir = dir.parent_path()) {
+      if (!pkg.empty() && dir.filename() == pkg) tries.push_back(dir / tail);
+      tries.push_back(dir / rest);
+      if (dir == dir.parent_path()) break;
+    }
+    for (const auto& d : package_dirs) {
+      tries.push_back(fs::path(d) / rest);
+      if (!pkg.empty()) tries.push_back(fs::path(d) / tail);
+    }
+  } else {
+    const fs::path p(name);
+    tries.push_back(p.is_absolute() ? p : fs::path(base_dir) / p);
+  }
+  for (const auto& t : tries) {
+    std::error_code ec;
+    if (fs::is_regular_file(t, ec)) return t.lexically_normal().string();
+  }
+  std::string msg = "mesh '" + filename + "' not found (tried";
+  for (size_t i = 0; i < tries.size() && i < 6; ++i) msg += (i ? ", " : " ") + tries[i].string();
+  throw std::invalid_argument(msg + ")");
+}
+
+TriangleMesh Hand::load_mesh(const std::string& path, const Eigen::Vector3d& scale) {
+  Assimp::Importer importer;
+  // Pre-transforming flattens any node hierarchy (e.g. OBJ groups) into the file's frame.
+  const aiScene* scene = importer.ReadFile(
+      path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices |
+                aiProcess_SortByPType);
+  if (!scene) throw std::invalid_argument("mesh '" + path + "': " + importer.GetErrorString());
+  std::vector<Eigen::Vector3d> verts;
+  std::vector<Eigen::Vector3i> tris;
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+    const aiMesh* mesh = scene->mMeshes[m];
+    const int base = static_cast<int>(verts.size());
+    for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
+      const aiVector3D& p = mesh->mVertices[v];
+      verts.emplace_back(p.x * scale.x(), p.y * scale.y(), p.z * scale.z());
+    }
+    for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+      const aiFace& face = mesh->mFaces[f];
+      if (face.mNumIndices != 3) continue;  // points and lines carry no volume
+      tris.emplace_back(base + static_cast<int>(face.mIndices[0]), base + static_cast<int>(face.mIndices[1]),
+                        base + static_cast<int>(face.mIndices[2]));
+    }
+  }
+  if (tris.empty()) throw std::invalid_argument("mesh '" + path + "': no triangles");
+  TriangleMesh out;
+  out.vertices.resize(static_cast<Eigen::Index>(verts.size()), 3);
+  for (size_t i = 0; i < verts.size(); ++i) out.vertices.row(static_cast<Eigen::Index>(i)) = verts[i].transpose();
+  out.triangles.resize(static_cast<Eigen::Index>(tris.size()), 3);
+  for (size_t i = 0; i < tris.size(); ++i) out.triangles.row(static_cast<Eigen::Index>(i)) = tris[i].transpose();
+  // A negative scale mirrors the mesh; keep the triangles' winding outward.
+  if (scale.prod() < 0) out.triangles.col(1).swap(out.triangles.col(2));
+  return out;
+}
+
+Hand Hand::from_urdf(const std::string& path, const HandLoadSettings& settings) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) throw std::invalid_argument("URDF file '" + path + "' does not exist");
+  std::ifstream in(path);
+  if (!in) throw std::invalid_argument("URDF file '" + path + "' cannot be read");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return from_urdf_string(ss.str(), fs::absolute(fs::path(path)).parent_path().string(), settings, path);
+}
+
+Hand Hand::from_urdf_string(const std::string& xml, const std::string& base_dir, const HandLoadSettings& settings,
+                            const std::string& source) {
+  const std::string what = "URDF '" + source + "'";
+  urdf::ModelInterfaceSharedPtr model;
+  {
+    // console_bridge's output handler is process-wide: one parse at a time.
+    static std::mutex parse_mutex;
+    const std::lock_guard<std::mutex> lock(parse_mutex);
+    CapturedLog log;
+    model = urdf::parseURDF(xml);
+    if (!model) {
+      throw std::invalid_argument(what + ": not a valid URDF" +
+                                  (log.errors().empty() ? std::string() : " (" + log.errors() + ")"));
+    }
+  }
+  if (!model->getRoot()) throw std::invalid_argument(what + ": no links");
+
+  Hand hand;
+  hand.name_ = model->getName();
+  hand.source_ = source;
+  // Depth-first from the root so that parents come before children; urdfdom keeps children sorted
+  // by joint name, which makes the order deterministic.
+  std::function<void(const urdf::LinkConstSharedPtr&, int)> visit = [&](const urdf::LinkConstSharedPtr& link,
+                                                                       int parent_joint) {
+    const int li = static_cast<int>(hand.links_.size());
+    LinkInfo info;
+    info.name = link->name;
+    info.parent_joint = parent_joint;
+    if (link->inertial) {
+      const auto& in = *link->inertial;
+      info.has_inertial = true;
+      info.mass = in.mass;
+      info.T_link_inertial = to_isometry(in.origin);
+      info.inertia << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
+    }
+    for (const auto& col : link->collision_array) {
+      if (!col || !col->geometry) continue;
+      CollisionShape s;
+      s.T_link_shape = to_isometry(col->origin);
+      const std::string where = what + ": link '" + link->name + "'";
+      switch (col->geometry->type) {
+        case urdf::Geometry::BOX: {
+          const auto& b = static_cast<const urdf::Box&>(*col->geometry);
+          s.type = ShapeType::Box;
+          s.size = Eigen::Vector3d(b.dim.x, b.dim.y, b.dim.z);
+          break;
+        }
+        case urdf::Geometry::CYLINDER: {
+          const auto& c = static_cast<const urdf::Cylinder&>(*col->geometry);
+          s.type = ShapeType::Cylinder;
+          s.size = Eigen::Vector3d(c.radius, c.length, 0.0);
+          break;
+        }
+        case urdf::Geometry::SPHERE: {
+          const auto& c = static_cast<const urdf::Sphere&>(*col->geometry);
+          s.type = ShapeType::Sphere;
+          s.size = Eigen::Vector3d(c.radius, 0.0, 0.0);
+          break;
+        }
+        case urdf::Geometry::MESH: {
+          const auto& m = static_cast<const urdf::Mesh&>(*col->geometry);
+          s.type = ShapeType::Mesh;
+          s.size = Eigen::Vector3d(m.scale.x, m.scale.y, m.scale.z);
+          try {
+            s.mesh_file = resolve_mesh_path(m.filename, base_dir, settings.package_dirs);
+            if (settings.load_meshes) {
+              auto mesh = std::make_shared<TriangleMesh>(load_mesh(s.mesh_file, s.size));
+              auto planes = std::make_shared<RowMatrixXd>();
+              auto hull = std::make_shared<TriangleMesh>();
+              convex_hull(*mesh, "mesh '" + s.mesh_file + "'", *planes, *hull);
+              s.mesh = mesh;
+              s.hull_planes = planes;
+              s.hull = hull;
+            }
+          } catch (const std::invalid_argument& e) {
+            throw std::invalid_argument(where + ": " + e.what());
+          }
+          break;
+        }
+        default:
+          continue;
+      }
+      for (int k = 0; k < 3; ++k) {
+        if (!std::isfinite(s.size[k]) || (s.type != ShapeType::Mesh && s.size[k] < 0)) {
+          throw std::invalid_argument(where + ": collision geometry with a negative or non-finite size");
+        }
+      }
+      info.collisions.push_back(std::move(s));
+    }
+    hand.links_.push_back(std::move(info));
+    hand.link_names_.push_back(link->name);
+    hand.link_index_[link->name] = li;
+    for (const auto& child : link->child_links) {
+      const auto& j = child->parent_joint;
+      JointInfo ji;
+      ji.name = j->name;
+      ji.parent_link = li;
+      ji.T_parent_joint = to_isometry(j->parent_to_joint_origin_transform);
+      switch (j->type) {
+        case urdf::Joint::FIXED:
+          ji.type = JointType::Fixed;
+          break;
+        case urdf::Joint::REVOLUTE:
+          ji.type = JointType::Revolute;
+          break;
+        case urdf::Joint::CONTINUOUS:
+          ji.type = JointType::Continuous;
+          break;
+        case urdf::Joint::PRISMATIC:
+          ji.type = JointType::Prismatic;
+          break;
+        default:
+          throw std::invalid_argument(what + ": joint '" + j->name +
+                                      "' has an unsupported type (only fixed, revolute, continuous, prismatic)");
+      }
+      if (ji.type != JointType::Fixed) {
+        const Eigen::Vector3d axis(j->axis.x, j->axis.y, j->axis.z);
+        if (!(axis.norm() > 1e-12)) throw std::invalid_argument(what + ": joint '" + j->name + "' has a zero axis");
+        ji.axis = axis.normalized();
+        if (ji.type == JointType::Continuous || !j->limits) {
+          ji.lower = -std::numeric_limits<double>::infinity();
+          ji.upper = std::numeric_limits<double>::infinity();
+        } else {
+          ji.lower = j->limits->lower;
+          ji.upper = j->limits->upper;
+        }
+        if (j->mimic) {
+          ji.mimic = true;
+          ji.multiplier = j->mimic->multiplier;
+          ji.offset = j->mimic->offset;
+        }
+      }
+      const int ji_index = static_cast<int>(hand.joints_.size());
+      hand.joints_.push_back(ji);
+      hand.joint_index_[ji.name] = ji_index;
+      hand.joints_[ji_index].child_link = static_cast<int>(hand.links_.size());
+      visit(child, ji_index);
+    }
+  };
+  visit(model->getRoot(), -1);
+
+  // Independent joints get a degree of freedom; mimics are resolved to one (chains followed).
+  for (size_t i = 0; i < hand.joints_.size(); ++i) {
+    JointInfo& j = hand.joints_[i];
+    if (j.type == JointType::Fixed || j.mimic) continue;
+    j.dof = static_cast<int>(hand.joint_names_.size());
+    hand.dof_index_[j.name] = j.dof;
+    hand.dof_joint_.push_back(static_cast<int>(i));
+    hand.joint_names_.push_back(j.name);
+  }
+  for (size_t i = 0; i < hand.joints_.size(); ++i) {
+    JointInfo& j = hand.joints_[i];
+    if (!j.mimic) continue;
+    double mult = j.multiplier, off = j.offset;
+    const urdf::JointConstSharedPtr uj = model->getJoint(j.name);
+    std::string master = uj->mimic->joint_name;
+    for (size_t hops = 0;; ++hops) {
+      auto it = hand.joint_index_.find(master);
+      if (it == hand.joint_index_.end()) {
+        throw std::invalid_argument(what + ": joint '" + j.name + "' mimics an unknown joint '" + master + "'");
+      }
+      const JointInfo& m = hand.joints_[static_cast<size_t>(it->second)];
+      if (m.type == JointType::Fixed) {
+        throw std::invalid_argument(what + ": joint '" + j.name + "' mimics the fixed joint '" + master + "'");
+      }
+      if (hops > hand.joints_.size()) {
+        throw std::invalid_argument(what + ": joint '" + j.name + "' is part of a cycle of mimic joints");
+      }
+      if (!m.mimic) {
+        j.dof = m.dof;
+        break;
+      }
+      // value = mult * (m.mult * next + m.off) + off
+      const auto mj = model->getJoint(master);
+      off += mult * mj->mimic->offset;
+      mult *= mj->mimic->multiplier;
+      master = mj->mimic->joint_name;
+    }
+    j.multiplier = mult;
+    j.offset = off;
+  }
+  return hand;
+}
+
+}  // namespace graspmix

@@ -1,0 +1,99 @@
+#include <gtest/gtest.h>
+
+#include <random>
+#include <stdexcept>
+
+#include "graspmix/perception/scene.hpp"
+
+using namespace graspmix;
+
+namespace {
+
+/// A 60 x 60 cm table at z = 0.7 (1 mm noise), a 6 x 4 x 8 cm box standing on it, a few outliers.
+struct Scene {
+  Vec3Array points;
+  int n_table = 0, n_object = 0, n_outliers = 0;
+};
+
+Scene make_scene(std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::normal_distribution<double> noise(0.0, 0.001);
+  std::vector<Eigen::Vector3d> pts;
+  Scene s;
+  for (int i = 0; i < 40000; ++i) pts.emplace_back(0.3 * u(rng), 0.3 * u(rng), 0.7 + noise(rng)), ++s.n_table;
+  const Eigen::Vector3d e(0.03, 0.02, 0.04), c(0.05, -0.02, 0.74);
+  for (int i = 0; i < 8000; ++i) {
+    Eigen::Vector3d p(u(rng) * e.x(), u(rng) * e.y(), u(rng) * e.z());
+    const int axis = static_cast<int>((u(rng) + 1) * 1.5) % 3;
+    p[axis] = (u(rng) < 0 ? -1 : 1) * e[axis];
+    if (axis == 2 && p.z() < 0) p.z() = e.z();  // the bottom face is hidden by the table
+    pts.push_back(c + p);
+    ++s.n_object;
+  }
+  for (int i = 0; i < 30; ++i) pts.emplace_back(0.3 * u(rng), 0.3 * u(rng), 1.0 + 0.2 * u(rng)), ++s.n_outliers;
+  s.points.resize(static_cast<Eigen::Index>(pts.size()), 3);
+  for (std::size_t i = 0; i < pts.size(); ++i) s.points.row(static_cast<Eigen::Index>(i)) = pts[i].transpose();
+  return s;
+}
+
+}  // namespace
+
+TEST(Scene, PlaneRemovalKeepsTheObjectAndFindsTheTable) {
+  const Scene sc = make_scene(1);
+  SceneSettings st;
+  st.voxel_size = 0.0;
+  const SceneResult r = prepare_cloud(sc.points, st);
+  ASSERT_TRUE(r.plane_found);
+  EXPECT_NEAR(r.plane[2], 1.0, 1e-3) << "normal up, towards the object";
+  EXPECT_NEAR(r.plane[3], -0.7, 1e-3);
+  int object = 0, table = 0;
+  for (Eigen::Index i = 0; i < r.points.rows(); ++i) {
+    const int src = r.indices[i];
+    if (src >= sc.n_table && src < sc.n_table + sc.n_object) ++object;
+    if (src < sc.n_table) ++table;
+  }
+  EXPECT_GT(object, 0.93 * sc.n_object);  // the bottom 5 mm of the box sides go with the table
+  EXPECT_LT(table, 0.001 * sc.n_table);
+  EXPECT_EQ(r.n_input, static_cast<std::size_t>(sc.points.rows()));
+  EXPECT_LT(r.n_after_outliers, r.n_input);  // the isolated points went
+  for (Eigen::Index i = 0; i < r.points.rows(); ++i) EXPECT_GT(r.points(i, 2), 0.7);
+}
+
+TEST(Scene, SameSeedSameResultAndStepsSwitchOff) {
+  const Scene sc = make_scene(2);
+  SceneSettings st;
+  const SceneResult a = prepare_cloud(sc.points, st), b = prepare_cloud(sc.points, st);
+  EXPECT_EQ(a.points, b.points);
+  EXPECT_EQ(a.plane, b.plane);
+  EXPECT_LT(a.n_after_voxel, a.n_after_crop);
+  SceneSettings off;
+  off.voxel_size = 0;
+  off.remove_outliers = false;
+  off.remove_plane = false;
+  const SceneResult c = prepare_cloud(sc.points, off);
+  EXPECT_EQ(c.points.rows(), sc.points.rows());
+  EXPECT_FALSE(c.plane_found);
+  off.crop = true;
+  off.crop_min << -1, -1, 0.71;
+  off.crop_max << 1, 1, 0.9;
+  const SceneResult d = prepare_cloud(sc.points, off);
+  int inside = 0;
+  for (Eigen::Index i = 0; i < sc.points.rows(); ++i)
+    inside += sc.points(i, 2) >= 0.71 && sc.points(i, 2) <= 0.9 && sc.points.row(i).head<2>().cwiseAbs().maxCoeff() <= 1;
+  EXPECT_EQ(d.points.rows(), inside);
+  EXPECT_GT(inside, sc.n_object / 2);
+}
+
+TEST(Scene, BadInputThrows) {
+  const Scene sc = make_scene(3);
+  SceneSettings st;
+  st.voxel_size = -1;
+  EXPECT_THROW(prepare_cloud(sc.points, st), std::invalid_argument);
+  SceneSettings crop;
+  crop.crop = true;
+  crop.crop_min << 5, 5, 5;
+  crop.crop_max << 6, 6, 6;
+  EXPECT_THROW(prepare_cloud(sc.points, crop), std::invalid_argument);
+  EXPECT_THROW(prepare_cloud(Vec3Array(0, 3)), std::invalid_argument);
+}

@@ -1,0 +1,266 @@
+// Hand: URDF loading (urdfdom), mesh loading (assimp) and fk against analytic answers.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <stdexcept>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "graspmix/robot/hand.hpp"
+#include "graspmix/core/se3.hpp"
+
+namespace fs = std::filesystem;
+using graspmix::Hand;
+
+namespace {
+
+// A planar arm: base -(revolute z, at x=0)- l1 -(revolute z, at x=0.3)- l2 -(fixed, x=0.2)- tip,
+// plus a prismatic slider on l1 along its y, a continuous wheel on the base, and a mimic of joint a.
+const char* kArm = R"(<?xml version="1.0"?>
+<robot name="arm">
+  <link name="base"/>
+  <link name="l1"><collision><origin xyz="0.15 0 0"/><geometry><box size="0.3 0.02 0.02"/></geometry></collision></link>
+  <link name="l2"><collision><origin xyz="0.1 0 0" rpy="0 1.5707963267948966 0"/><geometry><cylinder radius="0.01" length="0.2"/></geometry></collision></link>
+  <link name="tip"><collision><geometry><sphere radius="0.015"/></geometry></collision></link>
+  <link name="slider"/>
+  <link name="wheel"/>
+  <link name="twin"/>
+  <joint name="a" type="revolute"><parent link="base"/><child link="l1"/><axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+  <joint name="b" type="revolute"><parent link="l1"/><child link="l2"/><origin xyz="0.3 0 0"/><axis xyz="0 0 1"/><limit lower="-2" upper="2" effort="1" velocity="1"/></joint>
+  <joint name="c" type="fixed"><parent link="l2"/><child link="tip"/><origin xyz="0.2 0 0"/></joint>
+  <joint name="d" type="prismatic"><parent link="l1"/><child link="slider"/><axis xyz="0 2 0"/><limit lower="0" upper="0.1" effort="1" velocity="1"/></joint>
+  <joint name="e" type="continuous"><parent link="base"/><child link="wheel"/><origin xyz="0 0 0.1" rpy="1.5707963267948966 0 0"/><axis xyz="0 0 1"/></joint>
+  <joint name="m" type="revolute"><parent link="base"/><child link="twin"/><axis xyz="0 0 1"/><limit lower="-3" upper="3" effort="1" velocity="1"/><mimic joint="a" multiplier="-2" offset="0.5"/></joint>
+</robot>)";
+
+struct TempDir {
+  fs::path path;
+  TempDir() {
+    std::mt19937_64 rng(std::random_device{}());
+    path = fs::temp_directory_path() / ("graspmix_test_" + std::to_string(rng()));
+    fs::create_directories(path);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+  fs::path write(const std::string& name, const std::string& text) const {
+    fs::create_directories((path / name).parent_path());
+    std::ofstream(path / name) << text;
+    return path / name;
+  }
+};
+
+Hand arm() { return Hand::from_urdf_string(kArm, "."); }
+
+std::string cube_obj() {
+  std::string s;
+  for (int i = 0; i < 8; ++i)
+    s += "v " + std::to_string((i & 1) ? 0.5 : -0.5) + " " + std::to_string((i & 2) ? 0.5 : -0.5) + " " +
+         std::to_string((i & 4) ? 0.5 : -0.5) + "\n";
+  const int f[12][3] = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                        {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+  for (const auto& t : f) s += "f " + std::to_string(t[0] + 1) + " " + std::to_string(t[1] + 1) + " " + std::to_string(t[2] + 1) + "\n";
+  return s;
+}
+
+std::string tetra_stl() {  // ascii STL of the unit corner tetrahedron
+  const double v[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  const int f[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  std::string s = "solid t\n";
+  for (const auto& t : f) {
+    s += "facet normal 0 0 0\nouter loop\n";
+    for (int k : t) s += "vertex " + std::to_string(v[k][0]) + " " + std::to_string(v[k][1]) + " " + std::to_string(v[k][2]) + "\n";
+    s += "endloop\nendfacet\n";
+  }
+  return s + "endsolid t\n";
+}
+
+}  // namespace
+
+TEST(Hand, NamesLimitsAndOrder) {
+  const Hand h = arm();
+  EXPECT_EQ(h.name(), "arm");
+  EXPECT_EQ(h.link_names().front(), "base");
+  EXPECT_EQ(h.n_links(), 7);
+  // Independent joints only: the fixed c and the mimic m are not degrees of freedom.
+  ASSERT_EQ(h.n_dofs(), 4);
+  for (const auto& n : {"a", "b", "d", "e"}) EXPECT_NO_THROW(h.dof_index(n));
+  EXPECT_THROW(h.dof_index("m"), std::invalid_argument);
+  const auto lim = h.joint_limits();
+  EXPECT_DOUBLE_EQ(lim(h.dof_index("a"), 0), -1.0);
+  EXPECT_DOUBLE_EQ(lim(h.dof_index("d"), 1), 0.1);
+  EXPECT_TRUE(std::isinf(lim(h.dof_index("e"), 0)));
+  // Parents come before children.
+  for (const auto& j : h.joints()) EXPECT_LT(j.parent_link, j.child_link);
+}
+
+TEST(Hand, FkMatchesPlanarArmAnalytically) {
+  const Hand h = arm();
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  for (int trial = 0; trial < 50; ++trial) {
+    Eigen::VectorXd q(4);
+    for (int i = 0; i < 4; ++i) q[i] = U(rng);
+    const double a = q[h.dof_index("a")], b = q[h.dof_index("b")], d = q[h.dof_index("d")], e = q[h.dof_index("e")];
+    Eigen::Isometry3d W = Eigen::Isometry3d::Identity();
+    W.translation() = Eigen::Vector3d(U(rng), U(rng), U(rng));
+    W.linear() = Eigen::Quaterniond(U(rng), U(rng), U(rng), U(rng)).normalized().toRotationMatrix();
+    const auto P = h.fk(W, q);
+    auto local = [&](const std::string& link) { return W.inverse() * P[static_cast<size_t>(h.link_index(link))]; };
+    const Eigen::Vector3d tip(0.3 * std::cos(a) + 0.2 * std::cos(a + b), 0.3 * std::sin(a) + 0.2 * std::sin(a + b), 0);
+    EXPECT_LT((local("tip").translation() - tip).norm(), 1e-12);
+    EXPECT_NEAR(Eigen::AngleAxisd(local("tip").linear()).angle(), std::abs(std::remainder(a + b, 2 * M_PI)), 1e-9);
+    // The prismatic axis (0 2 0) is normalised: the slider moves d along l1's y.
+    EXPECT_LT((local("slider").translation() - d * Eigen::Vector3d(-std::sin(a), std::cos(a), 0)).norm(), 1e-12);
+    // Continuous joint at a rotated origin: rotation about the joint frame's z = the base's -y.
+    const Eigen::Matrix3d Rw = local("wheel").linear();
+    const Eigen::Matrix3d expected = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX()).toRotationMatrix() *
+                                     Eigen::AngleAxisd(e, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    EXPECT_LT((Rw - expected).norm(), 1e-12);
+    // Mimic: value = -2 a + 0.5.
+    EXPECT_NEAR(Eigen::AngleAxisd(local("twin").linear()).angle(), std::abs(-2 * a + 0.5), 1e-9);
+  }
+}
+
+TEST(Hand, BatchedFkEqualsSingle) {
+  const Hand h = arm();
+  graspmix::PoseArray W(3, 7);
+  W << 0, 0, 0, 0, 0, 0, 1, 1, 2, 3, 0, 0, 0.7071067811865476, 0.7071067811865476, -1, 0, 0.5, 0.5, 0.5, 0.5, 0.5;
+  graspmix::RowMatrixXd Q(3, 4);
+  Q << 0.1, 0.2, 0.03, 0.4, -0.5, 0.6, 0.07, -0.8, 0.9, -1.0, 0.01, 1.2;
+  const graspmix::RowMatrixXd out = h.fk_batch(W, Q);
+  ASSERT_EQ(out.rows(), 3);
+  ASSERT_EQ(out.cols(), 7 * h.n_links());
+  for (int i = 0; i < 3; ++i) {
+    const auto P = h.fk(graspmix::pose_from_vector(W.row(i).transpose()), Q.row(i).transpose());
+    for (int l = 0; l < h.n_links(); ++l) {
+      const auto T = graspmix::pose_from_vector(out.block<1, 7>(i, 7 * l).transpose());
+      EXPECT_LT((T.matrix() - P[static_cast<size_t>(l)].matrix()).norm(), 1e-12);
+    }
+  }
+}
+
+TEST(Hand, JointMapsAndErrors) {
+  const Hand h = arm();
+  const Eigen::VectorXd q = h.joints_from_map({{"a", 0.1}, {"b", 0.2}, {"d", 0.05}, {"e", 3.0}});
+  EXPECT_DOUBLE_EQ(q[h.dof_index("e")], 3.0);
+  // A consistent mimic value is accepted, an inconsistent one is not.
+  EXPECT_NO_THROW(h.joints_from_map({{"a", 0.1}, {"b", 0.2}, {"d", 0.05}, {"e", 3.0}, {"m", 0.3}}));
+  EXPECT_THROW(h.joints_from_map({{"a", 0.1}, {"b", 0.2}, {"d", 0.05}, {"e", 3.0}, {"m", 0.0}}), std::invalid_argument);
+  try {
+    h.joints_from_map({{"a", 0.1}, {"b", 0.2}, {"d", 0.05}, {"e", 3.0}, {"nope", 1.0}});
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("'nope'"), std::string::npos);
+  }
+  try {
+    h.joints_from_map({{"a", 0.1}, {"b", 0.2}, {"d", 0.05}});
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("'e' is missing"), std::string::npos);
+  }
+  try {
+    h.fk(Eigen::Isometry3d::Identity(), Eigen::VectorXd::Zero(3));
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("expected 4"), std::string::npos);
+  }
+  EXPECT_TRUE(h.within_limits(h.clamp(Eigen::VectorXd::Constant(4, 5.0))));
+  EXPECT_FALSE(h.within_limits(Eigen::VectorXd::Constant(4, 5.0)));
+}
+
+TEST(Hand, LoadErrorsNameTheInput) {
+  TempDir dir;
+  auto message = [](const auto& fn) {
+    try {
+      fn();
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("no exception");
+  };
+  const std::string missing = (dir.path / "missing.urdf").string();
+  EXPECT_NE(message([&] { Hand::from_urdf(missing); }).find(missing), std::string::npos);
+  const auto empty = dir.write("empty.urdf", "<?xml version=\"1.0\"?><robot name=\"r\"></robot>");
+  const std::string m = message([&] { Hand::from_urdf(empty.string()); });
+  EXPECT_NE(m.find(empty.string()), std::string::npos) << m;
+  EXPECT_NE(m.find("link"), std::string::npos) << m;
+  const auto nomesh = dir.write("nomesh.urdf", R"(<robot name="r"><link name="a"><collision><geometry><mesh filename="gone.stl"/></geometry></collision></link></robot>)");
+  EXPECT_NE(message([&] { Hand::from_urdf(nomesh.string()); }).find("gone.stl"), std::string::npos);
+  const auto floating = dir.write("floating.urdf", R"(<robot name="r"><link name="a"/><link name="b"/><joint name="f" type="floating"><parent link="a"/><child link="b"/></joint></robot>)");
+  EXPECT_NE(message([&] { Hand::from_urdf(floating.string()); }).find("'f'"), std::string::npos);
+}
+
+TEST(Hand, MeshesLoadFromObjAndStlWithScaleAndPackagePaths) {
+  TempDir dir;
+  dir.write("pkg/meshes/cube.obj", cube_obj());
+  dir.write("pkg/meshes/tetra.stl", tetra_stl());
+  const auto urdf = dir.write("pkg/urdf/h.urdf", R"(<robot name="r">
+    <link name="a"><collision><origin xyz="1 0 0"/><geometry><mesh filename="package://pkg/meshes/cube.obj" scale="0.1 0.2 0.3"/></geometry></collision></link>
+    <link name="b"><collision><geometry><mesh filename="../meshes/tetra.stl"/></geometry></collision></link>
+    <joint name="j" type="fixed"><parent link="a"/><child link="b"/></joint></robot>)");
+  const Hand h = Hand::from_urdf(urdf.string());
+  const auto& cube = h.links()[static_cast<size_t>(h.link_index("a"))].collisions.at(0);
+  ASSERT_EQ(cube.type, graspmix::ShapeType::Mesh);
+  ASSERT_TRUE(cube.mesh);
+  EXPECT_EQ(cube.mesh->triangles.rows(), 12);
+  EXPECT_LT((cube.mesh->vertices.colwise().maxCoeff() - Eigen::RowVector3d(0.05, 0.1, 0.15)).norm(), 1e-9);
+  // The hull of a box has six distinct face planes n . x <= offset.
+  ASSERT_TRUE(cube.hull_planes);
+  EXPECT_EQ(cube.hull_planes->rows(), 6);
+  const auto& tetra = h.links()[static_cast<size_t>(h.link_index("b"))].collisions.at(0);
+  EXPECT_EQ(tetra.mesh->triangles.rows(), 4);
+  EXPECT_EQ(tetra.hull_planes->rows(), 4);
+  // The diagonal face x + y + z <= 1 is one of them.
+  bool found = false;
+  for (Eigen::Index i = 0; i < tetra.hull_planes->rows(); ++i) {
+    const Eigen::Vector4d p = tetra.hull_planes->row(i).transpose();
+    found = found || (p - Eigen::Vector4d(1, 1, 1, 1) / std::sqrt(3.0)).norm() < 1e-9;
+  }
+  EXPECT_TRUE(found);
+  const auto mesh = h.collision_mesh(h.link_index("a"));
+  EXPECT_NEAR(mesh.vertices.col(0).minCoeff(), 0.95, 1e-9);
+}
+
+TEST(Hand, CollisionMeshOfPrimitivesIsClosedAndOutward) {
+  const Hand h = arm();
+  for (const auto& link : {"l1", "l2", "tip"}) {
+    const auto mesh = h.collision_mesh(h.link_index(link));
+    ASSERT_GT(mesh.triangles.rows(), 0);
+    // Divergence theorem: sum over triangles of (a . (b x c)) / 6 is the enclosed volume (> 0 if outward).
+    double volume = 0;
+    for (Eigen::Index t = 0; t < mesh.triangles.rows(); ++t) {
+      const Eigen::Vector3d a = mesh.vertices.row(mesh.triangles(t, 0)).transpose();
+      const Eigen::Vector3d b = mesh.vertices.row(mesh.triangles(t, 1)).transpose();
+      const Eigen::Vector3d c = mesh.vertices.row(mesh.triangles(t, 2)).transpose();
+      volume += a.dot(b.cross(c)) / 6.0;
+    }
+    const double expected = std::string(link) == "l1" ? 0.3 * 0.02 * 0.02
+                            : std::string(link) == "l2" ? M_PI * 0.01 * 0.01 * 0.2
+                                                        : 4.0 / 3.0 * M_PI * std::pow(0.015, 3);
+    EXPECT_NEAR(volume, expected, 0.05 * expected) << link;
+  }
+}
+
+TEST(Hand, MimicChainsResolveToTheirIndependentJoint) {
+  const Hand h = Hand::from_urdf_string(R"(<robot name="r">
+    <link name="a"/><link name="b"/><link name="c"/><link name="d"/>
+    <joint name="j1" type="prismatic"><parent link="a"/><child link="b"/><axis xyz="1 0 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+    <joint name="j2" type="prismatic"><parent link="a"/><child link="c"/><axis xyz="1 0 0"/><limit lower="-9" upper="9" effort="1" velocity="1"/><mimic joint="j1" multiplier="2" offset="0.1"/></joint>
+    <joint name="j3" type="prismatic"><parent link="a"/><child link="d"/><axis xyz="1 0 0"/><limit lower="-9" upper="9" effort="1" velocity="1"/><mimic joint="j2" multiplier="-3" offset="0.5"/></joint>
+  </robot>)", ".");
+  ASSERT_EQ(h.n_dofs(), 1);
+  const auto P = h.fk(Eigen::Isometry3d::Identity(), Eigen::VectorXd::Constant(1, 0.2));
+  EXPECT_NEAR(P[static_cast<size_t>(h.link_index("c"))].translation().x(), 2 * 0.2 + 0.1, 1e-12);
+  EXPECT_NEAR(P[static_cast<size_t>(h.link_index("d"))].translation().x(), -3 * (2 * 0.2 + 0.1) + 0.5, 1e-12);
+  try {
+    Hand::from_urdf_string(R"(<robot name="r"><link name="a"/><link name="b"/>
+      <joint name="j" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/><mimic joint="ghost"/></joint></robot>)", ".");
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("'ghost'"), std::string::npos);
+  }
+}

@@ -1,0 +1,204 @@
+// Grasp execution in Bullet: outcomes of hand-made grasps on a cube, determinism, input errors.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "graspmix/robot/hand.hpp"
+#include "graspmix/sim/sim.hpp"
+
+namespace fs = std::filesystem;
+using namespace graspmix;
+
+namespace {
+
+const fs::path kRepo = GRASPMIX_SOURCE_DIR;  // set by CMakeLists.txt for the tests
+
+struct TempDir {
+  fs::path path;
+  TempDir() {
+    path = fs::temp_directory_path() / ("graspmix_test_sim_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(path);
+  }
+  ~TempDir() { fs::remove_all(path); }
+  std::string write(const std::string& name, const std::string& text) const {
+    std::ofstream(path / name) << text;
+    return (path / name).string();
+  }
+};
+
+// A 4 cm cube of 100 g with pybullet's <contact> friction extension.
+const char* kCube = R"(<?xml version="1.0"?>
+<robot name="cube">
+  <link name="cube">
+    <contact><lateral_friction value="0.8"/><inertia_scaling value="3"/></contact>
+    <inertial><mass value="0.1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial>
+    <collision><geometry><box size="0.04 0.04 0.04"/></geometry></collision>
+  </link>
+</robot>)";
+
+Hand wsg50() { return Hand::from_urdf((kRepo / "data" / "hands" / "wsg50.urdf").string()); }
+
+/// A top grasp of the WSG 50: palm z pointing down, fingertips `tip_z` above the plane at (x, y).
+Eigen::Isometry3d top_wrist(double x, double y, double tip_z) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  T.translation() = Eigen::Vector3d(x, y, tip_z + 0.0725 + 0.081);
+  return T;
+}
+
+Eigen::VectorXd q(double v) { return Eigen::VectorXd::Constant(1, v); }
+
+}  // namespace
+
+TEST(SimObject, ReadsMassFrictionAndRestsOnThePlane) {
+  TempDir dir;
+  const SimObject cube = SimObject::from_urdf(dir.write("cube.urdf", kCube));
+  EXPECT_DOUBLE_EQ(cube.mass(), 0.1);
+  EXPECT_DOUBLE_EQ(cube.lateral_friction(), 0.8);
+  EXPECT_DOUBLE_EQ(cube.inertia_scaling(), 3.0);
+  const Eigen::Isometry3d T = cube.rest_pose(0.1, -0.2);
+  EXPECT_NEAR(T.translation().x(), 0.1, 1e-12);
+  EXPECT_NEAR(T.translation().y(), -0.2, 1e-12);
+  EXPECT_NEAR(T.translation().z(), 0.02, 1e-12);
+  // Rotated 45 degrees about x, the cube stands on an edge: centre at half the face diagonal.
+  const Eigen::Quaterniond r(Eigen::AngleAxisd(M_PI / 4, Eigen::Vector3d::UnitX()));
+  EXPECT_NEAR(cube.rest_pose(0, 0, r).translation().z(), 0.02 * std::sqrt(2.0), 1e-12);
+}
+
+TEST(Sim, CubeGraspedAcrossTwoFacesIsLifted) {
+  TempDir dir;
+  const Hand hand = wsg50();
+  const SimObject cube = SimObject::from_urdf(dir.write("cube.urdf", kCube));
+  const SimSettings s;
+  const SimResult r = execute(hand, cube, cube.rest_pose(0, 0), top_wrist(0, 0, 0.01), q(0.035), q(0.018), s);
+  EXPECT_TRUE(r.success) << r.reason;
+  EXPECT_EQ(r.reason, "success");
+  EXPECT_NEAR(r.lift_height, s.lift_height, 0.02);
+  EXPECT_GE(r.contact_count, 2);
+  EXPECT_LT(r.start_penetration, s.start_penetration);
+  EXPECT_GT(r.steps, 0);
+  EXPECT_NEAR(r.simulated_time, r.steps * s.time_step, 1e-12);
+  // Rotating the whole scene about z (grasp across the other pair of faces) changes nothing.
+  Eigen::Isometry3d Rz = Eigen::Isometry3d::Identity();
+  Rz.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const SimResult r2 = execute(hand, cube, Rz * cube.rest_pose(0, 0), Rz * top_wrist(0, 0, 0.01), q(0.035), q(0.018), s);
+  EXPECT_TRUE(r2.success) << r2.reason;
+}
+
+TEST(Sim, GraspBesideTheObjectHasNoContact) {
+  TempDir dir;
+  const SimObject cube = SimObject::from_urdf(dir.write("cube.urdf", kCube));
+  const SimResult r = execute(wsg50(), cube, cube.rest_pose(0, 0), top_wrist(0.0, 0.12, 0.01), q(0.035), q(0.018));
+  EXPECT_FALSE(r.success);
+  EXPECT_EQ(r.reason, "no contact");
+  EXPECT_EQ(r.contact_count, 0);
+  EXPECT_NEAR(r.lift_height, 0.0, 1e-3);
+}
+
+TEST(Sim, GraspStartingInsideTheObjectIsStartInCollision) {
+  TempDir dir;
+  const SimObject cube = SimObject::from_urdf(dir.write("cube.urdf", kCube));
+  // Fingers nearly closed, reaching into the cube from above.
+  const SimResult r = execute(wsg50(), cube, cube.rest_pose(0, 0), top_wrist(0, 0, 0.01), q(0.005), q(0.0));
+  EXPECT_FALSE(r.success);
+  EXPECT_EQ(r.reason, "start in collision");
+  EXPECT_GT(r.start_penetration, 0.005);
+  EXPECT_EQ(r.steps, 0);
+  // Fingers through the support plane.
+  const SimResult below = execute(wsg50(), cube, cube.rest_pose(0, 0), top_wrist(0, 0, -0.01), q(0.035), q(0.018));
+  EXPECT_EQ(below.reason, "start in collision");
+}
+
+TEST(Sim, TooWideAGraspDoesNotHold) {
+  TempDir dir;
+  const SimObject cube = SimObject::from_urdf(dir.write("cube.urdf", kCube));
+  // The motors' target stays wider than the cube: the fingers never squeeze it.
+  const SimResult r = execute(wsg50(), cube, cube.rest_pose(0, 0), top_wrist(0, 0, 0.01), q(0.05), q(0.04));
+  EXPECT_FALSE(r.success);
+  EXPECT_NE(r.reason, "start in collision");
+}
+
+TEST(Sim, Deterministic) {
+  TempDir dir;
+  const Hand hand = wsg50();
+  const SimObject cube = SimObject::from_urdf(dir.write("cube.urdf", kCube));
+  Eigen::Isometry3d W = top_wrist(0.004, -0.003, 0.012);
+  W.rotate(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()));
+  const SimResult a = execute(hand, cube, cube.rest_pose(0, 0), W, q(0.04), q(0.02));
+  const SimResult b = execute(hand, cube, cube.rest_pose(0, 0), W, q(0.04), q(0.02));
+  EXPECT_EQ(a.reason, b.reason);
+  EXPECT_EQ(a.steps, b.steps);
+  EXPECT_EQ(a.contact_count, b.contact_count);
+  EXPECT_EQ(a.lift_height, b.lift_height);  // bit for bit
+  EXPECT_TRUE(a.T_world_object_final.matrix() == b.T_world_object_final.matrix());
+}
+
+// Two 3 x 3 x 3 cm blocks 4 cm apart as the two parts ("o" groups) of one OBJ, like pybullet_data's
+// random_urdfs: pybullet hulls each part, so the gap between them is free space.
+std::string two_blocks_obj() {
+  std::string out;
+  int base = 0;
+  for (double cx : {-0.035, 0.035}) {
+    out += "o block_" + std::to_string(base) + "\n";
+    for (int k = 0; k < 8; ++k) {
+      out += "v " + std::to_string(cx + ((k & 1) ? 0.015 : -0.015)) + " " + std::to_string((k & 2) ? 0.015 : -0.015) + " " +
+             std::to_string((k & 4) ? 0.015 : -0.015) + "\n";
+    }
+    const int f[12][3] = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                          {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+    for (const auto& t : f) {
+      out += "f " + std::to_string(base + t[0] + 1) + " " + std::to_string(base + t[1] + 1) + " " + std::to_string(base + t[2] + 1) + "\n";
+    }
+    base += 8;
+  }
+  return out;
+}
+
+TEST(Sim, MeshPartsAreSeparateHullsLikePybullet) {
+  TempDir dir;
+  dir.write("blocks.obj", two_blocks_obj());
+  const std::string urdf = dir.write("blocks.urdf", R"(<?xml version="1.0"?>
+<robot name="blocks"><link name="blocks">
+  <inertial><mass value="0.1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial>
+  <collision><geometry><mesh filename="blocks.obj" scale="1 1 1"/></geometry></collision>
+</link></robot>)");
+  const SimObject blocks = SimObject::from_urdf(urdf);
+  const Hand hand = wsg50();
+  // Closed fingers turned 90 degrees (their 30 mm width along x) reach down into the 4 cm gap: free
+  // between two hulls, deep inside one hull of everything.
+  Eigen::Isometry3d W = top_wrist(0, 0, 0.01);
+  W.prerotate(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()));
+  const SimResult r = execute(hand, blocks, blocks.rest_pose(0, 0), W, q(0.0), q(0.0));
+  EXPECT_EQ(r.reason, "no contact");
+  // Across both blocks (outer faces 10 cm apart) the grasp holds them as one object.
+  const SimResult across = execute(hand, blocks, blocks.rest_pose(0, 0), top_wrist(0, 0, 0.01), q(0.055), q(0.04));
+  EXPECT_TRUE(across.success) << across.reason;
+}
+
+TEST(Sim, ErrorsNameTheInput) {
+  TempDir dir;
+  const Hand hand = wsg50();
+  EXPECT_THROW(SimObject::from_urdf((dir.path / "missing.urdf").string()), std::invalid_argument);
+  // A hand is not an object (more than one link).
+  try {
+    SimObject::from_urdf((kRepo / "data" / "hands" / "wsg50.urdf").string());
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("one link"), std::string::npos) << e.what();
+  }
+  const SimObject cube = SimObject::from_urdf(dir.write("cube.urdf", kCube));
+  try {
+    execute(hand, cube, cube.rest_pose(0, 0), top_wrist(0, 0, 0.01), Eigen::VectorXd::Zero(2), q(0.0));
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("pregrasp_joints"), std::string::npos) << e.what();
+  }
+  SimSettings bad;
+  bad.time_step = 0;
+  EXPECT_THROW(execute(hand, cube, cube.rest_pose(0, 0), top_wrist(0, 0, 0.01), q(0.03), q(0.01), bad), std::invalid_argument);
+}

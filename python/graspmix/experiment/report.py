@@ -18,13 +18,14 @@ from pathlib import Path
 
 import numpy as np
 
-from .experiment import CONDITIONS, CSV_NAME, METHODS, STAGE_LABELS, STAGES, load_protocol, read_rows
+from ..io import SUMMARY_FORMAT
+from ..model.grasps import STAGE_LABELS, STAGES
+from ..model.settings import METHOD_LABELS, METHODS
+from ..viz.experiment import COLOURS, STAGE_COLOURS, plot_runtime, plot_success
+from .log import CSV_NAME, read_rows
+from .protocol import CONDITIONS, load_protocol
 from .stats import mean_ci, paired_ttest
 
-SUMMARY_FORMAT = "graspmix.summary/1"
-METHOD_LABELS = {"gmm": "GMM", "kde": "KDE"}
-COLOURS = {"gmm": "#1f77b4", "kde": "#ff7f0e"}
-STAGE_COLOURS = {"query": "#4c72b0", "sampling": "#55a868", "optimisation": "#c44e52"}
 REASONS = ("success", "not held", "no contact", "start in collision", "synthesis failed")
 
 
@@ -46,12 +47,31 @@ def summarize(rows: list[dict], protocol_doc: dict) -> dict:
     conditions = [c for c in proto["conditions"]]
     methods = [m for m in proto["methods"]]
     expected = len(objects) * trials * len(conditions) * len(methods)
-    # De-duplicate by key (a CSV edited by hand could repeat one): the first row wins.
+    rows = _unique(rows)
+    success, ttests, reasons = _success_rates(rows, conditions, methods, len(objects), trials)
+    return _finite({
+        "format": SUMMARY_FORMAT,
+        "protocol": proto,
+        "provenance": protocol_doc.get("provenance", {}),
+        "attempts": {"done": len(rows), "expected": expected, "complete": len(rows) == expected},
+        "success_rate": success,
+        "ttest_gmm_vs_kde": ttests,
+        "outcomes": reasons,
+        "runtime": _runtime(rows, conditions, methods),
+        "per_object_success_rate": _per_object(rows, objects, methods),
+    })
+
+
+def _unique(rows: list[dict]) -> list[dict]:
+    """De-duplicate by key (a CSV edited by hand could repeat one): the first row wins."""
     by_key = {}
     for r in rows:
         by_key.setdefault((r["object"], r["trial"], r["condition"], r["method"]), r)
-    rows = list(by_key.values())
+    return list(by_key.values())
 
+
+def _success_rates(rows, conditions, methods, n_objects: int, trials: int) -> tuple[dict, dict, dict]:
+    """(success rates per condition and method, t-tests GMM vs KDE per condition, outcome counts)."""
     cells = defaultdict(list)  # (condition, method, trial) -> successes
     for r in rows:
         cells[(r["condition"], r["method"], r["trial"])].append(r["success"])
@@ -60,39 +80,48 @@ def summarize(rows: list[dict], protocol_doc: dict) -> dict:
         success[c] = {}
         complete_trials = {}
         for m in methods:
-            per_trial, complete = {}, []
-            for t in range(trials):
-                s = cells.get((c, m, t))
-                if s:
-                    per_trial[t] = float(np.mean(s))
-                    if len(s) == len(objects):
-                        complete.append(t)
-            complete_trials[m] = set(complete)
-            rates = [per_trial[t] for t in sorted(per_trial)]
-            entry = {"per_trial": {str(t): v for t, v in sorted(per_trial.items())},
-                     "trials_complete": len(complete),
-                     "successes": int(sum(sum(cells.get((c, m, t), [])) for t in range(trials))),
-                     "attempts": int(sum(len(cells.get((c, m, t), [])) for t in range(trials)))}
-            if rates:
-                ci = mean_ci(rates)
-                entry.update(mean=ci.mean, ci_low=ci.low, ci_high=ci.high, std=ci.std, n_trials=ci.n)
-            success[c][m] = entry
+            success[c][m], complete_trials[m] = _rate_entry(cells, c, m, n_objects, trials)
             reasons.setdefault(c, {})[m] = dict(Counter(r["reason"] for r in rows
                                                         if r["condition"] == c and r["method"] == m))
         if "gmm" in methods and "kde" in methods:
-            paired = sorted(complete_trials["gmm"] & complete_trials["kde"])
-            if len(paired) >= 2:
-                a = [success[c]["gmm"]["per_trial"][str(t)] for t in paired]
-                b = [success[c]["kde"]["per_trial"][str(t)] for t in paired]
-                tt = paired_ttest(a, b).to_dict()
-                tt["significant_at_0.05"] = bool(tt["p"] is not None and not math.isnan(tt["p"]) and tt["p"] < 0.05)
-                tt["trials"] = paired
-                ttests[c] = tt
-            else:
-                ttests[c] = {"note": f"needs at least 2 trials complete for both methods, has {len(paired)}"}
+            ttests[c] = _ttest_entry(success[c], sorted(complete_trials["gmm"] & complete_trials["kde"]))
+    return success, ttests, reasons
 
-    # Runtime: the paper's figure includes optimisation, so take the attempts of conditions with it
-    # (all attempts if none has). Per object the median over its attempts, then the median over objects.
+
+def _rate_entry(cells, c: str, m: str, n_objects: int, trials: int) -> tuple[dict, set]:
+    """The success entry of condition c and method m, and the trials complete for it."""
+    per_trial, complete = {}, []
+    for t in range(trials):
+        s = cells.get((c, m, t))
+        if s:
+            per_trial[t] = float(np.mean(s))
+            if len(s) == n_objects:
+                complete.append(t)
+    rates = [per_trial[t] for t in sorted(per_trial)]
+    entry = {"per_trial": {str(t): v for t, v in sorted(per_trial.items())},
+             "trials_complete": len(complete),
+             "successes": int(sum(sum(cells.get((c, m, t), [])) for t in range(trials))),
+             "attempts": int(sum(len(cells.get((c, m, t), [])) for t in range(trials)))}
+    if rates:
+        ci = mean_ci(rates)
+        entry.update(mean=ci.mean, ci_low=ci.low, ci_high=ci.high, std=ci.std, n_trials=ci.n)
+    return entry, set(complete)
+
+
+def _ttest_entry(per_method: dict, paired: list) -> dict:
+    if len(paired) < 2:
+        return {"note": f"needs at least 2 trials complete for both methods, has {len(paired)}"}
+    a = [per_method["gmm"]["per_trial"][str(t)] for t in paired]
+    b = [per_method["kde"]["per_trial"][str(t)] for t in paired]
+    tt = paired_ttest(a, b).to_dict()
+    tt["significant_at_0.05"] = bool(tt["p"] is not None and not math.isnan(tt["p"]) and tt["p"] < 0.05)
+    tt["trials"] = paired
+    return tt
+
+
+def _runtime(rows, conditions, methods) -> dict:
+    """Runtime: the paper's figure includes optimisation, so take the attempts of conditions with it
+    (all attempts if none has). Per object the median over its attempts, then the median over objects."""
     opt_conditions = [c for c in conditions if CONDITIONS[c].optimise] or conditions
     runtime = {"conditions": opt_conditions, "statistic": "median over objects of the per-object median",
                "median_s": {}, "ratio_kde_over_gmm": {}}
@@ -113,94 +142,17 @@ def summarize(rows: list[dict], protocol_doc: dict) -> dict:
     if "gmm" in runtime["median_s"] and "kde" in runtime["median_s"]:
         g, k = runtime["median_s"]["gmm"], runtime["median_s"]["kde"]
         runtime["ratio_kde_over_gmm"] = {s: (k[s] / g[s] if g[s] > 0 else math.nan) for s in (*STAGES, "total")}
+    return runtime
 
+
+def _per_object(rows, objects, methods) -> dict:
     per_object = {}
     for o in objects:
         per_object[o] = {}
         for m in methods:
             s = [r["success"] for r in rows if r["object"] == o and r["method"] == m]
             per_object[o][m] = float(np.mean(s)) if s else None
-
-    return _finite({
-        "format": SUMMARY_FORMAT,
-        "protocol": proto,
-        "provenance": protocol_doc.get("provenance", {}),
-        "attempts": {"done": len(rows), "expected": expected, "complete": len(rows) == expected},
-        "success_rate": success,
-        "ttest_gmm_vs_kde": ttests,
-        "outcomes": reasons,
-        "runtime": runtime,
-        "per_object_success_rate": per_object,
-    })
-
-
-# ---- figures -----------------------------------------------------------------------------------
-
-def _plt():
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
-
-
-def plot_success(summary: dict, path: str | Path) -> None:
-    """Success rate per condition and method: mean over trials, 95% CI bars, per-trial rates as dots."""
-    plt = _plt()
-    conds = list(summary["success_rate"])
-    methods = [m for m in METHODS if any(m in summary["success_rate"][c] for c in conds)]
-    fig, ax = plt.subplots(figsize=(1.6 + 1.5 * len(conds), 3.6))
-    width = 0.8 / max(len(methods), 1)
-    rng = np.random.default_rng(0)  # jitter of the dots only
-    for i, m in enumerate(methods):
-        xs, means, lo, hi = [], [], [], []
-        for j, c in enumerate(conds):
-            e = summary["success_rate"][c].get(m)
-            if not e or e.get("mean") is None:
-                continue
-            x = j + (i - (len(methods) - 1) / 2) * width
-            xs.append(x)
-            means.append(100 * e["mean"])
-            lo.append(100 * (e["mean"] - e["ci_low"]) if e.get("ci_low") is not None else 0)
-            hi.append(100 * (e["ci_high"] - e["mean"]) if e.get("ci_high") is not None else 0)
-            pts = 100 * np.asarray(list(e["per_trial"].values()))
-            ax.scatter(x + rng.uniform(-width / 5, width / 5, len(pts)), pts, s=8, color="k", alpha=0.5, zorder=3)
-        ax.bar(xs, means, width * 0.9, yerr=[lo, hi], capsize=3, color=COLOURS[m], label=METHOD_LABELS[m], zorder=2)
-    ax.set_xticks(range(len(conds)))
-    ax.set_xticklabels([f"{c}\n{'noise' if CONDITIONS[c].noise else 'no noise'}, "
-                        f"{'opt.' if CONDITIONS[c].optimise else 'no opt.'}" for c in conds], fontsize=8)
-    ax.set_ylabel("success rate (%)")
-    ax.set_ylim(0, 100)
-    ax.grid(axis="y", alpha=0.3, zorder=0)
-    ax.legend(fontsize=8, loc="upper right")
-    n = summary["protocol"]["trials"]
-    ax.set_title(f"Success rate per condition: mean of {n} trials, 95% CI (dots: trials)", fontsize=9)
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-
-
-def plot_runtime(medians: dict, path: str | Path, title: str = "") -> None:
-    """The paper's Fig. runtime: stacked bars of the median stage times per method (seconds)."""
-    plt = _plt()
-    methods = [m for m in METHODS if m in medians]
-    fig, ax = plt.subplots(figsize=(4.2, 3.6))
-    bottom = np.zeros(len(methods))
-    for s in STAGES:
-        v = np.array([medians[m][s] for m in methods])
-        ax.bar([METHOD_LABELS[m] for m in methods], v, 0.55, bottom=bottom, color=STAGE_COLOURS[s],
-               label=STAGE_LABELS[s])
-        bottom += v
-    for i, b in enumerate(bottom):
-        ax.text(i, b, f"{b * 1e3:.0f} ms", ha="center", va="bottom", fontsize=8)
-    ax.set_ylabel("time (s)")
-    ax.set_ylim(0, max(bottom.max() * 1.2, 1e-3))
-    ax.legend(fontsize=7, loc="upper left")
-    ax.set_title(title or "Synthesis time per object (medians)", fontsize=9)
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
+    return per_object
 
 
 # ---- the report --------------------------------------------------------------------------------
@@ -264,7 +216,8 @@ def outcomes_table(summary: dict) -> list[list[str]]:
     return out
 
 
-def _md_table(rows: list[list[str]]) -> str:
+def md_table(rows: list[list[str]]) -> str:
+    """A Markdown table of rows of cells, the first row the header."""
     lines = ["| " + " | ".join(rows[0]) + " |", "|" + "|".join(" --- " for _ in rows[0]) + "|"]
     lines += ["| " + " | ".join(r) + " |" for r in rows[1:]]
     return "\n".join(lines)
@@ -324,7 +277,7 @@ def _markdown(blocks) -> str:
         elif b[0] == "code":
             out.append(f"```\n{b[1]}\n```")
         elif b[0] == "table":
-            out.append(_md_table(b[1]))
+            out.append(md_table(b[1]))
         elif b[0] == "img":
             out.append(f"![{b[2]}]({b[1]})")
     return "\n\n".join(out) + "\n"

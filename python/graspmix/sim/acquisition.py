@@ -20,6 +20,10 @@ from typing import Callable
 
 import numpy as np
 
+from .. import _core
+from ..io import pybullet_data_path, resolve_object
+from ..model.settings import FeatureSettings
+
 
 def _import_pybullet_quietly() -> None:
     """pybullet prints its build time on stderr when first imported, which would turn a CLI's one-line
@@ -47,23 +51,6 @@ def _import_pybullet_quietly() -> None:
 
 
 _import_pybullet_quietly()
-
-
-def pybullet_data_path() -> Path:
-    import pybullet_data
-
-    return Path(pybullet_data.getDataPath())
-
-
-def resolve_object(path: str | Path) -> Path:
-    """An object URDF: an existing path, or a path relative to pybullet_data (e.g. random_urdfs/012/012.urdf)."""
-    p = Path(path)
-    if p.is_file():
-        return p.resolve()
-    q = pybullet_data_path() / p
-    if q.is_file():
-        return q
-    raise ValueError(f"{path}: no such object file (looked in the working directory and in pybullet_data)")
 
 
 @dataclass
@@ -265,13 +252,12 @@ def acquire(object_path: str | Path, noise: bool = False, seed: int = 0,
     return acq
 
 
-def clean_up(voxel_size: float = 0.003, remove_outliers: bool = True, remove_plane: bool | None = None,
+def clean_up(voxel_size: float = FeatureSettings.voxel_size, remove_outliers: bool = True, remove_plane: bool | None = None,
              seed: int = 0) -> Callable[[Acquisition], Acquisition]:
     """The clean-up of the object representation (graspmix.prepare_cloud) as an acquire() postprocess:
     voxel grid, statistical outlier removal and, for a scene acquisition, RANSAC removal of the support
     plane (remove_plane=None: only when settings.keep == "scene" left the plane in; the plane found is
     kept in Acquisition.plane). Viewpoints and camera indices follow the points that survive."""
-    from . import _core
 
     def run(acq: Acquisition) -> Acquisition:
         plane_too = remove_plane if remove_plane is not None else acq.keep == "scene"
@@ -283,34 +269,3 @@ def clean_up(voxel_size: float = 0.003, remove_outliers: bool = True, remove_pla
                                    plane=np.asarray(scene.plane) if scene.plane_found else acq.plane)
 
     return run
-
-
-def plot_depth_images(acq: Acquisition, path: str | Path) -> None:
-    """A picture of the depth images, one panel per camera, cropped to the object (its depth in colour,
-    metres; the rest grey; white: no return)."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    n = len(acq.depth_images)
-    fig, axes = plt.subplots(1, n, figsize=(3.2 * n, 3.0), squeeze=False)
-    masks = acq.object_masks or [np.isfinite(d) for d in acq.depth_images]
-    obj = np.concatenate([d[m & np.isfinite(d)] for d, m in zip(acq.depth_images, masks)])
-    lo, hi = (np.percentile(obj, 1), np.percentile(obj, 99)) if len(obj) else (0, 1)
-    for i, (ax, d, m) in enumerate(zip(axes[0], acq.depth_images, masks)):
-        # The object in colour (its own depth range), the rest grey, cropped around the object.
-        ax.imshow(np.where(np.isfinite(d) & ~m, 1.0, np.nan), cmap="gray", vmin=0, vmax=1.6)
-        im = ax.imshow(np.where(m & np.isfinite(d), d, np.nan), vmin=lo, vmax=hi, cmap="viridis")
-        if m.any():
-            rows, cols = np.flatnonzero(m.any(1)), np.flatnonzero(m.any(0))
-            pad = 10
-            ax.set_xlim(max(cols[0] - pad, 0) - 0.5, min(cols[-1] + pad, d.shape[1] - 1) + 0.5)
-            ax.set_ylim(min(rows[-1] + pad, d.shape[0] - 1) + 0.5, max(rows[0] - pad, 0) - 0.5)
-        ax.set_title(f"camera {i}", fontsize=9)
-        ax.set_xticks([])
-        ax.set_yticks([])
-    fig.colorbar(im, ax=axes[0].tolist(), shrink=0.8, label="depth (m)")
-    fig.suptitle(f"{len(acq.points)} points, noise {'on' if acq.noise else 'off'} (seed {acq.seed})", fontsize=10)
-    fig.savefig(path, dpi=110)
-    plt.close(fig)

@@ -11,13 +11,15 @@ from pathlib import Path
 
 import numpy as np
 
-from . import _core
+from .. import _core
+from ..model import Demonstration
 from .acquisition import AcquisitionSettings, Scene, acquire
-from .model import Demonstration
+
+DEMO_GRIP_FORCE = 20.0  # N (N m): the demonstrating hand's motor force limit (execution's SimSettings: 40)
 
 
 def record_demonstration(object_path: str | Path, hand_path: str | Path, T_world_wrist, pregrasp: dict,
-                         close_to: dict, *, grip_force: float = 20.0, max_steps: int = 2000,
+                         close_to: dict, *, grip_force: float = DEMO_GRIP_FORCE, max_steps: int = 2000,
                          settings: AcquisitionSettings | None = None, seed: int = 0) -> Demonstration:
     """Closes the hand from `pregrasp` towards `close_to` (name -> value, independent joints) around the
     object and returns the demonstration with the joints where the fingers stopped."""

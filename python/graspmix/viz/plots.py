@@ -5,8 +5,11 @@ from pathlib import Path
 
 import numpy as np
 
+from .. import _core
 
-def _pyplot():
+
+def pyplot():
+    """matplotlib.pyplot on the Agg backend (files only, no display needed)."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -23,7 +26,7 @@ def plot_surface_features(surface, path, *, max_points: int = 20000, seed: int =
     max_points: a seeded random subset is drawn when the cloud is larger. normals: draw that many
     normals (also a seeded subset) as short arrows on the k1 panel. Writes ``path`` (png, pdf, svg).
     """
-    plt = _pyplot()
+    plt = pyplot()
     P = np.asarray(surface.points)
     K = np.asarray(surface.curvatures)
     if P.shape[0] == 0:
@@ -64,9 +67,7 @@ def plot_grasps(grasps, hand, path, *, top: int = 3, max_points: int = 8000, see
     ``surface.points`` and ``grasps`` as in grasps.json; hand: the graspmix.Hand they are for."""
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
-    from . import _core
-
-    plt = _pyplot()
+    plt = pyplot()
     P = np.asarray(grasps.surface.points)
     rows = grasps.grasps[:top]
     if not rows:

@@ -1,6 +1,7 @@
 """Python-side defaults: written once (the settings dataclasses), referred to everywhere else, and
 compared with the C++ defaults of the same quantities."""
 import inspect
+import re
 
 import pytest
 
@@ -51,18 +52,24 @@ def test_agreements_with_cpp():
                                                          LearnSettings.min_points)
 
 
+def _binding_default(cls, arg: str) -> float:
+    """The default of a keyword argument of a bound constructor, from pybind11's signature text."""
+    m = re.search(rf"\b{arg}: [^=,)]+ = ([^,)]+)", cls.__init__.__doc__)
+    assert m, f"{cls.__name__} has no default for {arg}"
+    return float(m.group(1))
+
+
 def test_the_listed_disagreements_are_the_real_ones():
     """The C++ values of DEFAULT_DISAGREEMENTS, read from the bindings: if either side changes, this list
-    must be updated (and the README's note with it)."""
-    import numpy as np
-
-    hand = _core.Hand.from_urdf(str(graspmix.data_path("hands", "wsg50.urdf")))
-    cpp = {"SynthesisOptions.collision_beta": _core.CollisionExpert(hand, np.zeros((1, 3))).settings.beta
-           if hasattr(_core.CollisionExpert(hand, np.zeros((1, 3))), "settings") else None,
-           "LearnSettings.n_components": _core.GaussianMixture().n_components}
+    must be updated (C++ is to become the single source)."""
+    cpp = {"SynthesisOptions.collision_beta": _binding_default(_core.CollisionExpert, "beta"),
+           "SynthesisOptions.contact_tolerance": _binding_default(_core.CollisionExpert, "contact_tolerance"),
+           "SynthesisOptions.approach_concentration": _binding_default(_core.AxisAlignmentExpert, "concentration"),
+           "LearnSettings.n_components": _binding_default(_core.GaussianMixture, "n_components")}
+    assert sorted(cpp) == sorted(name for name, *_ in DEFAULT_DISAGREEMENTS)
     for name, py, cxx, _ in DEFAULT_DISAGREEMENTS:
         owner, field = name.split(".")
         assert getattr(getattr(graspmix.model, owner), field) == py, name
-        assert py != cxx, name
-        if cpp.get(name) is not None:
-            assert cpp[name] == pytest.approx(cxx), name
+        assert cpp[name] == pytest.approx(cxx) and py != cxx, name
+    # PoseMixture, which learning uses, has the Python default.
+    assert _binding_default(_core.PoseMixture, "n_components") == LearnSettings.n_components

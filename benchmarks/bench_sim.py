@@ -13,7 +13,8 @@ import time
 
 import numpy as np
 
-from graspmix import acquisition, sim
+from graspmix import sim
+from graspmix.sim import acquisition
 
 
 def main():

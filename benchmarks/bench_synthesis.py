@@ -14,7 +14,7 @@ import statistics
 import numpy as np
 
 import graspmix
-from graspmix.acquisition import acquire
+from graspmix.sim.acquisition import acquire
 
 OBJECTS = ["random_urdfs/012/012.urdf", "random_urdfs/031/031.urdf", "duck_vhacd.urdf", "cube_small.urdf"]
 STAGES = ["query", "sampling", "optimisation"]

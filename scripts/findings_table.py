@@ -16,20 +16,21 @@ import re
 import sys
 from pathlib import Path
 
-from graspmix import experiment, report
+from graspmix.experiment.report import findings_table, md_table
+from graspmix.model.grasps import STAGE_LABELS, STAGES
 
 
 def success_table(summary: dict) -> str:
-    return report._md_table(report.findings_table(summary))
+    return md_table(findings_table(summary))
 
 
 def runtime_table_md(bench: dict) -> str:
     med, ratio = bench["median_s"], bench["ratio_kde_over_gmm"]
     rows = [["stage (median over %d objects)" % len(bench["objects"]), "GMM (ms)", "KDE (ms)", "KDE / GMM"]]
-    for s in (*experiment.STAGES, "total"):
-        rows.append([experiment.STAGE_LABELS.get(s, "total of the three"), f"{med['gmm'][s] * 1e3:.1f}",
+    for s in (*STAGES, "total"):
+        rows.append([STAGE_LABELS.get(s, "total of the three"), f"{med['gmm'][s] * 1e3:.1f}",
                      f"{med['kde'][s] * 1e3:.1f}", f"{ratio[s]:.2f}"])
-    return report._md_table(rows)
+    return md_table(rows)
 
 
 def verdict(summary: dict) -> str:

@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 
 import graspmix
-from graspmix.acquisition import AcquisitionSettings, acquire
+from graspmix.sim.acquisition import AcquisitionSettings, acquire
 
 root = Path(__file__).resolve().parent.parent
 scan = acquire("objects/mug.urdf", noise=False, seed=0, settings=AcquisitionSettings(keep="scene"))

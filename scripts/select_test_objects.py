@@ -41,7 +41,7 @@ MIN_CONVEXITY = 0.2  # some random_urdfs are loose clouds of tiny parts (a few %
 
 
 def data_path() -> Path:
-    return graspmix.acquisition.pybullet_data_path()
+    return graspmix.io.pybullet_data_path()
 
 
 def mesh_of(urdf: Path):

@@ -1,10 +1,17 @@
 """graspmix: generative grasp synthesis from one demonstration with parametric mixtures.
 
-The C++ core lives in ``graspmix._core``; this package re-exports it and adds the Python-side tools
-(learning and synthesis front end, acquisition, command line, plots).
-"""
-from importlib import metadata as _metadata
+The C++ core lives in ``graspmix._core``; this package re-exports it and adds the Python-side tools in
+layers, each importing only from the ones before it:
 
+    io/          file formats and paths (the bundled data, JSON documents, object lists)
+    model/       demonstrations, learning, GraspModel and synthesis, Grasp/GraspSet, experts, settings
+    sim/         simulated cameras, grasp execution in Bullet, recording demonstrations
+    viz/         pictures
+    experiment/  the paper's experiment: protocol, runs, statistics, report, runtime benchmark
+    cli/         graspmix_cli
+
+The module paths graspmix.acquisition, .demo, .plots, .report and .stats are deprecated aliases.
+"""
 import numpy as _np
 
 from . import _core
@@ -47,13 +54,12 @@ from ._core import (
     contact_data,
     learn_contact_models,
 )
-from . import acquisition, sim
-from .model import Demonstration, FeatureSettings, GraspModel, GraspSet, data_path, default_model_path, expert, learn
+from . import io, model, sim, viz
+from . import acquisition  # noqa: E402  (deprecated alias of graspmix.sim.acquisition)
+from .io import data_path
+from .model import Demonstration, FeatureSettings, Grasp, GraspModel, GraspSet, default_model_path, expert, learn
 
-try:
-    __version__ = _metadata.version("graspmix")
-except _metadata.PackageNotFoundError:  # running from a source tree
-    __version__ = build_info()["graspmix"]
+__version__ = io.package_version()
 
 
 def _rowwise(fn, *arrays):

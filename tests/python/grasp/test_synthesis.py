@@ -13,7 +13,7 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 import graspmix
-from graspmix.acquisition import acquire
+from graspmix.sim.acquisition import acquire
 
 BOX_HALF = np.array([0.03, 0.05, 0.07])  # data/objects/box.urdf, resting on z = 0
 FINGER_LO, FINGER_HI = np.array([-0.023, -0.015, 0.008]), np.array([0.0, 0.015, 0.081])  # data/hands/wsg50.urdf
@@ -170,7 +170,7 @@ def test_errors_are_clear(gmm, tmp_path, demo):
     path = tmp_path / "model.json"
     gmm.save(path)
     data = json.loads(path.read_text())
-    data["hand"] = str(graspmix.acquisition.pybullet_data_path() / "pr2_gripper.urdf")
+    data["hand"] = str(graspmix.io.pybullet_data_path() / "pr2_gripper.urdf")
     path.write_text(json.dumps(data))
     with pytest.raises(ValueError, match="another hand"):
         graspmix.GraspModel.load(path)

@@ -10,7 +10,7 @@ from scipy.spatial.transform import Rotation
 import graspmix
 
 DATA = Path(pybullet_data.getDataPath())
-WSG50 = Path(graspmix.__file__).parent / "data" / "hands" / "wsg50.urdf"
+WSG50 = graspmix.data_path("hands", "wsg50.urdf")
 URDFS = {
     "wsg50": WSG50,
     "panda": DATA / "franka_panda" / "panda.urdf",

@@ -16,7 +16,7 @@ AGREEMENT_OBJECTS = ["cube_small.urdf", "random_urdfs/033/033.urdf", "random_urd
                      "objects/mug.urdf"]
 
 
-PR2 = graspmix.acquisition.pybullet_data_path() / "pr2_gripper.urdf"
+PR2 = graspmix.io.pybullet_data_path() / "pr2_gripper.urdf"
 
 
 def object_box(obj):
@@ -134,7 +134,7 @@ def test_errors(tmp_path):
         sim.execute("cube_small.urdf", dict(g, T_world_wrist=[0, 0, 1]))
     # grasps.json made for another hand, with a wrong format, without grasps.
     path = tmp_path / "grasps.json"
-    panda = graspmix.acquisition.pybullet_data_path() / "franka_panda" / "panda.urdf"
+    panda = graspmix.io.pybullet_data_path() / "franka_panda" / "panda.urdf"
     path.write_text(json.dumps({"format": "graspmix.grasps/1", "hand": str(panda), "grasps": [dict(g, rank=1)]}))
     with pytest.raises(ValueError, match="grasps are for hand"):
         sim.execute_file("cube_small.urdf", path, hand=sim.default_hand_path())

@@ -11,7 +11,7 @@ from scipy.spatial.transform import Rotation
 from scipy.stats import norm
 
 import graspmix
-from graspmix import acquisition as acq_mod
+from graspmix.sim import acquisition as acq_mod
 from graspmix import cli, sim
 
 OBJECTS = ["cube_small.urdf", "random_urdfs/033/033.urdf", "random_urdfs/122/122.urdf", "objects/mug.urdf"]
@@ -21,7 +21,7 @@ def surface_samples(obj, spacing=4e-4):
     """Points on the object's visual mesh (what the cameras render) in the world, on a barycentric grid of
     at most `spacing` per triangle edge, so the distance to them overestimates the distance to the surface
     by less than `spacing`."""
-    urdf = acq_mod.resolve_object(obj)
+    urdf = graspmix.io.resolve_object(obj)
     mesh = ET.parse(urdf).getroot().find("link/visual/geometry/mesh")
     scale = [float(s) for s in mesh.get("scale", "1 1 1").split()]
     v, t = graspmix.load_mesh(urdf.parent / mesh.get("filename"), scale)

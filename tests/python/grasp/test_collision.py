@@ -7,7 +7,7 @@ from scipy.spatial.transform import Rotation
 
 import graspmix
 
-WSG50 = Path(graspmix.__file__).parent / "data" / "hands" / "wsg50.urdf"
+WSG50 = graspmix.data_path("hands", "wsg50.urdf")
 IDENTITY = np.array([0, 0, 0, 0, 0, 0, 1.0])
 
 

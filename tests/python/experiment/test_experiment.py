@@ -14,8 +14,9 @@ import pytest
 from scipy import stats as sps
 
 import graspmix
-from graspmix import cli, experiment as ex, report, sim
-from graspmix.stats import mean_ci, paired_ttest
+from graspmix import cli, experiment as ex, sim
+from graspmix.experiment import report
+from graspmix.experiment.stats import mean_ci, paired_ttest
 
 
 # ---- statistics --------------------------------------------------------------------------------
@@ -118,7 +119,7 @@ def test_grasp_synthesised_on_an_acquired_cloud_executes_in_the_same_frame():
     """The cloud lies on the object as the simulation places it, and a top grasp synthesised on the cloud
     lifts the object: acquisition, synthesis and execution share the world frame."""
     obj = "random_urdfs/057/057.urdf"
-    acq = graspmix.acquisition.acquire(obj, noise=False, seed=0, postprocess=ex.crop_above_plane(0.004))
+    acq = graspmix.sim.acquisition.acquire(obj, noise=False, seed=0, postprocess=ex.crop_above_plane(0.004))
     o = sim.load_object(obj)
     pose = sim.rest_pose(obj)
     v, _ = o.model.collision_mesh(o.model.link_names[0])

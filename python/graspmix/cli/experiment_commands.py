@@ -1,0 +1,111 @@
+"""experiment, report, benchmark: the paper's experiment and its runtime figure."""
+from __future__ import annotations
+
+import argparse
+import json
+import shlex
+from pathlib import Path
+
+from ..io import read_objects_file, test_objects
+from ..model.settings import METHODS, SynthesisOptions
+from .common import CliError, split_list
+
+
+def _protocol(args):
+    from ..experiment import CONDITIONS, Protocol
+
+    conditions = split_list(args.conditions, "--conditions", list(CONDITIONS)) if args.conditions else None
+    methods = split_list(args.methods, "--methods", list(METHODS)) if args.methods else None
+    objects = read_objects_file(args.objects) if args.objects else None
+    if args.jobs < 1:
+        raise CliError(f"--jobs must be at least 1, got {args.jobs}")
+    return Protocol.preset(args.preset, objects=objects, trials=args.trials, conditions=conditions,
+                           methods=methods, seed=args.seed, closing=args.closing)
+
+
+def cmd_experiment(args: argparse.Namespace) -> int:
+    from ..experiment import CSV_NAME, run
+
+    protocol = _protocol(args)
+    command = "graspmix_cli " + " ".join(shlex.quote(a) for a in (args.argv or []))
+    n = len(protocol.all_attempts())
+    print(f"experiment: {len(protocol.objects)} objects x {protocol.trials} trials x conditions "
+          f"{','.join(protocol.conditions)} x methods {','.join(protocol.methods)} = {n} attempts; "
+          f"{args.jobs} job(s), executor {args.executor}; into {args.out}", flush=True)
+    res = run(protocol, args.out, jobs=args.jobs, executor=args.executor, progress=not args.quiet,
+              ray_address=args.ray_address, command=command)
+    print(f"ran {res['ran']} attempts in {res['seconds']:.1f} s ({res['skipped']} already done); "
+          f"{res['rows']}/{res['total']} in {Path(args.out) / CSV_NAME}")
+    if res["rows"] > 0:
+        print_findings(Path(args.out))
+    return 0
+
+
+def print_findings(run_dir: Path) -> None:
+    from ..experiment.report import findings_table
+
+    summary = json.loads((run_dir / "summary.json").read_text())
+    for row in findings_table(summary):
+        print("  " + " | ".join(row))
+    print(f"wrote {run_dir / 'summary.json'}, {run_dir / 'report.md'}, {run_dir / 'report.html'}")
+
+
+def cmd_report(args: argparse.Namespace) -> int:
+    from ..experiment.report import build_report
+
+    build_report(args.run)
+    print_findings(Path(args.run))
+    return 0
+
+
+def cmd_benchmark(args: argparse.Namespace) -> int:
+    from ..experiment import benchmark, format_benchmark
+
+    objects = read_objects_file(args.objects) if args.objects else test_objects()
+    if args.limit is not None:
+        if args.limit < 1:
+            raise CliError(f"--limit must be at least 1, got {args.limit}")
+        objects = objects[: args.limit]
+    res = benchmark(objects, args.out, n_samples=args.samples, n_optimise=args.optimise_top, seed=args.seed,
+                    progress=not args.quiet)
+    print(format_benchmark(res))
+    print(f"GMM is {res['ratio_kde_over_gmm']['total']:.2f}x faster than KDE in total (median over objects)")
+    print(f"wrote {Path(args.out) / 'benchmark.json'} and {Path(args.out) / 'benchmark.png'}")
+    return 0
+
+
+def add_parsers(sub) -> None:
+    s = sub.add_parser("experiment", help="the paper's experiment: conditions A-D, GMM vs KDE, success rates, t-tests, runtimes")
+    s.add_argument("--out", required=True, help="run folder (e.g. runs/NAME): attempts.csv, protocol.json, summary.json, "
+                   "report.md/html; running again into it resumes")
+    s.add_argument("--preset", choices=["smoke", "paper"], default="paper",
+                   help="paper: the 60 test objects, 10 trials (default); smoke: 3 objects, 2 trials")
+    s.add_argument("--objects", help="objects file, one URDF a line (a path, or relative to pybullet_data); default: the preset's")
+    s.add_argument("--trials", type=int, help="trials (default: the preset's)")
+    s.add_argument("--conditions", help="comma-separated subset of A,B,C,D (default: all)")
+    s.add_argument("--methods", help="comma-separated subset of gmm,kde (default: both)")
+    s.add_argument("--seed", type=int, default=None, help="base of every derived seed (default 0)")
+    s.add_argument("--closing", choices=["full", "learnt"], default=None,
+                   help="full (default): the fingers close until they stop on the object, force-limited; learnt: "
+                        "the simulation's default target just past the synthesised grasp joints")
+    s.add_argument("--jobs", type=int, default=1, help="parallel worker processes (or Ray tasks)")
+    s.add_argument("--executor", choices=["local", "ray"], default="local",
+                   help="local processes, or a Ray cluster (a local Ray instance unless --ray-address)")
+    s.add_argument("--ray-address", help="address of a running Ray cluster (default: start a local one)")
+    s.add_argument("--quiet", action="store_true", help="no progress bar")
+    s.set_defaults(func=cmd_experiment)
+
+    s = sub.add_parser("report", help="rebuild summary.json and report.md/html of an experiment folder from its CSV")
+    s.add_argument("run", help="the experiment folder")
+    s.set_defaults(func=cmd_report)
+
+    o = SynthesisOptions
+    s = sub.add_parser("benchmark", help="the paper's runtime comparison: medians over objects per stage, GMM vs KDE")
+    s.add_argument("--objects", help="objects file (default: the 60 test objects)")
+    s.add_argument("--limit", type=int, help="only the first N objects")
+    s.add_argument("--samples", type=int, default=o.n_samples, help=f"grasps sampled per object ({o.n_samples})")
+    s.add_argument("--optimise-top", type=int, default=o.n_optimise, help=f"best grasps annealed ({o.n_optimise})")
+    s.add_argument("--seed", type=int, default=0)
+    s.add_argument("--out", default="benchmark", help="folder for benchmark.json and benchmark.png (default ./benchmark)")
+    s.add_argument("--quiet", action="store_true", help="no progress bar")
+    s.set_defaults(func=cmd_benchmark)

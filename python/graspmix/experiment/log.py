@@ -1,0 +1,96 @@
+"""attempts.csv: one row per executed grasp, appended as work units finish."""
+from __future__ import annotations
+
+import csv
+import io
+import os
+from pathlib import Path
+
+CSV_NAME = "attempts.csv"
+
+# Columns of attempts.csv. Times are in seconds.
+KEY_COLUMNS = ["object", "trial", "condition", "method"]
+RESULT_COLUMNS = ["noise", "optimise", "acquisition_seed", "synthesis_seed", "n_points", "success", "reason",
+                  "lift_height", "contact_count", "log_likelihood", "grasp", "evaluations", "rejected", "error"]
+TIME_COLUMNS = ["t_acquisition", "t_features", "t_query", "t_sampling", "t_optimisation", "t_synthesis",
+                "t_execution"]
+COLUMNS = KEY_COLUMNS + RESULT_COLUMNS + TIME_COLUMNS
+INT_COLUMNS = {"trial", "noise", "optimise", "acquisition_seed", "synthesis_seed", "n_points", "success",
+               "contact_count", "evaluations", "rejected"}
+FLOAT_COLUMNS = {"lift_height", "log_likelihood", *TIME_COLUMNS}
+
+
+def _format(v) -> str:
+    if isinstance(v, float):
+        return repr(v)
+    return str(v)
+
+
+class AttemptLog:
+    """attempts.csv: append-only, one row per attempt, flushed and synced after every unit."""
+
+    def __init__(self, path: Path):
+        self.path = Path(path)
+        self._repair()
+        if not self.path.exists() or self.path.stat().st_size == 0:
+            with open(self.path, "w", newline="") as f:
+                csv.writer(f).writerow(COLUMNS)
+
+    def _repair(self) -> None:
+        """A run killed while writing can leave a partial last line: cut it (its unit is run again)."""
+        if not self.path.exists():
+            return
+        data = self.path.read_bytes()
+        if data and not data.endswith(b"\n"):
+            cut = data.rfind(b"\n") + 1
+            with open(self.path, "r+b") as f:
+                f.truncate(cut)
+        if self.path.stat().st_size > 0:
+            with open(self.path, newline="") as f:
+                header = next(csv.reader(f), None)
+            if header != COLUMNS:
+                raise ValueError(f"{self.path}: its columns are not those of this graspmix version's attempts.csv")
+
+    def done(self) -> set[tuple]:
+        return {(r["object"], int(r["trial"]), r["condition"], r["method"]) for r in read_rows(self.path)}
+
+    def append(self, rows: list[dict]) -> None:
+        buf = io.StringIO()
+        w = csv.writer(buf, lineterminator="\n")
+        for r in rows:
+            w.writerow([_format(r.get(c, "")) for c in COLUMNS])
+        with open(self.path, "a", newline="") as f:
+            f.write(buf.getvalue())
+            f.flush()
+            os.fsync(f.fileno())
+
+
+def read_rows(path: str | Path) -> list[dict]:
+    """The rows of an attempts.csv, typed (ints, floats, None for empty numbers), in file order; a
+    trailing partial line (a killed run) is ignored."""
+    path = Path(path)
+    if not path.is_file():
+        raise ValueError(f"{path}: no such attempts file")
+    text = path.read_text()
+    if text and not text.endswith("\n"):
+        text = text[: text.rfind("\n") + 1]
+    reader = csv.DictReader(io.StringIO(text))
+    if reader.fieldnames is None:
+        return []
+    missing = [c for c in COLUMNS if c not in reader.fieldnames]
+    if missing:
+        raise ValueError(f"{path}: not an attempts.csv (missing columns {', '.join(missing)})")
+    return [_typed(r) for r in reader]
+
+
+def _typed(r: dict) -> dict:
+    out = {}
+    for k in COLUMNS:
+        v = r[k]
+        if k in INT_COLUMNS:
+            out[k] = int(v) if v != "" else None
+        elif k in FLOAT_COLUMNS:
+            out[k] = float(v) if v != "" else None
+        else:
+            out[k] = v
+    return out

@@ -1,0 +1,186 @@
+"""The experiment's protocol: conditions A-D, the methods, how grasps close, the seeds, and everything
+else that decides the results (written to protocol.json)."""
+from __future__ import annotations
+
+import dataclasses
+import hashlib
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ..io import PROTOCOL_FORMAT, read_document, resolve_object, sha256_file, test_objects
+from ..model import default_model_path
+from ..model.settings import METHODS, FeatureSettings, SynthesisOptions
+
+PROTOCOL_NAME = "protocol.json"
+
+
+@dataclass(frozen=True)
+class Condition:
+    name: str
+    noise: bool
+    optimise: bool
+    description: str
+
+
+CONDITIONS = {
+    "A": Condition("A", False, True, "no depth noise, with optimisation"),
+    "B": Condition("B", True, True, "depth noise, with optimisation"),
+    "C": Condition("C", False, False, "no depth noise, no optimisation"),
+    "D": Condition("D", True, False, "depth noise, no optimisation"),
+}
+# How an executed grasp closes. "full": the fingers close, force-limited, until they stop on the object or
+# reach their closed limit, as a parallel gripper's grasp command does (the simulation's motor target is
+# pushed past the grasp joints far enough to be clamped to the closed limit). "learnt": the simulation's
+# default, a target 0.5 x (grasp - pregrasp) past the synthesised grasp joints; with a configuration
+# model learnt from one 6 cm box, the fingers then stop about 4.4 cm apart and cannot hold anything
+# narrower, whatever the method.
+CLOSING = {"full": {"close_overshoot": 1000.0}, "learnt": {}}
+PRESETS = ("smoke", "paper")
+# The smoke preset's objects: three of the test set with different shapes (a mug, a small block-like
+# part, an elongated part), so the smoke run exercises more than one kind of grasp.
+SMOKE_OBJECTS = 3
+# The known support plane of an acquired scene (z = 0, the object on its positive side).
+SUPPORT_PLANE = (0.0, 0.0, 1.0, 0.0)
+
+
+def derive_seed(*parts) -> int:
+    """A 31-bit seed from the parts' text (BLAKE2b): the same in every process and on every machine."""
+    text = "\x1f".join(str(p) for p in parts).encode()
+    return int.from_bytes(hashlib.blake2b(text, digest_size=8).digest(), "little") & 0x7FFFFFFF
+
+
+@dataclass
+class Protocol:
+    """Everything that decides an experiment's results. Two runs with equal protocols give equal rows."""
+
+    objects: list[str]
+    trials: int = 10
+    conditions: list[str] = field(default_factory=lambda: list(CONDITIONS))
+    methods: list[str] = field(default_factory=lambda: list(METHODS))
+    n_samples: int = SynthesisOptions.n_samples  # grasps sampled and ranked per attempt
+    n_optimise: int = SynthesisOptions.n_optimise  # the best this many are annealed (conditions with optimisation)
+    annealing_iterations: int = 100  # the paper's 100 (= C++ AnnealingSettings::iterations)
+    initial_temperature: float = 1.0  # the paper's 1.0, linear decay (= C++ AnnealingSettings)
+    query_samples: int = SynthesisOptions.query_samples  # N_Q samples per link for the query densities
+    # m: the acquisition's clean-up keeps points at least this high above the support plane z = 0. The
+    # synthesis then drops every point within the model's FeatureSettings.plane_distance (5 mm) of that
+    # plane, so the cut that decides what the methods see is effective_min_height (5 mm), not this; this
+    # value only decides the n_points column (points after the acquisition's clean-up).
+    min_height: float = 0.004
+    closing: str = "full"  # how the executed grasp closes: see CLOSING
+    seed: int = 0  # base of every derived seed
+    models: dict = field(default_factory=dict)  # method -> model file; empty: the bundled box models
+
+    def __post_init__(self):
+        self.validate()
+
+    @classmethod
+    def preset(cls, name: str, **overrides) -> "Protocol":
+        """"paper": the 60 test objects, 10 trials, A-D, GMM and KDE. "smoke": the same with 3 objects and
+        2 trials (minutes, for tests and a first look)."""
+        if name not in PRESETS:
+            raise ValueError(f"preset must be one of {', '.join(PRESETS)}, got {name!r}")
+        objects = test_objects()
+        if name == "smoke":
+            kw = dict(objects=objects[:SMOKE_OBJECTS], trials=2)
+        else:
+            kw = dict(objects=objects, trials=10)
+        kw.update({k: v for k, v in overrides.items() if v is not None})
+        return cls(**kw)
+
+    @property
+    def effective_min_height(self) -> float:
+        """m: the height above the support plane below which no point reaches the synthesis: the larger of
+        min_height and the synthesis' plane cut (FeatureSettings.plane_distance, which model files do not
+        store, so the default; the cut keeps points strictly above it)."""
+        return max(self.min_height, FeatureSettings.plane_distance)
+
+    def validate(self) -> None:
+        self._validate_lists()
+        for name in ("n_samples", "n_optimise", "annealing_iterations", "query_samples"):
+            if int(getattr(self, name)) < 1:
+                raise ValueError(f"{name} must be at least 1, got {getattr(self, name)}")
+        if self.closing not in CLOSING:
+            raise ValueError(f"closing must be one of {', '.join(CLOSING)}, got {self.closing!r}")
+        for m in self.models:
+            if m not in METHODS:
+                raise ValueError(f"models: unknown method {m!r}")
+
+    def _validate_lists(self) -> None:
+        if not self.objects:
+            raise ValueError("the protocol has no objects")
+        if len(set(self.objects)) != len(self.objects):
+            dup = sorted({o for o in self.objects if self.objects.count(o) > 1})
+            raise ValueError(f"objects are listed twice: {', '.join(dup)}")
+        if not isinstance(self.trials, int) or self.trials < 1:
+            raise ValueError(f"trials must be a positive integer, got {self.trials!r}")
+        for what, values, known in (("condition", self.conditions, CONDITIONS), ("method", self.methods, METHODS)):
+            if not values:
+                raise ValueError(f"no {what}s given")
+            for v in values:
+                if v not in known:
+                    raise ValueError(f"unknown {what} {v!r} (known: {', '.join(known)})")
+            if len(set(values)) != len(values):
+                raise ValueError(f"a {what} is listed twice: {','.join(values)}")
+
+    def check_inputs(self) -> None:
+        """Every object and model file exists and loads: raises ValueError before any work starts."""
+        missing = []
+        for o in self.objects:
+            try:
+                resolve_object(o)
+            except ValueError:
+                missing.append(o)
+        if missing:
+            raise ValueError(f"{len(missing)} object(s) not found (neither a file nor in pybullet_data): "
+                             + ", ".join(missing[:5]) + (" ..." if len(missing) > 5 else ""))
+        for m in self.methods:
+            path = self.model_path(m)
+            if not path.is_file():
+                raise ValueError(f"{path}: no such {m} model file")
+
+    def model_path(self, method: str) -> Path:
+        return Path(self.models[method]) if method in self.models else default_model_path(method)
+
+    def to_json(self) -> dict:
+        """The protocol as written to protocol.json; models are identified by content (sha256), not path."""
+        d = dataclasses.asdict(self)
+        d["models"] = {m: {"file": self.model_path(m).name, "sha256": sha256_file(self.model_path(m))}
+                       for m in self.methods}
+        d["condition_definitions"] = {c: dataclasses.asdict(CONDITIONS[c]) for c in self.conditions}
+        return d
+
+    # -- the work
+    def units(self) -> list[tuple[str, int, bool]]:
+        """(object, trial, noise) work units in a fixed order."""
+        noises = sorted({CONDITIONS[c].noise for c in self.conditions})
+        return [(o, t, n) for o in self.objects for t in range(self.trials) for n in noises]
+
+    def attempts(self, unit) -> list[tuple[str, int, str, str]]:
+        o, t, noise = unit
+        return [(o, t, c, m) for c in self.conditions if CONDITIONS[c].noise == noise for m in self.methods]
+
+    def all_attempts(self) -> list[tuple[str, int, str, str]]:
+        return [a for u in self.units() for a in self.attempts(u)]
+
+    def acquisition_seed(self, obj: str, trial: int) -> int:
+        return derive_seed(self.seed, "acquisition", obj, trial)
+
+    def synthesis_seed(self, obj: str, trial: int, condition: str) -> int:
+        return derive_seed(self.seed, "synthesis", obj, trial, condition)
+
+
+PROTOCOL_FIELDS = [f.name for f in dataclasses.fields(Protocol)]
+
+
+def protocol_from_json(d: dict) -> Protocol:
+    """The Protocol of a protocol.json's "protocol" entry (model paths are not in it: the defaults)."""
+    return Protocol(**{k: d[k] for k in PROTOCOL_FIELDS if k in d and k != "models"})
+
+
+def load_protocol(run_dir: str | Path) -> dict:
+    """A run folder's protocol.json (format graspmix.experiment/1)."""
+    path = Path(run_dir) / PROTOCOL_NAME
+    if not path.is_file():
+        raise ValueError(f"{run_dir}: no {PROTOCOL_NAME} (not an experiment folder)")
+    return read_document(path, PROTOCOL_FORMAT)

@@ -1,0 +1,98 @@
+"""Statistics of the paper's experiment: success rates over trials and the paired t-test GMM vs KDE.
+
+The unit of replication is the trial (the paper repeats the whole object set 10 times): a trial's
+success rate is the fraction of objects whose best grasp held. Confidence intervals of a mean over
+trials use Student's t distribution with n - 1 degrees of freedom; the paired test is scipy's
+``ttest_rel`` (two-tailed), and its interval is that of the mean of the per-trial differences.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass
+
+import numpy as np
+
+
+@dataclass
+class MeanCI:
+    """Mean of n values with its (1 - alpha) confidence interval from the t distribution."""
+
+    mean: float
+    low: float
+    high: float
+    std: float  # sample standard deviation (ddof = 1); nan for n < 2
+    n: int
+    confidence: float
+
+    def to_dict(self) -> dict:
+        return asdict(self)
+
+
+@dataclass
+class PairedTTest:
+    """Two-tailed paired t-test of a against b (differences a - b)."""
+
+    mean_difference: float
+    ci_low: float
+    ci_high: float
+    t: float
+    p: float
+    df: int
+    n: int
+    confidence: float
+
+    def to_dict(self) -> dict:
+        return asdict(self)
+
+
+def _values(x, what: str) -> np.ndarray:
+    v = np.asarray(x, dtype=float)
+    if v.ndim != 1 or len(v) == 0:
+        raise ValueError(f"{what}: expected a non-empty 1-D sequence of numbers, got shape {v.shape}")
+    if not np.all(np.isfinite(v)):
+        raise ValueError(f"{what}: values must be finite")
+    return v
+
+
+def _check_confidence(confidence: float) -> None:
+    if not 0.0 < confidence < 1.0:
+        raise ValueError(f"confidence must be in (0, 1), got {confidence}")
+
+
+def mean_ci(x, confidence: float = 0.95) -> MeanCI:
+    """The mean of x and its t-distribution confidence interval (nan bounds for a single value)."""
+    from scipy import stats
+
+    _check_confidence(confidence)
+    v = _values(x, "x")
+    n = len(v)
+    m = float(v.mean())
+    if n < 2:
+        return MeanCI(m, math.nan, math.nan, math.nan, n, confidence)
+    sd = float(v.std(ddof=1))
+    half = float(stats.t.ppf(0.5 + confidence / 2.0, n - 1)) * sd / math.sqrt(n)
+    return MeanCI(m, m - half, m + half, sd, n, confidence)
+
+
+def paired_ttest(a, b, confidence: float = 0.95) -> PairedTTest:
+    """Two-tailed paired t-test of a vs b (scipy.stats.ttest_rel) with the mean difference a - b and its
+    confidence interval. Identical samples give t = nan, p = nan (scipy's answer: no variance to test)."""
+    from scipy import stats
+
+    _check_confidence(confidence)
+    a = _values(a, "a")
+    b = _values(b, "b")
+    if a.shape != b.shape:
+        raise ValueError(f"paired samples must have the same length, got {len(a)} and {len(b)}")
+    if len(a) < 2:
+        raise ValueError("a paired t-test needs at least 2 pairs")
+    d = a - b
+    ci = mean_ci(d, confidence)
+    if np.ptp(d) <= 1e-12 * max(1.0, float(np.max(np.abs(d)))):
+        # No spread of the differences (up to rounding: rates are fractions k / n computed in floating
+        # point): scipy would return nan, or a huge t from the rounding noise; say so plainly.
+        t, p = (math.nan, math.nan) if abs(d[0]) <= 1e-12 else (math.copysign(math.inf, d[0]), 0.0)
+    else:
+        res = stats.ttest_rel(a, b)
+        t, p = float(res.statistic), float(res.pvalue)
+    return PairedTTest(ci.mean, ci.low, ci.high, t, p, len(a) - 1, len(a), confidence)

@@ -1,0 +1,47 @@
+"""Numbers from files: (N, d) arrays (.npy, .csv, whitespace text) and point clouds as (N, 3) arrays."""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+
+def load_array(path) -> np.ndarray:
+    """A non-empty 2-D float array from .npy, .csv or whitespace-separated text."""
+    p = Path(path)
+    if not p.is_file():
+        raise ValueError(f"{path}: no such file")
+    try:
+        if p.suffix == ".npy":
+            data = np.load(p, allow_pickle=False)
+        else:
+            data = np.loadtxt(p, delimiter="," if p.suffix == ".csv" else None, ndmin=2)
+    except (ValueError, OSError) as e:
+        raise ValueError(f"{path}: cannot read numbers ({e})") from None
+    if data.ndim != 2 or data.shape[0] == 0:
+        raise ValueError(f"{path}: expected a non-empty 2-D array, got shape {data.shape}")
+    return np.asarray(data, dtype=float)
+
+
+def as_points(cloud) -> np.ndarray:
+    """An (N, 3) float array of points, N > 0; ValueError naming the problem otherwise."""
+    try:
+        pts = np.asarray(cloud, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError("cloud must be a file path or an (N, 3) array of points") from None
+    if pts.ndim != 2 or pts.shape[1] != 3:
+        raise ValueError(f"cloud must be an (N, 3) array, got shape {pts.shape}")
+    if len(pts) == 0:
+        raise ValueError("cloud is empty")
+    return pts
+
+
+def load_points(cloud):
+    """(points (N, 3), name, viewpoint or None) of a cloud given as a file (PCD/PLY/npy: its VIEWPOINT
+    is returned when the file has one) or as an array."""
+    from .. import _core
+
+    if isinstance(cloud, (str, Path)):
+        loaded = _core.load_cloud(str(cloud))
+        return loaded.points, str(cloud), (loaded.viewpoint[:3] if loaded.has_viewpoint else None)
+    return as_points(cloud), "<array>", None

@@ -1,0 +1,71 @@
+"""Where files are: the bundled data folder (found here and nowhere else), paths written into graspmix
+files (package://graspmix/..., absolute, or relative to the file), and object URDFs (a path, or relative
+to pybullet_data)."""
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+PACKAGE_PREFIX = "package://graspmix/"
+
+# This file is graspmix/io/paths.py: the package folder is one level up, the source tree's data/ three.
+_PACKAGE = Path(__file__).resolve().parent.parent
+
+
+def data_path(*parts: str) -> Path:
+    """A file of the bundled data (hands, demonstrations, default models, example clouds, object lists)."""
+    for root in (_PACKAGE / "data", _PACKAGE.parent.parent / "data"):  # installed package, then source tree
+        if root.is_dir():
+            return root.joinpath(*parts)
+    raise FileNotFoundError("graspmix's bundled data folder is missing from this installation")
+
+
+def default_hand_path() -> Path:
+    """The bundled WSG 50 URDF."""
+    return data_path("hands", "wsg50.urdf")
+
+
+def resolve_path(path_text: str, base: Path) -> Path:
+    """A path from a file: package://graspmix/... (the bundled data), absolute, or relative to the file's
+    folder `base` (then to the bundled data)."""
+    if path_text.startswith(PACKAGE_PREFIX):
+        return data_path(path_text[len(PACKAGE_PREFIX):])
+    p = Path(path_text)
+    if p.is_absolute():
+        return p
+    for candidate in (base / p, data_path(path_text)):
+        if candidate.exists():
+            return candidate.resolve()
+    return (base / p).resolve()
+
+
+def relative_path(target: Path, base: Path) -> str:
+    """How a file in folder `base` refers to target: package://graspmix/... for the bundled data, else
+    relative to base when it can be (keeps files movable with their data), else absolute."""
+    root = data_path().resolve()
+    try:
+        return PACKAGE_PREFIX + Path(target).resolve().relative_to(root).as_posix()
+    except ValueError:
+        pass
+    try:
+        return os.path.relpath(Path(target).resolve(), Path(base).resolve())
+    except ValueError:
+        return str(Path(target).resolve())
+
+
+def pybullet_data_path() -> Path:
+    """pybullet_data's folder (the WSG 50 meshes, the test objects)."""
+    import pybullet_data
+
+    return Path(pybullet_data.getDataPath())
+
+
+def resolve_object(path: str | Path) -> Path:
+    """An object URDF: an existing path, or a path relative to pybullet_data (e.g. random_urdfs/012/012.urdf)."""
+    p = Path(path)
+    if p.is_file():
+        return p.resolve()
+    q = pybullet_data_path() / p
+    if q.is_file():
+        return q
+    raise ValueError(f"{path}: no such object file (looked in the working directory and in pybullet_data)")

@@ -1,0 +1,24 @@
+"""The grasp model layer: demonstrations, learning contact and configuration models, GraspModel and its
+synthesis, Grasp and GraspSet (grasps.json), experts, and the settings with their defaults.
+
+Also the module path ``graspmix.model`` of earlier versions: every name it had is here.
+"""
+from ..io import DEMO_FORMAT, GRASPS_FORMAT, MODEL_FORMAT, PACKAGE_PREFIX, data_path
+from .demonstration import Demonstration
+from .experts import expert
+from .grasp_model import GraspModel, default_model_path, learn
+from .grasps import EXECUTION_KEYS, STAGE_LABELS, STAGES, Grasp, GraspSet, grasp_by_rank, load_grasps
+from .settings import (
+    DEFAULT_DISAGREEMENTS,
+    METHOD_LABELS,
+    METHODS,
+    FeatureSettings,
+    LearnSettings,
+    SynthesisOptions,
+    check_method,
+)
+
+__all__ = ["DEMO_FORMAT", "GRASPS_FORMAT", "MODEL_FORMAT", "PACKAGE_PREFIX", "METHODS", "METHOD_LABELS",
+           "EXECUTION_KEYS", "STAGES", "STAGE_LABELS", "DEFAULT_DISAGREEMENTS", "data_path", "default_model_path",
+           "Demonstration", "FeatureSettings", "LearnSettings", "SynthesisOptions", "Grasp", "GraspSet",
+           "GraspModel", "learn", "expert", "check_method", "load_grasps", "grasp_by_rank"]

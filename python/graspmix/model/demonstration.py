@@ -1,0 +1,62 @@
+"""One demonstrated grasp and its file (format graspmix.demo/1)."""
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .. import _core
+from ..io import DEMO_FORMAT, read_document, relative_path, require_field, resolve_path
+
+
+@dataclass
+class Demonstration:
+    """One demonstrated grasp: a hand, the object's cloud, the wrist pose and the pre-grasp/grasp joints."""
+
+    hand_path: Path
+    cloud: np.ndarray
+    T_world_wrist: np.ndarray
+    pregrasp_joints: dict
+    grasp_joints: dict
+    cloud_path: Path | None = None
+    source: Path | None = None
+
+    @classmethod
+    def load(cls, path: str | Path) -> "Demonstration":
+        path = Path(path)
+        data = read_document(path, DEMO_FORMAT)
+        base = path.resolve().parent
+        hand = resolve_path(require_field(data, "hand", path, str), base)
+        cloud, cloud_path = _cloud(require_field(data, "cloud", path), base, path)
+        wrist = np.asarray(require_field(data, "T_world_wrist", path, list), dtype=float)
+        if wrist.shape != (7,) or not np.all(np.isfinite(wrist)):
+            raise ValueError(f"{path}: 'T_world_wrist' must be 7 finite numbers [x, y, z, qx, qy, qz, qw]")
+        pre = require_field(data, "pregrasp_joints", path, dict)
+        grasp = require_field(data, "grasp_joints", path, dict)
+        return cls(hand, cloud, wrist, pre, grasp, cloud_path, path.resolve())
+
+    def save(self, path: str | Path, inline_cloud: bool = False) -> None:
+        path = Path(path)
+        base = path.resolve().parent
+        data = {"format": DEMO_FORMAT, "hand": relative_path(self.hand_path, base)}
+        if inline_cloud or self.cloud_path is None:
+            data["cloud"] = np.round(self.cloud, 6).tolist()
+        else:
+            data["cloud"] = relative_path(self.cloud_path, base)
+        data["T_world_wrist"] = [float(x) for x in self.T_world_wrist]
+        data["pregrasp_joints"] = {k: float(v) for k, v in self.pregrasp_joints.items()}
+        data["grasp_joints"] = {k: float(v) for k, v in self.grasp_joints.items()}
+        path.write_text(json.dumps(data, indent=1) + "\n")
+
+
+def _cloud(value, base: Path, path: Path):
+    """(points, path or None) of a demonstration's "cloud": a file path or inline [x, y, z] rows."""
+    if isinstance(value, str):
+        cloud_path = resolve_path(value, base)
+        return _core.load_cloud(str(cloud_path)).points, cloud_path
+    cloud = np.asarray(value, dtype=float)
+    if cloud.ndim != 2 or cloud.shape[1] != 3 or len(cloud) == 0:
+        raise ValueError(f"{path}: inline 'cloud' must be a non-empty list of [x, y, z]")
+    return cloud, None

@@ -1,0 +1,65 @@
+"""Experts of the product a grasp is ranked by: user-defined ones from Python functions, and the
+standard set a synthesis builds (collision, kinematic feasibility, approach axis)."""
+from __future__ import annotations
+
+from typing import Callable, Iterable
+
+import numpy as np
+
+from .. import _core
+from .settings import SynthesisOptions
+
+
+def expert(name: str, fn: Callable, kind: str = "probability") -> "_core.Expert":
+    """A user-defined expert from a Python function of a batch: fn(wrists (N, 7), joints (N, D)) returning
+    probabilities in [0, 1] (kind="probability"), booleans (kind="hard": False rejects), or log values
+    (kind="log")."""
+    if kind not in ("probability", "hard", "log"):
+        raise ValueError(f"kind must be 'probability', 'hard' or 'log', got {kind!r}")
+
+    def log_value(wrists, joints):
+        v = np.asarray(fn(wrists, joints))
+        if v.shape != (len(wrists),):
+            raise ValueError(f"expert '{name}' returned shape {v.shape} for {len(wrists)} grasps")
+        if kind == "log":
+            return v.astype(float)
+        if kind == "hard":
+            return np.where(v.astype(bool), 0.0, -np.inf)
+        v = v.astype(float)
+        if np.any((v < 0) | (v > 1)) or np.any(np.isnan(v)):
+            raise ValueError(f"expert '{name}' returned values outside [0, 1]")
+        with np.errstate(divide="ignore"):
+            return np.log(v)
+
+    return _core.FunctionExpert(name, log_value)
+
+
+def oriented_plane(plane, points):
+    """The plane with its sign chosen so the object's points are on its positive side."""
+    if plane is None:
+        return None
+    n = np.asarray(plane, float)
+    if np.mean(points @ n[:3] + n[3]) < 0:
+        n = -n
+    return n
+
+
+def collision_expert(hand, points, plane, opts: SynthesisOptions) -> "_core.CollisionExpert":
+    """W on the query cloud and the support plane; depths up to contact_tolerance are touching."""
+    return _core.CollisionExpert(hand, points, plane=plane, beta=opts.collision_beta,
+                                 contact_tolerance=opts.contact_tolerance, inside_weight=opts.collision_inside_weight)
+
+
+def constraint_experts(hand, points, plane, opts: SynthesisOptions, *, approach_axis=None,
+                       reachable: Callable | None = None, experts: Iterable = ()) -> list:
+    """The kinematic expert (joint limits, support plane, reachability), the approach-axis expert, then
+    the caller's experts, in this order."""
+    out = []
+    if opts.kinematic:
+        out.append(_core.KinematicFeasibilityExpert(hand, plane=oriented_plane(plane, points), reachable=reachable))
+    elif reachable is not None:
+        raise ValueError("reachable needs the kinematic expert (kinematic=True)")
+    if approach_axis is not None:
+        out.append(_core.AxisAlignmentExpert(np.asarray(approach_axis, float), concentration=opts.approach_concentration))
+    out.extend(experts)
+    return out

@@ -1,0 +1,65 @@
+"""Grasp: the one definition of a grasps.json entry; it round-trips the old dictionaries exactly and
+still reads like one."""
+import json
+
+import numpy as np
+import pytest
+
+import graspmix
+from graspmix.model import Grasp, GraspSet, grasp_by_rank, load_grasps
+
+# An entry as GraspSet wrote it before Grasp existed (and as grasps.json holds it).
+OLD_ENTRY = {"rank": 1, "T_world_wrist": [0.01, -0.02, 0.2, 1.0, 0.0, 0.0, 0.0],
+             "pregrasp_joints": {"finger_left_joint": 0.05}, "grasp_joints": {"finger_left_joint": 0.03},
+             "log_likelihood": -12.5, "optimised": True,
+             "experts": {"collision": 0.0, "config": -1.5, "pregrasp_clear": 0.0, "contact/palm": -3.0,
+                         "kinematic": 0.0}}
+
+
+def test_round_trip_is_the_old_layout():
+    g = Grasp.from_dict(OLD_ENTRY)
+    assert g.to_dict() == OLD_ENTRY
+    assert list(g.to_dict()) == list(OLD_ENTRY)  # same key order as before
+    assert json.dumps(g.to_dict()) == json.dumps(OLD_ENTRY)
+    assert Grasp.from_dict(g.to_dict()) == g
+    # Fields a newer writer adds survive, after the known ones.
+    newer = dict(OLD_ENTRY, object="mug", tcp=[0, 0, 0.1])
+    assert Grasp.from_dict(newer).to_dict() == newer
+    # Only what execution needs, in the layout of the experiment's CSV column.
+    assert g.to_dict(execution_only=True) == {k: OLD_ENTRY[k] for k in ("T_world_wrist", "pregrasp_joints", "grasp_joints")}
+
+
+def test_reads_like_the_old_dictionary():
+    g = Grasp.from_dict(OLD_ENTRY)
+    assert g["T_world_wrist"] == OLD_ENTRY["T_world_wrist"] and g.T_world_wrist is g["T_world_wrist"]
+    assert g["experts"]["config"] == -1.5 and g.get("missing") is None and "rank" in g
+    assert dict(g) == OLD_ENTRY and g == OLD_ENTRY
+    moved = dict(g, T_world_wrist=[0.1, *g["T_world_wrist"][1:]])  # as the frame test moves a grasp
+    assert moved["T_world_wrist"][0] == 0.1 and g["T_world_wrist"][0] == 0.01
+    g["rank"] = 3
+    assert g.rank == 3
+    bare = Grasp([0, 0, 0, 0, 0, 0, 1], {"j": 0.0}, {"j": 0.0})
+    assert "rank" not in bare and list(bare) == ["T_world_wrist", "pregrasp_joints", "grasp_joints"]
+    with pytest.raises(KeyError):
+        bare["log_likelihood"]
+    with pytest.raises(ValueError, match="no 'grasp_joints'"):
+        Grasp.from_dict({"T_world_wrist": [0] * 7, "pregrasp_joints": {}})
+
+
+def test_synthesised_grasps_are_grasps_in_the_old_layout(tmp_path):
+    model = graspmix.GraspModel.load(graspmix.default_model_path("gmm"))
+    grasps = model.synthesize(graspmix.data_path("mug.pcd"), n_samples=30, optimise=False, seed=0)
+    best = grasps.best()
+    assert isinstance(best, Grasp) and best.rank == 1
+    assert list(best) == list(OLD_ENTRY)
+    assert len(best["T_world_wrist"]) == 7 and all(type(x) is float for x in best["T_world_wrist"])
+    assert set(best["experts"]) >= {"collision", "config", "pregrasp_clear", "kinematic"}
+    # grasps.json: the same entries, read back as dictionaries sorted by rank.
+    grasps.save(tmp_path / "g.json")
+    doc = load_grasps(tmp_path / "g.json")
+    finite = [g for g in grasps if np.isfinite(g["log_likelihood"])]
+    assert doc["grasps"][: len(finite)] == [g.to_dict() for g in finite]
+    assert grasp_by_rank(doc, 2) == grasps[1] and grasp_by_rank(grasps, 2) is grasps[1]
+    # A GraspSet of plain dictionaries (built by hand, as before) still saves.
+    GraspSet([dict(OLD_ENTRY)], model.hand_path, "gmm", "", {}).save(tmp_path / "d.json")
+    assert load_grasps(tmp_path / "d.json")["grasps"] == [OLD_ENTRY]

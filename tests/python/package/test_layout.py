@@ -1,0 +1,172 @@
+"""The package's shape: subpackages import only from lower layers, no module imports another's private
+names, no import cycle, and every module path of earlier versions still gives its names. Read from the
+source with ast (nothing imported for the structural checks)."""
+import ast
+import importlib
+from pathlib import Path
+
+import pytest
+
+import graspmix
+
+ROOT = Path(graspmix.__file__).resolve().parent
+# Lower number = lower layer. A subpackage imports from itself, from lower layers and from the C++ core;
+# sim and viz are peers that do not import each other. The package's __init__ and the deprecated alias
+# modules (the facade) may import anything, and nothing in a subpackage imports them.
+LAYERS = {"io": 0, "model": 1, "sim": 2, "viz": 2, "experiment": 3, "cli": 4}
+FACADE = {"graspmix", "graspmix.acquisition", "graspmix.demo", "graspmix.plots", "graspmix.report", "graspmix.stats"}
+# Module paths of earlier versions and the names each had (read from the last flat layout).
+OLD_NAMES = {
+    "graspmix.acquisition": ["Acquisition", "AcquisitionSettings", "Camera", "Scene", "acquire", "apply_noise",
+                             "back_project", "clean_up", "plot_depth_images", "pybullet_data_path", "resolve_object",
+                             "ring_cameras"],
+    "graspmix.cli": ["CliError", "DATA", "build_parser", "main"],
+    "graspmix.demo": ["AcquisitionSettings", "Demonstration", "Scene", "acquire", "record_demonstration"],
+    "graspmix.experiment": ["AttemptLog", "CLOSING", "COLUMNS", "CONDITIONS", "CSV_NAME", "Condition", "KEY_COLUMNS",
+                            "METHODS", "PRESETS", "PROTOCOL_FORMAT", "PROTOCOL_NAME", "Progress", "Protocol",
+                            "RESULT_COLUMNS", "SMOKE_OBJECTS", "STAGES", "STAGE_LABELS", "TIME_COLUMNS", "benchmark",
+                            "crop_above_plane", "derive_seed", "format_benchmark", "git_commit", "load_protocol",
+                            "prepare_folder", "read_objects_file", "read_rows", "run", "run_unit"],
+    "graspmix.model": ["DEMO_FORMAT", "Demonstration", "FeatureSettings", "GRASPS_FORMAT", "GraspModel", "GraspSet",
+                       "METHODS", "MODEL_FORMAT", "PACKAGE_PREFIX", "data_path", "default_model_path", "expert", "learn"],
+    "graspmix.plots": ["plot_grasps", "plot_surface_features"],
+    "graspmix.report": ["COLOURS", "CONDITIONS", "CSV_NAME", "METHODS", "METHOD_LABELS", "REASONS", "STAGES",
+                        "STAGE_COLOURS", "STAGE_LABELS", "SUMMARY_FORMAT", "build_report", "findings_table",
+                        "load_protocol", "mean_ci", "outcomes_table", "paired_ttest", "plot_runtime", "plot_success",
+                        "read_rows", "runtime_table", "summarize"],
+    "graspmix.sim": ["AcquisitionSettings", "DATA", "GRASPS_FORMAT", "Scene", "SimObject", "SimResult", "SimSettings",
+                     "default_hand_path", "execute", "execute_file", "execute_pybullet", "grasp_by_rank", "load_grasps",
+                     "load_hand", "load_object", "make_settings", "resolve_object", "rest_pose", "result_dict",
+                     "test_objects", "top_grasp"],
+    "graspmix.stats": ["MeanCI", "PairedTTest", "mean_ci", "paired_ttest"],
+}
+
+
+def _modules():
+    """module name -> (path, is package __init__)"""
+    out = {}
+    for p in sorted(ROOT.rglob("*.py")):
+        parts = list(p.relative_to(ROOT.parent).with_suffix("").parts)
+        is_pkg = parts[-1] == "__init__"
+        if is_pkg:
+            parts = parts[:-1]
+        out[".".join(parts)] = (p, is_pkg)
+    return out
+
+
+MODULES = _modules()
+
+
+def _imports(name):
+    """(target module, imported name or None, line) of every import in a module, relative ones resolved."""
+    path, is_pkg = MODULES[name]
+    package = name if is_pkg else name.rpartition(".")[0]
+    for node in ast.walk(ast.parse(path.read_text())):
+        if isinstance(node, ast.Import):
+            for a in node.names:
+                yield a.name, None, node.lineno
+        elif isinstance(node, ast.ImportFrom):
+            if node.level:
+                base = package.split(".")
+                base = base[: len(base) - (node.level - 1)]
+                module = ".".join(base + ([node.module] if node.module else []))
+            else:
+                module = node.module
+            for a in node.names:
+                sub = f"{module}.{a.name}"
+                # `from pkg import submodule` imports the submodule.
+                is_module = sub in MODULES or sub == "graspmix._core"
+                yield (sub, None, node.lineno) if is_module else (module, a.name, node.lineno)
+
+
+def _layer(module):
+    parts = module.split(".")
+    return parts[1] if len(parts) > 1 and parts[1] in LAYERS else None
+
+
+def test_every_subpackage_is_in_the_layer_table():
+    found = {m.split(".")[1] for m in MODULES if m.count(".") >= 1 and MODULES[m][1]}
+    assert found == set(LAYERS)
+
+
+def test_no_import_runs_from_a_lower_layer_to_a_higher_one():
+    bad = []
+    for name in MODULES:
+        own = _layer(name)
+        if own is None:
+            continue
+        for target, _, line in _imports(name):
+            if not target.startswith("graspmix") or target == "graspmix._core":
+                continue
+            if target in FACADE:
+                bad.append(f"{name}:{line} imports the facade {target}")
+                continue
+            other = _layer(target)
+            if other is not None and other != own and not LAYERS[other] < LAYERS[own]:
+                bad.append(f"{name}:{line} ({own}) imports {target} ({other})")
+    assert not bad, "\n".join(bad)
+
+
+def test_no_module_imports_a_private_name_of_another():
+    bad = [f"{name}:{line} imports {n} from {target}" for name in MODULES for target, n, line in _imports(name)
+           if target.startswith("graspmix") and n is not None and n.startswith("_") and n != "_core"]
+    assert not bad, "\n".join(bad)
+
+
+def test_no_import_cycle():
+    graph = {name: set() for name in MODULES}
+    for name in MODULES:
+        for target, _, _ in _imports(name):
+            if target in MODULES and target != name:
+                graph[name].add(target)
+    # A package's __init__ gathers its submodules: edges from a submodule to its own package's __init__
+    # would be a cycle, and are reported like any other.
+    state, stack = {}, []
+
+    def visit(n):
+        state[n] = "open"
+        stack.append(n)
+        for m in sorted(graph[n]):
+            if state.get(m) == "open":
+                raise AssertionError("import cycle: " + " -> ".join(stack[stack.index(m):] + [m]))
+            if m not in state:
+                visit(m)
+        stack.pop()
+        state[n] = "done"
+
+    for n in sorted(graph):
+        if n not in state:
+            visit(n)
+
+
+@pytest.mark.parametrize("module", sorted(OLD_NAMES))
+def test_old_module_paths_still_give_their_names(module):
+    mod = importlib.import_module(module)
+    missing = [n for n in OLD_NAMES[module] if not hasattr(mod, n)]
+    assert not missing, f"{module} lost {missing}"
+
+
+def test_old_names_are_the_new_objects():
+    from graspmix import experiment, report, sim, stats
+
+    assert report.build_report is experiment.report.build_report
+    assert stats.paired_ttest is experiment.stats.paired_ttest
+    assert graspmix.acquisition.acquire is sim.acquisition.acquire
+    assert sim.test_objects is graspmix.io.test_objects
+    assert report._md_table is report.md_table  # the old private name scripts used
+
+
+def test_deprecated_aliases_say_so_and_do_not_warn(recwarn):
+    for name in ("graspmix.acquisition", "graspmix.demo", "graspmix.plots", "graspmix.report", "graspmix.stats"):
+        mod = importlib.reload(importlib.import_module(name))
+        assert "Deprecated module path" in mod.__doc__
+    assert not [w for w in recwarn if issubclass(w.category, DeprecationWarning)]
+
+
+def test_files_and_functions_stay_short():
+    long_files = [f"{n}: {len(p.read_text().splitlines())} lines" for n, (p, _) in MODULES.items()
+                  if len(p.read_text().splitlines()) > 500]
+    long_functions = [f"{n}.{f.name}: {f.end_lineno - f.lineno + 1} lines" for n, (p, _) in MODULES.items()
+                      for f in ast.walk(ast.parse(p.read_text()))
+                      if isinstance(f, ast.FunctionDef) and f.end_lineno - f.lineno + 1 > 80]
+    assert not long_files and not long_functions, long_files + long_functions

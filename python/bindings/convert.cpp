@@ -2,6 +2,7 @@
 #include <map>
 
 #include "common.hpp"
+#include "graspmix/core/se3.hpp"
 
 namespace graspmix::py_bind {
 

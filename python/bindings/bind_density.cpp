@@ -1,6 +1,7 @@
 #include <random>
 
 #include "common.hpp"
+#include "settings.hpp"
 #include "graspmix/density/gmm.hpp"
 #include "graspmix/density/kde.hpp"
 #include "graspmix/density/pose_mixture.hpp"
@@ -48,18 +49,6 @@ std::vector<int> to_dims(const py::object& obj, const char* name) {
   }
 }
 
-GmmSettings gmm_settings(int n_components, double reg_covar, int max_iter, double tol, int n_init,
-                         const py::object& seed) {
-  GmmSettings s;
-  s.n_components = n_components;
-  s.reg_covar = reg_covar;
-  s.max_iter = max_iter;
-  s.tol = tol;
-  s.n_init = n_init;
-  s.seed = to_seed(seed);
-  return s;
-}
-
 /// The methods every PoseDensity shares, bound once on the base class.
 void bind_pose_density_base(py::module_& m) {
   py::class_<PoseDensity, std::shared_ptr<PoseDensity>>(m, "PoseDensity",
@@ -96,14 +85,35 @@ void bind_pose_density_base(py::module_& m) {
 }  // namespace
 
 void bind_density(py::module_& m) {
+  SettingsClass<GmmSettings>(m, "GmmSettings", "How a GaussianMixture (or PoseMixture) is fitted by EM.")
+      .field("n_components", &GmmSettings::n_components, "K, the number of components")
+      .field("reg_covar", &GmmSettings::reg_covar, "added to every covariance diagonal (units of the data squared)")
+      .field("max_iter", &GmmSettings::max_iter, "EM iterations per initialisation")
+      .field("tol", &GmmSettings::tol, "convergence threshold on the change of the mean log-likelihood")
+      .field("n_init", &GmmSettings::n_init, "initialisations; the best lower bound wins")
+      .seed("seed", &GmmSettings::seed, "seeds the k-means++ initialisation (None: 0; never the clock)")
+      .done();
+
+  SettingsClass<KdeSettings>(m, "KdeSettings", "Kernel bandwidths of a PoseKDE (Kopicki et al. 2015).")
+      .field("position_bandwidth", &KdeSettings::position_bandwidth, "m: std of the position kernel")
+      .field("orientation_bandwidth", &KdeSettings::orientation_bandwidth,
+             "rad: approximate std of the rotation angle of the kernel")
+      .property(
+          "feature_bandwidth", [](const KdeSettings& s) { return s.feature_bandwidth; },
+          [](KdeSettings& s, const py::object& v) {
+            s.feature_bandwidth = v.is_none() ? Eigen::VectorXd() : to_vector(v, "feature_bandwidth");
+          },
+          "std per feature (units of the features): one value for all, one per feature, or empty (None) for 0.01")
+      .done();
+
   py::class_<GaussianMixture>(m, "GaussianMixture",
                               "Full-covariance Gaussian mixture fitted by weighted EM, named as scikit-learn's.")
-      .def(py::init([](int n_components, double reg_covar, int max_iter, double tol, int n_init, const py::object& seed) {
-             return GaussianMixture(gmm_settings(n_components, reg_covar, max_iter, tol, n_init, seed));
+      .def(py::init([](const py::object& settings, const py::kwargs& kw) {
+             return GaussianMixture(settings_from<GmmSettings>(settings, kw, "GaussianMixture"));
            }),
-           py::arg("n_components") = 1, py::arg("reg_covar") = 1e-6, py::arg("max_iter") = 100, py::arg("tol") = 1e-3,
-           py::arg("n_init") = 1, py::arg("seed") = py::none(),
-           "seed=None means seed 0: graspmix never seeds from the clock.")
+           py::arg("settings") = py::none(),
+           ("An unfitted mixture, e.g. GaussianMixture(n_components=3, seed=0).\n" + settings_doc<GmmSettings>()).c_str())
+      .def_property_readonly("settings", [](const GaussianMixture& g) { return GmmSettings(g.settings()); }, "The GmmSettings it fits with (a copy).")
       .def_static("from_parameters", &mixture_from, py::arg("weights"), py::arg("means"), py::arg("covariances"),
                   "A mixture from weights (K,), means (K, d), covariances (K, d, d).")
       .def(
@@ -173,11 +183,14 @@ void bind_density(py::module_& m) {
   py::class_<PoseMixture, PoseDensity, std::shared_ptr<PoseMixture>>(
       m, "PoseMixture",
       "The paper's mixture over (p, q, r), fitted in (p, log q, r): p(u|r) by conditioning, p(r) by marginalising.")
-      .def(py::init([](int n_components, double reg_covar, int max_iter, double tol, int n_init, const py::object& seed) {
-             return PoseMixture(gmm_settings(n_components, reg_covar, max_iter, tol, n_init, seed));
+      .def(py::init([](const py::object& settings, const py::kwargs& kw) {
+             return PoseMixture(settings_from<GmmSettings>(settings, kw, "PoseMixture", PoseMixture::default_settings()));
            }),
-           py::arg("n_components") = 2, py::arg("reg_covar") = 1e-6, py::arg("max_iter") = 100, py::arg("tol") = 1e-3,
-           py::arg("n_init") = 1, py::arg("seed") = py::none())
+           py::arg("settings") = py::none(),
+           ("An unfitted pose mixture. Its defaults are PoseMixture.default_settings() (the paper's K = 2), not\n"
+            "GmmSettings()'s.\n" + settings_doc<GmmSettings>(PoseMixture::default_settings())).c_str())
+      .def_static("default_settings", &PoseMixture::default_settings, "GmmSettings with the paper's K = 2 components.")
+      .def_property_readonly("settings", [](const PoseMixture& d) { return GmmSettings(d.settings()); }, "The GmmSettings it fits with (a copy).")
       .def(
           "fit",
           [](PoseMixture& d, const py::object& poses, const py::object& features, const py::object& weights) -> PoseMixture& {
@@ -216,16 +229,11 @@ void bind_density(py::module_& m) {
 
   py::class_<PoseKDE, PoseDensity, std::shared_ptr<PoseKDE>>(m, "PoseKDE",
                                    "Kopicki et al. 2015's non-parametric density: one weighted kernel per data point.")
-      .def(py::init([](double position_bandwidth, double orientation_bandwidth, const py::object& feature_bandwidth) {
-             KdeSettings s;
-             s.position_bandwidth = position_bandwidth;
-             s.orientation_bandwidth = orientation_bandwidth;
-             if (!feature_bandwidth.is_none()) s.feature_bandwidth = to_vector(feature_bandwidth, "feature_bandwidth");
-             return PoseKDE(s);
+      .def(py::init([](const py::object& settings, const py::kwargs& kw) {
+             return PoseKDE(settings_from<KdeSettings>(settings, kw, "PoseKDE"));
            }),
-           py::arg("position_bandwidth") = 0.005, py::arg("orientation_bandwidth") = 0.15,
-           py::arg("feature_bandwidth") = py::none(),
-           "Bandwidths: position std (m), rotation-angle std (rad), feature std (one value or one per feature).")
+           py::arg("settings") = py::none(), ("An unfitted KDE.\n" + settings_doc<KdeSettings>()).c_str())
+      .def_property_readonly("settings", [](const PoseKDE& d) { return KdeSettings(d.settings()); }, "The KdeSettings it was made with (a copy).")
       .def(
           "fit",
           [](PoseKDE& d, const py::object& poses, const py::object& features, const py::object& weights) -> PoseKDE& {

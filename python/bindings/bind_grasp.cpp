@@ -3,6 +3,7 @@
 #include <pybind11/functional.h>
 
 #include "common.hpp"
+#include "settings.hpp"
 #include "graspmix/grasp/collision.hpp"
 #include "graspmix/grasp/config_model.hpp"
 #include "graspmix/grasp/contact_model.hpp"
@@ -29,24 +30,23 @@ ExpertList to_experts(const py::object& obj) {
   return out;
 }
 
-py::dict grasp_dict(const Grasp& g) {
-  py::dict d;
-  d["T_world_wrist"] = g.T_world_wrist;
-  d["joints"] = g.joints;
-  d["pregrasp"] = g.pregrasp;
-  d["log_likelihood"] = g.log_likelihood;
-  d["log_collision"] = g.log_collision;
-  d["log_config"] = g.log_config;
-  d["log_pregrasp"] = g.log_pregrasp;
-  d["log_contact"] = g.log_contact;
-  d["log_experts"] = g.log_experts;
-  d["optimised"] = g.optimised;
-  return d;
-}
-
 }  // namespace
 
 void bind_grasp(py::module_& m) {
+  SettingsClass<CollisionSettings>(m, "CollisionSettings", "The collision expert W(h) (eq:opt_criterion_std_col).")
+      .field("beta", &CollisionSettings::beta, "1/m: log W = -beta * total depth (2000: 0.5 mm of penetration costs one nat)")
+      .field("point_radius", &CollisionSettings::point_radius, "m: cloud points are balls of this radius (>= 0)")
+      .field("plane_margin", &CollisionSettings::plane_margin,
+             "m: the support plane is raised by this much (negative: tolerate contact)")
+      .field("cell_size", &CollisionSettings::cell_size, "m: grid cell of the cloud index; 0 picks one from the cloud")
+      .field("orient_plane", &CollisionSettings::orient_plane,
+             "flip the plane's sign so the cloud's mean lies on its free (positive) side")
+      .field("contact_tolerance", &CollisionSettings::contact_tolerance,
+             "m: depths up to this count as touching, not penetrating (a cloud is a noisy surface)")
+      .field("inside_weight", &CollisionSettings::inside_weight,
+             "m per point: each cloud point inside a link adds this much to the total depth (0: depths alone)")
+      .done();
+
   py::class_<CollisionResult>(m, "CollisionResult", "The collision expert for one configuration (depths in m, per link).")
       .def_readonly("cloud_depth", &CollisionResult::cloud_depth, "(n_links,) deepest cloud point inside each link.")
       .def_readonly("plane_depth", &CollisionResult::plane_depth, "(n_links,) depth of each link below the support plane.")
@@ -74,32 +74,20 @@ void bind_grasp(py::module_& m) {
       "(eq:opt_criterion_std_col). Cloud depth of a link: the deepest cloud point inside it (exact for boxes,\n"
       "cylinders, spheres; meshes as their convex hulls); plane depth: the deepest point of the link below the\n"
       "plane (FCL half-space). The cloud is indexed once at construction.")
-      .def(py::init([](HandPtr hand, const py::object& cloud, const py::object& plane, double beta, double point_radius,
-                       double plane_margin, double cell_size, bool orient_plane, double contact_tolerance,
-                       double inside_weight) {
+      .def(py::init([](HandPtr hand, const py::object& cloud, const py::object& plane, const py::object& settings,
+                       const py::kwargs& kw) {
              if (!hand) throw py::value_error("hand: expected a Hand, got None");
-             CollisionSettings s;
-             s.beta = beta;
-             s.point_radius = point_radius;
-             s.plane_margin = plane_margin;
-             s.cell_size = cell_size;
-             s.orient_plane = orient_plane;
-             s.contact_tolerance = contact_tolerance;
-             s.inside_weight = inside_weight;
-             const Vec3Array pts = cloud.is_none() ? Vec3Array(0, 3) : Vec3Array(to_matrix(cloud, "cloud", 3));
+             const CollisionSettings s = settings_from<CollisionSettings>(settings, kw, "CollisionExpert");
+             const Vec3Array P = cloud.is_none() ? Vec3Array(0, 3) : Vec3Array(to_matrix(cloud, "cloud", 3));
              std::optional<Eigen::Vector4d> pl;
              if (!plane.is_none()) pl = Eigen::Vector4d(to_vector(plane, "plane", 4));
              py::gil_scoped_release release;
-             return std::make_shared<CollisionExpert>(hand, pts, pl, s);
+             return std::make_shared<CollisionExpert>(std::move(hand), P, pl, s);
            }),
-           py::arg("hand"), py::arg("cloud"), py::arg("plane") = py::none(), py::arg("beta") = 1000.0,
-           py::arg("point_radius") = 0.0, py::arg("plane_margin") = 0.0, py::arg("cell_size") = 0.0,
-           py::arg("orient_plane") = true, py::arg("contact_tolerance") = 1e-9, py::arg("inside_weight") = 0.0,
-           "hand: Hand; cloud: (N, 3) points (world frame); plane: [a, b, c, d] of a x + b y + c z + d = 0 or None;\n"
-           "beta (1/m); point_radius (m, points as balls); plane_margin (m, the plane raised by it); cell_size (m,\n"
-           "0 = automatic); orient_plane: flip the plane so the cloud lies on its positive side; contact_tolerance\n"
-           "(m): depths up to it count as touching, not penetrating; inside_weight (m per point): each cloud point\n"
-           "inside a link adds this to the total depth.")
+           py::arg("hand"), py::arg("cloud"), py::arg("plane") = py::none(), py::kw_only(), py::arg("settings") = py::none(),
+           ("hand: Hand; cloud: (N, 3) points (world frame); plane: [a, b, c, d] of a x + b y + c z + d = 0 or None.\n" +
+            settings_doc<CollisionSettings>())
+               .c_str())
       .def(
           "evaluate",
           [](const CollisionExpert& e, const py::object& T_world_wrist, const py::object& joints) {
@@ -141,34 +129,42 @@ void bind_grasp(py::module_& m) {
       }, "The normalised, oriented plane [a, b, c, d] (free side a x + b y + c z + d > 0), or None.")
       .def_property_readonly("n_points", &CollisionExpert::n_points)
       .def_property_readonly("cell_size", &CollisionExpert::cell_size, "The grid cell of the cloud index (m).")
+      .def_property_readonly("settings", [](const CollisionExpert& e) { return CollisionSettings(e.settings()); },
+                             "The CollisionSettings it was built with (a copy).")
       .def_property_readonly("beta", [](const CollisionExpert& e) { return e.settings().beta; })
       .def_property_readonly("point_radius", [](const CollisionExpert& e) { return e.settings().point_radius; })
       .def_property_readonly("plane_margin", [](const CollisionExpert& e) { return e.settings().plane_margin; });
 
-  py::class_<ContactSettings>(m, "ContactSettings", "How contact points are taken from a demonstration.")
-      .def(py::init<>())
-      .def_readwrite("max_distance", &ContactSettings::max_distance, "m: farthest object point counted as a contact")
-      .def_readwrite("lambda_", &ContactSettings::lambda, "1/m^2: contact weight exp(-lambda d^2)")
-      .def_readwrite("min_points", &ContactSettings::min_points, "fewest contacts for a link to get a model");
+  SettingsClass<ContactSettings>(m, "ContactSettings", "How contact points are taken from a demonstration.")
+      .field("max_distance", &ContactSettings::max_distance,
+             "m: object points farther than this from a link's geometry are not its contacts")
+      .field("lambda_", &ContactSettings::lambda, "1/m^2: a contact at distance d weighs exp(-lambda d^2)")
+      .field("min_points", &ContactSettings::min_points, "a link with fewer contact points gets no contact model")
+      .done();
+
+  auto contact = py::class_<ContactData>(m, "ContactData", "The demonstration data D_O of one link (contact_data).")
+      .def_readonly("link", &ContactData::link)
+      .def_readonly("indices", &ContactData::indices, "(M) object points used (rows of frames / features)")
+      .def_readonly("u", &ContactData::u, "(M, 7) the link pose in each point's frame")
+      .def_readonly("r", &ContactData::r, "(M, n) the points' features")
+      .def_readonly("weights", &ContactData::weights, "(M) exp(-lambda d^2)")
+      .def_readonly("distance", &ContactData::distance, "(M) m, from the point to the link's geometry (0 inside)")
+      .def("__len__", [](const ContactData& d) { return d.u.rows(); });
+  dict_compatible(contact, {"indices", "u", "r", "weights", "distance"});
 
   m.def(
       "contact_data",
       [](const HandPtr& hand, int link, const py::object& wrist, const py::object& joints, const py::object& frames,
-         const py::object& features, const ContactSettings& s) {
-        const ContactData d = contact_data(*hand, link, to_pose(wrist, "T_world_wrist"),
-                                           to_configuration(*hand, joints, "joints"), to_poses(frames, "frames"),
-                                           to_matrix(features, "features"), s);
-        py::dict out;
-        out["indices"] = d.indices;
-        out["u"] = d.u;
-        out["r"] = d.r;
-        out["weights"] = d.weights;
-        out["distance"] = d.distance;
-        return out;
+         const py::object& features, const py::object& settings, const py::kwargs& kw) {
+        const ContactSettings s = settings_from<ContactSettings>(settings, kw, "contact_data");
+        return contact_data(*hand, link, to_pose(wrist, "T_world_wrist"), to_configuration(*hand, joints, "joints"),
+                            to_poses(frames, "frames"), to_matrix(features, "features"), s);
       },
       py::arg("hand"), py::arg("link"), py::arg("T_world_wrist"), py::arg("joints"), py::arg("frames"),
-      py::arg("features"), py::arg("settings") = ContactSettings(),
-      "eq:relative_pose_u_mixture: the contact points of one link in a demonstrated grasp, u = v^-1 o s.");
+      py::arg("features"), py::arg("settings") = py::none(),
+      ("eq:relative_pose_u_mixture: the contact points of one link in a demonstrated grasp, u = v^-1 o s.\n" +
+       settings_doc<ContactSettings>())
+          .c_str());
 
   py::class_<ContactModel>(m, "ContactModel", "M_i: one link's contact density.")
       .def(py::init([](int link, std::string name, std::shared_ptr<PoseDensity> density, int n_points) {
@@ -183,7 +179,9 @@ void bind_grasp(py::module_& m) {
   m.def(
       "learn_contact_models",
       [](const HandPtr& hand, const py::object& wrist, const py::object& joints, const py::object& frames,
-         const py::object& features, const py::function& make_density, const ContactSettings& s) {
+         const py::object& features, const py::function& make_density, const py::object& settings,
+         const py::kwargs& kw) {
+        const ContactSettings s = settings_from<ContactSettings>(settings, kw, "learn_contact_models");
         auto factory = [&]() {
           py::object d = make_density();
           try {
@@ -196,24 +194,28 @@ void bind_grasp(py::module_& m) {
                                     to_poses(frames, "frames"), to_matrix(features, "features"), factory, s);
       },
       py::arg("hand"), py::arg("T_world_wrist"), py::arg("joints"), py::arg("frames"), py::arg("features"),
-      py::arg("make_density"), py::arg("settings") = ContactSettings(),
-      "A contact model for every link with enough object points near it in the demonstrated grasp.");
+      py::arg("make_density"), py::arg("settings") = py::none(),
+      ("A contact model for every link with enough object points near it in the demonstrated grasp.\n" +
+       settings_doc<ContactSettings>())
+          .c_str());
 
-  py::class_<ConfigModelSettings>(m, "ConfigModelSettings")
-      .def(py::init<>())
-      .def_readwrite("beta", &ConfigModelSettings::beta)
-      .def_readwrite("n_kernels", &ConfigModelSettings::n_kernels)
-      .def_readwrite("alpha", &ConfigModelSettings::alpha)
-      .def_readwrite("bandwidth", &ConfigModelSettings::bandwidth)
-      .def_readwrite("min_bandwidth", &ConfigModelSettings::min_bandwidth);
+  SettingsClass<ConfigModelSettings>(m, "ConfigModelSettings", "The hand configuration model C(h_c) (eq:manipulator_model).")
+      .field("beta", &ConfigModelSettings::beta, "gamma range: configurations up to beta (h_e - h_g) either side of h_g")
+      .field("n_kernels", &ConfigModelSettings::n_kernels, "kernels along the line (odd keeps one on h_g)")
+      .field("alpha", &ConfigModelSettings::alpha, "decay of the kernel weights away from h_g (unitless)")
+      .field("bandwidth", &ConfigModelSettings::bandwidth, "kernel std as a fraction of |h_e - h_g|")
+      .field("min_bandwidth", &ConfigModelSettings::min_bandwidth, "floor of the kernel std (joint units: m or rad)")
+      .done();
 
   py::class_<ConfigModel>(m, "ConfigModel", "C(h_c) of eq:manipulator_model.")
       .def(py::init([](const py::object& pregrasp, const py::object& grasp, const py::object& limits,
-                       const ConfigModelSettings& s) {
+                       const py::object& settings, const py::kwargs& kw) {
+             const ConfigModelSettings s = settings_from<ConfigModelSettings>(settings, kw, "ConfigModel");
              const Eigen::VectorXd g = to_vector(grasp, "grasp");
              return ConfigModel(to_vector(pregrasp, "pregrasp", g.size()), g, to_matrix(limits, "limits", 2), s);
            }),
-           py::arg("pregrasp"), py::arg("grasp"), py::arg("limits"), py::arg("settings") = ConfigModelSettings())
+           py::arg("pregrasp"), py::arg("grasp"), py::arg("limits"), py::arg("settings") = py::none(),
+           ("pregrasp h_e and grasp h_g (D,), limits (D, 2).\n" + settings_doc<ConfigModelSettings>()).c_str())
       .def("log_density", [](const ConfigModel& c, const py::object& q) { return c.log_density(to_matrix(q, "q", c.dim(), true)); },
            py::arg("q"))
       .def(
@@ -229,7 +231,7 @@ void bind_grasp(py::module_& m) {
       .def_property_readonly("limits", &ConfigModel::limits)
       .def_property_readonly("kernels", &ConfigModel::kernels)
       .def_property_readonly("sigma", &ConfigModel::sigma)
-      .def_property_readonly("settings", &ConfigModel::settings);
+      .def_property_readonly("settings", [](const ConfigModel& c) { return ConfigModelSettings(c.settings()); });
 
   py::class_<Expert, std::shared_ptr<Expert>>(m, "Expert", "A task-constraint expert E_k (log values per grasp).")
       .def_property_readonly("name", &Expert::name)
@@ -242,15 +244,28 @@ void bind_grasp(py::module_& m) {
           },
           py::arg("wrists"), py::arg("joints"));
 
+  SettingsClass<KinematicFeasibilitySettings>(m, "KinematicFeasibilitySettings",
+                                              "The hard kinematic-feasibility expert.")
+      .field("plane_margin", &KinematicFeasibilitySettings::plane_margin, "m: links must stay this far above the support plane")
+      .field("plane_tolerance", &KinematicFeasibilitySettings::plane_tolerance,
+             "m: a link this little below the (raised) plane still counts as clear (rounding, not penetration)")
+      .field("limit_tolerance", &KinematicFeasibilitySettings::limit_tolerance,
+             "joint units (m or rad): slack allowed past the joint limits")
+      .done();
+
   py::class_<KinematicFeasibilityExpert, Expert, std::shared_ptr<KinematicFeasibilityExpert>>(
       m, "KinematicFeasibilityExpert",
       "Hard: joint limits, no link below the support plane, and an optional reachability test "
       "reachable(wrists (N,7), joints (N,D)) -> bool array.")
-      .def(py::init([](const HandPtr& hand, const py::object& plane, double margin, const py::object& reachable) {
+      .def(py::init([](const HandPtr& hand, const py::object& plane, const py::object& reachable,
+                       const py::object& settings, const py::kwargs& kw) {
+             const KinematicFeasibilitySettings s =
+                 settings_from<KinematicFeasibilitySettings>(settings, kw, "KinematicFeasibilityExpert");
              std::optional<Eigen::Vector4d> pl;
              if (!plane.is_none()) pl = Eigen::Vector4d(to_vector(plane, "plane", 4));
              KinematicFeasibilityExpert::Reachability fn;
              if (!reachable.is_none()) {
+               if (!PyCallable_Check(reachable.ptr())) throw py::value_error("reachable: expected a callable or None");
                py::function f = reachable;
                fn = [f](const PoseArray& w, const RowMatrixXd& q) {
                  py::gil_scoped_acquire gil;
@@ -265,19 +280,32 @@ void bind_grasp(py::module_& m) {
                  return out;
                };
              }
-             return std::make_shared<KinematicFeasibilityExpert>(hand, pl, margin, fn);
+             return std::make_shared<KinematicFeasibilityExpert>(hand, pl, s, fn);
            }),
-           py::arg("hand"), py::arg("plane") = py::none(), py::arg("plane_margin") = 0.0, py::arg("reachable") = py::none());
+           py::arg("hand"), py::arg("plane") = py::none(), py::arg("reachable") = py::none(), py::kw_only(),
+           py::arg("settings") = py::none(), settings_doc<KinematicFeasibilitySettings>().c_str());
+
+  SettingsClass<AxisAlignmentSettings>(m, "AxisAlignmentSettings", "The soft principal-axis alignment expert.")
+      .property(
+          "hand_axis", [](const AxisAlignmentSettings& s) { return Eigen::Vector3d(s.hand_axis); },
+          [](AxisAlignmentSettings& s, const py::object& v) { s.hand_axis = to_vector(v, "hand_axis", 3); },
+          "(3,) the hand's axis in the wrist frame (the WSG 50's approach axis is its palm z)")
+      .field("concentration", &AxisAlignmentSettings::concentration,
+             "nats: log E = concentration (cos theta - 1), so a 90-degree deviation costs this much")
+      .field("name", &AxisAlignmentSettings::name, "the key of its term in a grasp's experts table")
+      .done();
 
   py::class_<AxisAlignmentExpert, Expert, std::shared_ptr<AxisAlignmentExpert>>(
       m, "AxisAlignmentExpert", "Soft: log E = concentration (cos(angle between hand axis and world axis) - 1).")
-      .def(py::init([](const py::object& axis, const py::object& hand_axis, double concentration, std::string name) {
-             return std::make_shared<AxisAlignmentExpert>(Eigen::Vector3d(to_vector(axis, "axis", 3)),
-                                                          Eigen::Vector3d(to_vector(hand_axis, "hand_axis", 3)),
-                                                          concentration, std::move(name));
+      .def(py::init([](const py::object& axis, const py::object& hand_axis, const py::object& settings, py::kwargs kw) {
+             if (!hand_axis.is_none()) kw["hand_axis"] = hand_axis;
+             const AxisAlignmentSettings s = settings_from<AxisAlignmentSettings>(settings, kw, "AxisAlignmentExpert");
+             return std::make_shared<AxisAlignmentExpert>(Eigen::Vector3d(to_vector(axis, "axis", 3)), s);
            }),
-           py::arg("axis"), py::arg("hand_axis") = Eigen::Vector3d::UnitZ(), py::arg("concentration") = 5.0,
-           py::arg("name") = "approach_axis");
+           py::arg("axis"), py::arg("hand_axis") = py::none(), py::kw_only(), py::arg("settings") = py::none(),
+           ("axis: (3,) the desired world axis; hand_axis=None: the settings' hand_axis.\n" +
+            settings_doc<AxisAlignmentSettings>())
+               .c_str());
 
   py::class_<FunctionExpert, Expert, std::shared_ptr<FunctionExpert>>(
       m, "FunctionExpert", "A user expert: fn(wrists (N,7), joints (N,D)) -> log E (N,), called once per batch.")
@@ -290,61 +318,94 @@ void bind_grasp(py::module_& m) {
            }),
            py::arg("name"), py::arg("fn"));
 
-  py::class_<QuerySettings>(m, "QuerySettings")
-      .def(py::init<>())
-      .def_readwrite("n_samples", &QuerySettings::n_samples)
-      .def_readwrite("n_components", &QuerySettings::n_components)
-      .def_readwrite("max_iter", &QuerySettings::max_iter)
-      .def_readwrite("reg_covar", &QuerySettings::reg_covar)
-      .def_readwrite("frame_jitter", &QuerySettings::frame_jitter)
-      .def_readwrite("jitter_sharpness", &QuerySettings::jitter_sharpness)
+  SettingsClass<QuerySettings>(m, "QuerySettings", "Contact query densities Q_i (eq:query_density_approx).")
+      .field("n_samples", &QuerySettings::n_samples, "N_Q: samples per link to fit each query density from")
+      .field("n_components", &QuerySettings::n_components, "K_Q: components of each query mixture (GMM models)")
+      .field("max_iter", &QuerySettings::max_iter, "EM iterations of the query mixtures")
+      .field("reg_covar", &QuerySettings::reg_covar, "added to the query mixtures' covariance diagonals")
+      .field("kde", &QuerySettings::kde, "KdeSettings of KDE query densities (features unused)")
+      .field("frame_jitter", &QuerySettings::frame_jitter,
+             "rotate each sampled surface frame about its normal by up to pi exp(-jitter_sharpness ((k1 - k2) / k1)^2)")
+      .field("jitter_sharpness", &QuerySettings::jitter_sharpness, "s of Kopicki's rule above")
+      .done()
       .def_property(
           "kde_bandwidths",
           [](const QuerySettings& s) { return py::make_tuple(s.kde.position_bandwidth, s.kde.orientation_bandwidth); },
           [](QuerySettings& s, const py::tuple& t) {
+            if (t.size() != 2) throw py::value_error("kde_bandwidths: expected (position m, orientation rad)");
             s.kde.position_bandwidth = t[0].cast<double>();
             s.kde.orientation_bandwidth = t[1].cast<double>();
           },
-          "(position m, orientation rad) of KDE query kernels");
+          "(position m, orientation rad) of KDE query kernels: kde.position_bandwidth, kde.orientation_bandwidth "
+          "(kept for one release; use kde).");
 
-  py::class_<AnnealingSettings>(m, "AnnealingSettings")
-      .def(py::init<>())
-      .def_readwrite("iterations", &AnnealingSettings::iterations)
-      .def_readwrite("initial_temperature", &AnnealingSettings::initial_temperature)
-      .def_readwrite("position_step", &AnnealingSettings::position_step)
-      .def_readwrite("rotation_step", &AnnealingSettings::rotation_step)
-      .def_readwrite("joint_step", &AnnealingSettings::joint_step);
+  SettingsClass<AnnealingSettings>(m, "AnnealingSettings", "Simulated annealing of the best candidates.")
+      .field("iterations", &AnnealingSettings::iterations, "the paper's 100")
+      .field("initial_temperature", &AnnealingSettings::initial_temperature, "the paper's 1.0, falling linearly to 0")
+      .field("position_step", &AnnealingSettings::position_step, "m: std of wrist translation proposals at temperature 1")
+      .field("rotation_step", &AnnealingSettings::rotation_step, "rad: std of wrist rotation proposals at temperature 1")
+      .field("joint_step", &AnnealingSettings::joint_step,
+             "std of joint proposals at temperature 1, in units of the config model's kernel std")
+      .done();
 
-  py::class_<SynthesisSettings>(m, "SynthesisSettings")
-      .def(py::init<>())
-      .def_readwrite("n_samples", &SynthesisSettings::n_samples)
-      .def_readwrite("n_optimise", &SynthesisSettings::n_optimise)
-      .def_readwrite("optimise", &SynthesisSettings::optimise)
-      .def_readwrite("clear_pregrasp", &SynthesisSettings::clear_pregrasp)
-      .def_readwrite("max_sampling_rounds", &SynthesisSettings::max_sampling_rounds)
-      .def_readwrite("query", &SynthesisSettings::query)
-      .def_readwrite("annealing", &SynthesisSettings::annealing)
-      .def_readwrite("seed", &SynthesisSettings::seed);
+  SettingsClass<SynthesisSettings>(m, "SynthesisSettings", "Grasp synthesis: sampling, ranking and optimisation.")
+      .field("n_samples", &SynthesisSettings::n_samples, "grasps sampled and ranked")
+      .field("n_optimise", &SynthesisSettings::n_optimise, "the best this many are optimised")
+      .field("optimise", &SynthesisSettings::optimise, "anneal the best n_optimise")
+      .field("clear_pregrasp", &SynthesisSettings::clear_pregrasp,
+             "an extra collision expert on the pre-grasp configuration (log W of the opened hand)")
+      .field("max_sampling_rounds", &SynthesisSettings::max_sampling_rounds,
+             "batches of n_samples drawn at most until n_samples grasps pass every hard expert")
+      .field("query", &SynthesisSettings::query, "QuerySettings")
+      .field("annealing", &SynthesisSettings::annealing, "AnnealingSettings")
+      .seed("seed", &SynthesisSettings::seed, "seeds everything random in synthesis (None: 0)")
+      .done();
 
-  py::class_<SynthesisResult>(m, "SynthesisResult")
-      .def_property_readonly("grasps",
-                             [](const SynthesisResult& r) {
-                               py::list out;
-                               for (const Grasp& g : r.grasps) out.append(grasp_dict(g));
-                               return out;
-                             })
+  const std::vector<std::string> grasp_keys = {"T_world_wrist", "joints", "pregrasp", "log_likelihood", "log_collision",
+                                               "log_config", "log_pregrasp", "log_contact", "log_experts", "optimised"};
+  auto grasp = py::class_<Grasp>(m, "Grasp", "One synthesised grasp and its log-likelihood terms.")
+      .def_readonly("T_world_wrist", &Grasp::T_world_wrist, "(7,) [x, y, z, qx, qy, qz, qw]")
+      .def_readonly("joints", &Grasp::joints, "grasp configuration h_c (Hand.joint_names order)")
+      .def_readonly("pregrasp", &Grasp::pregrasp, "the configuration to approach with")
+      .def_readonly("log_likelihood", &Grasp::log_likelihood, "log L (eq:opt_criterion_extended)")
+      .def_readonly("log_collision", &Grasp::log_collision, "log W")
+      .def_readonly("log_config", &Grasp::log_config, "log C")
+      .def_readonly("log_pregrasp", &Grasp::log_pregrasp, "log W of the pre-grasp configuration (clear_pregrasp)")
+      .def_readonly("log_contact", &Grasp::log_contact, "log Q_i per query link (SynthesisResult.contact_links)")
+      .def_readonly("log_experts", &Grasp::log_experts, "log E_k per expert (SynthesisResult.expert_names)")
+      .def_readonly("optimised", &Grasp::optimised)
+      .def("__repr__", [](const Grasp& g) {
+        return "<Grasp log_likelihood=" + std::to_string(g.log_likelihood) + (g.optimised ? ", optimised>" : ">");
+      });
+  dict_compatible(grasp, grasp_keys);
+
+  auto timing = py::class_<SynthesisTiming>(m, "SynthesisTiming", "Seconds spent in each stage of synthesis.")
+      .def_readonly("query", &SynthesisTiming::query, "s: query density estimation")
+      .def_readonly("sampling", &SynthesisTiming::sampling, "s: sampling and ranking")
+      .def_readonly("optimisation", &SynthesisTiming::optimisation, "s: annealing the best candidates")
+      .def_readonly("total", &SynthesisTiming::total, "s")
+      .def("__repr__", [](const SynthesisTiming& t) {
+        return "SynthesisTiming(query=" + std::to_string(t.query) + ", sampling=" + std::to_string(t.sampling) +
+               ", optimisation=" + std::to_string(t.optimisation) + ", total=" + std::to_string(t.total) + ")";
+      });
+  dict_compatible(timing, {"query", "sampling", "optimisation", "total"});
+
+  py::class_<SynthesisResult>(m, "SynthesisResult", "Grasps best first, with diagnostics.")
+      .def_readonly("grasps", &SynthesisResult::grasps, "list of Grasp, best first")
       .def_readonly("contact_links", &SynthesisResult::contact_links)
       .def_readonly("expert_names", &SynthesisResult::expert_names)
-      .def_readonly("evaluations", &SynthesisResult::evaluations)
-      .def_readonly("rejected", &SynthesisResult::rejected)
-      .def_property_readonly("timing", [](const SynthesisResult& r) {
-        py::dict d;
-        d["query"] = r.timing.query;
-        d["sampling"] = r.timing.sampling;
-        d["optimisation"] = r.timing.optimisation;
-        d["total"] = r.timing.total;
-        return d;
-      });
+      .def_readonly("evaluations", &SynthesisResult::evaluations, "grasps scored in all")
+      .def_readonly("rejected", &SynthesisResult::rejected, "samples a hard constraint rejected")
+      .def_readonly("timing", &SynthesisResult::timing, "SynthesisTiming (dict(result.timing) still works)");
+
+  auto evaluation = py::class_<Evaluation>(m, "Evaluation", "log L and its terms for a batch of grasps.")
+      .def_readonly("total", &Evaluation::total, "(N,) log L")
+      .def_readonly("log_collision", &Evaluation::log_collision, "(N,)")
+      .def_readonly("log_config", &Evaluation::log_config, "(N,)")
+      .def_readonly("log_pregrasp", &Evaluation::log_pregrasp, "(N,)")
+      .def_readonly("log_contact", &Evaluation::log_contact, "(N, query links)")
+      .def_readonly("log_experts", &Evaluation::log_experts, "(N, experts)");
+  dict_compatible(evaluation, {"total", "log_collision", "log_config", "log_pregrasp", "log_contact", "log_experts"});
 
   py::class_<QueryDensity>(m, "QueryDensity", "Q_i: one link's query density on an object.")
       .def_readonly("link", &QueryDensity::link)
@@ -363,7 +424,9 @@ void bind_grasp(py::module_& m) {
       .def(
           "synthesize",
           [](const GraspSynthesizer& g, const py::object& frames, const py::object& features,
-             const CollisionExpert& collision, const py::object& experts, const SynthesisSettings& s) {
+             const CollisionExpert& collision, const py::object& experts, const py::object& settings,
+             const py::kwargs& kw) {
+            const SynthesisSettings s = settings_from<SynthesisSettings>(settings, kw, "synthesize");
             const PoseArray v = to_poses(frames, "frames");
             const RowMatrixXd r = to_matrix(features, "features");
             const ExpertList e = to_experts(experts);
@@ -371,18 +434,23 @@ void bind_grasp(py::module_& m) {
             return g.synthesize(v, r, collision, e, s);
           },
           py::arg("frames"), py::arg("features"), py::arg("collision"), py::arg("experts") = py::none(),
-          py::arg("settings") = SynthesisSettings())
+          py::arg("settings") = py::none(),
+          ("Query densities, sampling, ranking and annealing on an object's frames (N, 7) and features (N, n).\n" +
+           settings_doc<SynthesisSettings>())
+              .c_str())
       .def(
           "query_densities",
-          [](const GraspSynthesizer& g, const py::object& frames, const py::object& features, const QuerySettings& s,
-             const py::object& seed) {
+          [](const GraspSynthesizer& g, const py::object& frames, const py::object& features, const py::object& settings,
+             const py::object& seed, const py::kwargs& kw) {
+            const QuerySettings s = settings_from<QuerySettings>(settings, kw, "query_densities");
             std::mt19937_64 rng(to_seed(seed));
             const PoseArray v = to_poses(frames, "frames");
             const RowMatrixXd r = to_matrix(features, "features");
             py::gil_scoped_release release;
             return g.query_densities(v, r, s, rng);
           },
-          py::arg("frames"), py::arg("features"), py::arg("settings") = QuerySettings(), py::arg("seed") = py::none())
+          py::arg("frames"), py::arg("features"), py::arg("settings") = py::none(), py::arg("seed") = py::none(),
+          ("The query densities Q_i on an object.\n" + settings_doc<QuerySettings>()).c_str())
       .def(
           "sample_grasps",
           [](const GraspSynthesizer& g, const std::vector<QueryDensity>& q, int n, const py::object& seed) {
@@ -396,20 +464,14 @@ void bind_grasp(py::module_& m) {
       .def(
           "evaluate",
           [](const GraspSynthesizer& g, const std::vector<QueryDensity>& q, const CollisionExpert& collision,
-             const py::object& experts, const py::object& wrists, const py::object& joints, bool clear_pregrasp) {
-            const Evaluation e = g.evaluate(q, collision, to_experts(experts), to_poses(wrists, "wrists"),
-                                            to_configurations(g.hand(), joints, "joints"), clear_pregrasp);
-            py::dict d;
-            d["total"] = e.total;
-            d["log_collision"] = e.log_collision;
-            d["log_config"] = e.log_config;
-            d["log_pregrasp"] = e.log_pregrasp;
-            d["log_contact"] = e.log_contact;
-            d["log_experts"] = e.log_experts;
-            return d;
+             const py::object& experts, const py::object& wrists, const py::object& joints, const py::object& clear) {
+            const bool clear_pregrasp = clear.is_none() ? SynthesisSettings{}.clear_pregrasp : clear.cast<bool>();
+            return g.evaluate(q, collision, to_experts(experts), to_poses(wrists, "wrists"),
+                              to_configurations(g.hand(), joints, "joints"), clear_pregrasp);
           },
           py::arg("query"), py::arg("collision"), py::arg("experts"), py::arg("wrists"), py::arg("joints"),
-          py::arg("clear_pregrasp") = true, "log L and its terms for a batch of grasps.");
+          py::arg("clear_pregrasp") = py::none(),
+          "log L and its terms (an Evaluation) for a batch of grasps; clear_pregrasp=None: SynthesisSettings' default.");
 }
 
 }  // namespace graspmix::py_bind

@@ -2,6 +2,7 @@
 #include <limits>
 
 #include "common.hpp"
+#include "settings.hpp"
 #include "graspmix/perception/cloud_io.hpp"
 #include "graspmix/perception/scene.hpp"
 #include "graspmix/perception/surface.hpp"
@@ -18,10 +19,6 @@ Vec3Array to_points3(const py::object& obj, const char* name) {
   return Vec3Array(to_matrix(obj, name, 3, true));
 }
 
-Eigen::Vector3d to_vec3(const py::object& obj, const char* name, double fill) {
-  if (obj.is_none()) return Eigen::Vector3d::Constant(fill);
-  return to_vector(obj, name, 3);
-}
 
 }  // namespace
 
@@ -75,6 +72,32 @@ void bind_perception(py::module_& m) {
       "or .ply (ascii | binary); viewpoint [x, y, z, qx, qy, qz, qw] goes into the header.");
 
   // ---- scene clean-up ----------------------------------------------------------------------------
+  SettingsClass<SceneSettings>(m, "SceneSettings", "Scene clean-up before features (prepare_cloud).")
+      .field("crop", &SceneSettings::crop, "keep only points inside [crop_min, crop_max]")
+      .property(
+          "crop_min", [](const SceneSettings& s) { return Eigen::Vector3d(s.crop_min); },
+          [](SceneSettings& s, const py::object& v) { s.crop_min = to_vector(v, "crop_min", 3); },
+          "m (3,), the cloud's frame")
+      .property(
+          "crop_max", [](const SceneSettings& s) { return Eigen::Vector3d(s.crop_max); },
+          [](SceneSettings& s, const py::object& v) { s.crop_max = to_vector(v, "crop_max", 3); },
+          "m (3,), the cloud's frame")
+      .field("voxel_size", &SceneSettings::voxel_size,
+             "m: voxel-grid leaf size, 0 = off (demonstration and query clouds must share it)")
+      .field("remove_outliers", &SceneSettings::remove_outliers, "PCL StatisticalOutlierRemoval")
+      .field("outlier_neighbours", &SceneSettings::outlier_neighbours, "k of the mean-distance statistic")
+      .field("outlier_std_ratio", &SceneSettings::outlier_std_ratio,
+             "drop points whose mean k-distance exceeds mean + ratio * std")
+      .field("remove_plane", &SceneSettings::remove_plane, "find the dominant plane by RANSAC and remove it")
+      .field("plane_distance", &SceneSettings::plane_distance, "m: RANSAC inlier threshold")
+      .field("plane_max_iterations", &SceneSettings::plane_max_iterations, "RANSAC iterations")
+      .field("plane_min_fraction", &SceneSettings::plane_min_fraction,
+             "fraction of the cleaned points a plane needs to count as the support")
+      .field("remove_below_plane", &SceneSettings::remove_below_plane,
+             "also drop points on the far side of the plane from the object")
+      .seed("seed", &SceneSettings::seed, "seeds RANSAC (None: 0)")
+      .done();
+
   py::class_<SceneResult>(m, "SceneResult", "The object points of a scene and the support plane.")
       .def_readonly("points", &SceneResult::points, "(N, 3) object points (m)")
       .def_readonly("indices", &SceneResult::indices, "(N) input row of every point (-1 after voxel averaging)")
@@ -94,39 +117,44 @@ void bind_perception(py::module_& m) {
       });
   m.def(
       "prepare_cloud",
-      [](const py::object& points, const py::object& crop_min, const py::object& crop_max, double voxel_size,
-         bool remove_outliers, int outlier_neighbours, double outlier_std_ratio, bool remove_plane, double plane_distance,
-         int plane_max_iterations, double plane_min_fraction, bool remove_below_plane, const py::object& seed) {
+      [](const py::object& points, const py::object& settings, py::kwargs kw) {
         const Vec3Array P(to_matrix(points, "prepare_cloud: points", 3));
-        SceneSettings s;
-        s.crop = !crop_min.is_none() || !crop_max.is_none();
-        const double inf = std::numeric_limits<double>::infinity();
-        s.crop_min = to_vec3(crop_min, "prepare_cloud: crop_min", -inf);
-        s.crop_max = to_vec3(crop_max, "prepare_cloud: crop_max", inf);
-        s.voxel_size = voxel_size;
-        s.remove_outliers = remove_outliers;
-        s.outlier_neighbours = outlier_neighbours;
-        s.outlier_std_ratio = outlier_std_ratio;
-        s.remove_plane = remove_plane;
-        s.plane_distance = plane_distance;
-        s.plane_max_iterations = plane_max_iterations;
-        s.plane_min_fraction = plane_min_fraction;
-        s.remove_below_plane = remove_below_plane;
-        s.seed = to_seed(seed);
+        // crop_min / crop_max as keywords switch the crop on (None: that side unbounded, as before).
+        const bool crop_given = (kw.contains("crop_min") && !kw["crop_min"].is_none()) ||
+                                (kw.contains("crop_max") && !kw["crop_max"].is_none());
+        for (const char* k : {"crop_min", "crop_max"})
+          if (kw.contains(k) && kw[k].is_none()) PyDict_DelItemString(kw.ptr(), k);
+        SceneSettings s = settings_from<SceneSettings>(settings, kw, "prepare_cloud");
+        if (crop_given && !kw.contains("crop")) s.crop = true;
         py::gil_scoped_release release;
         return prepare_cloud(P, s);
       },
-      py::arg("points"), py::kw_only(), py::arg("crop_min") = py::none(), py::arg("crop_max") = py::none(),
-      py::arg("voxel_size") = 0.003, py::arg("remove_outliers") = true, py::arg("outlier_neighbours") = 20,
-      py::arg("outlier_std_ratio") = 2.0, py::arg("remove_plane") = true, py::arg("plane_distance") = 0.005,
-      py::arg("plane_max_iterations") = 1000, py::arg("plane_min_fraction") = 0.2, py::arg("remove_below_plane") = true,
-      py::arg("seed") = 0,
-      "Scene clean-up before features, in this order: crop box [crop_min, crop_max] (m; on when either is given), "
-      "voxel grid (voxel_size m, 0 = off), statistical outlier removal (outlier_neighbours, outlier_std_ratio), "
-      "and removal of the dominant plane by seeded RANSAC (plane_distance m; it must hold plane_min_fraction of "
-      "the points) together with the points below it.");
+      py::arg("points"), py::kw_only(), py::arg("settings") = py::none(),
+      ("Scene clean-up before features, in this order: crop box [crop_min, crop_max] (on when either is given "
+       "as a keyword), voxel grid, statistical outlier removal, and removal of the dominant plane by seeded "
+       "RANSAC (it must hold plane_min_fraction of the points) together with the points below it.\n" +
+       settings_doc<SceneSettings>())
+          .c_str());
 
   // ---- surface features --------------------------------------------------------------------------
+  // The C++ FeatureSettings is bound as SurfaceFeatureSettings: graspmix.FeatureSettings is the Python
+  // package's own (voxel size and radius a model is saved with).
+  SettingsClass<FeatureSettings>(m, "SurfaceFeatureSettings",
+                                 "Normals, curvatures and frames (compute_surface_features); the C++ FeatureSettings.")
+      .field("radius", &FeatureSettings::radius, "m: neighbourhood radius of normals and curvatures (paper: 1 cm)")
+      .field("min_neighbours", &FeatureSettings::min_neighbours,
+             "points with fewer neighbours within radius (itself included) are dropped")
+      .field("min_anisotropy", &FeatureSettings::min_anisotropy,
+             "the principal direction is x only where (k1 - k2) / k1 >= min_anisotropy ...")
+      .field("flat_curvature", &FeatureSettings::flat_curvature, "... and k1 >= flat_curvature (dimensionless)")
+      .property(
+          "orientation", [](const FeatureSettings& s) { return to_string(s.orientation); },
+          [](FeatureSettings& s, const std::string& v) { s.orientation = normal_orientation_from_string(v); },
+          "how normals are turned outward: auto | viewpoint | propagate | centroid | given")
+      .field("orientation_neighbours", &FeatureSettings::orientation_neighbours, "k of the propagation graph")
+      .field("n_threads", &FeatureSettings::n_threads, "0 = OpenMP's default; results do not depend on it")
+      .done();
+
   py::class_<SurfaceCloud>(m, "SurfaceCloud",
                            "The object representation O(v, r): points, outward normals, curvatures [k1, k2] and frames.")
       .def_readonly("points", &SurfaceCloud::points, "(N, 3) metres")
@@ -144,6 +172,10 @@ void bind_perception(py::module_& m) {
       .def_readonly("n_dropped", &SurfaceCloud::n_dropped, "points without a stable neighbourhood")
       .def_readonly("radius", &SurfaceCloud::radius)
       .def_readonly("orientation", &SurfaceCloud::orientation, "rule that oriented the normals")
+      .def_readonly("seconds_normals", &SurfaceCloud::seconds_normals, "s")
+      .def_readonly("seconds_orientation", &SurfaceCloud::seconds_orientation, "s")
+      .def_readonly("seconds_curvatures", &SurfaceCloud::seconds_curvatures, "s")
+      .def_readonly("seconds_total", &SurfaceCloud::seconds_total, "s")
       .def_property_readonly("timings", [](const SurfaceCloud& s) {
         py::dict d;
         d["normals"] = s.seconds_normals;
@@ -159,33 +191,29 @@ void bind_perception(py::module_& m) {
       });
   m.def(
       "compute_surface_features",
-      [](const py::object& points, double radius, const py::object& normals, const py::object& viewpoints,
-         int min_neighbours, const std::string& orientation, double min_anisotropy, double flat_curvature,
-         int orientation_neighbours, int n_threads) {
+      [](const py::object& points, const py::object& radius, const py::object& normals, const py::object& viewpoints,
+         const py::object& settings, py::kwargs kw) {
         const Vec3Array P(to_matrix(points, "compute_surface_features: points", 3));
         const Vec3Array N = normals.is_none() ? Vec3Array(0, 3)
                                               : Vec3Array(to_matrix(normals, "compute_surface_features: normals", 3));
         const Vec3Array V = to_points3(viewpoints, "compute_surface_features: viewpoints");
-        FeatureSettings s;
-        s.radius = radius;
-        s.min_neighbours = min_neighbours;
-        s.orientation = normal_orientation_from_string(orientation);
-        s.min_anisotropy = min_anisotropy;
-        s.flat_curvature = flat_curvature;
-        s.orientation_neighbours = orientation_neighbours;
-        s.n_threads = n_threads;
+        if (!radius.is_none()) kw["radius"] = radius;
+        const FeatureSettings s = settings_from<FeatureSettings>(settings, kw, "compute_surface_features");
         py::gil_scoped_release release;
         return compute_surface_features(P, s, N, V);
       },
-      py::arg("points"), py::arg("radius") = 0.01, py::arg("normals") = py::none(), py::arg("viewpoints") = py::none(),
-      py::kw_only(), py::arg("min_neighbours") = 10, py::arg("orientation") = "auto", py::arg("min_anisotropy") = 0.25,
-      py::arg("flat_curvature") = 1e-4, py::arg("orientation_neighbours") = 10, py::arg("n_threads") = 0,
-      "O(v, r) of a cloud (N, 3): normals (the smallest eigenvector of each radius neighbourhood's covariance, PCL NormalEstimation's definition, computed in parallel here; or the given (N, 3)), outward by `orientation` "
-      "(auto: towards viewpoints (3,) / (N, 3) when given, else given normals as they are, else propagated "
-      "outward over the surface; or 'viewpoint', 'propagate', 'centroid', 'given'), principal curvatures (PCL, "
-      "radius in m) and frames. Points with fewer than min_neighbours neighbours within radius are dropped "
-      "(see indices, n_dropped). x is PCL's principal direction where (k1 - k2) / k1 >= min_anisotropy and "
-      "k1 >= flat_curvature, else world z projected on the tangent plane (world x near +-z).");
+      py::arg("points"), py::arg("radius") = py::none(), py::arg("normals") = py::none(),
+      py::arg("viewpoints") = py::none(), py::kw_only(), py::arg("settings") = py::none(),
+      ("O(v, r) of a cloud (N, 3): normals (the smallest eigenvector of each radius neighbourhood's covariance, PCL "
+       "NormalEstimation's definition, computed in parallel here; or the given (N, 3)), outward by `orientation` "
+       "(auto: towards viewpoints (3,) / (N, 3) when given, else given normals as they are, else propagated "
+       "outward over the surface; or 'viewpoint', 'propagate', 'centroid', 'given'), principal curvatures (PCL, "
+       "radius in m) and frames. Points with fewer than min_neighbours neighbours within radius are dropped "
+       "(see indices, n_dropped). x is PCL's principal direction where (k1 - k2) / k1 >= min_anisotropy and "
+       "k1 >= flat_curvature, else world z projected on the tangent plane (world x near +-z). radius=None: the "
+       "settings' radius.\n" +
+       settings_doc<FeatureSettings>())
+          .c_str());
 }
 
 }  // namespace graspmix::py_bind

@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "common.hpp"
+#include "settings.hpp"
 #include "graspmix/robot/hand.hpp"
 #include "graspmix/core/se3.hpp"
 
@@ -42,6 +43,19 @@ const char* joint_type_name(JointType t) {
 }  // namespace
 
 void bind_robot(py::module_& m) {
+  SettingsClass<HandLoadSettings>(m, "HandLoadSettings", "How a URDF's meshes are found and loaded (Hand.from_urdf).")
+      .property(
+          "package_dirs", [](const HandLoadSettings& s) { return s.package_dirs; },
+          [](HandLoadSettings& s, const py::object& v) {
+            s.package_dirs.clear();
+            if (v.is_none()) return;
+            if (py::isinstance<py::str>(v)) throw py::value_error("package_dirs: expected a list of folders, got one string");
+            for (const auto& d : v) s.package_dirs.push_back(to_path(py::reinterpret_borrow<py::object>(d), "package_dirs"));
+          },
+          "extra folders searched for package://name/... meshes (each holds package folders, as in ROS_PACKAGE_PATH)")
+      .field("load_meshes", &HandLoadSettings::load_meshes, "False: mesh shapes keep only their file names (no geometry)")
+      .done();
+
   m.def(
       "load_mesh",
       [](const py::object& path, const py::object& scale) {
@@ -63,34 +77,33 @@ void bind_robot(py::module_& m) {
                             "of the URDF link frames (not inertial frames).")
       .def_static(
           "from_urdf",
-          [](const py::object& path, const py::object& package_dirs, bool load_meshes) {
-            HandLoadSettings s;
-            s.load_meshes = load_meshes;
-            if (!package_dirs.is_none()) {
-              for (const auto& d : package_dirs) s.package_dirs.push_back(to_path(py::reinterpret_borrow<py::object>(d), "package_dirs"));
-            }
+          [](const py::object& path, const py::object& package_dirs, const py::object& settings, py::kwargs kw) {
+            if (!package_dirs.is_none()) kw["package_dirs"] = package_dirs;
+            const HandLoadSettings s = settings_from<HandLoadSettings>(settings, kw, "Hand.from_urdf");
             const std::string p = to_path(path, "path");
             py::gil_scoped_release release;
             return std::make_shared<Hand>(Hand::from_urdf(p, s));
           },
-          py::arg("path"), py::arg("package_dirs") = py::none(), py::arg("load_meshes") = true,
-          "Reads a URDF. Mesh files (STL, OBJ, ... via assimp) resolve against the URDF's folder; package://\n"
-          "paths also against its parents and package_dirs. ValueError names a missing file, a URDF without\n"
-          "links, an unsupported joint or an unreadable mesh.")
+          py::arg("path"), py::arg("package_dirs") = py::none(), py::kw_only(), py::arg("settings") = py::none(),
+          ("Reads a URDF. Mesh files (STL, OBJ, ... via assimp) resolve against the URDF's folder; package://\n"
+           "paths also against its parents and package_dirs. ValueError names a missing file, a URDF without\n"
+           "links, an unsupported joint or an unreadable mesh.\n" +
+           settings_doc<HandLoadSettings>())
+              .c_str())
       .def_static(
           "from_urdf_string",
-          [](const std::string& xml, const py::object& base_dir, const py::object& package_dirs, bool load_meshes) {
-            HandLoadSettings s;
-            s.load_meshes = load_meshes;
-            if (!package_dirs.is_none()) {
-              for (const auto& d : package_dirs) s.package_dirs.push_back(to_path(py::reinterpret_borrow<py::object>(d), "package_dirs"));
-            }
+          [](const std::string& xml, const py::object& base_dir, const py::object& package_dirs, const py::object& settings,
+             py::kwargs kw) {
+            if (!package_dirs.is_none()) kw["package_dirs"] = package_dirs;
+            const HandLoadSettings s = settings_from<HandLoadSettings>(settings, kw, "Hand.from_urdf_string");
             const std::string dir = to_path(base_dir, "base_dir");
             py::gil_scoped_release release;
             return std::make_shared<Hand>(Hand::from_urdf_string(xml, dir, s));
           },
-          py::arg("xml"), py::arg("base_dir") = ".", py::arg("package_dirs") = py::none(), py::arg("load_meshes") = true,
-          "A hand from URDF text; relative mesh paths resolve against base_dir.")
+          py::arg("xml"), py::arg("base_dir") = ".", py::arg("package_dirs") = py::none(), py::kw_only(),
+          py::arg("settings") = py::none(),
+          ("A hand from URDF text; relative mesh paths resolve against base_dir.\n" + settings_doc<HandLoadSettings>())
+              .c_str())
       .def_property_readonly("name", &Hand::name)
       .def_property_readonly("source", &Hand::source, "The URDF file it was read from.")
       .def_property_readonly("joint_names", &Hand::joint_names, "Independent joints, the order of joint arrays.")
@@ -148,8 +161,12 @@ void bind_robot(py::module_& m) {
            py::arg("joints"), "The configuration clamped into the joint limits.")
       .def(
           "within_limits",
-          [](const Hand& h, const py::object& joints, double tol) { return h.within_limits(to_configuration(h, joints, "joints"), tol); },
-          py::arg("joints"), py::arg("tolerance") = 0.0)
+          [](const Hand& h, const py::object& joints, const py::object& tol) {
+            const Eigen::VectorXd q = to_configuration(h, joints, "joints");
+            return tol.is_none() ? h.within_limits(q) : h.within_limits(q, tol.cast<double>());
+          },
+          py::arg("joints"), py::arg("tolerance") = py::none(),
+          "True when every joint is within its limits, up to tolerance (joint units; None: the C++ default of Hand::within_limits).")
       .def(
           "fk",
           [](const Hand& h, const py::object& T_world_wrist, const py::object& joints) {

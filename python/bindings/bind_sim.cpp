@@ -2,43 +2,40 @@
 #include <memory>
 
 #include "common.hpp"
+#include "settings.hpp"
 #include "graspmix/core/se3.hpp"
 #include "graspmix/sim/sim.hpp"
 
 namespace graspmix::py_bind {
 
 void bind_sim(py::module_& m) {
-  py::class_<SimSettings>(m, "SimSettings",
-                          "Settings of a grasp execution in Bullet (units: m, s, N, kg). See graspmix/sim.hpp.")
-      .def(py::init<>())
-      .def_property(
-          "gravity", [](const SimSettings& s) { return s.gravity; },
+  SettingsClass<SimSettings>(m, "SimSettings", "Settings of a grasp execution in Bullet (units: m, s, N, kg).")
+      .property(
+          "gravity", [](const SimSettings& s) { return Eigen::Vector3d(s.gravity); },
           [](SimSettings& s, const py::object& g) { s.gravity = Eigen::Vector3d(to_vector(g, "gravity", 3)); },
           "m/s^2 (3,)")
-      .def_readwrite("time_step", &SimSettings::time_step, "s")
-      .def_readwrite("solver_iterations", &SimSettings::solver_iterations)
-      .def_readwrite("hand_friction", &SimSettings::hand_friction, "lateral friction of every hand link")
-      .def_readwrite("object_friction", &SimSettings::object_friction,
-                     "< 0: the URDF's <contact><lateral_friction> (0.5 if absent)")
-      .def_readwrite("support_friction", &SimSettings::support_friction)
-      .def_readwrite("object_mass", &SimSettings::object_mass, "kg; < 0: the URDF's")
-      .def_readwrite("grip_force", &SimSettings::grip_force, "N (N m): force limit of every finger joint motor")
-      .def_readwrite("close_speed", &SimSettings::close_speed, "m/s (rad/s)")
-      .def_readwrite("close_overshoot", &SimSettings::close_overshoot,
-                     "motor targets lie this fraction of (grasp - pregrasp) past the grasp joints")
-      .def_readwrite("close_time", &SimSettings::close_time, "s")
-      .def_readwrite("position_gain", &SimSettings::position_gain, "1/s")
-      .def_readwrite("lift_height", &SimSettings::lift_height, "m")
-      .def_readwrite("lift_speed", &SimSettings::lift_speed, "m/s")
-      .def_readwrite("lift_force", &SimSettings::lift_force, "N")
-      .def_readwrite("hold_time", &SimSettings::hold_time, "s")
-      .def_readwrite("start_penetration", &SimSettings::start_penetration, "m")
-      .def_readwrite("contact_distance", &SimSettings::contact_distance, "m")
-      .def_readwrite("success_fraction", &SimSettings::success_fraction)
-      .def("__repr__", [](const SimSettings& s) {
-        return "SimSettings(time_step=" + std::to_string(s.time_step) + ", grip_force=" + std::to_string(s.grip_force) +
-               ", lift_height=" + std::to_string(s.lift_height) + ", hold_time=" + std::to_string(s.hold_time) + ")";
-      });
+      .field("time_step", &SimSettings::time_step, "s (pybullet's default)")
+      .field("solver_iterations", &SimSettings::solver_iterations, "constraint solver iterations per step")
+      .field("hand_friction", &SimSettings::hand_friction, "lateral friction coefficient of every hand link")
+      .field("object_friction", &SimSettings::object_friction,
+             "< 0: the URDF's <contact><lateral_friction> (0.5 if absent)")
+      .field("support_friction", &SimSettings::support_friction, "lateral friction of the support plane")
+      .field("object_mass", &SimSettings::object_mass, "kg; < 0: the URDF's")
+      .field("grip_force", &SimSettings::grip_force, "N (N m): force limit of every finger joint motor")
+      .field("close_speed", &SimSettings::close_speed, "m/s (rad/s): joint speed limit while closing")
+      .field("close_overshoot", &SimSettings::close_overshoot,
+             "motor targets lie this fraction of (grasp - pregrasp) past the grasp joints")
+      .field("close_time", &SimSettings::close_time, "s spent closing before the lift")
+      .field("position_gain", &SimSettings::position_gain, "1/s: joint velocity command = gain * position error")
+      .field("lift_height", &SimSettings::lift_height, "m")
+      .field("lift_speed", &SimSettings::lift_speed, "m/s")
+      .field("lift_force", &SimSettings::lift_force, "N: force limit of the lift joint")
+      .field("hold_time", &SimSettings::hold_time, "s held at the top")
+      .field("start_penetration", &SimSettings::start_penetration,
+             "m: a start penetrating deeper than this is 'start in collision'")
+      .field("contact_distance", &SimSettings::contact_distance, "m: contact points closer than this count as touching")
+      .field("success_fraction", &SimSettings::success_fraction, "the object must rise by this fraction of lift_height")
+      .done();
 
   py::class_<SimObject, std::shared_ptr<SimObject>>(
       m, "SimObject", "An object to grasp from a one-link URDF: collision meshes as convex hulls, mass, friction.")
@@ -89,7 +86,9 @@ void bind_sim(py::module_& m) {
   m.def(
       "sim_execute",
       [](const std::shared_ptr<Hand>& hand, const std::shared_ptr<SimObject>& object, const py::object& T_world_object,
-         const py::object& T_world_wrist, const py::object& pregrasp, const py::object& grasp, const SimSettings& settings) {
+         const py::object& T_world_wrist, const py::object& pregrasp, const py::object& grasp, const py::object& settings_obj,
+         const py::kwargs& kw) {
+        const SimSettings settings = settings_from<SimSettings>(settings_obj, kw, "sim_execute");
         if (!hand) throw py::value_error("hand: expected a Hand, got None");
         if (!object) throw py::value_error("object: expected a SimObject, got None");
         const Eigen::Isometry3d To = pose_from_vector(to_vector(T_world_object, "T_world_object", 7));
@@ -100,8 +99,10 @@ void bind_sim(py::module_& m) {
         return execute(*hand, *object, To, Tw, qp, qg, settings);
       },
       py::arg("hand"), py::arg("object"), py::arg("T_world_object"), py::arg("T_world_wrist"), py::arg("pregrasp"),
-      py::arg("grasp"), py::arg("settings") = SimSettings(),
-      "Executes one grasp in Bullet (arrays in hand.joint_names order); see graspmix.sim.execute.");
+      py::arg("grasp"), py::arg("settings") = py::none(),
+      ("Executes one grasp in Bullet (arrays in hand.joint_names order); see graspmix.sim.execute.\n" +
+       settings_doc<SimSettings>())
+          .c_str());
 }
 
 }  // namespace graspmix::py_bind

@@ -15,17 +15,29 @@ constexpr double kRejected = -std::numeric_limits<double>::infinity();
 
 KinematicFeasibilityExpert::KinematicFeasibilityExpert(std::shared_ptr<const Hand> hand,
                                                        const std::optional<Eigen::Vector4d>& plane,
-                                                       double plane_margin, Reachability reachable,
-                                                       double limit_tolerance)
-    : hand_(std::move(hand)), reachable_(std::move(reachable)), limit_tolerance_(limit_tolerance) {
+                                                       const KinematicFeasibilitySettings& settings,
+                                                       Reachability reachable)
+    : hand_(std::move(hand)), reachable_(std::move(reachable)), limit_tolerance_(settings.limit_tolerance) {
   if (!hand_) throw std::invalid_argument("KinematicFeasibilityExpert: no hand");
   if (plane) {
     CollisionSettings s;
-    s.plane_margin = plane_margin;
+    s.plane_margin = settings.plane_margin;
+    s.contact_tolerance = settings.plane_tolerance;
     s.orient_plane = false;  // the caller's orientation: the object is on the positive side
     plane_check_.emplace(hand_, Vec3Array(0, 3), plane, s);
   }
 }
+
+KinematicFeasibilityExpert::KinematicFeasibilityExpert(std::shared_ptr<const Hand> hand,
+                                                       const std::optional<Eigen::Vector4d>& plane,
+                                                       double plane_margin, Reachability reachable,
+                                                       double limit_tolerance)
+    : KinematicFeasibilityExpert(std::move(hand), plane, [&] {
+        KinematicFeasibilitySettings s;
+        s.plane_margin = plane_margin;
+        s.limit_tolerance = limit_tolerance;
+        return s;
+      }(), std::move(reachable)) {}
 
 Eigen::VectorXd KinematicFeasibilityExpert::log_value(const GraspBatch& b) const {
   const Eigen::Index n = b.wrists.rows();

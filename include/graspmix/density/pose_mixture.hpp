@@ -17,7 +17,13 @@ namespace graspmix {
 
 class PoseMixture : public PoseDensity {
  public:
-  explicit PoseMixture(GmmSettings settings = {});
+  /// GmmSettings{} with the paper's K = 2 components per contact model (what PoseMixture() fits with).
+  static GmmSettings default_settings() {
+    GmmSettings s;
+    s.n_components = 2;
+    return s;
+  }
+  explicit PoseMixture(GmmSettings settings = default_settings());
   /// A fitted mixture from saved parameters: the reference rotation and the joint mixture over
   /// (p, omega, r) whose dimension is 6 + n_features.
   static PoseMixture from_parameters(const Eigen::Quaterniond& reference, const GaussianMixture& joint);

@@ -38,13 +38,17 @@
 namespace graspmix {
 
 struct CollisionSettings {
-  double beta = 1000.0;        ///< 1/m: log W = -beta * total depth (1 mm of penetration costs one nat)
+  /// 1/m: log W = -beta * total depth (0.5 mm of penetration costs one nat). 2000, the value grasp synthesis
+  /// has always run with from Python (it was 1000 here): W must outweigh the contact terms of a grasp whose
+  /// fingers sink a few millimetres into the object.
+  double beta = 2000.0;
   double point_radius = 0.0;   ///< m: cloud points are balls of this radius (>= 0)
   double plane_margin = 0.0;   ///< m: the support plane is raised by this much (negative: tolerate contact)
   double cell_size = 0.0;      ///< m: grid cell of the cloud index; 0 picks one from the cloud's extent and size
   bool orient_plane = true;    ///< flip the plane's sign so the cloud's mean lies on its free (positive) side
   /// m: depths up to this count as touching, not penetrating (a point on a link's face is a contact,
-  /// whatever the rounding of the link's pose)
+  /// whatever the rounding of the link's pose). 1e-9 keeps depths exact; grasp synthesis on sensed clouds
+  /// (GraspModel.synthesize) passes 1e-3, since a noisy surface point a hair inside a finger is a contact.
   double contact_tolerance = 1e-9;
   /// m per point: each cloud point inside a link adds this much to the total depth. The deepest-point
   /// depth saturates at half a link's thickness (a finger right through a thin object costs no more

@@ -31,6 +31,13 @@ class Expert {
   virtual Eigen::VectorXd log_value(const GraspBatch& batch) const = 0;
 };
 
+struct KinematicFeasibilitySettings {
+  double plane_margin = 0.0;      ///< m: links must stay this far above the support plane
+  /// m: a link this little below the (raised) plane still counts as clear (rounding, not penetration)
+  double plane_tolerance = 1e-9;
+  double limit_tolerance = 1e-9;  ///< joint units (m or rad): slack allowed past the joint limits
+};
+
 /// The hard kinematic-feasibility expert: joint limits, no link touching the support plane, and an
 /// optional user test of reachability (e.g. an arm's inverse kinematics) called once per batch with
 /// the wrist poses and configurations and returning true for reachable grasps.
@@ -39,9 +46,12 @@ class KinematicFeasibilityExpert : public Expert {
   using Reachability = std::function<Eigen::Matrix<bool, Eigen::Dynamic, 1>(const PoseArray&, const RowMatrixXd&)>;
   /// plane: [a, b, c, d] (oriented so the object is on its positive side); plane_margin (m): links
   /// must stay this far above it; limit_tolerance: joint slack allowed past the limits.
+  KinematicFeasibilityExpert(std::shared_ptr<const Hand> hand, const std::optional<Eigen::Vector4d>& plane,
+                             const KinematicFeasibilitySettings& settings, Reachability reachable = nullptr);
   KinematicFeasibilityExpert(std::shared_ptr<const Hand> hand, const std::optional<Eigen::Vector4d>& plane = std::nullopt,
-                             double plane_margin = 0.0, Reachability reachable = nullptr,
-                             double limit_tolerance = 1e-9);
+                             double plane_margin = KinematicFeasibilitySettings{}.plane_margin,
+                             Reachability reachable = nullptr,
+                             double limit_tolerance = KinematicFeasibilitySettings{}.limit_tolerance);
   std::string name() const override { return "kinematic"; }
   Eigen::VectorXd log_value(const GraspBatch& batch) const override;
 
@@ -52,13 +62,26 @@ class KinematicFeasibilityExpert : public Expert {
   double limit_tolerance_;
 };
 
+struct AxisAlignmentSettings {
+  /// The hand's axis in the wrist frame (the WSG 50's approach axis is its palm z).
+  Eigen::Vector3d hand_axis = Eigen::Vector3d::UnitZ();
+  /// nats: log E = concentration (cos theta - 1), so a 90-degree deviation costs this much. 20, the value
+  /// grasp synthesis has always run with from Python (it was 5 here): comparable to the contact terms, so
+  /// the preference decides between otherwise similar grasps.
+  double concentration = 20.0;
+  std::string name = "approach_axis";  ///< the key of its term in a grasp's experts table
+};
+
 /// The soft principal-axis alignment expert: log E = concentration * (cos theta - 1), theta the angle
 /// between the hand's axis (in the wrist frame; the WSG 50's approach axis is its palm z) and the
 /// desired world axis. E = 1 when aligned, exp(-2 concentration) when opposite.
 class AxisAlignmentExpert : public Expert {
  public:
-  AxisAlignmentExpert(const Eigen::Vector3d& world_axis, const Eigen::Vector3d& hand_axis = Eigen::Vector3d::UnitZ(),
-                      double concentration = 5.0, std::string name = "approach_axis");
+  AxisAlignmentExpert(const Eigen::Vector3d& world_axis, const AxisAlignmentSettings& settings)
+      : AxisAlignmentExpert(world_axis, settings.hand_axis, settings.concentration, settings.name) {}
+  AxisAlignmentExpert(const Eigen::Vector3d& world_axis, const Eigen::Vector3d& hand_axis = AxisAlignmentSettings{}.hand_axis,
+                      double concentration = AxisAlignmentSettings{}.concentration,
+                      std::string name = AxisAlignmentSettings{}.name);
   std::string name() const override { return name_; }
   Eigen::VectorXd log_value(const GraspBatch& batch) const override;
 

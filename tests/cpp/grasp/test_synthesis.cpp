@@ -89,7 +89,9 @@ Fixture make_fixture() {
   });
   f.synth = std::make_unique<GraspSynthesizer>(f.hand, std::move(models),
                                                ConfigModel(pre, grasp, f.hand->joint_limits()));
-  f.collision = std::make_unique<CollisionExpert>(f.hand, f.box.points, Eigen::Vector4d(0, 0, 1, 0));
+  CollisionSettings collision;
+  collision.beta = 1000.0;  // the value these tests were written with (the default is now 2000)
+  f.collision = std::make_unique<CollisionExpert>(f.hand, f.box.points, Eigen::Vector4d(0, 0, 1, 0), collision);
   return f;
 }
 

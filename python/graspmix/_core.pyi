@@ -1,0 +1,2474 @@
+"""
+graspmix C++ core: SE(3) maps, Gaussian mixtures, pose densities (GMM and KDE)
+"""
+from __future__ import annotations
+import collections.abc
+import numpy
+import numpy.typing
+import typing
+__all__: list[str] = ['AnnealingSettings', 'AxisAlignmentExpert', 'AxisAlignmentSettings', 'CloudData', 'CollisionBatchResult', 'CollisionExpert', 'CollisionResult', 'CollisionSettings', 'ConfigModel', 'ConfigModelSettings', 'ContactData', 'ContactModel', 'ContactSettings', 'Evaluation', 'Expert', 'FunctionExpert', 'GaussianMixture', 'GmmSettings', 'Grasp', 'GraspSynthesizer', 'Hand', 'HandLoadSettings', 'KdeSettings', 'KinematicFeasibilityExpert', 'KinematicFeasibilitySettings', 'PoseDensity', 'PoseKDE', 'PoseMixture', 'QueryDensity', 'QuerySettings', 'SceneResult', 'SceneSettings', 'SimObject', 'SimResult', 'SimSettings', 'SurfaceCloud', 'SurfaceFeatureSettings', 'SynthesisResult', 'SynthesisSettings', 'SynthesisTiming', 'build_info', 'compute_surface_features', 'contact_data', 'learn_contact_models', 'load_cloud', 'load_mesh', 'log_vmf_s3_normaliser', 'pose_inverse', 'pose_multiply', 'prepare_cloud', 'quat_exp', 'quat_log', 'save_cloud', 'sim_execute']
+class GmmSettings:
+    """
+    How a GaussianMixture (or PoseMixture) is fitted by EM.
+    
+    Settings: settings= a GmmSettings (None: its defaults), and/or its fields as keywords,
+    which override it (an unknown keyword is a ValueError):
+      n_components = 1: K, the number of components
+      reg_covar = 1e-06: added to every covariance diagonal (units of the data squared)
+      max_iter = 100: EM iterations per initialisation
+      tol = 0.001: convergence threshold on the change of the mean log-likelihood
+      n_init = 1: initialisations; the best lower bound wins
+      seed = 0: seeds the k-means++ initialisation (None: 0; never the clock)
+    """
+    __hash__: typing.ClassVar[None] = None
+    _fields: typing.ClassVar[tuple] = ('n_components', 'reg_covar', 'max_iter', 'tol', 'n_init', 'seed')
+    def __copy__(self) -> GmmSettings:
+        ...
+    def __deepcopy__(self, memo: typing.Any) -> GmmSettings:
+        ...
+    def __eq__(self, arg0: typing.Any) -> typing.Any:
+        ...
+    def __getstate__(self) -> dict:
+        ...
+    @typing.overload
+    def __init__(self) -> None:
+        """
+        The defaults: those of the default-constructed C++ struct.
+        """
+    @typing.overload
+    def __init__(self, **kwargs) -> None:
+        """
+        Keyword constructor: any of the fields (n_components, reg_covar, max_iter, tol, n_init, seed); the others keep their defaults.
+        """
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    @property
+    def max_iter(self) -> int:
+        """
+        EM iterations per initialisation
+        """
+    @max_iter.setter
+    def max_iter(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def n_components(self) -> int:
+        """
+        K, the number of components
+        """
+    @n_components.setter
+    def n_components(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def n_init(self) -> int:
+        """
+        initialisations; the best lower bound wins
+        """
+    @n_init.setter
+    def n_init(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def reg_covar(self) -> float:
+        """
+        added to every covariance diagonal (units of the data squared)
+        """
+    @reg_covar.setter
+    def reg_covar(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def seed(self) -> int:
+        """
+        seeds the k-means++ initialisation (None: 0; never the clock)
+        """
+    @seed.setter
+    def seed(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def tol(self) -> float:
+        """
+        convergence threshold on the change of the mean log-likelihood
+        """
+    @tol.setter
+    def tol(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class KdeSettings:
+    """
+    Kernel bandwidths of a PoseKDE (Kopicki et al. 2015).
+    
+    Settings: settings= a KdeSettings (None: its defaults), and/or its fields as keywords,
+    which override it (an unknown keyword is a ValueError):
+      position_bandwidth = 0.005: m: std of the position kernel
+      orientation_bandwidth = 0.15: rad: approximate std of the rotation angle of the kernel
+      feature_bandwidth = array([], dtype=float64): std per feature (units of the features): one value for all, one per feature, or empty (None) for 0.01
+    """
+    __hash__: typing.ClassVar[None] = None
+    _fields: typing.ClassVar[tuple] = ('position_bandwidth', 'orientation_bandwidth', 'feature_bandwidth')
+    def __copy__(self) -> KdeSettings:
+        ...
+    def __deepcopy__(self, memo: typing.Any) -> KdeSettings:
+        ...
+    def __eq__(self, arg0: typing.Any) -> typing.Any:
+        ...
+    def __getstate__(self) -> dict:
+        ...
+    @typing.overload
+    def __init__(self) -> None:
+        """
+        The defaults: those of the default-constructed C++ struct.
+        """
+    @typing.overload
+    def __init__(self, **kwargs) -> None:
+        """
+        Keyword constructor: any of the fields (position_bandwidth, orientation_bandwidth, feature_bandwidth); the others keep their defaults.
+        """
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    @property
+    def feature_bandwidth(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        std per feature (units of the features): one value for all, one per feature, or empty (None) for 0.01
+        """
+    @feature_bandwidth.setter
+    def feature_bandwidth(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def orientation_bandwidth(self) -> float:
+        """
+        rad: approximate std of the rotation angle of the kernel
+        """
+    @orientation_bandwidth.setter
+    def orientation_bandwidth(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def position_bandwidth(self) -> float:
+        """
+        m: std of the position kernel
+        """
+    @position_bandwidth.setter
+    def position_bandwidth(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class GaussianMixture:
+    """
+    Full-covariance Gaussian mixture fitted by weighted EM, named as scikit-learn's.
+    """
+    @staticmethod
+    def from_parameters(weights: typing.Any, means: typing.Any, covariances: typing.Any) -> GaussianMixture:
+        """
+        A mixture from weights (K,), means (K, d), covariances (K, d, d).
+        """
+    def __getstate__(self) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"], numpy.typing.NDArray[numpy.float64]]:
+        ...
+    def __init__(self, settings: typing.Any = None, **kwargs) -> None:
+        """
+        An unfitted mixture, e.g. GaussianMixture(n_components=3, seed=0).
+        Settings: settings= a GmmSettings (None: its defaults), and/or its fields as keywords,
+        which override it (an unknown keyword is a ValueError):
+          n_components = 1: K, the number of components
+          reg_covar = 1e-06: added to every covariance diagonal (units of the data squared)
+          max_iter = 100: EM iterations per initialisation
+          tol = 0.001: convergence threshold on the change of the mean log-likelihood
+          n_init = 1: initialisations; the best lower bound wins
+          seed = 0: seeds the k-means++ initialisation (None: 0; never the clock)
+        """
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
+        ...
+    def condition(self, given_dims: typing.Any, values: typing.Any) -> GaussianMixture:
+        """
+        The mixture over the other dimensions (increasing order) given x[given_dims] = values.
+        """
+    def fit(self, X: typing.Any, weights: typing.Any = None, means_init: typing.Any = None) -> GaussianMixture:
+        """
+        Weighted EM; returns self.
+        """
+    def marginal(self, dims: typing.Any) -> GaussianMixture:
+        ...
+    def predict(self, X: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 1]"]:
+        ...
+    def predict_proba(self, X: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        ...
+    def sample(self, n: typing.SupportsInt | typing.SupportsIndex, seed: typing.Any = None) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        """
+        n draws, (n, d).
+        """
+    def score(self, X: typing.Any, weights: typing.Any = None) -> float:
+        """
+        (Weighted) mean log density.
+        """
+    def score_samples(self, X: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        Log density of every row.
+        """
+    @property
+    def converged_(self) -> bool:
+        ...
+    @property
+    def covariances_(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def lower_bound_(self) -> float:
+        ...
+    @property
+    def lower_bound_history_(self) -> list[float]:
+        ...
+    @property
+    def means_(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        ...
+    @property
+    def n_components(self) -> int:
+        ...
+    @property
+    def n_iter_(self) -> int:
+        ...
+    @property
+    def settings(self) -> GmmSettings:
+        """
+        The GmmSettings it fits with (a copy).
+        """
+    @property
+    def weights_(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+class PoseDensity:
+    """
+    A density over poses given features: PoseMixture (the paper's) or PoseKDE (the baseline).
+    """
+    def feature_log_density(self, features: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        log p(r) per row (eq:density_mixture_features).
+        """
+    def log_density(self, poses: typing.Any, features: typing.Any = None) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        log p(u | r) per row (eq:density_mixture_rigid_body). features: (N, n), or (n,) for every pose.
+        """
+    def sample(self, n: typing.SupportsInt | typing.SupportsIndex, features: typing.Any = None, seed: typing.Any = None) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 7]"]:
+        """
+        n poses (n, 7) drawn from p(u | r); features (n_features,) for all draws or (n, n_features) one per draw.
+        """
+    @property
+    def fitted(self) -> bool:
+        ...
+    @property
+    def kind(self) -> str:
+        """
+        'gmm' or 'kde'.
+        """
+    @property
+    def n_features(self) -> int:
+        ...
+    @property
+    def n_kernels(self) -> int:
+        """
+        Components (GMM) or kernels (KDE).
+        """
+class PoseMixture(PoseDensity):
+    """
+    The paper's mixture over (p, q, r), fitted in (p, log q, r): p(u|r) by conditioning, p(r) by marginalising.
+    """
+    @staticmethod
+    def default_settings() -> GmmSettings:
+        """
+        GmmSettings with the paper's K = 2 components.
+        """
+    @staticmethod
+    def from_parameters(reference: typing.Any, joint: GaussianMixture) -> PoseMixture:
+        ...
+    def __getstate__(self) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[4, 1]"], GaussianMixture]:
+        ...
+    def __init__(self, settings: typing.Any = None, **kwargs) -> None:
+        """
+        An unfitted pose mixture. Its defaults are PoseMixture.default_settings() (the paper's K = 2), not
+        GmmSettings()'s.
+        Settings: settings= a GmmSettings (None: its defaults), and/or its fields as keywords,
+        which override it (an unknown keyword is a ValueError):
+          n_components = 2: K, the number of components
+          reg_covar = 1e-06: added to every covariance diagonal (units of the data squared)
+          max_iter = 100: EM iterations per initialisation
+          tol = 0.001: convergence threshold on the change of the mean log-likelihood
+          n_init = 1: initialisations; the best lower bound wins
+          seed = 0: seeds the k-means++ initialisation (None: 0; never the clock)
+        """
+    def __setstate__(self, arg0: tuple) -> None:
+        ...
+    def fit(self, poses: typing.Any, features: typing.Any = None, weights: typing.Any = None) -> PoseMixture:
+        """
+        Fits to poses (N, 7), features (N, n), weights (N,); returns self.
+        """
+    @property
+    def joint(self) -> GaussianMixture:
+        """
+        The mixture over (p, log(q_ref^-1 q), r).
+        """
+    @property
+    def reference(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[4, 1]"]:
+        """
+        The chart's reference rotation [x, y, z, w].
+        """
+    @property
+    def settings(self) -> GmmSettings:
+        """
+        The GmmSettings it fits with (a copy).
+        """
+class PoseKDE(PoseDensity):
+    """
+    Kopicki et al. 2015's non-parametric density: one weighted kernel per data point.
+    """
+    def __init__(self, settings: typing.Any = None, **kwargs) -> None:
+        """
+        An unfitted KDE.
+        Settings: settings= a KdeSettings (None: its defaults), and/or its fields as keywords,
+        which override it (an unknown keyword is a ValueError):
+          position_bandwidth = 0.005: m: std of the position kernel
+          orientation_bandwidth = 0.15: rad: approximate std of the rotation angle of the kernel
+          feature_bandwidth = array([], dtype=float64): std per feature (units of the features): one value for all, one per feature, or empty (None) for 0.01
+        """
+    def fit(self, poses: typing.Any, features: typing.Any = None, weights: typing.Any = None) -> PoseKDE:
+        ...
+    @property
+    def concentration(self) -> float:
+        ...
+    @property
+    def feature_bandwidth(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+    @property
+    def features(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        ...
+    @property
+    def orientation_bandwidth(self) -> float:
+        ...
+    @property
+    def orientations(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 4]"]:
+        ...
+    @property
+    def position_bandwidth(self) -> float:
+        ...
+    @property
+    def positions(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        ...
+    @property
+    def settings(self) -> KdeSettings:
+        """
+        The KdeSettings it was made with (a copy).
+        """
+    @property
+    def weights(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+class CloudData:
+    """
+    A point cloud read from a file, with what the file said about it.
+    """
+    def __len__(self) -> int:
+        ...
+    def __repr__(self) -> str:
+        ...
+    @property
+    def fields(self) -> list[str]:
+        """
+        Every field of the file (x, y, z, rgb, ...).
+        """
+    @property
+    def format(self) -> str:
+        ...
+    @property
+    def has_viewpoint(self) -> bool:
+        """
+        True when the file's viewpoint is not the identity.
+        """
+    @property
+    def height(self) -> int:
+        """
+        > 1 for organised clouds
+        """
+    @property
+    def n_invalid(self) -> int:
+        """
+        Points dropped for a NaN or infinite coordinate.
+        """
+    @property
+    def normals(self) -> typing.Any:
+        """
+        (N, 3) normals from the file (normal_x/y/z or nx/ny/nz), or None.
+        """
+    @property
+    def path(self) -> str:
+        ...
+    @property
+    def points(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        """
+        (N, 3) finite points (m); NaN points of the file are dropped.
+        """
+    @property
+    def viewpoint(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[7, 1]"]:
+        """
+        Sensor pose [x, y, z, qx, qy, qz, qw] from the PCD VIEWPOINT (identity when absent).
+        """
+    @property
+    def width(self) -> int:
+        ...
+class SceneSettings:
+    """
+    Scene clean-up before features (prepare_cloud).
+    
+    Settings: settings= a SceneSettings (None: its defaults), and/or its fields as keywords,
+    which override it (an unknown keyword is a ValueError):
+      crop = False: keep only points inside [crop_min, crop_max]
+      crop_min = array([-inf, -inf, -inf]): m (3,), the cloud's frame
+      crop_max = array([inf, inf, inf]): m (3,), the cloud's frame
+      voxel_size = 0.003: m: voxel-grid leaf size, 0 = off (demonstration and query clouds must share it)
+      remove_outliers = True: PCL StatisticalOutlierRemoval
+      outlier_neighbours = 20: k of the mean-distance statistic
+      outlier_std_ratio = 2.0: drop points whose mean k-distance exceeds mean + ratio * std
+      remove_plane = True: find the dominant plane by RANSAC and remove it
+      plane_distance = 0.005: m: RANSAC inlier threshold
+      plane_max_iterations = 1000: RANSAC iterations
+      plane_min_fraction = 0.2: fraction of the cleaned points a plane needs to count as the support
+      remove_below_plane = True: also drop points on the far side of the plane from the object
+      seed = 0: seeds RANSAC (None: 0)
+    """
+    __hash__: typing.ClassVar[None] = None
+    _fields: typing.ClassVar[tuple] = ('crop', 'crop_min', 'crop_max', 'voxel_size', 'remove_outliers', 'outlier_neighbours', 'outlier_std_ratio', 'remove_plane', 'plane_distance', 'plane_max_iterations', 'plane_min_fraction', 'remove_below_plane', 'seed')
+    def __copy__(self) -> SceneSettings:
+        ...
+    def __deepcopy__(self, memo: typing.Any) -> SceneSettings:
+        ...
+    def __eq__(self, arg0: typing.Any) -> typing.Any:
+        ...
+    def __getstate__(self) -> dict:
+        ...
+    @typing.overload
+    def __init__(self) -> None:
+        """
+        The defaults: those of the default-constructed C++ struct.
+        """
+    @typing.overload
+    def __init__(self, **kwargs) -> None:
+        """
+        Keyword constructor: any of the fields (crop, crop_min, crop_max, voxel_size, remove_outliers, outlier_neighbours, outlier_std_ratio, remove_plane, plane_distance, plane_max_iterations, plane_min_fraction, remove_below_plane, seed); the others keep their defaults.
+        """
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    @property
+    def crop(self) -> bool:
+        """
+        keep only points inside [crop_min, crop_max]
+        """
+    @crop.setter
+    def crop(self, arg0: bool) -> None:
+        ...
+    @property
+    def crop_max(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        """
+        m (3,), the cloud's frame
+        """
+    @crop_max.setter
+    def crop_max(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def crop_min(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        """
+        m (3,), the cloud's frame
+        """
+    @crop_min.setter
+    def crop_min(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def outlier_neighbours(self) -> int:
+        """
+        k of the mean-distance statistic
+        """
+    @outlier_neighbours.setter
+    def outlier_neighbours(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def outlier_std_ratio(self) -> float:
+        """
+        drop points whose mean k-distance exceeds mean + ratio * std
+        """
+    @outlier_std_ratio.setter
+    def outlier_std_ratio(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def plane_distance(self) -> float:
+        """
+        m: RANSAC inlier threshold
+        """
+    @plane_distance.setter
+    def plane_distance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def plane_max_iterations(self) -> int:
+        """
+        RANSAC iterations
+        """
+    @plane_max_iterations.setter
+    def plane_max_iterations(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def plane_min_fraction(self) -> float:
+        """
+        fraction of the cleaned points a plane needs to count as the support
+        """
+    @plane_min_fraction.setter
+    def plane_min_fraction(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def remove_below_plane(self) -> bool:
+        """
+        also drop points on the far side of the plane from the object
+        """
+    @remove_below_plane.setter
+    def remove_below_plane(self, arg0: bool) -> None:
+        ...
+    @property
+    def remove_outliers(self) -> bool:
+        """
+        PCL StatisticalOutlierRemoval
+        """
+    @remove_outliers.setter
+    def remove_outliers(self, arg0: bool) -> None:
+        ...
+    @property
+    def remove_plane(self) -> bool:
+        """
+        find the dominant plane by RANSAC and remove it
+        """
+    @remove_plane.setter
+    def remove_plane(self, arg0: bool) -> None:
+        ...
+    @property
+    def seed(self) -> int:
+        """
+        seeds RANSAC (None: 0)
+        """
+    @seed.setter
+    def seed(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def voxel_size(self) -> float:
+        """
+        m: voxel-grid leaf size, 0 = off (demonstration and query clouds must share it)
+        """
+    @voxel_size.setter
+    def voxel_size(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class SceneResult:
+    """
+    The object points of a scene and the support plane.
+    """
+    def __repr__(self) -> str:
+        ...
+    @property
+    def indices(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 1]"]:
+        """
+        (N) input row of every point (-1 after voxel averaging)
+        """
+    @property
+    def n_after_crop(self) -> int:
+        ...
+    @property
+    def n_after_outliers(self) -> int:
+        ...
+    @property
+    def n_after_voxel(self) -> int:
+        ...
+    @property
+    def n_input(self) -> int:
+        ...
+    @property
+    def n_output(self) -> int:
+        ...
+    @property
+    def n_plane_inliers(self) -> int:
+        ...
+    @property
+    def plane(self) -> typing.Any:
+        """
+        [a, b, c, d] of a x + b y + c z + d = 0, (a, b, c) unit towards the object; None if none found
+        """
+    @property
+    def plane_found(self) -> bool:
+        ...
+    @property
+    def points(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        """
+        (N, 3) object points (m)
+        """
+    @property
+    def seconds(self) -> float:
+        ...
+class SurfaceFeatureSettings:
+    """
+    Normals, curvatures and frames (compute_surface_features); the C++ FeatureSettings.
+    
+    Settings: settings= a SurfaceFeatureSettings (None: its defaults), and/or its fields as keywords,
+    which override it (an unknown keyword is a ValueError):
+      radius = 0.01: m: neighbourhood radius of normals and curvatures (paper: 1 cm)
+      min_neighbours = 10: points with fewer neighbours within radius (itself included) are dropped
+      min_anisotropy = 0.25: the principal direction is x only where (k1 - k2) / k1 >= min_anisotropy ...
+      flat_curvature = 0.0001: ... and k1 >= flat_curvature (dimensionless)
+      orientation = 'auto': how normals are turned outward: auto | viewpoint | propagate | centroid | given
+      orientation_neighbours = 10: k of the propagation graph
+      n_threads = 0: 0 = OpenMP's default; results do not depend on it
+    """
+    __hash__: typing.ClassVar[None] = None
+    _fields: typing.ClassVar[tuple] = ('radius', 'min_neighbours', 'min_anisotropy', 'flat_curvature', 'orientation', 'orientation_neighbours', 'n_threads')
+    def __copy__(self) -> SurfaceFeatureSettings:
+        ...
+    def __deepcopy__(self, memo: typing.Any) -> SurfaceFeatureSettings:
+        ...
+    def __eq__(self, arg0: typing.Any) -> typing.Any:
+        ...
+    def __getstate__(self) -> dict:
+        ...
+    @typing.overload
+    def __init__(self) -> None:
+        """
+        The defaults: those of the default-constructed C++ struct.
+        """
+    @typing.overload
+    def __init__(self, **kwargs) -> None:
+        """
+        Keyword constructor: any of the fields (radius, min_neighbours, min_anisotropy, flat_curvature, orientation, orientation_neighbours, n_threads); the others keep their defaults.
+        """
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    @property
+    def flat_curvature(self) -> float:
+        """
+        ... and k1 >= flat_curvature (dimensionless)
+        """
+    @flat_curvature.setter
+    def flat_curvature(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def min_anisotropy(self) -> float:
+        """
+        the principal direction is x only where (k1 - k2) / k1 >= min_anisotropy ...
+        """
+    @min_anisotropy.setter
+    def min_anisotropy(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def min_neighbours(self) -> int:
+        """
+        points with fewer neighbours within radius (itself included) are dropped
+        """
+    @min_neighbours.setter
+    def min_neighbours(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def n_threads(self) -> int:
+        """
+        0 = OpenMP's default; results do not depend on it
+        """
+    @n_threads.setter
+    def n_threads(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def orientation(self) -> str:
+        """
+        how normals are turned outward: auto | viewpoint | propagate | centroid | given
+        """
+    @orientation.setter
+    def orientation(self, arg1: str) -> None:
+        ...
+    @property
+    def orientation_neighbours(self) -> int:
+        """
+        k of the propagation graph
+        """
+    @orientation_neighbours.setter
+    def orientation_neighbours(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def radius(self) -> float:
+        """
+        m: neighbourhood radius of normals and curvatures (paper: 1 cm)
+        """
+    @radius.setter
+    def radius(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class SurfaceCloud:
+    """
+    The object representation O(v, r): points, outward normals, curvatures [k1, k2] and frames.
+    """
+    def __len__(self) -> int:
+        ...
+    def __repr__(self) -> str:
+        ...
+    @property
+    def curvatures(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 2]"]:
+        """
+        (N, 2) PCL's [pc1, pc2] = [k1, k2], k1 >= k2 >= 0
+        """
+    @property
+    def frame_ambiguity(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        (N) radians a sampler may rotate the frame about z: pi exp(-100 ((k1 - k2) / k1)^2)
+        """
+    @property
+    def frames(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 7]"]:
+        """
+        (N, 7) T_world_feature [x, y, z, qx, qy, qz, qw]: z = normal, x = principal direction, y = z x x
+        """
+    @property
+    def indices(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 1]"]:
+        """
+        (N) input row of every kept point
+        """
+    @property
+    def isotropic(self) -> typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"]:
+        """
+        (N) True where x came from the deterministic rule (k1 ~ k2 or flat)
+        """
+    @property
+    def n_dropped(self) -> int:
+        """
+        points without a stable neighbourhood
+        """
+    @property
+    def n_input(self) -> int:
+        ...
+    @property
+    def neighbours(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 1]"]:
+        """
+        (N) neighbours within radius, itself included
+        """
+    @property
+    def normals(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        """
+        (N, 3) unit, outward
+        """
+    @property
+    def orientation(self) -> str:
+        """
+        rule that oriented the normals
+        """
+    @property
+    def points(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        """
+        (N, 3) metres
+        """
+    @property
+    def radius(self) -> float:
+        ...
+    @property
+    def seconds_curvatures(self) -> float:
+        """
+        s
+        """
+    @property
+    def seconds_normals(self) -> float:
+        """
+        s
+        """
+    @property
+    def seconds_orientation(self) -> float:
+        """
+        s
+        """
+    @property
+    def seconds_total(self) -> float:
+        """
+        s
+        """
+    @property
+    def timings(self) -> dict:
+        """
+        seconds per stage
+        """
+class HandLoadSettings:
+    """
+    How a URDF's meshes are found and loaded (Hand.from_urdf).
+    
+    Settings: settings= a HandLoadSettings (None: its defaults), and/or its fields as keywords,
+    which override it (an unknown keyword is a ValueError):
+      package_dirs = []: extra folders searched for package://name/... meshes (each holds package folders, as in ROS_PACKAGE_PATH)
+      load_meshes = True: False: mesh shapes keep only their file names (no geometry)
+    """
+    __hash__: typing.ClassVar[None] = None
+    _fields: typing.ClassVar[tuple] = ('package_dirs', 'load_meshes')
+    def __copy__(self) -> HandLoadSettings:
+        ...
+    def __deepcopy__(self, memo: typing.Any) -> HandLoadSettings:
+        ...
+    def __eq__(self, arg0: typing.Any) -> typing.Any:
+        ...
+    def __getstate__(self) -> dict:
+        ...
+    @typing.overload
+    def __init__(self) -> None:
+        """
+        The defaults: those of the default-constructed C++ struct.
+        """
+    @typing.overload
+    def __init__(self, **kwargs) -> None:
+        """
+        Keyword constructor: any of the fields (package_dirs, load_meshes); the others keep their defaults.
+        """
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    @property
+    def load_meshes(self) -> bool:
+        """
+        False: mesh shapes keep only their file names (no geometry)
+        """
+    @load_meshes.setter
+    def load_meshes(self, arg0: bool) -> None:
+        ...
+    @property
+    def package_dirs(self) -> list[str]:
+        """
+        extra folders searched for package://name/... meshes (each holds package folders, as in ROS_PACKAGE_PATH)
+        """
+    @package_dirs.setter
+    def package_dirs(self, arg1: typing.Any) -> None:
+        ...
+class Hand:
+    """
+    A hand as a kinematic tree from a URDF (urdfdom): fk (eq:fk_function) and collision geometry.
+    The wrist is the root link; joint_names are the independent joints (mimic joints follow
+    value = multiplier * master + offset and are not listed); poses are [x, y, z, qx, qy, qz, qw]
+    of the URDF link frames (not inertial frames).
+    """
+    @staticmethod
+    def from_urdf(path: typing.Any, package_dirs: typing.Any = None, *, settings: typing.Any = None, **kwargs) -> Hand:
+        """
+        Reads a URDF. Mesh files (STL, OBJ, ... via assimp) resolve against the URDF's folder; package://
+        paths also against its parents and package_dirs. ValueError names a missing file, a URDF without
+        links, an unsupported joint or an unreadable mesh.
+        Settings: settings= a HandLoadSettings (None: its defaults), and/or its fields as keywords,
+        which override it (an unknown keyword is a ValueError):
+          package_dirs = []: extra folders searched for package://name/... meshes (each holds package folders, as in ROS_PACKAGE_PATH)
+          load_meshes = True: False: mesh shapes keep only their file names (no geometry)
+        """
+    @staticmethod
+    def from_urdf_string(xml: str, base_dir: typing.Any = '.', package_dirs: typing.Any = None, *, settings: typing.Any = None, **kwargs) -> Hand:
+        """
+        A hand from URDF text; relative mesh paths resolve against base_dir.
+        Settings: settings= a HandLoadSettings (None: its defaults), and/or its fields as keywords,
+        which override it (an unknown keyword is a ValueError):
+          package_dirs = []: extra folders searched for package://name/... meshes (each holds package folders, as in ROS_PACKAGE_PATH)
+          load_meshes = True: False: mesh shapes keep only their file names (no geometry)
+        """
+    def __repr__(self) -> str:
+        ...
+    def all_joint_values(self, joints: typing.Any) -> dict:
+        """
+        {name: value} for every movable URDF joint, mimic joints resolved (e.g. to drive a simulator).
+        """
+    def clamp(self, joints: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        The configuration clamped into the joint limits.
+        """
+    def collision_mesh(self, link: str) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"], typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 3]"]]:
+        """
+        (vertices (V, 3), triangles (T, 3)) of all of a link's collision geometry in the link frame
+        (cylinders and spheres tessellated).
+        """
+    def collision_shapes(self, link: str) -> list:
+        """
+        The <collision> elements of a link as dicts: type (box|cylinder|sphere|mesh), origin (7,) in the link
+        frame, and size (box, full sides), radius/length (cylinder, along z), radius (sphere), or file, scale,
+        vertices (V, 3, scaled, in the shape frame) and triangles (T, 3) (mesh).
+        """
+    def fk(self, T_world_wrist: typing.Any, joints: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        """
+        eq:fk_function: (n_links, 7) world poses of every link (link_names order) for a wrist pose (7,)
+        and joints (mapping or array in joint_names order). Joint limits are not enforced.
+        """
+    def fk_batch(self, T_world_wrist: typing.Any, joints: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        fk over N hands: wrists (N, 7), joints (N, n_dofs), a list of mappings, or one configuration for all
+        -> (N, n_links, 7).
+        """
+    def joints_array(self, joints: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        A configuration (mapping or array) as an array in joint_names order.
+        """
+    def joints_dict(self, joints: typing.Any) -> dict[str, float]:
+        """
+        A configuration as {joint name: value}.
+        """
+    def link_index(self, link: str) -> int:
+        ...
+    def within_limits(self, joints: typing.Any, tolerance: typing.Any = None) -> bool:
+        """
+        True when every joint is within its limits, up to tolerance (joint units; None: the C++ default of Hand::within_limits).
+        """
+    @property
+    def joint_limits(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        """
+        (n_dofs, 2) lower, upper (m or rad; +-inf if unbounded).
+        """
+    @property
+    def joint_names(self) -> list[str]:
+        """
+        Independent joints, the order of joint arrays.
+        """
+    @property
+    def joints(self) -> list:
+        """
+        Every URDF joint (fixed and mimic included) as dicts, parents before children.
+        """
+    @property
+    def link_names(self) -> list[str]:
+        """
+        Every link, the wrist (root) first; the order of fk rows.
+        """
+    @property
+    def mimic_joints(self) -> dict:
+        """
+        name -> (independent joint, multiplier, offset): value = multiplier * joints[master] + offset.
+        """
+    @property
+    def n_dofs(self) -> int:
+        ...
+    @property
+    def n_links(self) -> int:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def root_link(self) -> str:
+        ...
+    @property
+    def source(self) -> str:
+        """
+        The URDF file it was read from.
+        """
+class CollisionSettings:
+    """
+    The collision expert W(h) (eq:opt_criterion_std_col).
+    
+    Settings: settings= a CollisionSettings (None: its defaults), and/or its fields as keywords,
+    which override it (an unknown keyword is a ValueError):
+      beta = 2000.0: 1/m: log W = -beta * total depth (2000: 0.5 mm of penetration costs one nat)
+      point_radius = 0.0: m: cloud points are balls of this radius (>= 0)
+      plane_margin = 0.0: m: the support plane is raised by this much (negative: tolerate contact)
+      cell_size = 0.0: m: grid cell of the cloud index; 0 picks one from the cloud
+      orient_plane = True: flip the plane's sign so the cloud's mean lies on its free (positive) side
+      contact_tolerance = 1e-09: m: depths up to this count as touching, not penetrating (a cloud is a noisy surface)
+      inside_weight = 0.0: m per point: each cloud point inside a link adds this much to the total depth (0: depths alone)
+    """
+    __hash__: typing.ClassVar[None] = None
+    _fields: typing.ClassVar[tuple] = ('beta', 'point_radius', 'plane_margin', 'cell_size', 'orient_plane', 'contact_tolerance', 'inside_weight')
+    def __copy__(self) -> CollisionSettings:
+        ...
+    def __deepcopy__(self, memo: typing.Any) -> CollisionSettings:
+        ...
+    def __eq__(self, arg0: typing.Any) -> typing.Any:
+        ...
+    def __getstate__(self) -> dict:
+        ...
+    @typing.overload
+    def __init__(self) -> None:
+        """
+        The defaults: those of the default-constructed C++ struct.
+        """
+    @typing.overload
+    def __init__(self, **kwargs) -> None:
+        """
+        Keyword constructor: any of the fields (beta, point_radius, plane_margin, cell_size, orient_plane, contact_tolerance, inside_weight); the others keep their defaults.
+        """
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    @property
+    def beta(self) -> float:
+        """
+        1/m: log W = -beta * total depth (2000: 0.5 mm of penetration costs one nat)
+        """
+    @beta.setter
+    def beta(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def cell_size(self) -> float:
+        """
+        m: grid cell of the cloud index; 0 picks one from the cloud
+        """
+    @cell_size.setter
+    def cell_size(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def contact_tolerance(self) -> float:
+        """
+        m: depths up to this count as touching, not penetrating (a cloud is a noisy surface)
+        """
+    @contact_tolerance.setter
+    def contact_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def inside_weight(self) -> float:
+        """
+        m per point: each cloud point inside a link adds this much to the total depth (0: depths alone)
+        """
+    @inside_weight.setter
+    def inside_weight(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def orient_plane(self) -> bool:
+        """
+        flip the plane's sign so the cloud's mean lies on its free (positive) side
+        """
+    @orient_plane.setter
+    def orient_plane(self, arg0: bool) -> None:
+        ...
+    @property
+    def plane_margin(self) -> float:
+        """
+        m: the support plane is raised by this much (negative: tolerate contact)
+        """
+    @plane_margin.setter
+    def plane_margin(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def point_radius(self) -> float:
+        """
+        m: cloud points are balls of this radius (>= 0)
+        """
+    @point_radius.setter
+    def point_radius(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class CollisionResult:
+    """
+    The collision expert for one configuration (depths in m, per link).
+    """
+    def __repr__(self) -> str:
+        ...
+    @property
+    def cloud_depth(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        (n_links,) deepest cloud point inside each link.
+        """
+    @property
+    def collision_free(self) -> bool:
+        ...
+    @property
+    def log_w(self) -> float:
+        """
+        log W(h) = -beta * total_depth.
+        """
+    @property
+    def plane_depth(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        (n_links,) depth of each link below the support plane.
+        """
+    @property
+    def points_inside(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 1]"]:
+        """
+        (n_links,) cloud points inside each link.
+        """
+    @property
+    def total_depth(self) -> float:
+        ...
+    @property
+    def w(self) -> float:
+        """
+        W(h).
+        """
+class CollisionBatchResult:
+    """
+    The collision expert over N configurations.
+    """
+    @property
+    def cloud_depth(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        """
+        (N, n_links)
+        """
+    @property
+    def collision_free(self) -> typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"]:
+        """
+        (N,) bool
+        """
+    @property
+    def log_w(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        (N,)
+        """
+    @property
+    def plane_depth(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        """
+        (N, n_links)
+        """
+    @property
+    def total_depth(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        (N,)
+        """
+    @property
+    def w(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        (N,)
+        """
+class CollisionExpert:
+    """
+    W(h) = exp(-beta * total penetration) of a hand through an object's cloud and below its support plane
+    (eq:opt_criterion_std_col). Cloud depth of a link: the deepest cloud point inside it (exact for boxes,
+    cylinders, spheres; meshes as their convex hulls); plane depth: the deepest point of the link below the
+    plane (FCL half-space). The cloud is indexed once at construction.
+    """
+    def __init__(self, hand: Hand, cloud: typing.Any, plane: typing.Any = None, *, settings: typing.Any = None, **kwargs) -> None:
+        """
+        hand: Hand; cloud: (N, 3) points (world frame); plane: [a, b, c, d] of a x + b y + c z + d = 0 or None.
+        Settings: settings= a CollisionSettings (None: its defaults), and/or its fields as keywords,
+        which override it (an unknown keyword is a ValueError):
+          beta = 2000.0: 1/m: log W = -beta * total depth (2000: 0.5 mm of penetration costs one nat)
+          point_radius = 0.0: m: cloud points are balls of this radius (>= 0)
+          plane_margin = 0.0: m: the support plane is raised by this much (negative: tolerate contact)
+          cell_size = 0.0: m: grid cell of the cloud index; 0 picks one from the cloud
+          orient_plane = True: flip the plane's sign so the cloud's mean lies on its free (positive) side
+          contact_tolerance = 1e-09: m: depths up to this count as touching, not penetrating (a cloud is a noisy surface)
+          inside_weight = 0.0: m per point: each cloud point inside a link adds this much to the total depth (0: depths alone)
+        """
+    def collision_free(self, T_world_wrist: typing.Any, joints: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"]:
+        """
+        (N,) bool: no cloud point inside the hand and nothing below the plane.
+        """
+    def evaluate(self, T_world_wrist: typing.Any, joints: typing.Any) -> CollisionResult:
+        """
+        The expert for one wrist pose (7,) and configuration.
+        """
+    def evaluate_batch(self, T_world_wrist: typing.Any, joints: typing.Any) -> CollisionBatchResult:
+        """
+        The expert over wrists (N, 7) and joints (N, n_dofs) (or one for all).
+        """
+    def log_w(self, T_world_wrist: typing.Any, joints: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        log W(h) (N,) over wrists (N, 7) and joints.
+        """
+    @property
+    def beta(self) -> float:
+        ...
+    @property
+    def cell_size(self) -> float:
+        """
+        The grid cell of the cloud index (m).
+        """
+    @property
+    def n_points(self) -> int:
+        ...
+    @property
+    def plane(self) -> typing.Any:
+        """
+        The normalised, oriented plane [a, b, c, d] (free side a x + b y + c z + d > 0), or None.
+        """
+    @property
+    def plane_margin(self) -> float:
+        ...
+    @property
+    def point_radius(self) -> float:
+        ...
+    @property
+    def settings(self) -> CollisionSettings:
+        """
+        The CollisionSettings it was built with (a copy).
+        """
+class ContactSettings:
+    """
+    How contact points are taken from a demonstration.
+    
+    Settings: settings= a ContactSettings (None: its defaults), and/or its fields as keywords,
+    which override it (an unknown keyword is a ValueError):
+      max_distance = 0.01: m: object points farther than this from a link's geometry are not its contacts
+      lambda_ = 5000.0: 1/m^2: a contact at distance d weighs exp(-lambda d^2)
+      min_points = 10: a link with fewer contact points gets no contact model
+    """
+    __hash__: typing.ClassVar[None] = None
+    _fields: typing.ClassVar[tuple] = ('max_distance', 'lambda_', 'min_points')
+    def __copy__(self) -> ContactSettings:
+        ...
+    def __deepcopy__(self, memo: typing.Any) -> ContactSettings:
+        ...
+    def __eq__(self, arg0: typing.Any) -> typing.Any:
+        ...
+    def __getstate__(self) -> dict:
+        ...
+    @typing.overload
+    def __init__(self) -> None:
+        """
+        The defaults: those of the default-constructed C++ struct.
+        """
+    @typing.overload
+    def __init__(self, **kwargs) -> None:
+        """
+        Keyword constructor: any of the fields (max_distance, lambda_, min_points); the others keep their defaults.
+        """
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    @property
+    def lambda_(self) -> float:
+        """
+        1/m^2: a contact at distance d weighs exp(-lambda d^2)
+        """
+    @lambda_.setter
+    def lambda_(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def max_distance(self) -> float:
+        """
+        m: object points farther than this from a link's geometry are not its contacts
+        """
+    @max_distance.setter
+    def max_distance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def min_points(self) -> int:
+        """
+        a link with fewer contact points gets no contact model
+        """
+    @min_points.setter
+    def min_points(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+class ContactData:
+    """
+    The demonstration data D_O of one link (contact_data).
+    """
+    def __getitem__(self, key: str) -> typing.Any:
+        """
+        Deprecated: the attribute of that name (results were dicts before; kept for one release).
+        """
+    def __len__(self) -> int:
+        ...
+    def keys(self) -> list[str]:
+        """
+        Deprecated: the attribute names readable with [] (so dict(result) still works).
+        """
+    @property
+    def distance(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        (M) m, from the point to the link's geometry (0 inside)
+        """
+    @property
+    def indices(self) -> list[int]:
+        """
+        (M) object points used (rows of frames / features)
+        """
+    @property
+    def link(self) -> int:
+        ...
+    @property
+    def r(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        """
+        (M, n) the points' features
+        """
+    @property
+    def u(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 7]"]:
+        """
+        (M, 7) the link pose in each point's frame
+        """
+    @property
+    def weights(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        (M) exp(-lambda d^2)
+        """
+class ContactModel:
+    """
+    M_i: one link's contact density.
+    """
+    def __init__(self, link: typing.SupportsInt | typing.SupportsIndex, link_name: str, density: PoseDensity, n_points: typing.SupportsInt | typing.SupportsIndex = 0) -> None:
+        ...
+    @property
+    def density(self) -> PoseDensity:
+        ...
+    @property
+    def link(self) -> int:
+        ...
+    @property
+    def link_name(self) -> str:
+        ...
+    @property
+    def n_points(self) -> int:
+        ...
+class ConfigModelSettings:
+    """
+    The hand configuration model C(h_c) (eq:manipulator_model).
+    
+    Settings: settings= a ConfigModelSettings (None: its defaults), and/or its fields as keywords,
+    which override it (an unknown keyword is a ValueError):
+      beta = 1.0: gamma range: configurations up to beta (h_e - h_g) either side of h_g
+      n_kernels = 21: kernels along the line (odd keeps one on h_g)
+      alpha = 2.0: decay of the kernel weights away from h_g (unitless)
+      bandwidth = 0.1: kernel std as a fraction of |h_e - h_g|
+      min_bandwidth = 0.001: floor of the kernel std (joint units: m or rad)
+    """
+    __hash__: typing.ClassVar[None] = None
+    _fields: typing.ClassVar[tuple] = ('beta', 'n_kernels', 'alpha', 'bandwidth', 'min_bandwidth')
+    def __copy__(self) -> ConfigModelSettings:
+        ...
+    def __deepcopy__(self, memo: typing.Any) -> ConfigModelSettings:
+        ...
+    def __eq__(self, arg0: typing.Any) -> typing.Any:
+        ...
+    def __getstate__(self) -> dict:
+        ...
+    @typing.overload
+    def __init__(self) -> None:
+        """
+        The defaults: those of the default-constructed C++ struct.
+        """
+    @typing.overload
+    def __init__(self, **kwargs) -> None:
+        """
+        Keyword constructor: any of the fields (beta, n_kernels, alpha, bandwidth, min_bandwidth); the others keep their defaults.
+        """
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    @property
+    def alpha(self) -> float:
+        """
+        decay of the kernel weights away from h_g (unitless)
+        """
+    @alpha.setter
+    def alpha(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def bandwidth(self) -> float:
+        """
+        kernel std as a fraction of |h_e - h_g|
+        """
+    @bandwidth.setter
+    def bandwidth(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def beta(self) -> float:
+        """
+        gamma range: configurations up to beta (h_e - h_g) either side of h_g
+        """
+    @beta.setter
+    def beta(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def min_bandwidth(self) -> float:
+        """
+        floor of the kernel std (joint units: m or rad)
+        """
+    @min_bandwidth.setter
+    def min_bandwidth(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def n_kernels(self) -> int:
+        """
+        kernels along the line (odd keeps one on h_g)
+        """
+    @n_kernels.setter
+    def n_kernels(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+class ConfigModel:
+    """
+    C(h_c) of eq:manipulator_model.
+    """
+    def __init__(self, pregrasp: typing.Any, grasp: typing.Any, limits: typing.Any, settings: typing.Any = None, **kwargs) -> None:
+        """
+        pregrasp h_e and grasp h_g (D,), limits (D, 2).
+        Settings: settings= a ConfigModelSettings (None: its defaults), and/or its fields as keywords,
+        which override it (an unknown keyword is a ValueError):
+          beta = 1.0: gamma range: configurations up to beta (h_e - h_g) either side of h_g
+          n_kernels = 21: kernels along the line (odd keeps one on h_g)
+          alpha = 2.0: decay of the kernel weights away from h_g (unitless)
+          bandwidth = 0.1: kernel std as a fraction of |h_e - h_g|
+          min_bandwidth = 0.001: floor of the kernel std (joint units: m or rad)
+        """
+    def log_density(self, q: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+    def pregrasp_for(self, arg0: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+    def sample(self, n: typing.SupportsInt | typing.SupportsIndex, seed: typing.Any = None) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        ...
+    @property
+    def grasp(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+    @property
+    def kernels(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        ...
+    @property
+    def limits(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        ...
+    @property
+    def pregrasp(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+    @property
+    def settings(self) -> ConfigModelSettings:
+        ...
+    @property
+    def sigma(self) -> float:
+        ...
+class Expert:
+    """
+    A task-constraint expert E_k (log values per grasp).
+    """
+    def log_value(self, wrists: typing.Any, joints: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+class KinematicFeasibilitySettings:
+    """
+    The hard kinematic-feasibility expert.
+    
+    Settings: settings= a KinematicFeasibilitySettings (None: its defaults), and/or its fields as keywords,
+    which override it (an unknown keyword is a ValueError):
+      plane_margin = 0.0: m: links must stay this far above the support plane
+      plane_tolerance = 1e-09: m: a link this little below the (raised) plane still counts as clear (rounding, not penetration)
+      limit_tolerance = 1e-09: joint units (m or rad): slack allowed past the joint limits
+    """
+    __hash__: typing.ClassVar[None] = None
+    _fields: typing.ClassVar[tuple] = ('plane_margin', 'plane_tolerance', 'limit_tolerance')
+    def __copy__(self) -> KinematicFeasibilitySettings:
+        ...
+    def __deepcopy__(self, memo: typing.Any) -> KinematicFeasibilitySettings:
+        ...
+    def __eq__(self, arg0: typing.Any) -> typing.Any:
+        ...
+    def __getstate__(self) -> dict:
+        ...
+    @typing.overload
+    def __init__(self) -> None:
+        """
+        The defaults: those of the default-constructed C++ struct.
+        """
+    @typing.overload
+    def __init__(self, **kwargs) -> None:
+        """
+        Keyword constructor: any of the fields (plane_margin, plane_tolerance, limit_tolerance); the others keep their defaults.
+        """
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    @property
+    def limit_tolerance(self) -> float:
+        """
+        joint units (m or rad): slack allowed past the joint limits
+        """
+    @limit_tolerance.setter
+    def limit_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def plane_margin(self) -> float:
+        """
+        m: links must stay this far above the support plane
+        """
+    @plane_margin.setter
+    def plane_margin(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def plane_tolerance(self) -> float:
+        """
+        m: a link this little below the (raised) plane still counts as clear (rounding, not penetration)
+        """
+    @plane_tolerance.setter
+    def plane_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class KinematicFeasibilityExpert(Expert):
+    """
+    Hard: joint limits, no link below the support plane, and an optional reachability test reachable(wrists (N,7), joints (N,D)) -> bool array.
+    """
+    def __init__(self, hand: Hand, plane: typing.Any = None, reachable: typing.Any = None, *, settings: typing.Any = None, **kwargs) -> None:
+        """
+        Settings: settings= a KinematicFeasibilitySettings (None: its defaults), and/or its fields as keywords,
+        which override it (an unknown keyword is a ValueError):
+          plane_margin = 0.0: m: links must stay this far above the support plane
+          plane_tolerance = 1e-09: m: a link this little below the (raised) plane still counts as clear (rounding, not penetration)
+          limit_tolerance = 1e-09: joint units (m or rad): slack allowed past the joint limits
+        """
+class AxisAlignmentSettings:
+    """
+    The soft principal-axis alignment expert.
+    
+    Settings: settings= a AxisAlignmentSettings (None: its defaults), and/or its fields as keywords,
+    which override it (an unknown keyword is a ValueError):
+      hand_axis = array([0., 0., 1.]): (3,) the hand's axis in the wrist frame (the WSG 50's approach axis is its palm z)
+      concentration = 20.0: nats: log E = concentration (cos theta - 1), so a 90-degree deviation costs this much
+      name = 'approach_axis': the key of its term in a grasp's experts table
+    """
+    __hash__: typing.ClassVar[None] = None
+    _fields: typing.ClassVar[tuple] = ('hand_axis', 'concentration', 'name')
+    def __copy__(self) -> AxisAlignmentSettings:
+        ...
+    def __deepcopy__(self, memo: typing.Any) -> AxisAlignmentSettings:
+        ...
+    def __eq__(self, arg0: typing.Any) -> typing.Any:
+        ...
+    def __getstate__(self) -> dict:
+        ...
+    @typing.overload
+    def __init__(self) -> None:
+        """
+        The defaults: those of the default-constructed C++ struct.
+        """
+    @typing.overload
+    def __init__(self, **kwargs) -> None:
+        """
+        Keyword constructor: any of the fields (hand_axis, concentration, name); the others keep their defaults.
+        """
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    @property
+    def concentration(self) -> float:
+        """
+        nats: log E = concentration (cos theta - 1), so a 90-degree deviation costs this much
+        """
+    @concentration.setter
+    def concentration(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def hand_axis(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        """
+        (3,) the hand's axis in the wrist frame (the WSG 50's approach axis is its palm z)
+        """
+    @hand_axis.setter
+    def hand_axis(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def name(self) -> str:
+        """
+        the key of its term in a grasp's experts table
+        """
+    @name.setter
+    def name(self, arg0: str) -> None:
+        ...
+class AxisAlignmentExpert(Expert):
+    """
+    Soft: log E = concentration (cos(angle between hand axis and world axis) - 1).
+    """
+    def __init__(self, axis: typing.Any, hand_axis: typing.Any = None, *, settings: typing.Any = None, **kwargs) -> None:
+        """
+        axis: (3,) the desired world axis; hand_axis=None: the settings' hand_axis.
+        Settings: settings= a AxisAlignmentSettings (None: its defaults), and/or its fields as keywords,
+        which override it (an unknown keyword is a ValueError):
+          hand_axis = array([0., 0., 1.]): (3,) the hand's axis in the wrist frame (the WSG 50's approach axis is its palm z)
+          concentration = 20.0: nats: log E = concentration (cos theta - 1), so a 90-degree deviation costs this much
+          name = 'approach_axis': the key of its term in a grasp's experts table
+        """
+class FunctionExpert(Expert):
+    """
+    A user expert: fn(wrists (N,7), joints (N,D)) -> log E (N,), called once per batch.
+    """
+    def __init__(self, name: str, fn: collections.abc.Callable) -> None:
+        ...
+class QuerySettings:
+    """
+    Contact query densities Q_i (eq:query_density_approx).
+    
+    Settings: settings= a QuerySettings (None: its defaults), and/or its fields as keywords,
+    which override it (an unknown keyword is a ValueError):
+      n_samples = 500: N_Q: samples per link to fit each query density from
+      n_components = 5: K_Q: components of each query mixture (GMM models)
+      max_iter = 100: EM iterations of the query mixtures
+      reg_covar = 1e-06: added to the query mixtures' covariance diagonals
+      kde = KdeSettings(position_bandwidth=0.005, orientation_bandwidth=0.15, feature_bandwidth=array([], dtype=float64)): KdeSettings of KDE query densities (features unused)
+      frame_jitter = True: rotate each sampled surface frame about its normal by up to pi exp(-jitter_sharpness ((k1 - k2) / k1)^2)
+      jitter_sharpness = 100.0: s of Kopicki's rule above
+    """
+    __hash__: typing.ClassVar[None] = None
+    _fields: typing.ClassVar[tuple] = ('n_samples', 'n_components', 'max_iter', 'reg_covar', 'kde', 'frame_jitter', 'jitter_sharpness')
+    def __copy__(self) -> QuerySettings:
+        ...
+    def __deepcopy__(self, memo: typing.Any) -> QuerySettings:
+        ...
+    def __eq__(self, arg0: typing.Any) -> typing.Any:
+        ...
+    def __getstate__(self) -> dict:
+        ...
+    @typing.overload
+    def __init__(self) -> None:
+        """
+        The defaults: those of the default-constructed C++ struct.
+        """
+    @typing.overload
+    def __init__(self, **kwargs) -> None:
+        """
+        Keyword constructor: any of the fields (n_samples, n_components, max_iter, reg_covar, kde, frame_jitter, jitter_sharpness); the others keep their defaults.
+        """
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    @property
+    def frame_jitter(self) -> bool:
+        """
+        rotate each sampled surface frame about its normal by up to pi exp(-jitter_sharpness ((k1 - k2) / k1)^2)
+        """
+    @frame_jitter.setter
+    def frame_jitter(self, arg0: bool) -> None:
+        ...
+    @property
+    def jitter_sharpness(self) -> float:
+        """
+        s of Kopicki's rule above
+        """
+    @jitter_sharpness.setter
+    def jitter_sharpness(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def kde(self) -> KdeSettings:
+        """
+        KdeSettings of KDE query densities (features unused)
+        """
+    @kde.setter
+    def kde(self, arg0: KdeSettings) -> None:
+        ...
+    @property
+    def kde_bandwidths(self) -> tuple[float, float]:
+        """
+        (position m, orientation rad) of KDE query kernels: kde.position_bandwidth, kde.orientation_bandwidth (kept for one release; use kde).
+        """
+    @kde_bandwidths.setter
+    def kde_bandwidths(self, arg1: tuple) -> None:
+        ...
+    @property
+    def max_iter(self) -> int:
+        """
+        EM iterations of the query mixtures
+        """
+    @max_iter.setter
+    def max_iter(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def n_components(self) -> int:
+        """
+        K_Q: components of each query mixture (GMM models)
+        """
+    @n_components.setter
+    def n_components(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def n_samples(self) -> int:
+        """
+        N_Q: samples per link to fit each query density from
+        """
+    @n_samples.setter
+    def n_samples(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def reg_covar(self) -> float:
+        """
+        added to the query mixtures' covariance diagonals
+        """
+    @reg_covar.setter
+    def reg_covar(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class AnnealingSettings:
+    """
+    Simulated annealing of the best candidates.
+    
+    Settings: settings= a AnnealingSettings (None: its defaults), and/or its fields as keywords,
+    which override it (an unknown keyword is a ValueError):
+      iterations = 100: the paper's 100
+      initial_temperature = 1.0: the paper's 1.0, falling linearly to 0
+      position_step = 0.005: m: std of wrist translation proposals at temperature 1
+      rotation_step = 0.1: rad: std of wrist rotation proposals at temperature 1
+      joint_step = 0.5: std of joint proposals at temperature 1, in units of the config model's kernel std
+    """
+    __hash__: typing.ClassVar[None] = None
+    _fields: typing.ClassVar[tuple] = ('iterations', 'initial_temperature', 'position_step', 'rotation_step', 'joint_step')
+    def __copy__(self) -> AnnealingSettings:
+        ...
+    def __deepcopy__(self, memo: typing.Any) -> AnnealingSettings:
+        ...
+    def __eq__(self, arg0: typing.Any) -> typing.Any:
+        ...
+    def __getstate__(self) -> dict:
+        ...
+    @typing.overload
+    def __init__(self) -> None:
+        """
+        The defaults: those of the default-constructed C++ struct.
+        """
+    @typing.overload
+    def __init__(self, **kwargs) -> None:
+        """
+        Keyword constructor: any of the fields (iterations, initial_temperature, position_step, rotation_step, joint_step); the others keep their defaults.
+        """
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    @property
+    def initial_temperature(self) -> float:
+        """
+        the paper's 1.0, falling linearly to 0
+        """
+    @initial_temperature.setter
+    def initial_temperature(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def iterations(self) -> int:
+        """
+        the paper's 100
+        """
+    @iterations.setter
+    def iterations(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def joint_step(self) -> float:
+        """
+        std of joint proposals at temperature 1, in units of the config model's kernel std
+        """
+    @joint_step.setter
+    def joint_step(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def position_step(self) -> float:
+        """
+        m: std of wrist translation proposals at temperature 1
+        """
+    @position_step.setter
+    def position_step(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def rotation_step(self) -> float:
+        """
+        rad: std of wrist rotation proposals at temperature 1
+        """
+    @rotation_step.setter
+    def rotation_step(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class SynthesisSettings:
+    """
+    Grasp synthesis: sampling, ranking and optimisation.
+    
+    Settings: settings= a SynthesisSettings (None: its defaults), and/or its fields as keywords,
+    which override it (an unknown keyword is a ValueError):
+      n_samples = 200: grasps sampled and ranked
+      n_optimise = 10: the best this many are optimised
+      optimise = True: anneal the best n_optimise
+      clear_pregrasp = True: an extra collision expert on the pre-grasp configuration (log W of the opened hand)
+      max_sampling_rounds = 10: batches of n_samples drawn at most until n_samples grasps pass every hard expert
+      query = QuerySettings(n_samples=500, n_components=5, max_iter=100, reg_covar=1e-06, kde=KdeSettings(position_bandwidth=0.005, orientation_bandwidth=0.15, feature_bandwidth=array([], dtype=float64)), frame_jitter=True, jitter_sharpness=100.0): QuerySettings
+      annealing = AnnealingSettings(iterations=100, initial_temperature=1.0, position_step=0.005, rotation_step=0.1, joint_step=0.5): AnnealingSettings
+      seed = 0: seeds everything random in synthesis (None: 0)
+    """
+    __hash__: typing.ClassVar[None] = None
+    _fields: typing.ClassVar[tuple] = ('n_samples', 'n_optimise', 'optimise', 'clear_pregrasp', 'max_sampling_rounds', 'query', 'annealing', 'seed')
+    def __copy__(self) -> SynthesisSettings:
+        ...
+    def __deepcopy__(self, memo: typing.Any) -> SynthesisSettings:
+        ...
+    def __eq__(self, arg0: typing.Any) -> typing.Any:
+        ...
+    def __getstate__(self) -> dict:
+        ...
+    @typing.overload
+    def __init__(self) -> None:
+        """
+        The defaults: those of the default-constructed C++ struct.
+        """
+    @typing.overload
+    def __init__(self, **kwargs) -> None:
+        """
+        Keyword constructor: any of the fields (n_samples, n_optimise, optimise, clear_pregrasp, max_sampling_rounds, query, annealing, seed); the others keep their defaults.
+        """
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    @property
+    def annealing(self) -> AnnealingSettings:
+        """
+        AnnealingSettings
+        """
+    @annealing.setter
+    def annealing(self, arg0: AnnealingSettings) -> None:
+        ...
+    @property
+    def clear_pregrasp(self) -> bool:
+        """
+        an extra collision expert on the pre-grasp configuration (log W of the opened hand)
+        """
+    @clear_pregrasp.setter
+    def clear_pregrasp(self, arg0: bool) -> None:
+        ...
+    @property
+    def max_sampling_rounds(self) -> int:
+        """
+        batches of n_samples drawn at most until n_samples grasps pass every hard expert
+        """
+    @max_sampling_rounds.setter
+    def max_sampling_rounds(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def n_optimise(self) -> int:
+        """
+        the best this many are optimised
+        """
+    @n_optimise.setter
+    def n_optimise(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def n_samples(self) -> int:
+        """
+        grasps sampled and ranked
+        """
+    @n_samples.setter
+    def n_samples(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def optimise(self) -> bool:
+        """
+        anneal the best n_optimise
+        """
+    @optimise.setter
+    def optimise(self, arg0: bool) -> None:
+        ...
+    @property
+    def query(self) -> QuerySettings:
+        """
+        QuerySettings
+        """
+    @query.setter
+    def query(self, arg0: QuerySettings) -> None:
+        ...
+    @property
+    def seed(self) -> int:
+        """
+        seeds everything random in synthesis (None: 0)
+        """
+    @seed.setter
+    def seed(self, arg1: typing.Any) -> None:
+        ...
+class Grasp:
+    """
+    One synthesised grasp and its log-likelihood terms.
+    """
+    def __getitem__(self, key: str) -> typing.Any:
+        """
+        Deprecated: the attribute of that name (results were dicts before; kept for one release).
+        """
+    def __repr__(self) -> str:
+        ...
+    def keys(self) -> list[str]:
+        """
+        Deprecated: the attribute names readable with [] (so dict(result) still works).
+        """
+    @property
+    def T_world_wrist(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[7, 1]"]:
+        """
+        (7,) [x, y, z, qx, qy, qz, qw]
+        """
+    @property
+    def joints(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        grasp configuration h_c (Hand.joint_names order)
+        """
+    @property
+    def log_collision(self) -> float:
+        """
+        log W
+        """
+    @property
+    def log_config(self) -> float:
+        """
+        log C
+        """
+    @property
+    def log_contact(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        log Q_i per query link (SynthesisResult.contact_links)
+        """
+    @property
+    def log_experts(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        log E_k per expert (SynthesisResult.expert_names)
+        """
+    @property
+    def log_likelihood(self) -> float:
+        """
+        log L (eq:opt_criterion_extended)
+        """
+    @property
+    def log_pregrasp(self) -> float:
+        """
+        log W of the pre-grasp configuration (clear_pregrasp)
+        """
+    @property
+    def optimised(self) -> bool:
+        ...
+    @property
+    def pregrasp(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        the configuration to approach with
+        """
+class SynthesisTiming:
+    """
+    Seconds spent in each stage of synthesis.
+    """
+    def __getitem__(self, key: str) -> typing.Any:
+        """
+        Deprecated: the attribute of that name (results were dicts before; kept for one release).
+        """
+    def __repr__(self) -> str:
+        ...
+    def keys(self) -> list[str]:
+        """
+        Deprecated: the attribute names readable with [] (so dict(result) still works).
+        """
+    @property
+    def optimisation(self) -> float:
+        """
+        s: annealing the best candidates
+        """
+    @property
+    def query(self) -> float:
+        """
+        s: query density estimation
+        """
+    @property
+    def sampling(self) -> float:
+        """
+        s: sampling and ranking
+        """
+    @property
+    def total(self) -> float:
+        """
+        s
+        """
+class SynthesisResult:
+    """
+    Grasps best first, with diagnostics.
+    """
+    @property
+    def contact_links(self) -> list[str]:
+        ...
+    @property
+    def evaluations(self) -> int:
+        """
+        grasps scored in all
+        """
+    @property
+    def expert_names(self) -> list[str]:
+        ...
+    @property
+    def grasps(self) -> list[Grasp]:
+        """
+        list of Grasp, best first
+        """
+    @property
+    def rejected(self) -> int:
+        """
+        samples a hard constraint rejected
+        """
+    @property
+    def timing(self) -> SynthesisTiming:
+        """
+        SynthesisTiming (dict(result.timing) still works)
+        """
+class Evaluation:
+    """
+    log L and its terms for a batch of grasps.
+    """
+    def __getitem__(self, key: str) -> typing.Any:
+        """
+        Deprecated: the attribute of that name (results were dicts before; kept for one release).
+        """
+    def keys(self) -> list[str]:
+        """
+        Deprecated: the attribute names readable with [] (so dict(result) still works).
+        """
+    @property
+    def log_collision(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        (N,)
+        """
+    @property
+    def log_config(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        (N,)
+        """
+    @property
+    def log_contact(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        """
+        (N, query links)
+        """
+    @property
+    def log_experts(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        """
+        (N, experts)
+        """
+    @property
+    def log_pregrasp(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        (N,)
+        """
+    @property
+    def total(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        (N,) log L
+        """
+class QueryDensity:
+    """
+    Q_i: one link's query density on an object.
+    """
+    @property
+    def density(self) -> PoseDensity:
+        ...
+    @property
+    def link(self) -> int:
+        ...
+    @property
+    def link_name(self) -> str:
+        ...
+class GraspSynthesizer:
+    """
+    Query densities, sampling, ranking and annealing for one learnt model.
+    """
+    def __init__(self, hand: Hand, contact_models: collections.abc.Sequence[ContactModel], config_model: ConfigModel) -> None:
+        ...
+    def evaluate(self, query: collections.abc.Sequence[QueryDensity], collision: CollisionExpert, experts: typing.Any, wrists: typing.Any, joints: typing.Any, clear_pregrasp: typing.Any = None) -> Evaluation:
+        """
+        log L and its terms (an Evaluation) for a batch of grasps; clear_pregrasp=None: SynthesisSettings' default.
+        """
+    def query_densities(self, frames: typing.Any, features: typing.Any, settings: typing.Any = None, seed: typing.Any = None, **kwargs) -> list[QueryDensity]:
+        """
+        The query densities Q_i on an object.
+        Settings: settings= a QuerySettings (None: its defaults), and/or its fields as keywords,
+        which override it (an unknown keyword is a ValueError):
+          n_samples = 500: N_Q: samples per link to fit each query density from
+          n_components = 5: K_Q: components of each query mixture (GMM models)
+          max_iter = 100: EM iterations of the query mixtures
+          reg_covar = 1e-06: added to the query mixtures' covariance diagonals
+          kde = KdeSettings(position_bandwidth=0.005, orientation_bandwidth=0.15, feature_bandwidth=array([], dtype=float64)): KdeSettings of KDE query densities (features unused)
+          frame_jitter = True: rotate each sampled surface frame about its normal by up to pi exp(-jitter_sharpness ((k1 - k2) / k1)^2)
+          jitter_sharpness = 100.0: s of Kopicki's rule above
+        """
+    def sample_grasps(self, query: collections.abc.Sequence[QueryDensity], n: typing.SupportsInt | typing.SupportsIndex, seed: typing.Any = None) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 7]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]]:
+        """
+        (wrists (n, 7), joints (n, D)).
+        """
+    def synthesize(self, frames: typing.Any, features: typing.Any, collision: CollisionExpert, experts: typing.Any = None, settings: typing.Any = None, **kwargs) -> SynthesisResult:
+        """
+        Query densities, sampling, ranking and annealing on an object's frames (N, 7) and features (N, n).
+        Settings: settings= a SynthesisSettings (None: its defaults), and/or its fields as keywords,
+        which override it (an unknown keyword is a ValueError):
+          n_samples = 200: grasps sampled and ranked
+          n_optimise = 10: the best this many are optimised
+          optimise = True: anneal the best n_optimise
+          clear_pregrasp = True: an extra collision expert on the pre-grasp configuration (log W of the opened hand)
+          max_sampling_rounds = 10: batches of n_samples drawn at most until n_samples grasps pass every hard expert
+          query = QuerySettings(n_samples=500, n_components=5, max_iter=100, reg_covar=1e-06, kde=KdeSettings(position_bandwidth=0.005, orientation_bandwidth=0.15, feature_bandwidth=array([], dtype=float64)), frame_jitter=True, jitter_sharpness=100.0): QuerySettings
+          annealing = AnnealingSettings(iterations=100, initial_temperature=1.0, position_step=0.005, rotation_step=0.1, joint_step=0.5): AnnealingSettings
+          seed = 0: seeds everything random in synthesis (None: 0)
+        """
+    @property
+    def config_model(self) -> ConfigModel:
+        ...
+    @property
+    def contact_models(self) -> list[ContactModel]:
+        ...
+    @property
+    def method(self) -> str:
+        ...
+class SimSettings:
+    """
+    Settings of a grasp execution in Bullet (units: m, s, N, kg).
+    
+    Settings: settings= a SimSettings (None: its defaults), and/or its fields as keywords,
+    which override it (an unknown keyword is a ValueError):
+      gravity = array([ 0.  ,  0.  , -9.81]): m/s^2 (3,)
+      time_step = 0.004166666666666667: s (pybullet's default)
+      solver_iterations = 50: constraint solver iterations per step
+      hand_friction = 1.0: lateral friction coefficient of every hand link
+      object_friction = -1.0: < 0: the URDF's <contact><lateral_friction> (0.5 if absent)
+      support_friction = 1.0: lateral friction of the support plane
+      object_mass = -1.0: kg; < 0: the URDF's
+      grip_force = 40.0: N (N m): force limit of every finger joint motor
+      close_speed = 0.2: m/s (rad/s): joint speed limit while closing
+      close_overshoot = 0.5: motor targets lie this fraction of (grasp - pregrasp) past the grasp joints
+      close_time = 0.5: s spent closing before the lift
+      position_gain = 20.0: 1/s: joint velocity command = gain * position error
+      lift_height = 0.2: m
+      lift_speed = 0.5: m/s
+      lift_force = 1000.0: N: force limit of the lift joint
+      hold_time = 0.5: s held at the top
+      start_penetration = 0.002: m: a start penetrating deeper than this is 'start in collision'
+      contact_distance = 0.001: m: contact points closer than this count as touching
+      success_fraction = 0.5: the object must rise by this fraction of lift_height
+    """
+    __hash__: typing.ClassVar[None] = None
+    _fields: typing.ClassVar[tuple] = ('gravity', 'time_step', 'solver_iterations', 'hand_friction', 'object_friction', 'support_friction', 'object_mass', 'grip_force', 'close_speed', 'close_overshoot', 'close_time', 'position_gain', 'lift_height', 'lift_speed', 'lift_force', 'hold_time', 'start_penetration', 'contact_distance', 'success_fraction')
+    def __copy__(self) -> SimSettings:
+        ...
+    def __deepcopy__(self, memo: typing.Any) -> SimSettings:
+        ...
+    def __eq__(self, arg0: typing.Any) -> typing.Any:
+        ...
+    def __getstate__(self) -> dict:
+        ...
+    @typing.overload
+    def __init__(self) -> None:
+        """
+        The defaults: those of the default-constructed C++ struct.
+        """
+    @typing.overload
+    def __init__(self, **kwargs) -> None:
+        """
+        Keyword constructor: any of the fields (gravity, time_step, solver_iterations, hand_friction, object_friction, support_friction, object_mass, grip_force, close_speed, close_overshoot, close_time, position_gain, lift_height, lift_speed, lift_force, hold_time, start_penetration, contact_distance, success_fraction); the others keep their defaults.
+        """
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    @property
+    def close_overshoot(self) -> float:
+        """
+        motor targets lie this fraction of (grasp - pregrasp) past the grasp joints
+        """
+    @close_overshoot.setter
+    def close_overshoot(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def close_speed(self) -> float:
+        """
+        m/s (rad/s): joint speed limit while closing
+        """
+    @close_speed.setter
+    def close_speed(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def close_time(self) -> float:
+        """
+        s spent closing before the lift
+        """
+    @close_time.setter
+    def close_time(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def contact_distance(self) -> float:
+        """
+        m: contact points closer than this count as touching
+        """
+    @contact_distance.setter
+    def contact_distance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def gravity(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        """
+        m/s^2 (3,)
+        """
+    @gravity.setter
+    def gravity(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def grip_force(self) -> float:
+        """
+        N (N m): force limit of every finger joint motor
+        """
+    @grip_force.setter
+    def grip_force(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def hand_friction(self) -> float:
+        """
+        lateral friction coefficient of every hand link
+        """
+    @hand_friction.setter
+    def hand_friction(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def hold_time(self) -> float:
+        """
+        s held at the top
+        """
+    @hold_time.setter
+    def hold_time(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def lift_force(self) -> float:
+        """
+        N: force limit of the lift joint
+        """
+    @lift_force.setter
+    def lift_force(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def lift_height(self) -> float:
+        """
+        m
+        """
+    @lift_height.setter
+    def lift_height(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def lift_speed(self) -> float:
+        """
+        m/s
+        """
+    @lift_speed.setter
+    def lift_speed(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def object_friction(self) -> float:
+        """
+        < 0: the URDF's <contact><lateral_friction> (0.5 if absent)
+        """
+    @object_friction.setter
+    def object_friction(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def object_mass(self) -> float:
+        """
+        kg; < 0: the URDF's
+        """
+    @object_mass.setter
+    def object_mass(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def position_gain(self) -> float:
+        """
+        1/s: joint velocity command = gain * position error
+        """
+    @position_gain.setter
+    def position_gain(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def solver_iterations(self) -> int:
+        """
+        constraint solver iterations per step
+        """
+    @solver_iterations.setter
+    def solver_iterations(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def start_penetration(self) -> float:
+        """
+        m: a start penetrating deeper than this is 'start in collision'
+        """
+    @start_penetration.setter
+    def start_penetration(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def success_fraction(self) -> float:
+        """
+        the object must rise by this fraction of lift_height
+        """
+    @success_fraction.setter
+    def success_fraction(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def support_friction(self) -> float:
+        """
+        lateral friction of the support plane
+        """
+    @support_friction.setter
+    def support_friction(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def time_step(self) -> float:
+        """
+        s (pybullet's default)
+        """
+    @time_step.setter
+    def time_step(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class SimObject:
+    """
+    An object to grasp from a one-link URDF: collision meshes as convex hulls, mass, friction.
+    """
+    @staticmethod
+    def from_urdf(path: typing.Any) -> SimObject:
+        """
+        Reads a one-link object URDF; ValueError names a missing or unusable file.
+        """
+    def rest_pose(self, x: typing.SupportsFloat | typing.SupportsIndex = 0.0, y: typing.SupportsFloat | typing.SupportsIndex = 0.0, orientation: typing.Any = None) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[7, 1]"]:
+        """
+        The link pose (7,) resting the object on z = 0 at (x, y) with orientation [qx, qy, qz, qw].
+        """
+    @property
+    def inertia_scaling(self) -> float:
+        """
+        the URDF's <contact><inertia_scaling>, 1 if none
+        """
+    @property
+    def lateral_friction(self) -> float:
+        """
+        the URDF's <contact> value, -1 if none
+        """
+    @property
+    def mass(self) -> float:
+        """
+        kg
+        """
+    @property
+    def model(self) -> Hand:
+        """
+        The object as a (one-link) Hand: its collision geometry.
+        """
+    @property
+    def source(self) -> str:
+        ...
+class SimResult:
+    """
+    The outcome of one grasp execution.
+    """
+    def __repr__(self) -> str:
+        ...
+    @property
+    def contact_count(self) -> int:
+        """
+        hand-object contact points at the end
+        """
+    @property
+    def lift_height(self) -> float:
+        """
+        m the object's centre of mass rose
+        """
+    @property
+    def object_pose(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[7, 1]"]:
+        """
+        the object's final link pose (7,)
+        """
+    @property
+    def reason(self) -> str:
+        """
+        'success', 'start in collision', 'no contact' or 'not held'
+        """
+    @property
+    def simulated_time(self) -> float:
+        """
+        s
+        """
+    @property
+    def start_penetration(self) -> float:
+        """
+        m
+        """
+    @property
+    def steps(self) -> int:
+        ...
+    @property
+    def success(self) -> bool:
+        ...
+    @property
+    def wall_time(self) -> float:
+        """
+        s
+        """
+def build_info() -> dict[str, str]:
+    """
+    Versions of graspmix and of every library it was built against.
+    """
+def compute_surface_features(points: typing.Any, radius: typing.Any = None, normals: typing.Any = None, viewpoints: typing.Any = None, *, settings: typing.Any = None, **kwargs) -> SurfaceCloud:
+    """
+    O(v, r) of a cloud (N, 3): normals (the smallest eigenvector of each radius neighbourhood's covariance, PCL NormalEstimation's definition, computed in parallel here; or the given (N, 3)), outward by `orientation` (auto: towards viewpoints (3,) / (N, 3) when given, else given normals as they are, else propagated outward over the surface; or 'viewpoint', 'propagate', 'centroid', 'given'), principal curvatures (PCL, radius in m) and frames. Points with fewer than min_neighbours neighbours within radius are dropped (see indices, n_dropped). x is PCL's principal direction where (k1 - k2) / k1 >= min_anisotropy and k1 >= flat_curvature, else world z projected on the tangent plane (world x near +-z). radius=None: the settings' radius.
+    Settings: settings= a SurfaceFeatureSettings (None: its defaults), and/or its fields as keywords,
+    which override it (an unknown keyword is a ValueError):
+      radius = 0.01: m: neighbourhood radius of normals and curvatures (paper: 1 cm)
+      min_neighbours = 10: points with fewer neighbours within radius (itself included) are dropped
+      min_anisotropy = 0.25: the principal direction is x only where (k1 - k2) / k1 >= min_anisotropy ...
+      flat_curvature = 0.0001: ... and k1 >= flat_curvature (dimensionless)
+      orientation = 'auto': how normals are turned outward: auto | viewpoint | propagate | centroid | given
+      orientation_neighbours = 10: k of the propagation graph
+      n_threads = 0: 0 = OpenMP's default; results do not depend on it
+    """
+def contact_data(hand: Hand, link: typing.SupportsInt | typing.SupportsIndex, T_world_wrist: typing.Any, joints: typing.Any, frames: typing.Any, features: typing.Any, settings: typing.Any = None, **kwargs) -> ContactData:
+    """
+    eq:relative_pose_u_mixture: the contact points of one link in a demonstrated grasp, u = v^-1 o s.
+    Settings: settings= a ContactSettings (None: its defaults), and/or its fields as keywords,
+    which override it (an unknown keyword is a ValueError):
+      max_distance = 0.01: m: object points farther than this from a link's geometry are not its contacts
+      lambda_ = 5000.0: 1/m^2: a contact at distance d weighs exp(-lambda d^2)
+      min_points = 10: a link with fewer contact points gets no contact model
+    """
+def learn_contact_models(hand: Hand, T_world_wrist: typing.Any, joints: typing.Any, frames: typing.Any, features: typing.Any, make_density: collections.abc.Callable, settings: typing.Any = None, **kwargs) -> list[ContactModel]:
+    """
+    A contact model for every link with enough object points near it in the demonstrated grasp.
+    Settings: settings= a ContactSettings (None: its defaults), and/or its fields as keywords,
+    which override it (an unknown keyword is a ValueError):
+      max_distance = 0.01: m: object points farther than this from a link's geometry are not its contacts
+      lambda_ = 5000.0: 1/m^2: a contact at distance d weighs exp(-lambda d^2)
+      min_points = 10: a link with fewer contact points gets no contact model
+    """
+def load_cloud(path: typing.Any) -> CloudData:
+    """
+    Reads a .pcd (ascii, binary, binary_compressed), .ply or .npy (N, 3) cloud. NaN points are dropped (counted in n_invalid); extra fields are listed in `fields`. ValueError names the file and the problem.
+    """
+def load_mesh(path: typing.Any, scale: typing.Any = None) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"], typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 3]"]]:
+    """
+    (vertices (V, 3), triangles (T, 3)) of every triangle in a mesh file (STL, OBJ, ... via assimp), scaled.
+    """
+def log_vmf_s3_normaliser(kappa: typing.SupportsFloat | typing.SupportsIndex) -> float:
+    """
+    log of the hemisphere-restricted antipodal vMF normaliser on S^3 used by PoseKDE.
+    """
+def pose_inverse(a: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 7]"]:
+    """
+    Row-wise inverse of (N, 7) poses.
+    """
+def pose_multiply(a: typing.Any, b: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 7]"]:
+    """
+    Row-wise a o b over (N, 7) poses [x, y, z, qx, qy, qz, qw]; a side with one row is broadcast.
+    """
+def prepare_cloud(points: typing.Any, *, settings: typing.Any = None, **kwargs) -> SceneResult:
+    """
+    Scene clean-up before features, in this order: crop box [crop_min, crop_max] (on when either is given as a keyword), voxel grid, statistical outlier removal, and removal of the dominant plane by seeded RANSAC (it must hold plane_min_fraction of the points) together with the points below it.
+    Settings: settings= a SceneSettings (None: its defaults), and/or its fields as keywords,
+    which override it (an unknown keyword is a ValueError):
+      crop = False: keep only points inside [crop_min, crop_max]
+      crop_min = array([-inf, -inf, -inf]): m (3,), the cloud's frame
+      crop_max = array([inf, inf, inf]): m (3,), the cloud's frame
+      voxel_size = 0.003: m: voxel-grid leaf size, 0 = off (demonstration and query clouds must share it)
+      remove_outliers = True: PCL StatisticalOutlierRemoval
+      outlier_neighbours = 20: k of the mean-distance statistic
+      outlier_std_ratio = 2.0: drop points whose mean k-distance exceeds mean + ratio * std
+      remove_plane = True: find the dominant plane by RANSAC and remove it
+      plane_distance = 0.005: m: RANSAC inlier threshold
+      plane_max_iterations = 1000: RANSAC iterations
+      plane_min_fraction = 0.2: fraction of the cleaned points a plane needs to count as the support
+      remove_below_plane = True: also drop points on the far side of the plane from the object
+      seed = 0: seeds RANSAC (None: 0)
+    """
+def quat_exp(w: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 4]"]:
+    """
+    eq:exp_map on (N, 3) rotation vectors (half-angle convention) -> (N, 4) quaternions [x, y, z, w].
+    """
+def quat_log(q: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+    """
+    eq:log_map on (N, 4) quaternions [x, y, z, w]: arccos(w) v/|v| after canonicalising w >= 0 -> (N, 3).
+    """
+def save_cloud(path: typing.Any, points: typing.Any, normals: typing.Any = None, encoding: str = 'binary', viewpoint: typing.Any = None) -> None:
+    """
+    Writes float32 x y z (+ normal_x normal_y normal_z) to .pcd (encoding ascii | binary | binary_compressed) or .ply (ascii | binary); viewpoint [x, y, z, qx, qy, qz, qw] goes into the header.
+    """
+def sim_execute(hand: Hand, object: SimObject, T_world_object: typing.Any, T_world_wrist: typing.Any, pregrasp: typing.Any, grasp: typing.Any, settings: typing.Any = None, **kwargs) -> SimResult:
+    """
+    Executes one grasp in Bullet (arrays in hand.joint_names order); see graspmix.sim.execute.
+    Settings: settings= a SimSettings (None: its defaults), and/or its fields as keywords,
+    which override it (an unknown keyword is a ValueError):
+      gravity = array([ 0.  ,  0.  , -9.81]): m/s^2 (3,)
+      time_step = 0.004166666666666667: s (pybullet's default)
+      solver_iterations = 50: constraint solver iterations per step
+      hand_friction = 1.0: lateral friction coefficient of every hand link
+      object_friction = -1.0: < 0: the URDF's <contact><lateral_friction> (0.5 if absent)
+      support_friction = 1.0: lateral friction of the support plane
+      object_mass = -1.0: kg; < 0: the URDF's
+      grip_force = 40.0: N (N m): force limit of every finger joint motor
+      close_speed = 0.2: m/s (rad/s): joint speed limit while closing
+      close_overshoot = 0.5: motor targets lie this fraction of (grasp - pregrasp) past the grasp joints
+      close_time = 0.5: s spent closing before the lift
+      position_gain = 20.0: 1/s: joint velocity command = gain * position error
+      lift_height = 0.2: m
+      lift_speed = 0.5: m/s
+      lift_force = 1000.0: N: force limit of the lift joint
+      hold_time = 0.5: s held at the top
+      start_penetration = 0.002: m: a start penetrating deeper than this is 'start in collision'
+      contact_distance = 0.001: m: contact points closer than this count as touching
+      success_fraction = 0.5: the object must rise by this fraction of lift_height
+    """

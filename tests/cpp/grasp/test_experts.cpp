@@ -12,7 +12,7 @@ using namespace graspmix;
 namespace fs = std::filesystem;
 
 namespace {
-const fs::path kRepo = fs::path(__FILE__).parent_path().parent_path().parent_path();
+const fs::path kRepo = fs::path(__FILE__).parent_path().parent_path().parent_path().parent_path();  // tests/cpp/<layer>/x.cpp
 std::shared_ptr<const Hand> wsg50() {
   return std::make_shared<Hand>(Hand::from_urdf((kRepo / "data" / "hands" / "wsg50.urdf").string()));
 }

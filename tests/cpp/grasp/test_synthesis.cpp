@@ -16,7 +16,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kRepo = fs::path(__FILE__).parent_path().parent_path().parent_path();
+const fs::path kRepo = fs::path(__FILE__).parent_path().parent_path().parent_path().parent_path();  // tests/cpp/<layer>/x.cpp
 
 /// Points every 3 mm on the top and side faces of a 60 x 100 x 140 mm box standing on z = 0, with
 /// frames (z = outward normal) and features [k1, k2] = [0.02, 0] within 6 mm of an edge, else 0.

@@ -15,7 +15,7 @@ using namespace graspmix;
 
 namespace {
 
-const fs::path kRepo = fs::path(__FILE__).parent_path().parent_path().parent_path();
+const fs::path kRepo = fs::path(__FILE__).parent_path().parent_path().parent_path().parent_path();  // tests/cpp/<layer>/x.cpp
 
 struct TempDir {
   fs::path path;

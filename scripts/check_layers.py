@@ -1,5 +1,6 @@
 """Checks the C++ layering of docs/design.md: a file of layer L (include/graspmix/L/, src/L/, tests/cpp/L/)
-includes graspmix headers of L and of earlier layers only, and no public header includes a third-party
+includes graspmix headers (public ones as graspmix/<layer>/..., private ones of src/ as <layer>/...) of L and of
+earlier layers only, and no public header includes a third-party
 library other than Eigen. Prints every violation and exits 1 if there is one."""
 from __future__ import annotations
 
@@ -30,8 +31,11 @@ def violations(root: Path) -> list[str]:
                 out.append(f"{path.relative_to(root)}: not in a layer folder ({', '.join(LAYERS)})")
                 continue
             for name in INCLUDE.findall(path.read_text()):
-                if name.startswith("graspmix/"):
-                    used = name.split("/")[1]
+                # graspmix/<layer>/x.hpp, or a private header of src/ as <layer>/x.hpp
+                parts = name.split("/")
+                private = top != "include/graspmix" and len(parts) > 1 and parts[0] in ALLOWED
+                if name.startswith("graspmix/") or private:
+                    used = parts[0] if private else parts[1]
                     if used != layer and used not in ALLOWED[layer]:
                         out.append(f"{path.relative_to(root)}: layer '{layer}' includes {name}")
                 elif top == "include/graspmix" and not STANDARD_OR_EIGEN.match(name):

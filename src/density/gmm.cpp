@@ -10,44 +10,17 @@
 #include <Eigen/Cholesky>
 
 #include "graspmix/core/se3.hpp"
+#include "gaussian.hpp"
 
 namespace graspmix {
 
 namespace {
 
-constexpr double kLog2Pi = 1.8378770664093454836;
-constexpr Eigen::Index kParallelRows = 4096;  // below this, threads cost more than they save
+using detail::cholesky;
+using detail::gaussian_log_density_centred;
+using detail::str;
+
 const double kEps = std::numeric_limits<double>::epsilon();
-
-std::string str(Eigen::Index v) { return std::to_string(v); }
-
-/// Lower Cholesky factor and log determinant; throws naming the component when not positive definite.
-std::pair<Eigen::MatrixXd, double> cholesky(const Eigen::MatrixXd& S, const std::string& what) {
-  Eigen::LLT<Eigen::MatrixXd> llt(S);
-  if (llt.info() != Eigen::Success || !S.allFinite()) {
-    throw std::invalid_argument(what + " is not positive definite (degenerate data: increase reg_covar, "
-                                "use fewer components, or give more distinct points)");
-  }
-  Eigen::MatrixXd L = llt.matrixL();
-  return {L, 2.0 * L.diagonal().array().log().sum()};
-}
-
-/// -0.5 * (d log 2 pi + log|S| + maha) for every row of D (already centred), given L = chol(S).
-Eigen::VectorXd gaussian_log_density_centred(const Eigen::Ref<const RowMatrixXd>& D, const Eigen::MatrixXd& L,
-                                             double log_det) {
-  const Eigen::Index n = D.rows(), d = D.cols();
-  Eigen::VectorXd out(n);
-  const Eigen::Index block = 1024;
-  const Eigen::Index n_blocks = (n + block - 1) / block;
-#pragma omp parallel for schedule(static) if (n >= kParallelRows)
-  for (Eigen::Index b = 0; b < n_blocks; ++b) {
-    const Eigen::Index start = b * block, len = std::min(block, n - start);
-    Eigen::MatrixXd Z = D.middleRows(start, len).transpose();
-    L.triangularView<Eigen::Lower>().solveInPlace(Z);
-    out.segment(start, len) = -0.5 * (Z.colwise().squaredNorm().transpose().array() + (d * kLog2Pi + log_det));
-  }
-  return out;
-}
 
 Eigen::VectorXd checked_weights(const Eigen::VectorXd& w, Eigen::Index n, const char* what) {
   if (w.size() == 0) return Eigen::VectorXd::Ones(n);
@@ -197,6 +170,63 @@ RowMatrixXd GaussianMixture::weighted_log_component_densities(const Eigen::Ref<c
   return out;
 }
 
+void GaussianMixture::m_step(const Eigen::Ref<const RowMatrixXd>& X, const Eigen::VectorXd& w, double w_sum,
+                             const RowMatrixXd& R) {
+  const int K = settings_.n_components;
+  const Eigen::Index d = X.cols();
+  const Eigen::MatrixXd reg = settings_.reg_covar * Eigen::MatrixXd::Identity(d, d);
+  const RowMatrixXd Rw = R.array().colwise() * w.array();
+  Eigen::VectorXd nk = Rw.colwise().sum().transpose();
+  for (int k = 0; k < K; ++k) {
+    if (!(nk[k] > 10.0 * kEps * w_sum)) {
+      throw std::invalid_argument("GaussianMixture.fit: component " + str(k) +
+                                  " lost all support (no sample is responsible for it); use fewer components");
+    }
+  }
+  RowMatrixXd means = (Rw.transpose() * X).array().colwise() / nk.array();
+  std::vector<Eigen::MatrixXd> covs(K);
+  for (int k = 0; k < K; ++k) {
+    const RowMatrixXd D = X.rowwise() - means.row(k);
+    covs[k] = (D.array().colwise() * Rw.col(k).array()).matrix().transpose() * D / nk[k] + reg;
+    covs[k] = 0.5 * (covs[k] + covs[k].transpose());
+  }
+  set_parameters(nk / w_sum, std::move(means), std::move(covs));
+}
+
+GmmFitResult GaussianMixture::run_em(const Eigen::Ref<const RowMatrixXd>& X, const Eigen::VectorXd& w, double w_sum,
+                                     const RowMatrixXd& centres) {
+  const int K = settings_.n_components;
+  const Eigen::Index n = X.rows();
+  // Hard assignment to the nearest centre starts EM (scikit-learn's 'k-means++' initialisation).
+  RowMatrixXd R = RowMatrixXd::Zero(n, K);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    Eigen::Index best;
+    (centres.rowwise() - X.row(i)).rowwise().squaredNorm().minCoeff(&best);
+    R(i, best) = 1.0;
+  }
+  m_step(X, w, w_sum, R);
+  GmmFitResult res;
+  double lower = -std::numeric_limits<double>::infinity();
+  for (int it = 1; it <= settings_.max_iter; ++it) {
+    const double prev = lower;
+    RowMatrixXd logp = weighted_log_component_densities(X);
+    const Eigen::VectorXd norm = logsumexp_rows(logp);
+    lower = w.dot(norm) / w_sum;
+    res.history.push_back(lower);
+    res.n_iter = it;
+    logp.colwise() -= norm;
+    // Responsibilities below e^-700 would be subnormal numbers, which make every product in the
+    // M-step an order of magnitude slower; they are zero to double precision anyway.
+    m_step(X, w, w_sum, (logp.array() < -700.0).select(0.0, logp.array().exp()).matrix());
+    if (std::abs(lower - prev) < settings_.tol) {
+      res.converged = true;
+      break;
+    }
+  }
+  res.lower_bound = lower;
+  return res;
+}
+
 const GmmFitResult& GaussianMixture::fit(const Eigen::Ref<const RowMatrixXd>& X, const Eigen::VectorXd& weights_in,
                                          const RowMatrixXd& means_init) {
   const int K = settings_.n_components;
@@ -215,59 +245,6 @@ const GmmFitResult& GaussianMixture::fit(const Eigen::Ref<const RowMatrixXd>& X,
   }
 
   std::mt19937_64 rng(settings_.seed);
-  const Eigen::MatrixXd reg = settings_.reg_covar * Eigen::MatrixXd::Identity(d, d);
-
-  // M-step from (unnormalised) responsibilities R (N, K).
-  auto m_step = [&](const RowMatrixXd& R) {
-    const RowMatrixXd Rw = R.array().colwise() * w.array();
-    Eigen::VectorXd nk = Rw.colwise().sum().transpose();
-    for (int k = 0; k < K; ++k) {
-      if (!(nk[k] > 10.0 * kEps * w_sum)) {
-        throw std::invalid_argument("GaussianMixture.fit: component " + str(k) +
-                                    " lost all support (no sample is responsible for it); use fewer components");
-      }
-    }
-    RowMatrixXd means = (Rw.transpose() * X).array().colwise() / nk.array();
-    std::vector<Eigen::MatrixXd> covs(K);
-    for (int k = 0; k < K; ++k) {
-      const RowMatrixXd D = X.rowwise() - means.row(k);
-      covs[k] = (D.array().colwise() * Rw.col(k).array()).matrix().transpose() * D / nk[k] + reg;
-      covs[k] = 0.5 * (covs[k] + covs[k].transpose());
-    }
-    set_parameters(nk / w_sum, std::move(means), std::move(covs));
-  };
-
-  auto run_once = [&](const RowMatrixXd& centres) {
-    // Hard assignment to the nearest centre starts EM (scikit-learn's 'k-means++' initialisation).
-    RowMatrixXd R = RowMatrixXd::Zero(n, K);
-    for (Eigen::Index i = 0; i < n; ++i) {
-      Eigen::Index best;
-      (centres.rowwise() - X.row(i)).rowwise().squaredNorm().minCoeff(&best);
-      R(i, best) = 1.0;
-    }
-    m_step(R);
-    GmmFitResult res;
-    double lower = -std::numeric_limits<double>::infinity();
-    for (int it = 1; it <= settings_.max_iter; ++it) {
-      const double prev = lower;
-      RowMatrixXd logp = weighted_log_component_densities(X);
-      const Eigen::VectorXd norm = logsumexp_rows(logp);
-      lower = w.dot(norm) / w_sum;
-      res.history.push_back(lower);
-      res.n_iter = it;
-      logp.colwise() -= norm;
-      // Responsibilities below e^-700 would be subnormal numbers, which make every product in the
-      // M-step an order of magnitude slower; they are zero to double precision anyway.
-      m_step((logp.array() < -700.0).select(0.0, logp.array().exp()).matrix());
-      if (std::abs(lower - prev) < settings_.tol) {
-        res.converged = true;
-        break;
-      }
-    }
-    res.lower_bound = lower;
-    return res;
-  };
-
   bool have_best = false;
   GmmFitResult best;
   Eigen::VectorXd best_w;
@@ -277,7 +254,7 @@ const GmmFitResult& GaussianMixture::fit(const Eigen::Ref<const RowMatrixXd>& X,
   for (int init = 0; init < settings_.n_init; ++init) {
     try {
       const RowMatrixXd centres = means_init.size() ? means_init : kmeans_plusplus(X, w, K, rng);
-      GmmFitResult res = run_once(centres);
+      GmmFitResult res = run_em(X, w, w_sum, centres);
       if (!have_best || res.lower_bound > best.lower_bound) {
         res.best_init = init;
         best = std::move(res);
@@ -333,190 +310,6 @@ RowMatrixXd GaussianMixture::sample(int n, std::mt19937_64& rng) const {
 RowMatrixXd GaussianMixture::sample(int n, std::uint64_t seed) const {
   std::mt19937_64 rng(seed);
   return sample(n, rng);
-}
-
-namespace {
-
-std::vector<int> checked_dims(const std::vector<int>& dims, int d, const char* what, bool allow_all) {
-  std::vector<int> seen(d, 0);
-  for (int k : dims) {
-    if (k < 0 || k >= d) {
-      throw std::invalid_argument(std::string(what) + ": dimension " + std::to_string(k) + " is outside [0, " +
-                                  std::to_string(d) + ")");
-    }
-    if (seen[k]++) throw std::invalid_argument(std::string(what) + ": dimension " + std::to_string(k) + " repeated");
-  }
-  if (dims.empty()) throw std::invalid_argument(std::string(what) + ": no dimensions given");
-  if (!allow_all && static_cast<int>(dims.size()) == d) {
-    throw std::invalid_argument(std::string(what) + ": conditioning on every dimension leaves nothing");
-  }
-  std::vector<int> rest;
-  for (int k = 0; k < d; ++k)
-    if (!seen[k]) rest.push_back(k);
-  return rest;
-}
-
-Eigen::MatrixXd sub(const Eigen::MatrixXd& S, const std::vector<int>& rows, const std::vector<int>& cols) {
-  Eigen::MatrixXd out(rows.size(), cols.size());
-  for (size_t i = 0; i < rows.size(); ++i)
-    for (size_t j = 0; j < cols.size(); ++j) out(i, j) = S(rows[i], cols[j]);
-  return out;
-}
-
-Eigen::VectorXd sub(const Eigen::VectorXd& v, const std::vector<int>& idx) {
-  Eigen::VectorXd out(idx.size());
-  for (size_t i = 0; i < idx.size(); ++i) out[i] = v[idx[i]];
-  return out;
-}
-
-}  // namespace
-
-GaussianMixture GaussianMixture::marginal(const std::vector<int>& dims) const {
-  require_fitted("marginal");
-  checked_dims(dims, dim(), "GaussianMixture.marginal", true);
-  RowMatrixXd mu(n_components(), dims.size());
-  std::vector<Eigen::MatrixXd> covs;
-  for (int k = 0; k < n_components(); ++k) {
-    mu.row(k) = sub(Eigen::VectorXd(means_.row(k).transpose()), dims).transpose();
-    covs.push_back(sub(covariances_[k], dims, dims));
-  }
-  return from_parameters(weights_, mu, covs);
-}
-
-GaussianMixture GaussianMixture::condition(const std::vector<int>& given, const Eigen::VectorXd& values) const {
-  require_fitted("condition");
-  const std::vector<int> rest = checked_dims(given, dim(), "GaussianMixture.condition", false);
-  if (values.size() != static_cast<Eigen::Index>(given.size())) {
-    throw std::invalid_argument("GaussianMixture.condition: " + str(values.size()) + " values for " +
-                                str(given.size()) + " given dimensions");
-  }
-  if (!values.allFinite()) throw std::invalid_argument("GaussianMixture.condition: values contain NaN or infinity");
-  const int K = n_components();
-  RowMatrixXd mu(K, rest.size());
-  std::vector<Eigen::MatrixXd> covs;
-  Eigen::VectorXd log_pi(K);
-  for (int k = 0; k < K; ++k) {
-    const Eigen::VectorXd m = means_.row(k).transpose();
-    const Eigen::MatrixXd Suu = sub(covariances_[k], rest, rest), Sur = sub(covariances_[k], rest, given),
-                          Srr = sub(covariances_[k], given, given);
-    auto [Lr, ld_r] = cholesky(Srr, "the given block of covariance " + str(k));
-    const Eigen::LLT<Eigen::MatrixXd> llt(Srr);
-    const Eigen::VectorXd diff = values - sub(m, given);
-    // Bishop 2.81-2.82: mu_u + Sigma_ur Sigma_rr^-1 (r - mu_r), Sigma_uu - Sigma_ur Sigma_rr^-1 Sigma_ru.
-    mu.row(k) = (sub(m, rest) + Sur * llt.solve(diff)).transpose();
-    Eigen::MatrixXd S = Suu - Sur * llt.solve(Sur.transpose());
-    covs.push_back(0.5 * (S + S.transpose()));
-    const Eigen::VectorXd z = Lr.triangularView<Eigen::Lower>().solve(diff);
-    log_pi[k] = std::log(weights_[k]) - 0.5 * (z.squaredNorm() + given.size() * kLog2Pi + ld_r);
-  }
-  // pi^j = w^j N(r | mu_r^j, S_rr^j) / sum_k w^k N(r | mu_r^k, S_rr^k), in log space.
-  const double m = log_pi.maxCoeff();
-  if (!std::isfinite(m)) throw std::invalid_argument("GaussianMixture.condition: the given values have zero density");
-  const Eigen::VectorXd pi = (log_pi.array() - m).exp();
-  return from_parameters(pi / pi.sum(), mu, covs);
-}
-
-// ---- ConditionalGaussianMixture ------------------------------------------------------------
-
-ConditionalGaussianMixture::ConditionalGaussianMixture(const GaussianMixture& joint, int u_dim) {
-  if (!joint.fitted()) throw std::logic_error("ConditionalGaussianMixture: the joint mixture is not fitted");
-  if (u_dim < 1 || u_dim > joint.dim()) {
-    throw std::invalid_argument("ConditionalGaussianMixture: u_dim " + std::to_string(u_dim) + " outside [1, " +
-                                std::to_string(joint.dim()) + "]");
-  }
-  u_dim_ = u_dim;
-  r_dim_ = joint.dim() - u_dim;
-  const int K = joint.n_components();
-  log_w_ = joint.weights().array().log();
-  mu_u_ = joint.means().leftCols(u_dim_);
-  mu_r_ = joint.means().rightCols(r_dim_);
-  log_det_cond_.resize(K);
-  log_det_rr_.resize(K);
-  for (int k = 0; k < K; ++k) {
-    const Eigen::MatrixXd& S = joint.covariances()[k];
-    const Eigen::MatrixXd Suu = S.topLeftCorner(u_dim_, u_dim_);
-    if (r_dim_ == 0) {
-      regression_.emplace_back(u_dim_, 0);
-      chol_rr_.emplace_back(0, 0);
-      log_det_rr_[k] = 0.0;
-      auto [L, ld] = cholesky(Suu, "covariance of component " + str(k));
-      chol_cond_.push_back(L);
-      log_det_cond_[k] = ld;
-      continue;
-    }
-    const Eigen::MatrixXd Sur = S.topRightCorner(u_dim_, r_dim_), Srr = S.bottomRightCorner(r_dim_, r_dim_);
-    auto [Lr, ld_r] = cholesky(Srr, "feature block of covariance " + str(k));
-    const Eigen::LLT<Eigen::MatrixXd> llt(Srr);
-    Eigen::MatrixXd A = llt.solve(Sur.transpose()).transpose();
-    Eigen::MatrixXd C = Suu - A * Sur.transpose();
-    auto [Lc, ld_c] = cholesky(0.5 * (C + C.transpose()), "conditional covariance of component " + str(k));
-    regression_.push_back(std::move(A));
-    chol_rr_.push_back(std::move(Lr));
-    chol_cond_.push_back(std::move(Lc));
-    log_det_rr_[k] = ld_r;
-    log_det_cond_[k] = ld_c;
-  }
-}
-
-RowMatrixXd ConditionalGaussianMixture::log_conditional_weights(const Eigen::Ref<const RowMatrixXd>& R) const {
-  const Eigen::Index K = log_w_.size();
-  if (R.cols() != r_dim_) {
-    throw std::invalid_argument("features have " + str(R.cols()) + " columns, the model expects " + str(r_dim_));
-  }
-  RowMatrixXd out(R.rows(), K);
-  for (Eigen::Index k = 0; k < K; ++k) {
-    if (r_dim_ == 0) {
-      out.col(k).setConstant(log_w_[k]);
-      continue;
-    }
-    const RowMatrixXd D = R.rowwise() - mu_r_.row(k);
-    out.col(k) = gaussian_log_density_centred(D, chol_rr_[k], log_det_rr_[k]).array() + log_w_[k];
-  }
-  return out;
-}
-
-Eigen::VectorXd ConditionalGaussianMixture::log_feature_density(const Eigen::Ref<const RowMatrixXd>& R) const {
-  return logsumexp_rows(log_conditional_weights(R));
-}
-
-Eigen::VectorXd ConditionalGaussianMixture::log_density(const Eigen::Ref<const RowMatrixXd>& U,
-                                                        const Eigen::Ref<const RowMatrixXd>& R) const {
-  if (U.cols() != u_dim_) {
-    throw std::invalid_argument("poses have " + str(U.cols()) + " coordinates, the model expects " + str(u_dim_));
-  }
-  if (U.rows() != R.rows()) {
-    throw std::invalid_argument(str(U.rows()) + " poses but " + str(R.rows()) + " feature rows");
-  }
-  RowMatrixXd logp = log_conditional_weights(R);
-  logp.colwise() -= logsumexp_rows(logp);  // log pi^j(r)
-  for (Eigen::Index k = 0; k < logp.cols(); ++k) {
-    RowMatrixXd D = U.rowwise() - mu_u_.row(k);
-    if (r_dim_ > 0) D -= (R.rowwise() - mu_r_.row(k)) * regression_[k].transpose();
-    logp.col(k) += gaussian_log_density_centred(D, chol_cond_[k], log_det_cond_[k]);
-  }
-  return logsumexp_rows(logp);
-}
-
-RowMatrixXd ConditionalGaussianMixture::sample(const Eigen::Ref<const RowMatrixXd>& R, std::mt19937_64& rng) const {
-  RowMatrixXd logp = log_conditional_weights(R);
-  logp.colwise() -= logsumexp_rows(logp);
-  std::uniform_real_distribution<double> uni(0.0, 1.0);
-  std::normal_distribution<double> normal;
-  RowMatrixXd out(R.rows(), u_dim_);
-  Eigen::VectorXd z(u_dim_);
-  for (Eigen::Index i = 0; i < R.rows(); ++i) {
-    double u = uni(rng);
-    Eigen::Index k = 0;
-    for (; k + 1 < logp.cols(); ++k) {
-      u -= std::exp(logp(i, k));
-      if (u <= 0.0) break;
-    }
-    for (int j = 0; j < u_dim_; ++j) z[j] = normal(rng);
-    Eigen::VectorXd mean = mu_u_.row(k).transpose();
-    if (r_dim_ > 0) mean += regression_[k] * (R.row(i) - mu_r_.row(k)).transpose();
-    out.row(i) = (mean + chol_cond_[k] * z).transpose();
-  }
-  return out;
 }
 
 }  // namespace graspmix

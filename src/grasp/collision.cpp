@@ -18,20 +18,21 @@
 #include <fcl/narrowphase/collision_request.h>
 #include <fcl/narrowphase/collision_result.h>
 
+#include "core/uniform_grid.hpp"
+#include "graspmix/core/plane.hpp"
 #include "graspmix/core/se3.hpp"
 
 namespace graspmix {
 
-/// Points sorted by grid cell (x fastest), with the first point of every cell.
+/// The cloud's points in a grid over their bounding box [lo, hi].
 struct CollisionExpert::Index {
+  Index(const Eigen::Ref<const Vec3Array>& cloud, double cell_size);
   Eigen::Vector3d lo = Eigen::Vector3d::Zero(), hi = Eigen::Vector3d::Zero();
-  double h = 1.0;
-  Eigen::Vector3i dims = Eigen::Vector3i::Ones();
-  std::vector<Eigen::Index> start;  ///< size cells + 1
-  Vec3Array points;
+  detail::UniformGrid grid;
 };
 
 struct CollisionExpert::Shapes {
+  Shapes(const Hand& hand, const std::optional<Eigen::Vector4d>& plane, double plane_margin);
   struct Shape {
     int link = -1;
     const CollisionShape* src = nullptr;
@@ -93,87 +94,68 @@ std::shared_ptr<fcl::CollisionGeometryd> make_fcl_geometry(const CollisionShape&
   return nullptr;
 }
 
-}  // namespace
-
-CollisionExpert::CollisionExpert(std::shared_ptr<const Hand> hand, const Eigen::Ref<const Vec3Array>& cloud,
-                                 const std::optional<Eigen::Vector4d>& plane, CollisionSettings settings)
-    : hand_(std::move(hand)), settings_(settings) {
-  if (!hand_) throw std::invalid_argument("hand: expected a Hand, got none");
-  if (!(settings_.beta >= 0) || !std::isfinite(settings_.beta)) throw std::invalid_argument("beta must be finite and >= 0");
-  if (!(settings_.point_radius >= 0) || !std::isfinite(settings_.point_radius)) {
+void check_settings(const CollisionSettings& s) {
+  if (!(s.beta >= 0) || !std::isfinite(s.beta)) throw std::invalid_argument("beta must be finite and >= 0");
+  if (!(s.point_radius >= 0) || !std::isfinite(s.point_radius)) {
     throw std::invalid_argument("point_radius must be finite and >= 0");
   }
-  if (!std::isfinite(settings_.plane_margin)) throw std::invalid_argument("plane_margin must be finite");
-  if (!(settings_.inside_weight >= 0) || !std::isfinite(settings_.inside_weight)) {
+  if (!std::isfinite(s.plane_margin)) throw std::invalid_argument("plane_margin must be finite");
+  if (!(s.inside_weight >= 0) || !std::isfinite(s.inside_weight)) {
     throw std::invalid_argument("inside_weight must be finite and >= 0");
   }
-  if (!(settings_.contact_tolerance >= 0) || !std::isfinite(settings_.contact_tolerance)) {
+  if (!(s.contact_tolerance >= 0) || !std::isfinite(s.contact_tolerance)) {
     throw std::invalid_argument("contact_tolerance must be finite and >= 0");
   }
-  if (!(settings_.cell_size >= 0) || !std::isfinite(settings_.cell_size)) {
+  if (!(s.cell_size >= 0) || !std::isfinite(s.cell_size)) {
     throw std::invalid_argument("cell_size must be finite and >= 0 (0 = automatic)");
   }
-  require_finite(cloud, "cloud");
+}
 
-  // ---- the grid over the cloud ----
-  auto index = std::make_shared<Index>();
+/// The grid over the cloud's bounding box [lo, hi]: cells of cell_size, or of about one point per cell
+/// over the bounding box (a surface cloud then fills a few per cell); at most 4 million cells.
+detail::UniformGrid cloud_grid(const Eigen::Ref<const Vec3Array>& cloud, const Eigen::Vector3d& lo,
+                               const Eigen::Vector3d& hi, double cell_size) {
+  using Grid = detail::UniformGrid;
   const Eigen::Index N = cloud.rows();
-  if (N > 0) {
-    index->lo = cloud.colwise().minCoeff().transpose();
-    index->hi = cloud.colwise().maxCoeff().transpose();
-    const Eigen::Vector3d ext = (index->hi - index->lo).cwiseMax(1e-6);
-    // About one point per cell over the bounding box (a surface cloud then fills a few per cell); thin
-    // sides count as 5% of the longest so a flat cloud does not get a needlessly fine grid.
-    const Eigen::Vector3d thick = ext.cwiseMax(0.05 * ext.maxCoeff());
-    double h = settings_.cell_size > 0 ? settings_.cell_size : std::cbrt(thick.prod() / static_cast<double>(N));
-    h = std::max(h, 1e-4 * ext.maxCoeff());
-    auto dims_for = [&](double hh) { return ((ext / hh).array().floor().cast<int>() + 1).matrix().eval(); };
-    Eigen::Vector3i dims = dims_for(h);
-    while (static_cast<double>(dims[0]) * dims[1] * dims[2] > 4e6) dims = dims_for(h *= 1.5);
-    index->h = h;
-    index->dims = dims;
-    const Eigen::Index cells = static_cast<Eigen::Index>(dims[0]) * dims[1] * dims[2];
-    std::vector<Eigen::Index> cell_of(static_cast<size_t>(N));
-    index->start.assign(static_cast<size_t>(cells + 1), 0);
-    for (Eigen::Index i = 0; i < N; ++i) {
-      const Eigen::Vector3i c = ((cloud.row(i).transpose() - index->lo) / h).array().floor().cast<int>().matrix();
-      const Eigen::Vector3i cc = c.cwiseMax(0).cwiseMin(dims - Eigen::Vector3i::Ones());
-      cell_of[static_cast<size_t>(i)] = (static_cast<Eigen::Index>(cc[2]) * dims[1] + cc[1]) * dims[0] + cc[0];
-      ++index->start[static_cast<size_t>(cell_of[static_cast<size_t>(i)] + 1)];
-    }
-    for (Eigen::Index c = 0; c < cells; ++c) index->start[static_cast<size_t>(c + 1)] += index->start[static_cast<size_t>(c)];
-    std::vector<Eigen::Index> fill(index->start.begin(), index->start.end() - 1);
-    index->points.resize(N, 3);
-    for (Eigen::Index i = 0; i < N; ++i) index->points.row(fill[static_cast<size_t>(cell_of[static_cast<size_t>(i)])]++) = cloud.row(i);
-  } else {
-    index->points.resize(0, 3);
-    index->start.assign(2, 0);
-  }
-  index_ = index;
+  if (N == 0) return Grid(cloud, Eigen::Vector3d::Zero(), 1.0, {1, 1, 1}, Grid::Layout::Dense);
+  const Eigen::Vector3d ext = (hi - lo).cwiseMax(1e-6);
+  // Thin sides count as 5% of the longest so a flat cloud does not get a needlessly fine grid.
+  const Eigen::Vector3d thick = ext.cwiseMax(0.05 * ext.maxCoeff());
+  double h = cell_size > 0 ? cell_size : std::cbrt(thick.prod() / static_cast<double>(N));
+  h = std::max(h, 1e-4 * ext.maxCoeff());
+  auto dims_for = [&](double hh) { return ((ext / hh).array().floor().cast<int>() + 1).matrix().eval(); };
+  Eigen::Vector3i dims = dims_for(h);
+  while (static_cast<double>(dims[0]) * dims[1] * dims[2] > 4e6) dims = dims_for(h *= 1.5);
+  return Grid(cloud, lo, h, {dims[0], dims[1], dims[2]}, Grid::Layout::Dense);
+}
 
-  // ---- the plane ----
-  if (plane) {
-    Eigen::Vector4d p = *plane;
-    if (!p.allFinite()) throw std::invalid_argument("plane: must be finite");
-    const double n = p.head<3>().norm();
-    if (!(n > 1e-12)) throw std::invalid_argument("plane: the normal [a, b, c] is zero");
-    p /= n;
-    if (settings_.orient_plane && N > 0) {
-      const double mean_height = (cloud * p.head<3>()).array().mean() + p[3];
-      if (mean_height < 0) p = -p;
-    }
-    plane_ = p;
-  }
+/// The plane normalised and, if asked, oriented so the cloud's mean height over it is >= 0 (PlaneSide::Mean).
+Eigen::Vector4d checked_plane(const Eigen::Vector4d& plane, const Eigen::Ref<const Vec3Array>& cloud, bool orient) {
+  Eigen::Vector4d p = plane;
+  if (!p.allFinite()) throw std::invalid_argument("plane: must be finite");
+  const double n = p.head<3>().norm();
+  if (!(n > 1e-12)) throw std::invalid_argument("plane: the normal [a, b, c] is zero");
+  p /= n;
+  return orient ? orient_plane(p, cloud, PlaneSide::Mean) : p;
+}
 
-  // ---- the shapes ----
-  auto shapes = std::make_shared<Shapes>();
-  for (int l = 0; l < hand_->n_links(); ++l) {
-    for (const CollisionShape& s : hand_->links()[static_cast<size_t>(l)].collisions) {
+}  // namespace
+
+CollisionExpert::Index::Index(const Eigen::Ref<const Vec3Array>& cloud, double cell_size)
+    : lo(cloud.rows() > 0 ? Eigen::Vector3d(cloud.colwise().minCoeff().transpose()) : Eigen::Vector3d::Zero()),
+      hi(cloud.rows() > 0 ? Eigen::Vector3d(cloud.colwise().maxCoeff().transpose()) : Eigen::Vector3d::Zero()),
+      grid(cloud_grid(cloud, lo, hi, cell_size)) {}
+
+/// The hand's collision shapes with their local bounding boxes and (with a plane) their FCL geometry,
+/// and the plane as an FCL half-space.
+CollisionExpert::Shapes::Shapes(const Hand& hand, const std::optional<Eigen::Vector4d>& plane, double plane_margin) {
+  for (int l = 0; l < hand.n_links(); ++l) {
+    for (const CollisionShape& s : hand.links()[static_cast<size_t>(l)].collisions) {
       if (s.type == ShapeType::Mesh && !s.hull_planes) {
-        throw std::invalid_argument("hand: link '" + hand_->link_names()[static_cast<size_t>(l)] +
+        throw std::invalid_argument("hand: link '" + hand.link_names()[static_cast<size_t>(l)] +
                                     "' has a mesh without geometry (the hand was read with load_meshes = false)");
       }
-      Shapes::Shape sh;
+      Shape sh;
       sh.link = l;
       sh.src = &s;
       switch (s.type) {
@@ -194,27 +176,36 @@ CollisionExpert::CollisionExpert(std::shared_ptr<const Hand> hand, const Eigen::
           break;
         }
       }
-      if (plane_) sh.fcl_geometry = make_fcl_geometry(s);
-      shapes->shapes.push_back(std::move(sh));
+      if (plane) sh.fcl_geometry = make_fcl_geometry(s);
+      shapes.push_back(std::move(sh));
     }
   }
-  if (plane_) {
+  if (plane) {
     // FCL's half-space is {x : n . x <= d}: the table below the (raised) plane n . x + d0 = margin.
-    shapes->halfspace = std::make_shared<fcl::Halfspaced>(Eigen::Vector3d(plane_->head<3>()),
-                                                           settings_.plane_margin - (*plane_)[3]);
+    halfspace = std::make_shared<fcl::Halfspaced>(Eigen::Vector3d(plane->head<3>()), plane_margin - (*plane)[3]);
   }
-  shapes_ = shapes;
 }
 
-Eigen::Index CollisionExpert::n_points() const { return index_->points.rows(); }
-double CollisionExpert::cell_size() const { return index_->h; }
+CollisionExpert::CollisionExpert(std::shared_ptr<const Hand> hand, const Eigen::Ref<const Vec3Array>& cloud,
+                                 const std::optional<Eigen::Vector4d>& plane, CollisionSettings settings)
+    : hand_(std::move(hand)), settings_(settings) {
+  if (!hand_) throw std::invalid_argument("hand: expected a Hand, got none");
+  check_settings(settings_);
+  require_finite(cloud, "cloud");
+  index_ = std::make_shared<const Index>(cloud, settings_.cell_size);
+  if (plane) plane_ = checked_plane(*plane, cloud, settings_.orient_plane);
+  shapes_ = std::make_shared<const Shapes>(*hand_, plane_, settings_.plane_margin);
+}
+
+Eigen::Index CollisionExpert::n_points() const { return index_->grid.size(); }
+double CollisionExpert::cell_size() const { return index_->grid.cell_size(); }
 
 void CollisionExpert::evaluate_into(const Eigen::Isometry3d* link_poses, double* cloud_depth, double* plane_depth,
                                     int* points_inside) const {
   const Index& ix = *index_;
   const double r = settings_.point_radius;
   const double tol = settings_.contact_tolerance;
-  const Eigen::Index N = ix.points.rows();
+  const Eigen::Index N = ix.grid.size();
   for (const Shapes::Shape& sh : shapes_->shapes) {
     const Eigen::Isometry3d T = link_poses[sh.link] * sh.src->T_link_shape;
     const Eigen::Matrix3d& R = T.linear();
@@ -226,29 +217,20 @@ void CollisionExpert::evaluate_into(const Eigen::Isometry3d* link_poses, double*
     if (N > 0) {
       const Eigen::Vector3d lo = (centre - half).array() - r, hi = (centre + half).array() + r;
       if ((lo.array() <= ix.hi.array()).all() && (hi.array() >= ix.lo.array()).all()) {
-        const Eigen::Vector3i c0 =
-            ((lo - ix.lo) / ix.h).array().floor().cast<int>().max(0).min((ix.dims.array() - 1)).matrix();
-        const Eigen::Vector3i c1 =
-            ((hi - ix.lo) / ix.h).array().floor().cast<int>().max(0).min((ix.dims.array() - 1)).matrix();
+        const detail::UniformGrid::Cell c0 = ix.grid.cell_of(lo), c1 = ix.grid.cell_of(hi);
         double deepest = cloud_depth[sh.link];
         int inside = 0;
-        for (int cz = c0[2]; cz <= c1[2]; ++cz) {
-          for (int cy = c0[1]; cy <= c1[1]; ++cy) {
-            const Eigen::Index row = (static_cast<Eigen::Index>(cz) * ix.dims[1] + cy) * ix.dims[0];
-            const Eigen::Index b = ix.start[static_cast<size_t>(row + c0[0])];
-            const Eigen::Index e = ix.start[static_cast<size_t>(row + c1[0] + 1)];
-            for (Eigen::Index i = b; i < e; ++i) {
-              const Eigen::Vector3d p = R.transpose() * (ix.points.row(i).transpose() - t);
-              // Cheap rejection against the local box before the exact distance.
-              if (((p - sh.centre).cwiseAbs() - sh.half).maxCoeff() >= r) continue;
-              const double depth = r - signed_distance(*sh.src, p);
-              if (depth > tol) {
-                ++inside;
-                deepest = std::max(deepest, depth);
-              }
-            }
+        // Order-free: a maximum and a count.
+        ix.grid.for_each_in_cells(c0, c1, [&](int i) {
+          const Eigen::Vector3d p = R.transpose() * (ix.grid.point(i) - t);
+          // Cheap rejection against the local box before the exact distance.
+          if (((p - sh.centre).cwiseAbs() - sh.half).maxCoeff() >= r) return;
+          const double depth = r - signed_distance(*sh.src, p);
+          if (depth > tol) {
+            ++inside;
+            deepest = std::max(deepest, depth);
           }
-        }
+        });
         cloud_depth[sh.link] = deepest;
         points_inside[sh.link] += inside;
       }

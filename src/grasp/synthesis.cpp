@@ -7,15 +7,16 @@
 #include <numeric>
 #include <stdexcept>
 #include <string>
+#include <typeinfo>
 
-#include "graspmix/density/pose_mixture.hpp"
+#include "graspmix/core/frame_jitter.hpp"
 #include "graspmix/core/se3.hpp"
+#include "graspmix/density/kde.hpp"
+#include "graspmix/density/pose_mixture.hpp"
 
 namespace graspmix {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -32,6 +33,28 @@ Eigen::Quaterniond quat_row(const Eigen::Ref<const PoseArray>& a, Eigen::Index i
   return Eigen::Quaterniond(a(i, 6), a(i, 3), a(i, 4), a(i, 5)).normalized();
 }
 
+/// Builds the query density Q_i of the same kind as a contact model's density (eq:query_density_approx):
+/// a mixture fitted by EM (its seed drawn from rng) for a mixture, a KDE for a KDE.
+class QueryDensityOfKind final : public PoseDensityVisitor {
+ public:
+  QueryDensityOfKind(const QuerySettings& s, std::mt19937_64& rng) : s_(s), rng_(rng) {}
+  void operator()(const PoseMixture&) override {
+    GmmSettings g;
+    g.n_components = s_.n_components;
+    g.max_iter = s_.max_iter;
+    g.reg_covar = s_.reg_covar;
+    g.seed = rng_();
+    density = std::make_shared<PoseMixture>(g);
+  }
+  void operator()(const PoseKDE&) override { density = std::make_shared<PoseKDE>(s_.kde); }
+
+  std::shared_ptr<PoseDensity> density;
+
+ private:
+  const QuerySettings& s_;
+  std::mt19937_64& rng_;
+};
+
 }  // namespace
 
 GraspSynthesizer::GraspSynthesizer(std::shared_ptr<const Hand> hand, std::vector<ContactModel> contact_models,
@@ -43,14 +66,15 @@ GraspSynthesizer::GraspSynthesizer(std::shared_ptr<const Hand> hand, std::vector
     throw std::invalid_argument("GraspSynthesizer: the configuration model has " + std::to_string(config_.dim()) +
                                 " joints, the hand '" + hand_->name() + "' has " + std::to_string(hand_->n_dofs()));
   }
-  const std::string kind = contact_models_.front().density ? contact_models_.front().density->kind() : "";
   for (const ContactModel& m : contact_models_) {
     if (!m.density || !m.density->fitted()) throw std::invalid_argument("GraspSynthesizer: contact model of link '" + m.link_name + "' is not fitted");
     if (m.link < 0 || m.link >= hand_->n_links() || hand_->link_names()[m.link] != m.link_name) {
       throw std::invalid_argument("GraspSynthesizer: contact model link '" + m.link_name + "' is not link " +
                                   std::to_string(m.link) + " of hand '" + hand_->name() + "'");
     }
-    if (m.density->kind() != kind) throw std::invalid_argument("GraspSynthesizer: contact models mix GMM and KDE densities");
+    if (typeid(*m.density) != typeid(*contact_models_.front().density)) {
+      throw std::invalid_argument("GraspSynthesizer: contact models mix GMM and KDE densities");
+    }
     for (const ContactModel& other : contact_models_) {
       if (&other != &m && other.link == m.link) {
         throw std::invalid_argument("GraspSynthesizer: two contact models for link '" + m.link_name + "'");
@@ -88,24 +112,16 @@ std::vector<QueryDensity> GraspSynthesizer::query_densities(const Eigen::Ref<con
       if (s.frame_jitter && features.cols() >= 2) {
         const double k1 = features(j, 0), k2 = features(j, 1);
         const double rel = k1 > 1e-12 ? (k1 - k2) / k1 : 0.0;
-        const double angle = uni(rng) * kPi * std::exp(-s.jitter_sharpness * rel * rel);
+        const double angle = frame_jitter_angle(rel, s.jitter_sharpness, uni(rng));
         const Eigen::Quaterniond q = quat_row(v, k) * Eigen::Quaterniond(Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitZ()));
         v.row(k).tail<4>() << q.x(), q.y(), q.z(), q.w();
       }
     }
     const PoseArray u = m.density->sample(r, rng);
     const PoseArray samples = pose_multiply(v, u);  // s = v o u
-    std::shared_ptr<PoseDensity> q;
-    if (m.density->kind() == "gmm") {
-      GmmSettings g;
-      g.n_components = s.n_components;
-      g.max_iter = s.max_iter;
-      g.reg_covar = s.reg_covar;
-      g.seed = rng();
-      q = std::make_shared<PoseMixture>(g);
-    } else {
-      q = std::make_shared<PoseKDE>(s.kde);
-    }
+    QueryDensityOfKind kind(s, rng);
+    m.density->accept(kind);
+    const std::shared_ptr<PoseDensity> q = std::move(kind.density);
     q->fit(samples, RowMatrixXd(s.n_samples, 0), {});
     out.push_back({m.link, m.link_name, std::move(q)});
   }

@@ -322,8 +322,10 @@ CloudData load_cloud(const std::string& path) {
   fail(path, "unknown cloud format '" + ext + "' (expected .pcd, .ply or .npy)");
 }
 
-void save_cloud(const std::string& path, const Vec3Array& points, const Vec3Array& normals, const std::string& encoding,
-                const Eigen::Matrix<double, 7, 1>& viewpoint) {
+namespace {
+
+void check_save_inputs(const std::string& path, const Vec3Array& points, const Vec3Array& normals,
+                       const std::string& encoding, const Eigen::Matrix<double, 7, 1>& viewpoint) {
   const std::string ext = lower_extension(path);
   if (ext != ".pcd" && ext != ".ply") fail(path, "can only write .pcd or .ply, got '" + ext + "'");
   const bool pcd = ext == ".pcd";
@@ -342,7 +344,12 @@ void save_cloud(const std::string& path, const Vec3Array& points, const Vec3Arra
   }
   if (with_normals && !normals.allFinite()) fail(path, "normals: contains NaN or infinite values");
   if (!viewpoint.allFinite()) fail(path, "viewpoint: contains NaN or infinite values");
+}
 
+/// The points (and normals) as float32 fields x y z [normal_x normal_y normal_z].
+pcl::PCLPointCloud2 float_cloud(const Vec3Array& points, const Vec3Array& normals) {
+  const Eigen::Index n = points.rows();
+  const bool with_normals = normals.rows() > 0;
   pcl::PCLPointCloud2 cloud;
   const char* names[] = {"x", "y", "z", "normal_x", "normal_y", "normal_z"};
   const int n_fields = with_normals ? 6 : 3;
@@ -367,6 +374,38 @@ void save_cloud(const std::string& path, const Vec3Array& points, const Vec3Arra
       for (int j = 0; j < 3; ++j) v[3 + j] = static_cast<float>(normals(i, j));
     std::memcpy(&cloud.data[static_cast<std::size_t>(i) * cloud.point_step], v, cloud.point_step);
   }
+  return cloud;
+}
+
+/// PCL's ASCII PLY writer keeps 6 significant digits (1 um at 1 m); float32 needs 9. No camera element:
+/// PCL writes intrinsics its own reader then complains about; PLY keeps no viewpoint.
+int write_ascii_ply(const std::string& path, const pcl::PCLPointCloud2& cloud) {
+  std::ofstream out(path);
+  if (!out) fail(path, "cannot open for writing (is the directory there and writable?)");
+  const int n_fields = static_cast<int>(cloud.fields.size());
+  out << "ply\nformat ascii 1.0\ncomment graspmix\nelement vertex " << cloud.width << "\n";
+  const char* ply_names[] = {"x", "y", "z", "nx", "ny", "nz"};
+  for (int f = 0; f < n_fields; ++f) out << "property float " << ply_names[f] << "\n";
+  out << "end_header\n";
+  char buf[48];
+  for (std::uint32_t i = 0; i < cloud.width; ++i) {
+    float v[6];
+    std::memcpy(v, &cloud.data[static_cast<std::size_t>(i) * cloud.point_step], cloud.point_step);
+    for (int f = 0; f < n_fields; ++f) {
+      std::snprintf(buf, sizeof buf, f + 1 < n_fields ? "%.9g " : "%.9g\n", static_cast<double>(v[f]));
+      out << buf;
+    }
+  }
+  return out.good() ? 0 : -1;
+}
+
+}  // namespace
+
+void save_cloud(const std::string& path, const Vec3Array& points, const Vec3Array& normals, const std::string& encoding,
+                const Eigen::Matrix<double, 7, 1>& viewpoint) {
+  check_save_inputs(path, points, normals, encoding, viewpoint);
+  const bool pcd = lower_extension(path) == ".pcd";
+  const pcl::PCLPointCloud2 cloud = float_cloud(points, normals);
   const Eigen::Vector4f origin(static_cast<float>(viewpoint[0]), static_cast<float>(viewpoint[1]),
                                static_cast<float>(viewpoint[2]), 0.0f);
   Eigen::Quaternionf orientation(static_cast<float>(viewpoint[6]), static_cast<float>(viewpoint[3]),
@@ -380,30 +419,11 @@ void save_cloud(const std::string& path, const Vec3Array& points, const Vec3Arra
       if (encoding == "ascii") rc = w.writeASCII(path, cloud, origin, orientation, 9);
       else if (encoding == "binary") rc = w.writeBinary(path, cloud, origin, orientation);
       else rc = w.writeBinaryCompressed(path, cloud, origin, orientation);
-    } else {
+    } else if (encoding == "binary") {
       pcl::PLYWriter w;
-      // No camera element: PCL writes intrinsics its own reader then complains about; PLY keeps no viewpoint.
-      if (encoding == "binary") {
-        rc = w.writeBinary(path, cloud, origin, orientation, false);
-      } else {
-        // PCL's ASCII PLY writer keeps 6 significant digits (1 um at 1 m); float32 needs 9.
-        std::ofstream out(path);
-        if (!out) fail(path, "cannot open for writing (is the directory there and writable?)");
-        out << "ply\nformat ascii 1.0\ncomment graspmix\nelement vertex " << n << "\n";
-        const char* ply_names[] = {"x", "y", "z", "nx", "ny", "nz"};
-        for (int f = 0; f < n_fields; ++f) out << "property float " << ply_names[f] << "\n";
-        out << "end_header\n";
-        char buf[48];
-        for (Eigen::Index i = 0; i < n; ++i) {
-          float v[6];
-          std::memcpy(v, &cloud.data[static_cast<std::size_t>(i) * cloud.point_step], cloud.point_step);
-          for (int f = 0; f < n_fields; ++f) {
-            std::snprintf(buf, sizeof buf, f + 1 < n_fields ? "%.9g " : "%.9g\n", static_cast<double>(v[f]));
-            out << buf;
-          }
-        }
-        rc = out.good() ? 0 : -1;
-      }
+      rc = w.writeBinary(path, cloud, origin, orientation, false);
+    } else {
+      rc = write_ascii_ply(path, cloud);
     }
   } catch (const pcl::PCLException& e) {
     fail(path, std::string("cannot write (") + e.what() + ")");

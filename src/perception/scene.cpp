@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -13,6 +14,8 @@
 #include <pcl/point_types.h>
 #include <pcl/sample_consensus/ransac.h>
 #include <pcl/sample_consensus/sac_model_plane.h>
+
+#include "graspmix/core/plane.hpp"
 
 namespace graspmix {
 
@@ -53,11 +56,9 @@ Cloud::Ptr subset(const Cloud& c, const pcl::Indices& idx, std::vector<int>& ori
   return out;
 }
 
-}  // namespace
+[[noreturn]] void bad(const std::string& m) { throw std::invalid_argument("prepare_cloud: " + m); }
 
-SceneResult prepare_cloud(const Vec3Array& points, const SceneSettings& s) {
-  const auto t0 = std::chrono::steady_clock::now();
-  auto bad = [](const std::string& m) { throw std::invalid_argument("prepare_cloud: " + m); };
+void check_inputs(const Vec3Array& points, const SceneSettings& s) {
   if (points.rows() == 0) bad("points: the cloud is empty");
   if (!points.allFinite()) bad("points: contains NaN or infinite values (load_cloud drops them)");
   if (s.voxel_size < 0 || !std::isfinite(s.voxel_size)) bad("voxel_size must be >= 0 (0 switches it off)");
@@ -69,103 +70,129 @@ SceneResult prepare_cloud(const Vec3Array& points, const SceneSettings& s) {
     bad("plane_distance must be > 0, plane_max_iterations >= 1 and plane_min_fraction in [0, 1]");
   }
   if (s.crop && (s.crop_min.array() > s.crop_max.array()).any()) bad("crop_min must be <= crop_max in every axis");
+}
 
-  SceneResult r;
-  r.n_input = static_cast<std::size_t>(points.rows());
+/// The cloud in PCL's float points, with every point's input row in `origin`.
+Cloud::Ptr to_pcl(const Vec3Array& points, std::vector<int>& origin) {
   Cloud::Ptr cloud(new Cloud);
-  cloud->resize(r.n_input);
-  std::vector<int> origin(r.n_input);
+  cloud->resize(static_cast<std::size_t>(points.rows()));
+  origin.resize(static_cast<std::size_t>(points.rows()));
   for (Eigen::Index i = 0; i < points.rows(); ++i) {
     (*cloud)[static_cast<std::size_t>(i)] = pcl::PointXYZ(static_cast<float>(points(i, 0)), static_cast<float>(points(i, 1)),
                                                           static_cast<float>(points(i, 2)));
     origin[static_cast<std::size_t>(i)] = static_cast<int>(i);
   }
+  return cloud;
+}
 
-  if (s.crop) {
-    pcl::CropBox<pcl::PointXYZ> box;
-    const float big = std::numeric_limits<float>::max();
-    Eigen::Vector4f lo, hi;
-    for (int k = 0; k < 3; ++k) {
-      lo[k] = static_cast<float>(std::max<double>(s.crop_min[k], -big));
-      hi[k] = static_cast<float>(std::min<double>(s.crop_max[k], big));
-    }
-    lo[3] = hi[3] = 1.0f;
-    box.setMin(lo);
-    box.setMax(hi);
-    box.setInputCloud(cloud);
-    pcl::Indices kept;
-    box.filter(kept);
-    cloud = subset(*cloud, kept, origin);
+Cloud::Ptr crop(const Cloud::Ptr& cloud, const SceneSettings& s, std::vector<int>& origin) {
+  pcl::CropBox<pcl::PointXYZ> box;
+  const float big = std::numeric_limits<float>::max();
+  Eigen::Vector4f lo, hi;
+  for (int k = 0; k < 3; ++k) {
+    lo[k] = static_cast<float>(std::max<double>(s.crop_min[k], -big));
+    hi[k] = static_cast<float>(std::min<double>(s.crop_max[k], big));
   }
+  lo[3] = hi[3] = 1.0f;
+  box.setMin(lo);
+  box.setMax(hi);
+  box.setInputCloud(cloud);
+  pcl::Indices kept;
+  box.filter(kept);
+  return subset(*cloud, kept, origin);
+}
+
+/// Voxel centroids: no point keeps an input row (origin -1).
+Cloud::Ptr voxel_down(const Cloud::Ptr& cloud, const SceneSettings& s, std::vector<int>& origin) {
+  pcl::VoxelGrid<pcl::PointXYZ> grid;
+  grid.setLeafSize(static_cast<float>(s.voxel_size), static_cast<float>(s.voxel_size), static_cast<float>(s.voxel_size));
+  grid.setInputCloud(cloud);
+  Cloud::Ptr down(new Cloud);
+  grid.filter(*down);
+  if (down->empty()) bad("the voxel grid returned no point (voxel_size too small for the cloud's extent?)");
+  origin.assign(down->size(), -1);
+  return down;
+}
+
+Cloud::Ptr remove_outliers(const Cloud::Ptr& cloud, const SceneSettings& s, std::vector<int>& origin) {
+  pcl::StatisticalOutlierRemoval<pcl::PointXYZ> sor;
+  sor.setMeanK(s.outlier_neighbours);
+  sor.setStddevMulThresh(s.outlier_std_ratio);
+  sor.setInputCloud(cloud);
+  pcl::Indices kept;
+  sor.filter(kept);
+  return subset(*cloud, kept, origin);
+}
+
+/// The dominant plane by seeded RANSAC, refitted by least squares on its inliers and normalised, with
+/// the inliers of the refined plane; false if RANSAC finds no model.
+bool fit_plane(const Cloud::Ptr& cloud, const SceneSettings& s, Eigen::VectorXf& coeffs, pcl::Indices& inliers) {
+  SeededPlaneModel::Ptr model(new SeededPlaneModel(cloud, fold_seed(s.seed)));
+  SeededRansac ransac(model, s.plane_distance, fold_seed(s.seed) ^ 0x9e3779b9u);
+  ransac.setMaxIterations(s.plane_max_iterations);
+  if (!ransac.computeModel()) return false;
+  ransac.getInliers(inliers);
+  ransac.getModelCoefficients(coeffs);
+  Eigen::VectorXf refined = coeffs;
+  model->optimizeModelCoefficients(inliers, coeffs, refined);
+  if (refined.allFinite() && refined.head<3>().norm() > 0) coeffs = refined;
+  coeffs /= coeffs.head<3>().norm();
+  model->selectWithinDistance(coeffs, s.plane_distance, inliers);
+  return true;
+}
+
+/// The support plane found and removed (with what lies below it if asked), oriented towards the
+/// object: the side most of the points off the plane are on (PlaneSide::Majority). Records the plane
+/// in r; the cloud unchanged if there is no plane with enough inliers.
+Cloud::Ptr remove_support_plane(const Cloud::Ptr& cloud, const SceneSettings& s, std::vector<int>& origin,
+                                SceneResult& r) {
+  Eigen::VectorXf coeffs;
+  pcl::Indices inliers;
+  if (!fit_plane(cloud, s, coeffs, inliers)) return cloud;
+  if (static_cast<double>(inliers.size()) < s.plane_min_fraction * static_cast<double>(cloud->size())) return cloud;
+  std::vector<char> is_inlier(cloud->size(), 0);
+  for (const auto i : inliers) is_inlier[static_cast<std::size_t>(i)] = 1;
+  Vec3Array off_plane(static_cast<Eigen::Index>(cloud->size() - inliers.size()), 3);
+  Eigen::Index n_off = 0;
+  for (std::size_t i = 0; i < cloud->size(); ++i) {
+    if (is_inlier[i]) continue;
+    const auto& p = (*cloud)[i];
+    off_plane.row(n_off++) << p.x, p.y, p.z;
+  }
+  const Eigen::Vector4d plane = orient_plane(coeffs.cast<double>().head<4>(), off_plane, PlaneSide::Majority);
+  pcl::Indices kept;
+  for (std::size_t i = 0; i < cloud->size(); ++i) {
+    if (is_inlier[i]) continue;
+    const auto& p = (*cloud)[i];
+    const double dist = plane[0] * p.x + plane[1] * p.y + plane[2] * p.z + plane[3];
+    if (s.remove_below_plane && dist < 0) continue;
+    kept.push_back(static_cast<pcl::index_t>(i));
+  }
+  r.plane = plane;
+  r.plane_found = true;
+  r.n_plane_inliers = inliers.size();
+  return subset(*cloud, kept, origin);
+}
+
+}  // namespace
+
+SceneResult prepare_cloud(const Vec3Array& points, const SceneSettings& s) {
+  const auto t0 = std::chrono::steady_clock::now();
+  check_inputs(points, s);
+  SceneResult r;
+  r.n_input = static_cast<std::size_t>(points.rows());
+  std::vector<int> origin;
+  Cloud::Ptr cloud = to_pcl(points, origin);
+  if (s.crop) cloud = crop(cloud, s, origin);
   r.n_after_crop = cloud->size();
   if (cloud->empty()) bad("no point is inside the crop box");
-
-  if (s.voxel_size > 0) {
-    pcl::VoxelGrid<pcl::PointXYZ> grid;
-    grid.setLeafSize(static_cast<float>(s.voxel_size), static_cast<float>(s.voxel_size), static_cast<float>(s.voxel_size));
-    grid.setInputCloud(cloud);
-    Cloud::Ptr down(new Cloud);
-    grid.filter(*down);
-    if (down->empty()) bad("the voxel grid returned no point (voxel_size too small for the cloud's extent?)");
-    cloud = down;
-    origin.assign(cloud->size(), -1);
-  }
+  if (s.voxel_size > 0) cloud = voxel_down(cloud, s, origin);
   r.n_after_voxel = cloud->size();
-
   if (s.remove_outliers && cloud->size() > static_cast<std::size_t>(s.outlier_neighbours)) {
-    pcl::StatisticalOutlierRemoval<pcl::PointXYZ> sor;
-    sor.setMeanK(s.outlier_neighbours);
-    sor.setStddevMulThresh(s.outlier_std_ratio);
-    sor.setInputCloud(cloud);
-    pcl::Indices kept;
-    sor.filter(kept);
-    cloud = subset(*cloud, kept, origin);
+    cloud = remove_outliers(cloud, s, origin);
   }
   r.n_after_outliers = cloud->size();
-
-  if (s.remove_plane && cloud->size() >= 3) {
-    SeededPlaneModel::Ptr model(new SeededPlaneModel(cloud, fold_seed(s.seed)));
-    SeededRansac ransac(model, s.plane_distance, fold_seed(s.seed) ^ 0x9e3779b9u);
-    ransac.setMaxIterations(s.plane_max_iterations);
-    if (ransac.computeModel()) {
-      pcl::Indices inliers;
-      ransac.getInliers(inliers);
-      Eigen::VectorXf coeffs;
-      ransac.getModelCoefficients(coeffs);
-      // A least-squares refit on the inliers, then the inliers of the refined plane.
-      Eigen::VectorXf refined = coeffs;
-      model->optimizeModelCoefficients(inliers, coeffs, refined);
-      if (refined.allFinite() && refined.head<3>().norm() > 0) coeffs = refined;
-      coeffs /= coeffs.head<3>().norm();
-      model->selectWithinDistance(coeffs, s.plane_distance, inliers);
-      if (static_cast<double>(inliers.size()) >= s.plane_min_fraction * static_cast<double>(cloud->size())) {
-        std::vector<char> is_inlier(cloud->size(), 0);
-        for (const auto i : inliers) is_inlier[static_cast<std::size_t>(i)] = 1;
-        // Orient the plane towards the side most of the other points (the object) are on.
-        Eigen::Vector4d plane = coeffs.cast<double>().head<4>();
-        long side = 0;
-        for (std::size_t i = 0; i < cloud->size(); ++i) {
-          if (is_inlier[i]) continue;
-          const auto& p = (*cloud)[i];
-          const double dist = plane[0] * p.x + plane[1] * p.y + plane[2] * p.z + plane[3];
-          side += dist > 0 ? 1 : -1;
-        }
-        if (side < 0) plane = -plane;
-        pcl::Indices kept;
-        for (std::size_t i = 0; i < cloud->size(); ++i) {
-          if (is_inlier[i]) continue;
-          const auto& p = (*cloud)[i];
-          const double dist = plane[0] * p.x + plane[1] * p.y + plane[2] * p.z + plane[3];
-          if (s.remove_below_plane && dist < 0) continue;
-          kept.push_back(static_cast<pcl::index_t>(i));
-        }
-        r.plane = plane;
-        r.plane_found = true;
-        r.n_plane_inliers = inliers.size();
-        cloud = subset(*cloud, kept, origin);
-      }
-    }
-  }
+  if (s.remove_plane && cloud->size() >= 3) cloud = remove_support_plane(cloud, s, origin, r);
   r.n_output = cloud->size();
   if (cloud->empty()) bad("no point is left after the clean-up (the plane took everything?)");
   r.points.resize(static_cast<Eigen::Index>(cloud->size()), 3);

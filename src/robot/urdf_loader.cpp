@@ -5,7 +5,9 @@
 #include <fstream>
 #include <functional>
 #include <limits>
+#include <map>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -111,6 +113,172 @@ void convex_hull(const TriangleMesh& mesh, const std::string& what, RowMatrixXd&
   for (size_t i = 0; i < tris.size(); ++i) hull.triangles.row(static_cast<Eigen::Index>(i)) = tris[i].transpose();
 }
 
+/// urdfdom's model of the text; its complaints end up in the exception.
+urdf::ModelInterfaceSharedPtr parse_urdf(const std::string& xml, const std::string& what) {
+  // console_bridge's output handler is process-wide: one parse at a time.
+  static std::mutex parse_mutex;
+  const std::lock_guard<std::mutex> lock(parse_mutex);
+  CapturedLog log;
+  urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(xml);
+  if (!model) {
+    throw std::invalid_argument(what + ": not a valid URDF" +
+                                (log.errors().empty() ? std::string() : " (" + log.errors() + ")"));
+  }
+  return model;
+}
+
+/// A mesh collision element: its file found, and (with load_meshes) its triangles and convex hull read.
+void read_mesh(const urdf::Mesh& m, const std::string& where, const std::string& base_dir,
+               const HandLoadSettings& settings, CollisionShape& s) {
+  s.type = ShapeType::Mesh;
+  s.size = Eigen::Vector3d(m.scale.x, m.scale.y, m.scale.z);
+  try {
+    s.mesh_file = Hand::resolve_mesh_path(m.filename, base_dir, settings.package_dirs);
+    if (settings.load_meshes) {
+      auto mesh = std::make_shared<TriangleMesh>(Hand::load_mesh(s.mesh_file, s.size));
+      auto planes = std::make_shared<RowMatrixXd>();
+      auto hull = std::make_shared<TriangleMesh>();
+      convex_hull(*mesh, "mesh '" + s.mesh_file + "'", *planes, *hull);
+      s.mesh = mesh;
+      s.hull_planes = planes;
+      s.hull = hull;
+    }
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(where + ": " + e.what());
+  }
+}
+
+/// One collision element of a link, or nothing for a geometry type without a shape here.
+std::optional<CollisionShape> read_collision(const urdf::Collision& col, const std::string& where,
+                                             const std::string& base_dir, const HandLoadSettings& settings) {
+  CollisionShape s;
+  s.T_link_shape = to_isometry(col.origin);
+  switch (col.geometry->type) {
+    case urdf::Geometry::BOX: {
+      const auto& b = static_cast<const urdf::Box&>(*col.geometry);
+      s.type = ShapeType::Box;
+      s.size = Eigen::Vector3d(b.dim.x, b.dim.y, b.dim.z);
+      break;
+    }
+    case urdf::Geometry::CYLINDER: {
+      const auto& c = static_cast<const urdf::Cylinder&>(*col.geometry);
+      s.type = ShapeType::Cylinder;
+      s.size = Eigen::Vector3d(c.radius, c.length, 0.0);
+      break;
+    }
+    case urdf::Geometry::SPHERE: {
+      const auto& c = static_cast<const urdf::Sphere&>(*col.geometry);
+      s.type = ShapeType::Sphere;
+      s.size = Eigen::Vector3d(c.radius, 0.0, 0.0);
+      break;
+    }
+    case urdf::Geometry::MESH:
+      read_mesh(static_cast<const urdf::Mesh&>(*col.geometry), where, base_dir, settings, s);
+      break;
+    default:
+      return std::nullopt;
+  }
+  for (int k = 0; k < 3; ++k) {
+    if (!std::isfinite(s.size[k]) || (s.type != ShapeType::Mesh && s.size[k] < 0)) {
+      throw std::invalid_argument(where + ": collision geometry with a negative or non-finite size");
+    }
+  }
+  return s;
+}
+
+LinkInfo read_link(const urdf::Link& link, int parent_joint, const std::string& what, const std::string& base_dir,
+                   const HandLoadSettings& settings) {
+  LinkInfo info;
+  info.name = link.name;
+  info.parent_joint = parent_joint;
+  if (link.inertial) {
+    const auto& in = *link.inertial;
+    info.has_inertial = true;
+    info.mass = in.mass;
+    info.T_link_inertial = to_isometry(in.origin);
+    info.inertia << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
+  }
+  for (const auto& col : link.collision_array) {
+    if (!col || !col->geometry) continue;
+    std::optional<CollisionShape> s = read_collision(*col, what + ": link '" + link.name + "'", base_dir, settings);
+    if (s) info.collisions.push_back(std::move(*s));
+  }
+  return info;
+}
+
+JointInfo read_joint(const urdf::Joint& j, int parent_link, const std::string& what) {
+  JointInfo ji;
+  ji.name = j.name;
+  ji.parent_link = parent_link;
+  ji.T_parent_joint = to_isometry(j.parent_to_joint_origin_transform);
+  switch (j.type) {
+    case urdf::Joint::FIXED:
+      ji.type = JointType::Fixed;
+      break;
+    case urdf::Joint::REVOLUTE:
+      ji.type = JointType::Revolute;
+      break;
+    case urdf::Joint::CONTINUOUS:
+      ji.type = JointType::Continuous;
+      break;
+    case urdf::Joint::PRISMATIC:
+      ji.type = JointType::Prismatic;
+      break;
+    default:
+      throw std::invalid_argument(what + ": joint '" + j.name +
+                                  "' has an unsupported type (only fixed, revolute, continuous, prismatic)");
+  }
+  if (ji.type == JointType::Fixed) return ji;
+  const Eigen::Vector3d axis(j.axis.x, j.axis.y, j.axis.z);
+  if (!(axis.norm() > 1e-12)) throw std::invalid_argument(what + ": joint '" + j.name + "' has a zero axis");
+  ji.axis = axis.normalized();
+  if (ji.type == JointType::Continuous || !j.limits) {
+    ji.lower = -std::numeric_limits<double>::infinity();
+    ji.upper = std::numeric_limits<double>::infinity();
+  } else {
+    ji.lower = j.limits->lower;
+    ji.upper = j.limits->upper;
+  }
+  if (j.mimic) {
+    ji.mimic = true;
+    ji.multiplier = j.mimic->multiplier;
+    ji.offset = j.mimic->offset;
+  }
+  return ji;
+}
+
+/// A mimic joint resolved to the degree of freedom at the end of its chain of mimics, with the chain's
+/// multiplier and offset folded into one.
+void resolve_mimic(JointInfo& j, const std::vector<JointInfo>& joints, const std::map<std::string, int>& joint_index,
+                   const urdf::ModelInterface& model, const std::string& what) {
+  double mult = j.multiplier, off = j.offset;
+  std::string master = model.getJoint(j.name)->mimic->joint_name;
+  for (size_t hops = 0;; ++hops) {
+    auto it = joint_index.find(master);
+    if (it == joint_index.end()) {
+      throw std::invalid_argument(what + ": joint '" + j.name + "' mimics an unknown joint '" + master + "'");
+    }
+    const JointInfo& m = joints[static_cast<size_t>(it->second)];
+    if (m.type == JointType::Fixed) {
+      throw std::invalid_argument(what + ": joint '" + j.name + "' mimics the fixed joint '" + master + "'");
+    }
+    if (hops > joints.size()) {
+      throw std::invalid_argument(what + ": joint '" + j.name + "' is part of a cycle of mimic joints");
+    }
+    if (!m.mimic) {
+      j.dof = m.dof;
+      break;
+    }
+    // value = mult * (m.mult * next + m.off) + off
+    const auto mj = model.getJoint(master);
+    off += mult * mj->mimic->offset;
+    mult *= mj->mimic->multiplier;
+    master = mj->mimic->joint_name;
+  }
+  j.multiplier = mult;
+  j.offset = off;
+}
+
 }  // namespace
 
 std::string Hand::resolve_mesh_path(const std::string& filename, const std::string& base_dir,
@@ -195,18 +363,7 @@ Hand Hand::from_urdf(const std::string& path, const HandLoadSettings& settings) 
 Hand Hand::from_urdf_string(const std::string& xml, const std::string& base_dir, const HandLoadSettings& settings,
                             const std::string& source) {
   const std::string what = "URDF '" + source + "'";
-  urdf::ModelInterfaceSharedPtr model;
-  {
-    // console_bridge's output handler is process-wide: one parse at a time.
-    static std::mutex parse_mutex;
-    const std::lock_guard<std::mutex> lock(parse_mutex);
-    CapturedLog log;
-    model = urdf::parseURDF(xml);
-    if (!model) {
-      throw std::invalid_argument(what + ": not a valid URDF" +
-                                  (log.errors().empty() ? std::string() : " (" + log.errors() + ")"));
-    }
-  }
+  const urdf::ModelInterfaceSharedPtr model = parse_urdf(xml, what);
   if (!model->getRoot()) throw std::invalid_argument(what + ": no links");
 
   Hand hand;
@@ -217,117 +374,15 @@ Hand Hand::from_urdf_string(const std::string& xml, const std::string& base_dir,
   std::function<void(const urdf::LinkConstSharedPtr&, int)> visit = [&](const urdf::LinkConstSharedPtr& link,
                                                                        int parent_joint) {
     const int li = static_cast<int>(hand.links_.size());
-    LinkInfo info;
-    info.name = link->name;
-    info.parent_joint = parent_joint;
-    if (link->inertial) {
-      const auto& in = *link->inertial;
-      info.has_inertial = true;
-      info.mass = in.mass;
-      info.T_link_inertial = to_isometry(in.origin);
-      info.inertia << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
-    }
-    for (const auto& col : link->collision_array) {
-      if (!col || !col->geometry) continue;
-      CollisionShape s;
-      s.T_link_shape = to_isometry(col->origin);
-      const std::string where = what + ": link '" + link->name + "'";
-      switch (col->geometry->type) {
-        case urdf::Geometry::BOX: {
-          const auto& b = static_cast<const urdf::Box&>(*col->geometry);
-          s.type = ShapeType::Box;
-          s.size = Eigen::Vector3d(b.dim.x, b.dim.y, b.dim.z);
-          break;
-        }
-        case urdf::Geometry::CYLINDER: {
-          const auto& c = static_cast<const urdf::Cylinder&>(*col->geometry);
-          s.type = ShapeType::Cylinder;
-          s.size = Eigen::Vector3d(c.radius, c.length, 0.0);
-          break;
-        }
-        case urdf::Geometry::SPHERE: {
-          const auto& c = static_cast<const urdf::Sphere&>(*col->geometry);
-          s.type = ShapeType::Sphere;
-          s.size = Eigen::Vector3d(c.radius, 0.0, 0.0);
-          break;
-        }
-        case urdf::Geometry::MESH: {
-          const auto& m = static_cast<const urdf::Mesh&>(*col->geometry);
-          s.type = ShapeType::Mesh;
-          s.size = Eigen::Vector3d(m.scale.x, m.scale.y, m.scale.z);
-          try {
-            s.mesh_file = resolve_mesh_path(m.filename, base_dir, settings.package_dirs);
-            if (settings.load_meshes) {
-              auto mesh = std::make_shared<TriangleMesh>(load_mesh(s.mesh_file, s.size));
-              auto planes = std::make_shared<RowMatrixXd>();
-              auto hull = std::make_shared<TriangleMesh>();
-              convex_hull(*mesh, "mesh '" + s.mesh_file + "'", *planes, *hull);
-              s.mesh = mesh;
-              s.hull_planes = planes;
-              s.hull = hull;
-            }
-          } catch (const std::invalid_argument& e) {
-            throw std::invalid_argument(where + ": " + e.what());
-          }
-          break;
-        }
-        default:
-          continue;
-      }
-      for (int k = 0; k < 3; ++k) {
-        if (!std::isfinite(s.size[k]) || (s.type != ShapeType::Mesh && s.size[k] < 0)) {
-          throw std::invalid_argument(where + ": collision geometry with a negative or non-finite size");
-        }
-      }
-      info.collisions.push_back(std::move(s));
-    }
-    hand.links_.push_back(std::move(info));
+    hand.links_.push_back(read_link(*link, parent_joint, what, base_dir, settings));
     hand.link_names_.push_back(link->name);
     hand.link_index_[link->name] = li;
     for (const auto& child : link->child_links) {
-      const auto& j = child->parent_joint;
-      JointInfo ji;
-      ji.name = j->name;
-      ji.parent_link = li;
-      ji.T_parent_joint = to_isometry(j->parent_to_joint_origin_transform);
-      switch (j->type) {
-        case urdf::Joint::FIXED:
-          ji.type = JointType::Fixed;
-          break;
-        case urdf::Joint::REVOLUTE:
-          ji.type = JointType::Revolute;
-          break;
-        case urdf::Joint::CONTINUOUS:
-          ji.type = JointType::Continuous;
-          break;
-        case urdf::Joint::PRISMATIC:
-          ji.type = JointType::Prismatic;
-          break;
-        default:
-          throw std::invalid_argument(what + ": joint '" + j->name +
-                                      "' has an unsupported type (only fixed, revolute, continuous, prismatic)");
-      }
-      if (ji.type != JointType::Fixed) {
-        const Eigen::Vector3d axis(j->axis.x, j->axis.y, j->axis.z);
-        if (!(axis.norm() > 1e-12)) throw std::invalid_argument(what + ": joint '" + j->name + "' has a zero axis");
-        ji.axis = axis.normalized();
-        if (ji.type == JointType::Continuous || !j->limits) {
-          ji.lower = -std::numeric_limits<double>::infinity();
-          ji.upper = std::numeric_limits<double>::infinity();
-        } else {
-          ji.lower = j->limits->lower;
-          ji.upper = j->limits->upper;
-        }
-        if (j->mimic) {
-          ji.mimic = true;
-          ji.multiplier = j->mimic->multiplier;
-          ji.offset = j->mimic->offset;
-        }
-      }
+      JointInfo ji = read_joint(*child->parent_joint, li, what);
       const int ji_index = static_cast<int>(hand.joints_.size());
-      hand.joints_.push_back(ji);
+      ji.child_link = static_cast<int>(hand.links_.size());
       hand.joint_index_[ji.name] = ji_index;
-      hand.joints_[ji_index].child_link = static_cast<int>(hand.links_.size());
+      hand.joints_.push_back(std::move(ji));
       visit(child, ji_index);
     }
   };
@@ -342,36 +397,8 @@ Hand Hand::from_urdf_string(const std::string& xml, const std::string& base_dir,
     hand.dof_joint_.push_back(static_cast<int>(i));
     hand.joint_names_.push_back(j.name);
   }
-  for (size_t i = 0; i < hand.joints_.size(); ++i) {
-    JointInfo& j = hand.joints_[i];
-    if (!j.mimic) continue;
-    double mult = j.multiplier, off = j.offset;
-    const urdf::JointConstSharedPtr uj = model->getJoint(j.name);
-    std::string master = uj->mimic->joint_name;
-    for (size_t hops = 0;; ++hops) {
-      auto it = hand.joint_index_.find(master);
-      if (it == hand.joint_index_.end()) {
-        throw std::invalid_argument(what + ": joint '" + j.name + "' mimics an unknown joint '" + master + "'");
-      }
-      const JointInfo& m = hand.joints_[static_cast<size_t>(it->second)];
-      if (m.type == JointType::Fixed) {
-        throw std::invalid_argument(what + ": joint '" + j.name + "' mimics the fixed joint '" + master + "'");
-      }
-      if (hops > hand.joints_.size()) {
-        throw std::invalid_argument(what + ": joint '" + j.name + "' is part of a cycle of mimic joints");
-      }
-      if (!m.mimic) {
-        j.dof = m.dof;
-        break;
-      }
-      // value = mult * (m.mult * next + m.off) + off
-      const auto mj = model->getJoint(master);
-      off += mult * mj->mimic->offset;
-      mult *= mj->mimic->multiplier;
-      master = mj->mimic->joint_name;
-    }
-    j.multiplier = mult;
-    j.offset = off;
+  for (JointInfo& j : hand.joints_) {
+    if (j.mimic) resolve_mimic(j, hand.joints_, hand.joint_index_, *model, what);
   }
   return hand;
 }

@@ -77,6 +77,11 @@ class GaussianMixture {
 
  private:
   void set_parameters(Eigen::VectorXd weights, RowMatrixXd means, std::vector<Eigen::MatrixXd> covariances);
+  /// The phases of fit: an M-step from (unnormalised) responsibilities R (N, K) of the samples X with
+  /// weights w (summing to w_sum), and one EM run started from hard assignment to the nearest centre.
+  void m_step(const Eigen::Ref<const RowMatrixXd>& X, const Eigen::VectorXd& w, double w_sum, const RowMatrixXd& R);
+  GmmFitResult run_em(const Eigen::Ref<const RowMatrixXd>& X, const Eigen::VectorXd& w, double w_sum,
+                      const RowMatrixXd& centres);
   void require_fitted(const char* what) const;
   void require_dim(const Eigen::Ref<const RowMatrixXd>& X, const char* what) const;
 

@@ -23,6 +23,7 @@ class PoseKDE : public PoseDensity {
   int n_features() const override { return static_cast<int>(features_.cols()); }
   int n_kernels() const override { return static_cast<int>(positions_.rows()); }
   std::string kind() const override { return "kde"; }
+  void accept(PoseDensityVisitor& visitor) const override { visitor(*this); }
 
   Eigen::VectorXd log_density(const Eigen::Ref<const PoseArray>& poses,
                               const Eigen::Ref<const RowMatrixXd>& features) const override;

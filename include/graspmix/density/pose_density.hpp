@@ -17,6 +17,19 @@
 
 namespace graspmix {
 
+class PoseMixture;
+class PoseKDE;
+
+/// One action per kind of pose density (double dispatch through PoseDensity::accept): what differs
+/// between the kinds is written as a visitor, never as a comparison of kind() strings, and a new kind
+/// makes every visitor that does not handle it fail to compile.
+class PoseDensityVisitor {
+ public:
+  virtual ~PoseDensityVisitor() = default;
+  virtual void operator()(const PoseMixture& density) = 0;
+  virtual void operator()(const PoseKDE& density) = 0;
+};
+
 class PoseDensity {
  public:
   virtual ~PoseDensity() = default;
@@ -31,6 +44,8 @@ class PoseDensity {
   virtual int n_kernels() const = 0;
   /// "gmm" or "kde".
   virtual std::string kind() const = 0;
+  /// Calls the visitor's operator() for this density's kind.
+  virtual void accept(PoseDensityVisitor& visitor) const = 0;
 
   /// log p(u_i | r_i) for every row (eq:density_mixture_rigid_body); with no features, log p(u_i).
   virtual Eigen::VectorXd log_density(const Eigen::Ref<const PoseArray>& poses,

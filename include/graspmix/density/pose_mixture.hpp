@@ -34,6 +34,7 @@ class PoseMixture : public PoseDensity {
   int n_features() const override { return n_features_; }
   int n_kernels() const override { return joint_.n_components(); }
   std::string kind() const override { return "gmm"; }
+  void accept(PoseDensityVisitor& visitor) const override { visitor(*this); }
 
   Eigen::VectorXd log_density(const Eigen::Ref<const PoseArray>& poses,
                               const Eigen::Ref<const RowMatrixXd>& features) const override;

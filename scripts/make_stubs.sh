@@ -15,6 +15,7 @@ trap 'rm -rf "$tmp"' EXIT
 cp -r "$root/python/graspmix" "$tmp/graspmix"
 rm -f "$tmp"/graspmix/_core*.so "$tmp/graspmix/_core.pyi"
 cp "${module[0]}" "$tmp/graspmix/"
+ln -s "$root/data" "$tmp/graspmix/data"  # the package reads its bundled data on import
 PYTHONPATH="$tmp" python3 -m pybind11_stubgen graspmix._core --output-dir "$tmp/stubs" \
   --numpy-array-wrap-with-annotated --exit-code
 cp "$tmp/stubs/graspmix/_core.pyi" "$root/python/graspmix/_core.pyi"

@@ -101,6 +101,9 @@ void bind_perception(py::module_& m) {
   py::class_<SceneResult>(m, "SceneResult", "The object points of a scene and the support plane.")
       .def_readonly("points", &SceneResult::points, "(N, 3) object points (m)")
       .def_readonly("indices", &SceneResult::indices, "(N) input row of every point (-1 after voxel averaging)")
+      .def_readonly("sources", &SceneResult::sources,
+                    "(N) input row whose per-point data (viewpoint, camera) every point carries: its own, or for a\n"
+                    "voxel centroid the input point nearest to it in its voxel; index per-point arrays with it")
       .def_property_readonly("plane", [](const SceneResult& r) { return r.plane_found ? py::cast(r.plane) : py::none(); },
                              "[a, b, c, d] of a x + b y + c z + d = 0, (a, b, c) unit towards the object; None if none found")
       .def_readonly("plane_found", &SceneResult::plane_found)

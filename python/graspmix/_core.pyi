@@ -100,7 +100,7 @@ class KdeSettings:
     which override it (an unknown keyword is a ValueError):
       position_bandwidth = 0.005: m: std of the position kernel
       orientation_bandwidth = 0.15: rad: approximate std of the rotation angle of the kernel
-      feature_bandwidth = array([], dtype=float64): std per feature (units of the features): one value for all, one per feature, or empty (None) for 0.01
+      feature_bandwidth = array([0.005]): std per feature (units of the features): one value for all, one per feature, or empty (None) for 0.01
     """
     __hash__: typing.ClassVar[None] = None
     _fields: typing.ClassVar[tuple] = ('position_bandwidth', 'orientation_bandwidth', 'feature_bandwidth')
@@ -323,7 +323,7 @@ class PoseKDE(PoseDensity):
         which override it (an unknown keyword is a ValueError):
           position_bandwidth = 0.005: m: std of the position kernel
           orientation_bandwidth = 0.15: rad: approximate std of the rotation angle of the kernel
-          feature_bandwidth = array([], dtype=float64): std per feature (units of the features): one value for all, one per feature, or empty (None) for 0.01
+          feature_bandwidth = array([0.005]): std per feature (units of the features): one value for all, one per feature, or empty (None) for 0.01
         """
     def fit(self, poses: typing.Any, features: typing.Any = None, weights: typing.Any = None) -> PoseKDE:
         ...
@@ -601,6 +601,12 @@ class SceneResult:
     @property
     def seconds(self) -> float:
         ...
+    @property
+    def sources(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 1]"]:
+        """
+        (N) input row whose per-point data (viewpoint, camera) every point carries: its own, or for a
+        voxel centroid the input point nearest to it in its voxel; index per-point arrays with it
+        """
 class SurfaceFeatureSettings:
     """
     Normals, curvatures and frames (compute_surface_features); the C++ FeatureSettings.
@@ -958,7 +964,7 @@ class CollisionSettings:
       plane_margin = 0.0: m: the support plane is raised by this much (negative: tolerate contact)
       cell_size = 0.0: m: grid cell of the cloud index; 0 picks one from the cloud
       orient_plane = True: flip the plane's sign so the cloud's mean lies on its free (positive) side
-      contact_tolerance = 1e-09: m: depths up to this count as touching, not penetrating (a cloud is a noisy surface)
+      contact_tolerance = 0.001: m: depths up to this count as touching, not penetrating (a cloud is a noisy surface)
       inside_weight = 0.0: m per point: each cloud point inside a link adds this much to the total depth (0: depths alone)
     """
     __hash__: typing.ClassVar[None] = None
@@ -1129,7 +1135,7 @@ class CollisionExpert:
           plane_margin = 0.0: m: the support plane is raised by this much (negative: tolerate contact)
           cell_size = 0.0: m: grid cell of the cloud index; 0 picks one from the cloud
           orient_plane = True: flip the plane's sign so the cloud's mean lies on its free (positive) side
-          contact_tolerance = 1e-09: m: depths up to this count as touching, not penetrating (a cloud is a noisy surface)
+          contact_tolerance = 0.001: m: depths up to this count as touching, not penetrating (a cloud is a noisy surface)
           inside_weight = 0.0: m per point: each cloud point inside a link adds this much to the total depth (0: depths alone)
         """
     def collision_free(self, T_world_wrist: typing.Any, joints: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"]:
@@ -1574,7 +1580,7 @@ class QuerySettings:
       n_components = 5: K_Q: components of each query mixture (GMM models)
       max_iter = 100: EM iterations of the query mixtures
       reg_covar = 1e-06: added to the query mixtures' covariance diagonals
-      kde = KdeSettings(position_bandwidth=0.005, orientation_bandwidth=0.15, feature_bandwidth=array([], dtype=float64)): KdeSettings of KDE query densities (features unused)
+      kde = KdeSettings(position_bandwidth=0.005, orientation_bandwidth=0.15, feature_bandwidth=array([0.005])): KdeSettings of KDE query densities (features unused)
       frame_jitter = True: rotate each sampled surface frame about its normal by up to pi exp(-jitter_sharpness ((k1 - k2) / k1)^2)
       jitter_sharpness = 100.0: s of Kopicki's rule above
     """
@@ -1753,7 +1759,7 @@ class SynthesisSettings:
       optimise = True: anneal the best n_optimise
       clear_pregrasp = True: an extra collision expert on the pre-grasp configuration (log W of the opened hand)
       max_sampling_rounds = 10: batches of n_samples drawn at most until n_samples grasps pass every hard expert
-      query = QuerySettings(n_samples=500, n_components=5, max_iter=100, reg_covar=1e-06, kde=KdeSettings(position_bandwidth=0.005, orientation_bandwidth=0.15, feature_bandwidth=array([], dtype=float64)), frame_jitter=True, jitter_sharpness=100.0): QuerySettings
+      query = QuerySettings(n_samples=500, n_components=5, max_iter=100, reg_covar=1e-06, kde=KdeSettings(position_bandwidth=0.005, orientation_bandwidth=0.15, feature_bandwidth=array([0.005])), frame_jitter=True, jitter_sharpness=100.0): QuerySettings
       annealing = AnnealingSettings(iterations=100, initial_temperature=1.0, position_step=0.005, rotation_step=0.1, joint_step=0.5): AnnealingSettings
       seed = 0: seeds everything random in synthesis (None: 0)
     """
@@ -2045,7 +2051,7 @@ class GraspSynthesizer:
           n_components = 5: K_Q: components of each query mixture (GMM models)
           max_iter = 100: EM iterations of the query mixtures
           reg_covar = 1e-06: added to the query mixtures' covariance diagonals
-          kde = KdeSettings(position_bandwidth=0.005, orientation_bandwidth=0.15, feature_bandwidth=array([], dtype=float64)): KdeSettings of KDE query densities (features unused)
+          kde = KdeSettings(position_bandwidth=0.005, orientation_bandwidth=0.15, feature_bandwidth=array([0.005])): KdeSettings of KDE query densities (features unused)
           frame_jitter = True: rotate each sampled surface frame about its normal by up to pi exp(-jitter_sharpness ((k1 - k2) / k1)^2)
           jitter_sharpness = 100.0: s of Kopicki's rule above
         """
@@ -2063,7 +2069,7 @@ class GraspSynthesizer:
           optimise = True: anneal the best n_optimise
           clear_pregrasp = True: an extra collision expert on the pre-grasp configuration (log W of the opened hand)
           max_sampling_rounds = 10: batches of n_samples drawn at most until n_samples grasps pass every hard expert
-          query = QuerySettings(n_samples=500, n_components=5, max_iter=100, reg_covar=1e-06, kde=KdeSettings(position_bandwidth=0.005, orientation_bandwidth=0.15, feature_bandwidth=array([], dtype=float64)), frame_jitter=True, jitter_sharpness=100.0): QuerySettings
+          query = QuerySettings(n_samples=500, n_components=5, max_iter=100, reg_covar=1e-06, kde=KdeSettings(position_bandwidth=0.005, orientation_bandwidth=0.15, feature_bandwidth=array([0.005])), frame_jitter=True, jitter_sharpness=100.0): QuerySettings
           annealing = AnnealingSettings(iterations=100, initial_temperature=1.0, position_step=0.005, rotation_step=0.1, joint_step=0.5): AnnealingSettings
           seed = 0: seeds everything random in synthesis (None: 0)
         """

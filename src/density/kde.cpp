@@ -67,9 +67,11 @@ void PoseKDE::fit(const Eigen::Ref<const PoseArray>& poses, const Eigen::Ref<con
     throw std::invalid_argument("PoseKDE.fit: feature_bandwidth has " + std::to_string(bw.size()) + " entries for " +
                                 std::to_string(nf) + " features");
   }
-  feature_bw_ = bw.size() == 0 ? Eigen::VectorXd::Constant(nf, 0.01)
-                : bw.size() == 1 ? Eigen::VectorXd::Constant(nf, bw[0])
-                                 : bw;
+  if (bw.size() == 0 && nf > 0) {
+    throw std::invalid_argument("PoseKDE.fit: feature_bandwidth is empty but the data has " + std::to_string(nf) +
+                                " features");
+  }
+  feature_bw_ = bw.size() == 1 ? Eigen::VectorXd(Eigen::VectorXd::Constant(nf, bw[0])) : bw;
   log_norm_r_ = -0.5 * nf * kLog2Pi - feature_bw_.array().log().sum();
   positions_ = poses.leftCols<3>();
   orientations_.resize(n, 4);

@@ -1,6 +1,7 @@
 #include "graspmix/perception/scene.hpp"
 
 #include <chrono>
+#include <cstdint>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -10,6 +11,7 @@
 #include <pcl/filters/crop_box.h>
 #include <pcl/filters/statistical_outlier_removal.h>
 #include <pcl/filters/voxel_grid.h>
+#include <pcl/kdtree/kdtree_flann.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 #include <pcl/sample_consensus/ransac.h>
@@ -43,16 +45,24 @@ class SeededRansac : public pcl::RandomSampleConsensus<pcl::PointXYZ> {
 
 unsigned fold_seed(std::uint64_t s) { return static_cast<unsigned>((s ^ (s >> 32)) & 0xffffffffu); }
 
-Cloud::Ptr subset(const Cloud& c, const pcl::Indices& idx, std::vector<int>& origin) {
+/// Input rows that follow the points through every step: `origin` is a point's own input row (-1 once
+/// voxel-averaged), `source` the input row whose per-point data it carries (SceneResult::sources).
+struct Rows {
+  std::vector<int> origin, source;
+};
+
+Cloud::Ptr subset(const Cloud& c, const pcl::Indices& idx, Rows& rows) {
   Cloud::Ptr out(new Cloud);
   out->reserve(idx.size());
-  std::vector<int> o;
-  o.reserve(idx.size());
+  Rows kept;
+  kept.origin.reserve(idx.size());
+  kept.source.reserve(idx.size());
   for (const auto i : idx) {
     out->push_back(c[static_cast<std::size_t>(i)]);
-    o.push_back(origin[static_cast<std::size_t>(i)]);
+    kept.origin.push_back(rows.origin[static_cast<std::size_t>(i)]);
+    kept.source.push_back(rows.source[static_cast<std::size_t>(i)]);
   }
-  origin.swap(o);
+  rows = std::move(kept);
   return out;
 }
 
@@ -73,19 +83,20 @@ void check_inputs(const Vec3Array& points, const SceneSettings& s) {
 }
 
 /// The cloud in PCL's float points, with every point's input row in `origin`.
-Cloud::Ptr to_pcl(const Vec3Array& points, std::vector<int>& origin) {
+Cloud::Ptr to_pcl(const Vec3Array& points, Rows& rows) {
   Cloud::Ptr cloud(new Cloud);
   cloud->resize(static_cast<std::size_t>(points.rows()));
-  origin.resize(static_cast<std::size_t>(points.rows()));
+  rows.origin.resize(static_cast<std::size_t>(points.rows()));
   for (Eigen::Index i = 0; i < points.rows(); ++i) {
     (*cloud)[static_cast<std::size_t>(i)] = pcl::PointXYZ(static_cast<float>(points(i, 0)), static_cast<float>(points(i, 1)),
                                                           static_cast<float>(points(i, 2)));
-    origin[static_cast<std::size_t>(i)] = static_cast<int>(i);
+    rows.origin[static_cast<std::size_t>(i)] = static_cast<int>(i);
   }
+  rows.source = rows.origin;
   return cloud;
 }
 
-Cloud::Ptr crop(const Cloud::Ptr& cloud, const SceneSettings& s, std::vector<int>& origin) {
+Cloud::Ptr crop(const Cloud::Ptr& cloud, const SceneSettings& s, Rows& rows) {
   pcl::CropBox<pcl::PointXYZ> box;
   const float big = std::numeric_limits<float>::max();
   Eigen::Vector4f lo, hi;
@@ -99,29 +110,60 @@ Cloud::Ptr crop(const Cloud::Ptr& cloud, const SceneSettings& s, std::vector<int
   box.setInputCloud(cloud);
   pcl::Indices kept;
   box.filter(kept);
-  return subset(*cloud, kept, origin);
+  return subset(*cloud, kept, rows);
 }
 
-/// Voxel centroids: no point keeps an input row (origin -1).
-Cloud::Ptr voxel_down(const Cloud::Ptr& cloud, const SceneSettings& s, std::vector<int>& origin) {
+/// PCL's voxel grid indexes voxels with 32-bit integers and, when they would overflow, warns on stderr and
+/// returns the cloud unfiltered: refuse such a cloud (usually a stray point far away) instead.
+void check_voxel_count(const Cloud& cloud, double voxel) {
+  Eigen::Array3d lo = Eigen::Array3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const auto& p : cloud) {
+    const Eigen::Array3d q(p.x, p.y, p.z);
+    lo = lo.min(q);
+    hi = hi.max(q);
+  }
+  const Eigen::Array3d cells = ((hi - lo) / voxel).floor() + 1.0;
+  const double n = cells.prod();
+  if (n > static_cast<double>(std::numeric_limits<std::int32_t>::max())) {
+    const Eigen::Array3d extent = hi - lo;
+    bad("the cloud spans " + std::to_string(extent.x()) + " x " + std::to_string(extent.y()) + " x " +
+        std::to_string(extent.z()) + " m: a voxel grid of " + std::to_string(voxel) + " m would need " +
+        std::to_string(n) + " cells (more than PCL can index); crop the cloud or use a larger voxel_size");
+  }
+}
+
+/// Voxel centroids: no point keeps an input row (origin -1); `source` follows each centroid to the input
+/// point nearest to it (a point of its own voxel), so per-point data survive the averaging.
+Cloud::Ptr voxel_down(const Cloud::Ptr& cloud, const SceneSettings& s, Rows& rows) {
+  check_voxel_count(*cloud, s.voxel_size);
   pcl::VoxelGrid<pcl::PointXYZ> grid;
   grid.setLeafSize(static_cast<float>(s.voxel_size), static_cast<float>(s.voxel_size), static_cast<float>(s.voxel_size));
   grid.setInputCloud(cloud);
   Cloud::Ptr down(new Cloud);
   grid.filter(*down);
   if (down->empty()) bad("the voxel grid returned no point (voxel_size too small for the cloud's extent?)");
-  origin.assign(down->size(), -1);
+  pcl::KdTreeFLANN<pcl::PointXYZ> tree;
+  tree.setInputCloud(cloud);
+  std::vector<int> nearest(down->size());
+  pcl::Indices k(1);
+  std::vector<float> d2(1);
+  for (std::size_t j = 0; j < down->size(); ++j) {
+    if (tree.nearestKSearch((*down)[j], 1, k, d2) != 1) bad("no input point near a voxel centroid");
+    nearest[j] = rows.source[static_cast<std::size_t>(k[0])];
+  }
+  rows.source.swap(nearest);
+  rows.origin.assign(down->size(), -1);
   return down;
 }
 
-Cloud::Ptr remove_outliers(const Cloud::Ptr& cloud, const SceneSettings& s, std::vector<int>& origin) {
+Cloud::Ptr remove_outliers(const Cloud::Ptr& cloud, const SceneSettings& s, Rows& rows) {
   pcl::StatisticalOutlierRemoval<pcl::PointXYZ> sor;
   sor.setMeanK(s.outlier_neighbours);
   sor.setStddevMulThresh(s.outlier_std_ratio);
   sor.setInputCloud(cloud);
   pcl::Indices kept;
   sor.filter(kept);
-  return subset(*cloud, kept, origin);
+  return subset(*cloud, kept, rows);
 }
 
 /// The dominant plane by seeded RANSAC, refitted by least squares on its inliers and normalised, with
@@ -144,7 +186,7 @@ bool fit_plane(const Cloud::Ptr& cloud, const SceneSettings& s, Eigen::VectorXf&
 /// The support plane found and removed (with what lies below it if asked), oriented towards the
 /// object: the side most of the points off the plane are on (PlaneSide::Majority). Records the plane
 /// in r; the cloud unchanged if there is no plane with enough inliers.
-Cloud::Ptr remove_support_plane(const Cloud::Ptr& cloud, const SceneSettings& s, std::vector<int>& origin,
+Cloud::Ptr remove_support_plane(const Cloud::Ptr& cloud, const SceneSettings& s, Rows& rows,
                                 SceneResult& r) {
   Eigen::VectorXf coeffs;
   pcl::Indices inliers;
@@ -171,7 +213,7 @@ Cloud::Ptr remove_support_plane(const Cloud::Ptr& cloud, const SceneSettings& s,
   r.plane = plane;
   r.plane_found = true;
   r.n_plane_inliers = inliers.size();
-  return subset(*cloud, kept, origin);
+  return subset(*cloud, kept, rows);
 }
 
 }  // namespace
@@ -181,26 +223,28 @@ SceneResult prepare_cloud(const Vec3Array& points, const SceneSettings& s) {
   check_inputs(points, s);
   SceneResult r;
   r.n_input = static_cast<std::size_t>(points.rows());
-  std::vector<int> origin;
-  Cloud::Ptr cloud = to_pcl(points, origin);
-  if (s.crop) cloud = crop(cloud, s, origin);
+  Rows rows;
+  Cloud::Ptr cloud = to_pcl(points, rows);
+  if (s.crop) cloud = crop(cloud, s, rows);
   r.n_after_crop = cloud->size();
   if (cloud->empty()) bad("no point is inside the crop box");
-  if (s.voxel_size > 0) cloud = voxel_down(cloud, s, origin);
+  if (s.voxel_size > 0) cloud = voxel_down(cloud, s, rows);
   r.n_after_voxel = cloud->size();
   if (s.remove_outliers && cloud->size() > static_cast<std::size_t>(s.outlier_neighbours)) {
-    cloud = remove_outliers(cloud, s, origin);
+    cloud = remove_outliers(cloud, s, rows);
   }
   r.n_after_outliers = cloud->size();
-  if (s.remove_plane && cloud->size() >= 3) cloud = remove_support_plane(cloud, s, origin, r);
+  if (s.remove_plane && cloud->size() >= 3) cloud = remove_support_plane(cloud, s, rows, r);
   r.n_output = cloud->size();
   if (cloud->empty()) bad("no point is left after the clean-up (the plane took everything?)");
   r.points.resize(static_cast<Eigen::Index>(cloud->size()), 3);
   r.indices.resize(static_cast<Eigen::Index>(cloud->size()));
+  r.sources.resize(static_cast<Eigen::Index>(cloud->size()));
   for (std::size_t i = 0; i < cloud->size(); ++i) {
     const auto& p = (*cloud)[i];
     r.points.row(static_cast<Eigen::Index>(i)) << p.x, p.y, p.z;
-    r.indices[static_cast<Eigen::Index>(i)] = origin[i];
+    r.indices[static_cast<Eigen::Index>(i)] = rows.origin[i];
+    r.sources[static_cast<Eigen::Index>(i)] = rows.source[i];
   }
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;

@@ -46,10 +46,10 @@ struct CollisionSettings {
   double plane_margin = 0.0;   ///< m: the support plane is raised by this much (negative: tolerate contact)
   double cell_size = 0.0;      ///< m: grid cell of the cloud index; 0 picks one from the cloud's extent and size
   bool orient_plane = true;    ///< flip the plane's sign so the cloud's mean lies on its free (positive) side
-  /// m: depths up to this count as touching, not penetrating (a point on a link's face is a contact,
-  /// whatever the rounding of the link's pose). 1e-9 keeps depths exact; grasp synthesis on sensed clouds
-  /// (GraspModel.synthesize) passes 1e-3, since a noisy surface point a hair inside a finger is a contact.
-  double contact_tolerance = 1e-9;
+  /// m: depths up to this count as touching, not penetrating: a sensed cloud is a noisy surface, and a
+  /// point a hair inside a finger is a contact (whatever the rounding of the link's pose). 1 mm is what
+  /// grasp synthesis has always used; pass ~1e-9 for exact depths.
+  double contact_tolerance = 1e-3;
   /// m per point: each cloud point inside a link adds this much to the total depth. The deepest-point
   /// depth saturates at half a link's thickness (a finger right through a thin object costs no more
   /// than a shallow one); counting the points it swallows measures how much of the link is inside.

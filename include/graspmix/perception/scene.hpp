@@ -35,6 +35,10 @@ struct SceneSettings {
 struct SceneResult {
   Vec3Array points;            ///< the object points that remain
   Eigen::VectorXi indices;     ///< for every remaining point, its input row (-1 when voxel-averaged)
+  /// for every remaining point, the input row whose per-point data (camera viewpoint, camera index) it
+  /// carries: its own row, or for a voxel centroid the row of the input point nearest to it in its voxel.
+  /// Never -1: per-point data survive every step, indexed as data[sources].
+  Eigen::VectorXi sources;
   /// Plane a x + b y + c z + d = 0 with (a, b, c) unit and pointing to the side the object is on.
   Eigen::Vector4d plane = Eigen::Vector4d::Zero();
   bool plane_found = false;

@@ -23,13 +23,13 @@ def cached_model(path: str) -> GraspModel:
 
 
 def crop_above_plane(min_height: float) -> Callable:
-    """The clean-up of an acquired cloud: drop points closer than min_height to the support plane z = 0.
-    The noise model's lateral shift gives object pixels the depth of the plane beside them, a fringe of
-    points on the plane around the object; the segmentation mask keeps the rest of the plane out. (The
-    synthesis then cuts again at its FeatureSettings.plane_distance: see Protocol.min_height.)"""
+    """The clean-up of an acquired cloud: drop points at most min_height above the support plane z = 0 (the
+    synthesis' table clearance, so both keep the same points). The noise model's lateral shift gives object
+    pixels the depth of the plane beside them, a fringe of points on the plane around the object; the
+    segmentation mask keeps the rest of the plane out."""
 
     def cleanup(acq: Acquisition) -> Acquisition:
-        keep = acq.points[:, 2] >= min_height
+        keep = acq.points[:, 2] > min_height
         return dataclasses.replace(acq, points=acq.points[keep], viewpoints=acq.viewpoints[keep],
                                    camera_index=acq.camera_index[keep])
 
@@ -40,7 +40,7 @@ def synthesize_on(model: GraspModel, acq: Acquisition, p: Protocol, seed: int, o
     """The synthesis of one attempt on an acquired cloud (the known support plane, the cameras' positions)."""
     return model.synthesize(acq.points, n_samples=p.n_samples, n_optimise=p.n_optimise, optimise=optimise,
                             seed=seed, remove_plane=False, plane=list(SUPPORT_PLANE), viewpoints=acq.viewpoints,
-                            query_samples=p.query_samples,
+                            query_samples=p.query_samples, table_clearance=p.min_height,
                             annealing={"iterations": p.annealing_iterations,
                                        "initial_temperature": p.initial_temperature})
 

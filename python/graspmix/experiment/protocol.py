@@ -62,11 +62,9 @@ class Protocol:
     annealing_iterations: int = 100  # the paper's 100 (= C++ AnnealingSettings::iterations)
     initial_temperature: float = 1.0  # the paper's 1.0, linear decay (= C++ AnnealingSettings)
     query_samples: int = SynthesisOptions.query_samples  # N_Q samples per link for the query densities
-    # m: the acquisition's clean-up keeps points at least this high above the support plane z = 0. The
-    # synthesis then drops every point within the model's FeatureSettings.plane_distance (5 mm) of that
-    # plane, so the cut that decides what the methods see is effective_min_height (5 mm), not this; this
-    # value only decides the n_points column (points after the acquisition's clean-up).
-    min_height: float = 0.004
+    # m: points at most this high above the support plane z = 0 are the table: the acquisition's clean-up
+    # drops them and the synthesis is given the same table clearance.
+    min_height: float = SynthesisOptions.table_clearance
     closing: str = "full"  # how the executed grasp closes: see CLOSING
     seed: int = 0  # base of every derived seed
     models: dict = field(default_factory=dict)  # method -> model file; empty: the bundled box models
@@ -87,13 +85,6 @@ class Protocol:
             kw = dict(objects=objects, trials=10)
         kw.update({k: v for k, v in overrides.items() if v is not None})
         return cls(**kw)
-
-    @property
-    def effective_min_height(self) -> float:
-        """m: the height above the support plane below which no point reaches the synthesis: the larger of
-        min_height and the synthesis' plane cut (FeatureSettings.plane_distance, which model files do not
-        store, so the default; the cut keeps points strictly above it)."""
-        return max(self.min_height, FeatureSettings.plane_distance)
 
     def validate(self) -> None:
         self._validate_lists()

@@ -29,7 +29,8 @@ def _time_objects(p: Protocol, objects: list[str], n_samples: int, n_optimise: i
             g = cached_model(str(p.model_path(m).resolve())).synthesize(
                 acq.points, n_samples=n_samples, n_optimise=n_optimise, optimise=True,
                 seed=p.synthesis_seed(obj, 0, "A"), remove_plane=False, plane=list(SUPPORT_PLANE),
-                viewpoints=acq.viewpoints, query_samples=p.query_samples)
+                viewpoints=acq.viewpoints, query_samples=p.query_samples,
+                table_clearance=p.min_height)
             for s in (*STAGES, "features"):
                 per_object[m][s].append(float(g.timing[s]))
             per_object[m]["total"].append(float(sum(g.timing[s] for s in STAGES)))

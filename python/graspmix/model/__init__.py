@@ -9,7 +9,6 @@ from .experts import expert
 from .grasp_model import GraspModel, default_model_path, learn
 from .grasps import EXECUTION_KEYS, STAGE_LABELS, STAGES, Grasp, GraspSet, grasp_by_rank, load_grasps
 from .settings import (
-    DEFAULT_DISAGREEMENTS,
     METHOD_LABELS,
     METHODS,
     FeatureSettings,
@@ -19,6 +18,6 @@ from .settings import (
 )
 
 __all__ = ["DEMO_FORMAT", "GRASPS_FORMAT", "MODEL_FORMAT", "PACKAGE_PREFIX", "METHODS", "METHOD_LABELS",
-           "EXECUTION_KEYS", "STAGES", "STAGE_LABELS", "DEFAULT_DISAGREEMENTS", "data_path", "default_model_path",
+           "EXECUTION_KEYS", "STAGES", "STAGE_LABELS", "data_path", "default_model_path",
            "Demonstration", "FeatureSettings", "LearnSettings", "SynthesisOptions", "Grasp", "GraspSet",
            "GraspModel", "learn", "expert", "check_method", "load_grasps", "grasp_by_rank"]

@@ -139,18 +139,18 @@ class GraspModel:
                    clear_pregrasp: bool = _S.clear_pregrasp, collision_beta: float = _S.collision_beta,
                    contact_tolerance: float = _S.contact_tolerance,
                    collision_inside_weight: float = _S.collision_inside_weight,
-                   annealing: dict | None = None) -> GraspSet:
+                   table_clearance: float = _S.table_clearance, annealing: dict | None = None) -> GraspSet:
         """Grasps on a novel object's cloud: a path (PCD/PLY/npy) or an (N, 3) array of points.
 
         remove_plane: find and remove the support plane (a scene cloud); plane: give it instead
-        ([a, b, c, d]; points within features.plane_distance of it are dropped); approach_axis: prefer
+        ([a, b, c, d]; points within table_clearance of it are dropped); approach_axis: prefer
         wrists whose approach axis points along it (e.g. (0, 0, -1) for top grasps); reachable(wrists,
         joints) -> bool array: the hard reachability test; experts: more experts (graspmix.expert(...) or
         graspmix._core.Expert objects); annealing: AnnealingSettings fields to change. The other settings
         and their defaults: SynthesisOptions."""
         opts = SynthesisOptions(n_samples, n_optimise, optimise, seed, remove_plane, approach_concentration,
                                 query_samples, kinematic, clear_pregrasp, collision_beta, contact_tolerance,
-                                collision_inside_weight)
+                                collision_inside_weight, table_clearance)
         t0 = time.perf_counter()
         # Phase 1: the query object's representation O(v, r) (and the support plane).
         surface, plane, name = self._query_surface(cloud, plane, viewpoints, opts)
@@ -178,7 +178,8 @@ class GraspModel:
             if plane.shape != (4,) or not np.all(np.isfinite(plane)) or not np.linalg.norm(plane[:3]) > 0:
                 raise ValueError("plane must be 4 finite numbers [a, b, c, d] with a non-zero normal")
         surface, scene = self.features.surface(points, remove_plane=opts.remove_plane and plane is None,
-                                               seed=opts.seed, viewpoints=viewpoints, plane=plane)
+                                               seed=opts.seed, viewpoints=viewpoints, plane=plane,
+                                               table_clearance=opts.table_clearance)
         if plane is None and scene.plane_found:
             plane = np.asarray(scene.plane)
         return surface, plane, name

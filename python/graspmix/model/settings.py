@@ -1,9 +1,7 @@
-"""The settings of learning and synthesis, with their defaults: every Python-side default of the grasp
-pipeline is written here once; keyword arguments, the command line and the experiment's protocol refer
-to these fields instead of restating numbers.
-
-Some of these differ on purpose from the C++ structs' defaults that the bindings expose (the Python front
-end was tuned on the bundled demonstration): see DEFAULT_DISAGREEMENTS, checked by the tests.
+"""The settings of learning and synthesis as the Python front end takes them. Every value that C++ also
+knows is read from the default-constructed C++ settings struct (the single source, docs/design.md);
+keyword arguments, the command line and the experiment's protocol refer to these fields in turn. Only
+the table clearance is the front end's own.
 """
 from __future__ import annotations
 
@@ -12,6 +10,16 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import _core
+
+# The C++ defaults, read once from the default-constructed structs.
+_SCENE = _core.SceneSettings()
+_SURFACE = _core.SurfaceFeatureSettings()
+_POSE_MIXTURE = _core.PoseMixture().settings
+_KDE = _core.KdeSettings()
+_CONTACT = _core.ContactSettings()
+_SYNTHESIS = _core.SynthesisSettings()
+_AXIS = _core.AxisAlignmentSettings()
+_COLLISION = _core.CollisionSettings()
 
 METHODS = ("gmm", "kde")
 METHOD_LABELS = {"gmm": "GMM", "kde": "KDE"}
@@ -22,43 +30,60 @@ def check_method(method: str) -> None:
         raise ValueError(f"method must be one of {', '.join(METHODS)}, got {method!r}")
 
 
+def checked_viewpoints(viewpoints, n_points: int):
+    """None, one viewpoint (3,) for every point, or one per point (n_points, 3), finite; ValueError otherwise."""
+    if viewpoints is None:
+        return None
+    vp = np.asarray(viewpoints, dtype=float)
+    if vp.shape != (3,) and vp.shape != (n_points, 3):
+        raise ValueError(f"viewpoints: expected shape (3,) or ({n_points}, 3) for {n_points} points, got {vp.shape}")
+    if not np.all(np.isfinite(vp)):
+        raise ValueError("viewpoints: contains NaN or infinite values")
+    return vp
+
+
 @dataclass
 class FeatureSettings:
     """Down-sampling and curvature radius: the demonstration and every query cloud pass through the
     same, or the contact models' feature densities compare unlike things."""
 
-    voxel_size: float = 0.003  # m, voxel grid before the features (= C++ SceneSettings::voxel_size)
-    radius: float = 0.01  # m, the paper's 1 cm (= C++ SurfaceSettings::radius)
-    # m: with a known support plane (synthesize(plane=...)), every point at most this far above it (or
-    # below it) is dropped as the table before anything else. A cut in Python, not the RANSAC inlier
-    # threshold C++ SceneSettings::plane_distance, which has the same name and value (5 mm). Not stored in
-    # model files: a loaded model always has the default.
-    plane_distance: float = 0.005
+    voxel_size: float = _SCENE.voxel_size  # m, voxel grid before the features (SceneSettings)
+    radius: float = _SURFACE.radius  # m, the paper's 1 cm (SurfaceFeatureSettings)
 
-    def surface(self, points: np.ndarray, *, remove_plane: bool, seed: int = 0, viewpoints=None, plane=None):
+    @property
+    def plane_distance(self) -> float:
+        """Deprecated (one release): the table clearance is a synthesis option, SynthesisOptions.table_clearance."""
+        return SynthesisOptions.table_clearance
+
+    def surface(self, points: np.ndarray, *, remove_plane: bool, seed: int = 0, viewpoints=None, plane=None,
+                table_clearance: float | None = None):
         """(SurfaceCloud, SceneResult) of raw points: clean-up, then features. With a known support
-        plane [a, b, c, d], the points within plane_distance of it or below it are dropped first (the
+        plane [a, b, c, d], the points within table_clearance of it or below it are dropped first (the
         table of a scene)."""
+        viewpoints = checked_viewpoints(viewpoints, len(points))
         if plane is not None:
-            points, viewpoints = self.cut_plane(points, plane, viewpoints)
+            clearance = SynthesisOptions.table_clearance if table_clearance is None else table_clearance
+            points, viewpoints = self.cut_plane(points, plane, viewpoints, clearance)
         scene = _core.prepare_cloud(points, voxel_size=self.voxel_size, remove_plane=remove_plane, seed=seed)
         if len(scene.points) == 0:
             raise ValueError("the cloud is empty after clean-up")
-        vp = None
-        if viewpoints is not None:
-            vp = np.asarray(viewpoints, dtype=float)
-            if vp.ndim == 2:
-                vp = vp[scene.indices]
+        vp = viewpoints
+        if vp is not None and vp.ndim == 2:
+            vp = vp[scene.sources]  # each kept point carries its source point's camera (voxel centroids too)
         return _core.compute_surface_features(scene.points, radius=self.radius, viewpoints=vp), scene
 
-    def cut_plane(self, points: np.ndarray, plane, viewpoints=None):
-        """(points, viewpoints) strictly farther than plane_distance above the plane (its side is the one
+    @staticmethod
+    def cut_plane(points: np.ndarray, plane, viewpoints=None, table_clearance: float | None = None):
+        """(points, viewpoints) strictly farther than table_clearance above the plane (its side is the one
         most points are on); per-point viewpoints follow their points."""
         n = np.asarray(plane, dtype=float)
         dist = (points @ n[:3] + n[3]) / np.linalg.norm(n[:3])
         if np.median(dist) < 0:
             dist = -dist
-        keep = dist > self.plane_distance
+        clearance = SynthesisOptions.table_clearance if table_clearance is None else table_clearance
+        if not (np.isfinite(clearance) and clearance >= 0):
+            raise ValueError(f"table_clearance must be a finite distance >= 0 (m), got {clearance!r}")
+        keep = dist > clearance
         points = points[keep]
         if viewpoints is not None and np.ndim(viewpoints) == 2:
             viewpoints = np.asarray(viewpoints)[keep]
@@ -71,13 +96,13 @@ class FeatureSettings:
 class LearnSettings:
     """How contact models are learnt from a demonstration (GraspModel.learn's keywords)."""
 
-    n_components: int = 2  # K of the contact mixtures (GMM)
-    kde_position_bandwidth: float = 0.005  # m (= C++ KdeSettings)
-    kde_orientation_bandwidth: float = 0.15  # rad (= C++ KdeSettings)
-    kde_feature_bandwidth: float = 0.005  # curvature units (C++ KdeSettings: empty, i.e. must be given)
-    max_distance: float = 0.01  # m: object points this close to a link are its contacts (= C++ ContactSettings)
-    contact_lambda: float = 5000.0  # 1/m^2: contact weight exp(-lambda d^2) (= C++ ContactSettings::lambda)
-    min_points: int = 10  # fewest contacts for a link to get a model (= C++ ContactSettings)
+    n_components: int = _POSE_MIXTURE.n_components  # K of the contact mixtures (GMM)
+    kde_position_bandwidth: float = _KDE.position_bandwidth  # m
+    kde_orientation_bandwidth: float = _KDE.orientation_bandwidth  # rad
+    kde_feature_bandwidth: float = float(_KDE.feature_bandwidth[0])  # curvature units (one value, all features)
+    max_distance: float = _CONTACT.max_distance  # m: object points this close to a link are its contacts
+    contact_lambda: float = _CONTACT.lambda_  # 1/m^2: contact weight exp(-lambda d^2)
+    min_points: int = _CONTACT.min_points  # fewest contacts for a link to get a model
     seed: int = 0
 
 
@@ -85,29 +110,19 @@ class LearnSettings:
 class SynthesisOptions:
     """How grasps are synthesised on a cloud (GraspModel.synthesize's keywords)."""
 
-    n_samples: int = 200  # grasps sampled and ranked (= C++ SynthesisSettings)
-    n_optimise: int = 10  # the best this many are annealed (= C++ SynthesisSettings)
-    optimise: bool = True
+    n_samples: int = _SYNTHESIS.n_samples  # grasps sampled and ranked
+    n_optimise: int = _SYNTHESIS.n_optimise  # the best this many are annealed
+    optimise: bool = _SYNTHESIS.optimise
     seed: int = 0
-    remove_plane: bool = True  # find and remove the support plane by RANSAC (= C++ SceneSettings)
-    # log E = concentration (cos - 1): 20 makes a 90-degree deviation cost 20 nats, comparable to the
-    # contact terms, so the preference decides between otherwise similar grasps (C++ default: 5).
-    approach_concentration: float = 20.0
-    query_samples: int = 500  # N_Q samples per link for the query densities (= C++ QuerySettings)
+    remove_plane: bool = _SCENE.remove_plane  # find and remove the support plane by RANSAC
+    approach_concentration: float = _AXIS.concentration  # log E = concentration (cos - 1)
+    query_samples: int = _SYNTHESIS.query.n_samples  # N_Q samples per link for the query densities
     kinematic: bool = True
-    clear_pregrasp: bool = True  # (= C++ SynthesisSettings)
-    collision_beta: float = 2000.0  # 1/m: log W = -beta * depth (C++ CollisionSettings: 1000)
-    # m: depths up to this are touching, not penetrating: a cloud is a noisy surface (C++: 1e-9)
-    contact_tolerance: float = 0.001
-    collision_inside_weight: float = 0.0  # (= C++ CollisionSettings)
-
-
-# The Python defaults above that differ from the C++ defaults of the same quantity: (setting, Python
-# value, C++ value, C++ location). Checked against the bindings by the tests, so a change on either side
-# is noticed; C++ is to become the single source.
-DEFAULT_DISAGREEMENTS = (
-    ("SynthesisOptions.collision_beta", 2000.0, 1000.0, "CollisionSettings::beta (collision.hpp)"),
-    ("SynthesisOptions.contact_tolerance", 1e-3, 1e-9, "CollisionSettings::contact_tolerance (collision.hpp)"),
-    ("SynthesisOptions.approach_concentration", 20.0, 5.0, "AxisAlignmentExpert concentration (experts.hpp)"),
-    ("LearnSettings.n_components", 2, 1, "GmmSettings::n_components (gmm.hpp; PoseMixture's binding: 2)"),
-)
+    clear_pregrasp: bool = _SYNTHESIS.clear_pregrasp
+    collision_beta: float = _COLLISION.beta  # 1/m: log W = -beta * depth
+    contact_tolerance: float = _COLLISION.contact_tolerance  # m: depths up to this are touching
+    collision_inside_weight: float = _COLLISION.inside_weight
+    # m: with a known support plane (synthesize(plane=...)), every point at most this far above it (or
+    # below it) is dropped as the table before anything else: the one default of the front end's own.
+    # (Not the RANSAC inlier threshold SceneSettings.plane_distance, used when the plane is searched for.)
+    table_clearance: float = 0.005

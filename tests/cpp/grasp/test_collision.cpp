@@ -31,6 +31,13 @@ const char* kFinger = R"(<robot name="finger">
 
 std::shared_ptr<const Hand> finger() { return std::make_shared<Hand>(Hand::from_urdf_string(kFinger, ".")); }
 
+/// These tests measure exact depths: no contact tolerance.
+CollisionSettings exact() {
+  CollisionSettings s;
+  s.contact_tolerance = 1e-9;
+  return s;
+}
+
 /// Points on the surface of the box [0, 0.1] x [-0.05, 0.05] x [-0.05, 0.05] on a 2.5 mm grid.
 Vec3Array box_surface() {
   std::vector<Eigen::Vector3d> pts;
@@ -55,7 +62,7 @@ Eigen::Isometry3d at(double x, double y = 0, double z = 0) {
 }  // namespace
 
 TEST(Collision, DepthOfAFingerPushedIntoABoxIsAnalytic) {
-  const CollisionExpert expert(finger(), box_surface());
+  const CollisionExpert expert(finger(), box_surface(), std::nullopt, exact());
   const Eigen::VectorXd q = Eigen::VectorXd::Zero(1);
   double previous = -1;
   for (int step = 0; step <= 8; ++step) {
@@ -81,7 +88,7 @@ TEST(Collision, DepthOfAFingerPushedIntoABoxIsAnalytic) {
 }
 
 TEST(Collision, PointRadiusInflatesPoints) {
-  CollisionSettings s;
+  CollisionSettings s = exact();
   s.point_radius = 0.002;
   const CollisionExpert expert(finger(), box_surface(), std::nullopt, s);
   const Eigen::VectorXd q = Eigen::VectorXd::Zero(1);
@@ -90,7 +97,7 @@ TEST(Collision, PointRadiusInflatesPoints) {
 }
 
 TEST(Collision, SphereAndCylinderDepthsAreAnalytic) {
-  const CollisionExpert expert(finger(), box_surface());
+  const CollisionExpert expert(finger(), box_surface(), std::nullopt, exact());
   const Hand& hand = expert.hand();
   // The ball (radius 1 cm, at wrist + (0, 0, 1 + q)) with its centre at x = -0.01 + d reaches d into
   // the face x = 0; the finger box is then 1.5 m below the object.
@@ -114,7 +121,7 @@ TEST(Collision, SupportPlaneBlocksAHandBelowTheTable) {
   // cloud (above) is on the free side.
   Vec3Array cloud = box_surface();
   cloud.col(2).array() += 0.05 + 1e-9;
-  const CollisionExpert expert(finger(), cloud, Eigen::Vector4d(0, 0, -2, 0));
+  const CollisionExpert expert(finger(), cloud, Eigen::Vector4d(0, 0, -2, 0), exact());
   EXPECT_LT((expert.plane() - Eigen::Vector4d(0, 0, 1, 0)).norm(), 1e-12);
   const Hand& hand = expert.hand();
   const Eigen::VectorXd q = Eigen::VectorXd::Zero(1);
@@ -140,7 +147,7 @@ TEST(Collision, SupportPlaneBlocksAHandBelowTheTable) {
   const double lowest = (T.linear().cwiseAbs() * Eigen::Vector3d(0.01, 0.02, 0.03)).z();
   EXPECT_NEAR(expert.evaluate(T, q).plane_depth[0], lowest, 1e-9);
   // A margin raises the plane.
-  CollisionSettings s;
+  CollisionSettings s = exact();
   s.plane_margin = 0.004;
   const CollisionExpert raised(finger(), cloud, Eigen::Vector4d(0, 0, 1, 0), s);
   EXPECT_NEAR(raised.evaluate(at(-0.2, 0, 0.03 + 0.001), q).plane_depth[0], 0.003, 1e-9);
@@ -148,7 +155,7 @@ TEST(Collision, SupportPlaneBlocksAHandBelowTheTable) {
 
 TEST(Collision, BatchEqualsSingleAndBruteForce) {
   const Vec3Array cloud = box_surface();
-  const CollisionExpert expert(finger(), cloud, Eigen::Vector4d(0, 0, 1, 0.05));
+  const CollisionExpert expert(finger(), cloud, Eigen::Vector4d(0, 0, 1, 0.05), exact());
   std::mt19937_64 rng(3);
   std::uniform_real_distribution<double> U(-1, 1);
   const int N = 200;
@@ -186,7 +193,7 @@ TEST(Collision, BadInputThrows) {
   bad(3, 1) = std::nan("");
   EXPECT_THROW(CollisionExpert(finger(), bad), std::invalid_argument);
   EXPECT_THROW(CollisionExpert(finger(), box_surface(), Eigen::Vector4d(0, 0, 0, 1)), std::invalid_argument);
-  CollisionSettings s;
+  CollisionSettings s = exact();
   s.point_radius = -1;
   EXPECT_THROW(CollisionExpert(finger(), box_surface(), std::nullopt, s), std::invalid_argument);
   // A hand read without mesh geometry cannot feed the expert (the file need only exist).
@@ -199,12 +206,12 @@ TEST(Collision, BadInputThrows) {
       dir.string(), no_meshes));
   EXPECT_THROW(CollisionExpert(mesh_hand, box_surface()), std::invalid_argument);
   std::filesystem::remove(dir / "graspmix_test_unread.stl");
-  const CollisionExpert e(finger(), box_surface());
+  const CollisionExpert e(finger(), box_surface(), std::nullopt, exact());
   EXPECT_THROW(e.evaluate(Eigen::Isometry3d::Identity(), Eigen::VectorXd::Zero(2)), std::invalid_argument);
 }
 
 TEST(Collision, BatchBroadcastsASingleWristOrConfiguration) {
-  const CollisionExpert expert(finger(), box_surface());
+  const CollisionExpert expert(finger(), box_surface(), std::nullopt, exact());
   graspmix::PoseArray one(1, 7);
   one << 0.005 - 0.01, 0, -1.5, 0, 0, 0, 1;
   graspmix::RowMatrixXd qs(3, 1);
@@ -218,10 +225,10 @@ TEST(Collision, BatchBroadcastsASingleWristOrConfiguration) {
 }
 
 TEST(Collision, InsideWeightAddsPerPenetratingPoint) {
-  CollisionSettings s;
+  CollisionSettings s = exact();
   s.inside_weight = 0.0005;
   const CollisionExpert weighted(finger(), box_surface(), std::nullopt, s);
-  const CollisionExpert plain(finger(), box_surface());
+  const CollisionExpert plain(finger(), box_surface(), std::nullopt, exact());
   const Eigen::VectorXd q = Eigen::VectorXd::Zero(1);
   for (double x : {-0.0101, -0.006, 0.0}) {
     const auto a = weighted.evaluate(at(x), q), b = plain.evaluate(at(x), q);

@@ -9,6 +9,7 @@ import graspmix
 
 WSG50 = graspmix.data_path("hands", "wsg50.urdf")
 IDENTITY = np.array([0, 0, 0, 0, 0, 0, 1.0])
+EXACT = 1e-9  # these tests measure exact depths: no contact tolerance (the default is 1 mm)
 
 
 def box_surface(lo, hi, step=0.002):
@@ -49,7 +50,7 @@ def test_finger_depth_grows_with_penetration_and_is_zero_when_clear(wsg):
     for d in depths:
         # A 3 cm wide box whose -x face is d behind the left finger's inner face.
         cloud = box_surface([-q - d, -0.05, 0.09], [-q - d + 0.03, 0.05, 0.2])
-        expert = graspmix.CollisionExpert(wsg, cloud)
+        expert = graspmix.CollisionExpert(wsg, cloud, contact_tolerance=EXACT)
         r = expert.evaluate(IDENTITY, [q])
         got.append(r.cloud_depth[1])
         assert r.cloud_depth[0] == 0.0 and r.cloud_depth[2] == 0.0  # palm and right finger are clear
@@ -64,7 +65,7 @@ def test_matches_independent_numpy_depths(wsg):
     rng = np.random.default_rng(5)
     cloud = box_surface([-0.03, -0.04, 0.0], [0.03, 0.04, 0.1], step=0.004)
     for radius in (0.0, 0.003):
-        expert = graspmix.CollisionExpert(wsg, cloud, point_radius=radius)
+        expert = graspmix.CollisionExpert(wsg, cloud, point_radius=radius, contact_tolerance=EXACT)
         n = 150
         # Wrists below the box, approaching it from underneath with random tilt and offset.
         tilt = Rotation.from_rotvec(rng.normal(scale=0.4, size=(n, 3)))
@@ -83,7 +84,7 @@ def test_matches_independent_numpy_depths(wsg):
 def test_support_plane_blocks_a_hand_below_the_table(wsg):
     cloud = box_surface([-0.02, -0.02, 0.0], [0.02, 0.02, 0.1])
     # The plane's sign does not matter: it is oriented so that the cloud lies above it.
-    expert = graspmix.CollisionExpert(wsg, cloud, plane=[0, 0, -3.0, 0])
+    expert = graspmix.CollisionExpert(wsg, cloud, plane=[0, 0, -3.0, 0], contact_tolerance=EXACT)
     np.testing.assert_allclose(expert.plane, [0, 0, 1, 0], atol=1e-15)
     down = Rotation.from_euler("x", np.pi).as_quat()  # approach along -z, fingertips 0.1535 m below the wrist
     beside = np.array([0.3, 0.0])
@@ -99,7 +100,7 @@ def test_support_plane_blocks_a_hand_below_the_table(wsg):
     assert r.plane_depth[0] == pytest.approx(0.2, abs=1e-9)
     assert r.w < 1e-50
     # A margin keeps the hand that much above the table.
-    raised = graspmix.CollisionExpert(wsg, cloud, plane=[0, 0, 1, 0], plane_margin=0.02)
+    raised = graspmix.CollisionExpert(wsg, cloud, plane=[0, 0, 1, 0], plane_margin=0.02, contact_tolerance=EXACT)
     assert not raised.evaluate(np.r_[beside, 0.16, down], [0.03]).collision_free
 
 
@@ -122,8 +123,8 @@ def test_mesh_links_use_their_convex_hull(tmp_path):
     rng = np.random.default_rng(2)
     wrists = np.c_[rng.uniform(-0.03, 0.03, (100, 3)), Rotation.random(100, random_state=rng).as_quat()]
     for plane in (None, [0, 0, 1, 0.04]):
-        a = graspmix.CollisionExpert(mesh_hand, cloud, plane=plane).evaluate_batch(wrists, np.zeros((100, 0)))
-        b = graspmix.CollisionExpert(box_hand, cloud, plane=plane).evaluate_batch(wrists, np.zeros((100, 0)))
+        a = graspmix.CollisionExpert(mesh_hand, cloud, plane=plane, contact_tolerance=EXACT).evaluate_batch(wrists, np.zeros((100, 0)))
+        b = graspmix.CollisionExpert(box_hand, cloud, plane=plane, contact_tolerance=EXACT).evaluate_batch(wrists, np.zeros((100, 0)))
         np.testing.assert_allclose(a.cloud_depth, b.cloud_depth, atol=1e-12)
         np.testing.assert_allclose(a.plane_depth, b.plane_depth, atol=1e-9)
         assert 0 < a.collision_free.sum() < 100
@@ -137,7 +138,7 @@ def test_bad_input_is_a_value_error(wsg):
         graspmix.CollisionExpert(wsg, cloud, plane=[0, 0, 1])
     with pytest.raises(ValueError, match="point_radius"):
         graspmix.CollisionExpert(wsg, cloud, point_radius=-0.1)
-    expert = graspmix.CollisionExpert(wsg, cloud)
+    expert = graspmix.CollisionExpert(wsg, cloud, contact_tolerance=EXACT)
     with pytest.raises(ValueError, match="'thumb'"):
         expert.evaluate(IDENTITY, {"thumb": 0.1})
     with pytest.raises(ValueError, match="joints"):

@@ -9,7 +9,7 @@ import graspmix
 from graspmix import _core
 from graspmix.cli import build_parser
 from graspmix.experiment import Protocol
-from graspmix.model import DEFAULT_DISAGREEMENTS, FeatureSettings, GraspModel, LearnSettings, SynthesisOptions
+from graspmix.model import FeatureSettings, GraspModel, LearnSettings, SynthesisOptions
 
 
 def _defaults(fn):
@@ -52,24 +52,20 @@ def test_agreements_with_cpp():
                                                          LearnSettings.min_points)
 
 
-def _binding_default(cls, arg: str) -> float:
-    """The default of a keyword argument of a bound constructor, from pybind11's signature text."""
-    m = re.search(rf"\b{arg}: [^=,)]+ = ([^,)]+)", cls.__init__.__doc__)
-    assert m, f"{cls.__name__} has no default for {arg}"
-    return float(m.group(1))
+def test_python_settings_are_the_cpp_defaults():
+    """C++ is the single source: every Python setting that C++ also has is the C++ struct's default."""
+    col, axis, kde = _core.CollisionSettings(), _core.AxisAlignmentSettings(), _core.KdeSettings()
+    assert (SynthesisOptions.collision_beta, SynthesisOptions.contact_tolerance,
+            SynthesisOptions.collision_inside_weight) == (col.beta, col.contact_tolerance, col.inside_weight)
+    assert SynthesisOptions.approach_concentration == axis.concentration
+    assert (LearnSettings.kde_position_bandwidth, LearnSettings.kde_orientation_bandwidth) == (
+        kde.position_bandwidth, kde.orientation_bandwidth)
+    assert list(kde.feature_bandwidth) == [LearnSettings.kde_feature_bandwidth]
+    assert LearnSettings.n_components == _core.PoseMixture().settings.n_components
+    assert (FeatureSettings.voxel_size, FeatureSettings.radius) == (_core.SceneSettings().voxel_size,
+                                                                    _core.SurfaceFeatureSettings().radius)
 
 
-def test_the_listed_disagreements_are_the_real_ones():
-    """The C++ values of DEFAULT_DISAGREEMENTS, read from the bindings: if either side changes, this list
-    must be updated (C++ is to become the single source)."""
-    cpp = {"SynthesisOptions.collision_beta": _binding_default(_core.CollisionExpert, "beta"),
-           "SynthesisOptions.contact_tolerance": _binding_default(_core.CollisionExpert, "contact_tolerance"),
-           "SynthesisOptions.approach_concentration": _binding_default(_core.AxisAlignmentExpert, "concentration"),
-           "LearnSettings.n_components": _binding_default(_core.GaussianMixture, "n_components")}
-    assert sorted(cpp) == sorted(name for name, *_ in DEFAULT_DISAGREEMENTS)
-    for name, py, cxx, _ in DEFAULT_DISAGREEMENTS:
-        owner, field = name.split(".")
-        assert getattr(getattr(graspmix.model, owner), field) == py, name
-        assert cpp[name] == pytest.approx(cxx) and py != cxx, name
-    # PoseMixture, which learning uses, has the Python default.
-    assert _binding_default(_core.PoseMixture, "n_components") == LearnSettings.n_components
+def test_the_experiment_drops_the_table_it_reports():
+    """The experiment's clean-up and the synthesis cut the table at the same height, the protocol's."""
+    assert Protocol(objects=["cube_small.urdf"]).min_height == SynthesisOptions.table_clearance

@@ -10,7 +10,7 @@ import pytest
 import graspmix
 from graspmix import _core
 
-WSG50 = Path(__file__).resolve().parents[2] / "data" / "hands" / "wsg50.urdf"
+WSG50 = graspmix.data_path("hands", "wsg50.urdf")
 
 SETTINGS = [
     "GmmSettings", "KdeSettings", "SceneSettings", "SurfaceFeatureSettings", "HandLoadSettings", "CollisionSettings",
@@ -167,7 +167,7 @@ def test_nested_settings_and_the_query_compatibility_property():
 
 def test_results_are_classes_that_still_read_like_the_old_dicts():
     model = graspmix.GraspModel.load(graspmix.default_model_path("gmm"))
-    cloud = _core.load_cloud(str(Path(__file__).resolve().parents[2] / "data" / "mug.pcd")).points
+    cloud = _core.load_cloud(str(graspmix.data_path("mug.pcd"))).points
     surface, _ = model.features.surface(cloud, remove_plane=True)
     collision = _core.CollisionExpert(model.hand, surface.points)
     res = model.synthesizer.synthesize(surface.frames, surface.curvatures, collision, None,

@@ -1,7 +1,7 @@
 """Times compute_surface_features (radius 1 cm) for 5k, 20k and 100k points; prints medians.
 
 Two objects of fixed size, so more points means a denser cloud and larger neighbourhoods:
-the 3.5 cm sphere of GUIDE.md's PCL reference figures, and a closed mug-sized cylinder (r 4 cm, h 10 cm).
+a 3.5 cm sphere (PCL's reference curvatures for it: docs/design.md's pitfalls), and a closed mug-sized cylinder (r 4 cm, h 10 cm).
 Target: 20k points in under 0.5 s.
 
     python benchmarks/bench_features.py [--repeats 5] [--threads 0] [--sizes 5000 20000 100000]

@@ -38,10 +38,7 @@ def oriented_plane(plane, points):
     """The plane with its sign chosen so the object's points are on its positive side."""
     if plane is None:
         return None
-    n = np.asarray(plane, float)
-    if np.mean(points @ n[:3] + n[3]) < 0:
-        n = -n
-    return n
+    return _core.orient_plane(plane, points, "mean")  # the collision expert's rule (CollisionSettings.orient_plane)
 
 
 def collision_expert(hand, points, plane, opts: SynthesisOptions) -> "_core.CollisionExpert":

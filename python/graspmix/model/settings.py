@@ -76,10 +76,8 @@ class FeatureSettings:
     def cut_plane(points: np.ndarray, plane, viewpoints=None, table_clearance: float | None = None):
         """(points, viewpoints) strictly farther than table_clearance above the plane (its side is the one
         most points are on); per-point viewpoints follow their points."""
-        n = np.asarray(plane, dtype=float)
+        n = _core.orient_plane(plane, points, "median")  # the side most of the cloud is on
         dist = (points @ n[:3] + n[3]) / np.linalg.norm(n[:3])
-        if np.median(dist) < 0:
-            dist = -dist
         clearance = SynthesisOptions.table_clearance if table_clearance is None else table_clearance
         if not (np.isfinite(clearance) and clearance >= 0):
             raise ValueError(f"table_clearance must be a finite distance >= 0 (m), got {clearance!r}")

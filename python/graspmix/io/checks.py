@@ -60,7 +60,10 @@ def check_float(
     """value as a float: a real number (finite unless finite=False, never NaN), >= lo, > gt, <= hi."""
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
         raise ValueError(f"{_subject(name)}must be a number{_bounds(lo, hi, gt)}, got {quote(value)}")
-    v = float(value)
+    try:
+        v = float(value)
+    except OverflowError:  # an integer beyond any float
+        v = math.inf if value > 0 else -math.inf
     bad = math.isnan(v) or (finite and math.isinf(v))
     bad = bad or (lo is not None and v < lo) or (hi is not None and v > hi) or (gt is not None and v <= gt)
     if bad:
@@ -105,7 +108,7 @@ def _bounds(lo, hi, gt) -> str:
 
 def check_path_text(path, what: str = "") -> Path:
     """A path that can be named in files and passed to C++: UTF-8, names of at most NAME_MAX bytes."""
-    if not isinstance(path, (str, os.PathLike)):
+    if not isinstance(path, (str, bytes, os.PathLike)):
         raise ValueError(f"{_subject(what)}must be a path, got {quote(path)}")
     text = os.fspath(path)
     if isinstance(text, bytes):
@@ -129,18 +132,19 @@ def check_path_text(path, what: str = "") -> Path:
     return Path(text)
 
 
-def check_input_file(path, what: str = "input") -> Path:
-    """An existing, readable file (not a folder); ValueError naming it otherwise."""
+def check_input_file(path, what: str = "") -> Path:
+    """An existing, readable file (not a folder); ValueError naming it otherwise ("no such <what> file")."""
     p = check_path_text(path, what)
+    kind = f"{what} file" if what else "file"
     try:
         if p.is_dir():
-            raise ValueError(f"{p}: is a folder, not a {what} file")
+            raise ValueError(f"{p}: is a folder, not a {kind}")
         if not p.is_file():
-            raise ValueError(f"{p}: no such {what} file")
+            raise ValueError(f"{p}: no such {kind}")
         if not os.access(p, os.R_OK):
-            raise ValueError(f"{p}: the {what} file is not readable (permission denied)")
+            raise ValueError(f"{p}: the {kind} is not readable (permission denied)")
     except OSError as e:
-        raise ValueError(f"{p}: cannot open the {what} file ({e.strerror})") from None
+        raise ValueError(f"{p}: cannot open the {kind} ({e.strerror})") from None
     return p
 
 

@@ -85,7 +85,8 @@ _PROTOCOL = Obj({
                      "initial_temperature": Num(), "query_samples": Int(lo=1), "min_height": Num(),
                      "closing": Str(), "seed": _COUNT,
                      "models": Map(Obj({"file": Str(), "sha256": Str()})),
-                     "condition_definitions": Map(Obj({}))},
+                     "condition_definitions": Map(Obj({"noise": Bool(), "optimise": Bool()},
+                                                      required=["noise", "optimise"]))},
                     required=["objects", "trials", "conditions", "methods"]),
     "provenance": Map(Any()),
 }, required=["protocol"])

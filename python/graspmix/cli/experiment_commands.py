@@ -2,11 +2,10 @@
 from __future__ import annotations
 
 import argparse
-import json
 import shlex
 from pathlib import Path
 
-from ..io import read_objects_file, test_objects
+from ..io import SUMMARY_FORMAT, read_document, read_objects_file, test_objects
 from ..io.checks import MAX_SAMPLES
 from ..model.settings import METHODS, SynthesisOptions
 from .common import CliError, input_path, int_in, output_folder, seed, split_list
@@ -45,7 +44,7 @@ def cmd_experiment(args: argparse.Namespace) -> int:
 def print_findings(run_dir: Path) -> None:
     from ..experiment.report import findings_table
 
-    summary = json.loads((run_dir / "summary.json").read_text())
+    summary = read_document(run_dir / "summary.json", SUMMARY_FORMAT)
     for row in findings_table(summary):
         print("  " + " | ".join(row))
     print(f"wrote {run_dir / 'summary.json'}, {run_dir / 'report.md'}, {run_dir / 'report.html'}")

@@ -1,20 +1,114 @@
-"""What every subcommand shares: the user-error type and the parsers of option values."""
+"""What every subcommand shares: the user-error type, the argument parser that reports in one line, and
+the parsers of option values. Every number is checked (finite, in its range) and every path (UTF-8,
+names <= 255 bytes; outputs writable) while the command line is parsed, so a bad value is reported
+before any work starts, by the helpers of graspmix.io.checks."""
 from __future__ import annotations
 
+import argparse
+import sys
+
 import numpy as np
+
+from ..io.checks import (
+    INT_MAX,
+    SEED_MAX,
+    check_float,
+    check_int,
+    check_output_folder,
+    check_output_path,
+    check_path_text,
+    quote,
+)
 
 
 class CliError(Exception):
     """A user error: printed as one line, exit status 2."""
 
 
+class OneLineParser(argparse.ArgumentParser):
+    """argparse's parser, but an error is one line on stderr ("graspmix_cli sub: error: ...") and exit
+    status 2, like every other error of the command line (argparse prints the usage first)."""
+
+    def error(self, message: str):
+        text = " ".join(message.split())
+        self.exit(2, f"{self.prog}: error: {text} (see {self.prog} --help)\n")
+
+
+def _typed(check, what: str):
+    """An argparse type: parses the text with check(text, name); a ValueError becomes argparse's error."""
+
+    def parse(text: str):
+        try:
+            return check(text)
+        except ValueError as e:
+            raise argparse.ArgumentTypeError(str(e)) from None
+
+    parse.__name__ = what  # argparse names the type in "invalid <name> value"
+    return parse
+
+
+def int_in(lo: int | None = None, hi: int | None = INT_MAX):
+    """An integer option within [lo, hi] (hi defaults to C++'s int)."""
+
+    def check(text):
+        try:
+            v = int(text, 10)
+        except ValueError:
+            raise ValueError(f"expected an integer{_range_text(lo, hi)}, got {quote(text)}") from None
+        return check_int(v, "", lo, hi)
+
+    return _typed(check, "integer")
+
+
+def _range_text(lo, hi) -> str:
+    if lo is not None and hi is not None:
+        return f" in [{lo}, {hi}]"
+    return f" >= {lo}" if lo is not None else ""
+
+
+seed = int_in(0, SEED_MAX)
+
+
+def float_in(lo: float | None = None, hi: float | None = None, *, gt: float | None = None):
+    """A finite number option, >= lo, > gt, <= hi."""
+
+    def check(text):
+        try:
+            v = float(text)
+        except ValueError:
+            raise ValueError(f"expected a number, got {quote(text)}") from None
+        return check_float(v, "", lo, hi, gt=gt)
+
+    return _typed(check, "number")
+
+
+def _path(text: str) -> str:
+    check_path_text(text)
+    return text
+
+
+def _output_file(text: str) -> str:
+    check_output_path(text, "")
+    return text
+
+
+def _output_folder(text: str) -> str:
+    check_output_folder(text, "")
+    return text
+
+
+input_path = _typed(_path, "path")  # an input file: UTF-8, names <= 255 bytes (existence: the readers')
+output_file = _typed(_output_file, "output file")  # a file that can be written, checked before the work
+output_folder = _typed(_output_folder, "output folder")  # a folder that exists or can be made, writable
+
+
 def parse_floats(text: str, n: int, what: str) -> np.ndarray:
     try:
         v = np.array([float(x) for x in text.split(",")])
     except ValueError:
-        raise CliError(f"{what}: expected {n} comma-separated numbers, got {text!r}") from None
+        raise CliError(f"{what}: expected {n} comma-separated numbers, got {quote(text)}") from None
     if v.shape != (n,) or not np.all(np.isfinite(v)):
-        raise CliError(f"{what}: expected {n} comma-separated finite numbers, got {text!r}")
+        raise CliError(f"{what}: expected {n} comma-separated finite numbers, got {quote(text)}")
     return v
 
 
@@ -22,12 +116,12 @@ def parse_joints(text: str, what: str) -> dict:
     out = {}
     for item in text.split(","):
         name, sep, value = item.partition("=")
-        if not sep:
-            raise CliError(f"{what}: expected name=value[,name=value...], got {text!r}")
+        if not sep or not name.strip():
+            raise CliError(f"{what}: expected name=value[,name=value...], got {quote(text)}")
         try:
-            out[name.strip()] = float(value)
+            out[name.strip()] = check_float(float(value), f"{what}: joint {quote(name.strip())}")
         except ValueError:
-            raise CliError(f"{what}: {value!r} is not a number") from None
+            raise CliError(f"{what}: {quote(value)} is not a finite number") from None
     return out
 
 
@@ -37,7 +131,7 @@ def split_list(text: str, what: str, known) -> list[str]:
         raise CliError(f"{what}: empty list")
     for x in items:
         if x not in known:
-            raise CliError(f"{what}: unknown value {x!r} (known: {', '.join(known)})")
+            raise CliError(f"{what}: unknown value {quote(x)} (known: {', '.join(known)})")
     return items
 
 
@@ -45,3 +139,14 @@ def given(args, *names) -> dict:
     """The options among names that were given (not None), as keyword arguments: the library's defaults
     apply to the others."""
     return {n: getattr(args, n) for n in names if getattr(args, n) is not None}
+
+
+def one_line(message: str, limit: int = 2000) -> str:
+    """An error's text as one line of bounded length (a C++ message may quote a whole field)."""
+    text = " ".join(str(message).split())
+    return text if len(text) <= limit else text[:limit] + "..."
+
+
+def report_error(command: str, message: str) -> int:
+    print(f"graspmix_cli {command}: error: {one_line(message)}", file=sys.stderr)
+    return 2

@@ -11,8 +11,9 @@ import numpy as np
 
 from .. import _core
 from ..io import GMM_FORMAT, data_path, load_array
+from ..io.checks import MAX_COMPONENTS, MAX_ITERATIONS, MAX_SAMPLES
 from ..model.settings import FeatureSettings
-from .common import CliError, given
+from .common import CliError, float_in, given, input_path, int_in, output_file, seed
 
 
 def cmd_info(args: argparse.Namespace) -> int:
@@ -51,6 +52,8 @@ def _prepared(args, points):
     if not (args.voxel_size > 0 or args.remove_outliers or args.remove_plane or args.crop):
         return points, None
     crop = args.crop or [None] * 6
+    if args.crop is not None and any(lo > hi for lo, hi in zip(crop[:3], crop[3:])):
+        raise CliError(f"--crop: each minimum must be at most its maximum, got {' '.join(f'{x:g}' for x in crop)}")
     scene = _core.prepare_cloud(points, crop_min=None if args.crop is None else crop[:3],
                                 crop_max=None if args.crop is None else crop[3:], voxel_size=args.voxel_size,
                                 remove_outliers=args.remove_outliers, remove_plane=args.remove_plane, seed=args.seed)
@@ -115,33 +118,38 @@ def add_parsers(sub) -> None:
     s.set_defaults(func=cmd_info)
 
     s = sub.add_parser("fit-gmm", help="fit a Gaussian mixture by EM to a data file (.npy, .csv, whitespace text)")
-    s.add_argument("--data", default=str(data_path("examples", "contacts.npy")),
+    s.add_argument("--data", type=input_path, default=str(data_path("examples", "contacts.npy")),
                    help="(N, d) data; default: the bundled example contact data")
-    s.add_argument("-k", "--components", type=int, default=2)
-    s.add_argument("--n-init", type=int, help="initialisations (default: GaussianMixture's, 1)")
-    s.add_argument("--max-iter", type=int, help="EM iterations (default: GaussianMixture's, 100)")
-    s.add_argument("--tol", type=float, help="convergence tolerance (default: GaussianMixture's, 1e-3)")
-    s.add_argument("--seed", type=int, default=0)
-    s.add_argument("--out", help="write the fitted parameters as JSON")
+    s.add_argument("-k", "--components", type=int_in(1, MAX_COMPONENTS), default=2)
+    s.add_argument("--n-init", type=int_in(1, MAX_COMPONENTS), help="initialisations (default: GaussianMixture's, 1)")
+    s.add_argument("--max-iter", type=int_in(1, MAX_ITERATIONS), help="EM iterations (default: GaussianMixture's, 100)")
+    s.add_argument("--tol", type=float_in(0.0), help="convergence tolerance (default: GaussianMixture's, 1e-3)")
+    s.add_argument("--seed", type=seed, default=0)
+    s.add_argument("--out", type=output_file, help="write the fitted parameters as JSON")
     s.set_defaults(func=cmd_fit_gmm)
 
     s = sub.add_parser("features", help="outward normals, principal curvatures [k1, k2] and frames of a cloud (.pcd/.ply/.npy)")
-    s.add_argument("--cloud", required=True, help="the object cloud (.pcd, .ply, or .npy (N, 3))")
-    s.add_argument("--radius", type=float, default=FeatureSettings.radius,
+    s.add_argument("--cloud", type=input_path, required=True, help="the object cloud (.pcd, .ply, or .npy (N, 3))")
+    s.add_argument("--radius", type=float_in(gt=0.0), default=FeatureSettings.radius,
                    help=f"neighbourhood radius in metres (default {FeatureSettings.radius}, as the paper)")
-    s.add_argument("--out", help="write the features as .npz (points, normals, curvatures, frames, indices, ...)")
-    s.add_argument("--plot", help="write a picture of the cloud coloured by k1 and k2 (.png/.pdf/.svg)")
-    s.add_argument("--plot-normals", type=int, default=0, metavar="N", help="draw N normals in the picture")
+    s.add_argument("--out", type=output_file,
+                   help="write the features as .npz (points, normals, curvatures, frames, indices, ...)")
+    s.add_argument("--plot", type=output_file,
+                   help="write a picture of the cloud coloured by k1 and k2 (.png/.pdf/.svg)")
+    s.add_argument("--plot-normals", type=int_in(0, MAX_SAMPLES), default=0, metavar="N",
+                   help="draw N normals in the picture")
     s.add_argument("--orientation", default="auto", choices=["auto", "viewpoint", "propagate", "centroid", "given"],
                    help="how normals are turned outward (auto: the file's or --viewpoint camera, else propagation)")
-    s.add_argument("--viewpoint", type=float, nargs=3, metavar=("X", "Y", "Z"), help="camera position for the normals")
+    s.add_argument("--viewpoint", type=float_in(), nargs=3, metavar=("X", "Y", "Z"),
+                   help="camera position for the normals")
     s.add_argument("--file-normals", action="store_true", help="use the file's normals instead of estimating them")
     # 10 restates compute_surface_features' default (C++ SurfaceSettings::min_neighbours); printed below.
-    s.add_argument("--min-neighbours", type=int, default=10, help="drop points with fewer neighbours within radius")
-    s.add_argument("--voxel-size", type=float, default=0.0, help="voxel-grid down-sampling first (m; 0 = off)")
+    s.add_argument("--min-neighbours", type=int_in(0), default=10,
+                   help="drop points with fewer neighbours within radius")
+    s.add_argument("--voxel-size", type=float_in(0.0), default=0.0, help="voxel-grid down-sampling first (m; 0 = off)")
     s.add_argument("--remove-outliers", action="store_true", help="statistical outlier removal first")
     s.add_argument("--remove-plane", action="store_true", help="remove the dominant support plane (RANSAC) first")
-    s.add_argument("--crop", type=float, nargs=6, metavar=("XMIN", "YMIN", "ZMIN", "XMAX", "YMAX", "ZMAX"),
+    s.add_argument("--crop", type=float_in(), nargs=6, metavar=("XMIN", "YMIN", "ZMIN", "XMAX", "YMAX", "ZMAX"),
                    help="keep only points inside this box first")
-    s.add_argument("--seed", type=int, default=0, help="seed of the RANSAC plane search")
+    s.add_argument("--seed", type=seed, default=0, help="seed of the RANSAC plane search")
     s.set_defaults(func=cmd_features)

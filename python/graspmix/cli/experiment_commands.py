@@ -2,13 +2,13 @@
 from __future__ import annotations
 
 import argparse
-import json
 import shlex
 from pathlib import Path
 
-from ..io import read_objects_file, test_objects
+from ..io import SUMMARY_FORMAT, read_document, read_objects_file, test_objects
+from ..io.checks import MAX_SAMPLES
 from ..model.settings import METHODS, SynthesisOptions
-from .common import CliError, split_list
+from .common import CliError, input_path, int_in, output_folder, seed, split_list
 
 
 def _protocol(args):
@@ -44,7 +44,7 @@ def cmd_experiment(args: argparse.Namespace) -> int:
 def print_findings(run_dir: Path) -> None:
     from ..experiment.report import findings_table
 
-    summary = json.loads((run_dir / "summary.json").read_text())
+    summary = read_document(run_dir / "summary.json", SUMMARY_FORMAT)
     for row in findings_table(summary):
         print("  " + " | ".join(row))
     print(f"wrote {run_dir / 'summary.json'}, {run_dir / 'report.md'}, {run_dir / 'report.html'}")
@@ -76,19 +76,21 @@ def cmd_benchmark(args: argparse.Namespace) -> int:
 
 def add_parsers(sub) -> None:
     s = sub.add_parser("experiment", help="the paper's experiment: conditions A-D, GMM vs KDE, success rates, t-tests, runtimes")
-    s.add_argument("--out", required=True, help="run folder (e.g. runs/NAME): attempts.csv, protocol.json, summary.json, "
+    s.add_argument("--out", type=output_folder, required=True,
+                   help="run folder (e.g. runs/NAME): attempts.csv, protocol.json, summary.json, "
                    "report.md/html; running again into it resumes")
     s.add_argument("--preset", choices=["smoke", "paper"], default="paper",
                    help="paper: the 60 test objects, 10 trials (default); smoke: 3 objects, 2 trials")
-    s.add_argument("--objects", help="objects file, one URDF a line (a path, or relative to pybullet_data); default: the preset's")
-    s.add_argument("--trials", type=int, help="trials (default: the preset's)")
+    s.add_argument("--objects", type=input_path,
+                   help="objects file, one URDF a line (a path, or relative to pybullet_data); default: the preset's")
+    s.add_argument("--trials", type=int_in(1, 100_000), help="trials (default: the preset's)")
     s.add_argument("--conditions", help="comma-separated subset of A,B,C,D (default: all)")
     s.add_argument("--methods", help="comma-separated subset of gmm,kde (default: both)")
-    s.add_argument("--seed", type=int, default=None, help="base of every derived seed (default 0)")
+    s.add_argument("--seed", type=seed, default=None, help="base of every derived seed (default 0)")
     s.add_argument("--closing", choices=["full", "learnt"], default=None,
                    help="full (default): the fingers close until they stop on the object, force-limited; learnt: "
                         "the simulation's default target just past the synthesised grasp joints")
-    s.add_argument("--jobs", type=int, default=1, help="parallel worker processes (or Ray tasks)")
+    s.add_argument("--jobs", type=int_in(1, 1024), default=1, help="parallel worker processes (or Ray tasks)")
     s.add_argument("--executor", choices=["local", "ray"], default="local",
                    help="local processes, or a Ray cluster (a local Ray instance unless --ray-address)")
     s.add_argument("--ray-address", help="address of a running Ray cluster (default: start a local one)")
@@ -96,16 +98,19 @@ def add_parsers(sub) -> None:
     s.set_defaults(func=cmd_experiment)
 
     s = sub.add_parser("report", help="rebuild summary.json and report.md/html of an experiment folder from its CSV")
-    s.add_argument("run", help="the experiment folder")
+    s.add_argument("run", type=input_path, help="the experiment folder")
     s.set_defaults(func=cmd_report)
 
     o = SynthesisOptions
     s = sub.add_parser("benchmark", help="the paper's runtime comparison: medians over objects per stage, GMM vs KDE")
-    s.add_argument("--objects", help="objects file (default: the 60 test objects)")
-    s.add_argument("--limit", type=int, help="only the first N objects")
-    s.add_argument("--samples", type=int, default=o.n_samples, help=f"grasps sampled per object ({o.n_samples})")
-    s.add_argument("--optimise-top", type=int, default=o.n_optimise, help=f"best grasps annealed ({o.n_optimise})")
-    s.add_argument("--seed", type=int, default=0)
-    s.add_argument("--out", default="benchmark", help="folder for benchmark.json and benchmark.png (default ./benchmark)")
+    s.add_argument("--objects", type=input_path, help="objects file (default: the 60 test objects)")
+    s.add_argument("--limit", type=int_in(1), help="only the first N objects")
+    s.add_argument("--samples", type=int_in(1, MAX_SAMPLES), default=o.n_samples,
+                   help=f"grasps sampled per object ({o.n_samples})")
+    s.add_argument("--optimise-top", type=int_in(1, MAX_SAMPLES), default=o.n_optimise,
+                   help=f"best grasps annealed ({o.n_optimise})")
+    s.add_argument("--seed", type=seed, default=0)
+    s.add_argument("--out", type=output_folder, default="benchmark",
+                   help="folder for benchmark.json and benchmark.png (default ./benchmark)")
     s.add_argument("--quiet", action="store_true", help="no progress bar")
     s.set_defaults(func=cmd_benchmark)

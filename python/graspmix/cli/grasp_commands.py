@@ -7,9 +7,10 @@ from pathlib import Path
 
 from .. import _core
 from ..io import data_path
+from ..io.checks import MAX_COMPONENTS, MAX_SAMPLES
 from ..model import GraspModel, default_model_path, learn
 from ..model.settings import METHODS, LearnSettings, SynthesisOptions
-from .common import CliError, parse_floats, parse_joints
+from .common import CliError, float_in, input_path, int_in, output_file, parse_floats, parse_joints, seed
 
 
 def cmd_demo(args: argparse.Namespace) -> int:
@@ -95,43 +96,50 @@ def add_parsers(sub) -> None:
     from ..sim.demonstration import DEMO_GRIP_FORCE
 
     s = sub.add_parser("demo", help="record a demonstrated grasp in simulation (pybullet) as a demonstration file")
-    s.add_argument("--object", default=str(data_path("objects", "box.urdf")),
+    s.add_argument("--object", type=input_path, default=str(data_path("objects", "box.urdf")),
                    help="object URDF (a path, or relative to pybullet_data); default: the bundled box")
-    s.add_argument("--hand", default=str(data_path("hands", "wsg50.urdf")), help="hand URDF (default: WSG 50)")
+    s.add_argument("--hand", type=input_path, default=str(data_path("hands", "wsg50.urdf")),
+                   help="hand URDF (default: WSG 50)")
     s.add_argument("--wrist", required=True, help="wrist pose x,y,z,qx,qy,qz,qw in the world (m)")
     s.add_argument("--pregrasp", required=True, help="pre-grasp joints name=value,...")
     s.add_argument("--close", required=True, help="joints to close towards, name=value,... (the fingers stop on contact)")
-    s.add_argument("--force", type=float, default=DEMO_GRIP_FORCE, help="motor force limit (N or N m)")
-    s.add_argument("--seed", type=int, default=0)
-    s.add_argument("--out", required=True, help="demonstration file (.json)")
-    s.add_argument("--cloud-out", help="write the object cloud to this PCD and refer to it (default: inline)")
+    s.add_argument("--force", type=float_in(gt=0.0), default=DEMO_GRIP_FORCE, help="motor force limit (N or N m)")
+    s.add_argument("--seed", type=seed, default=0)
+    s.add_argument("--out", type=output_file, required=True, help="demonstration file (.json)")
+    s.add_argument("--cloud-out", type=output_file,
+                   help="write the object cloud to this PCD and refer to it (default: inline)")
     s.set_defaults(func=cmd_demo)
 
     s = sub.add_parser("learn", help="learn contact and configuration models from one demonstration")
-    s.add_argument("--demo", default=str(data_path("demos", "box_wsg50.json")), help="demonstration file")
+    s.add_argument("--demo", type=input_path, default=str(data_path("demos", "box_wsg50.json")),
+                   help="demonstration file")
     s.add_argument("--method", default="gmm", choices=list(METHODS))
-    s.add_argument("--components", type=int, default=LearnSettings.n_components, help="K of the contact mixtures (GMM)")
-    s.add_argument("--max-distance", type=float, default=LearnSettings.max_distance,
+    s.add_argument("--components", type=int_in(1, MAX_COMPONENTS), default=LearnSettings.n_components,
+                   help="K of the contact mixtures (GMM)")
+    s.add_argument("--max-distance", type=float_in(gt=0.0), default=LearnSettings.max_distance,
                    help="m: object points this close to a link are its contacts")
-    s.add_argument("--seed", type=int, default=LearnSettings.seed)
-    s.add_argument("--out", required=True, help="model file (.json)")
+    s.add_argument("--seed", type=seed, default=LearnSettings.seed)
+    s.add_argument("--out", type=output_file, required=True, help="model file (.json)")
     s.set_defaults(func=cmd_learn)
 
     o = SynthesisOptions
     s = sub.add_parser("synthesize", help="synthesise, rank and optimise grasps on a cloud")
-    s.add_argument("--cloud", required=True, help="the scene or object cloud (.pcd, .ply, .npy)")
-    s.add_argument("--model", help="learnt model (.json); default: the bundled box demonstration model of --method")
+    s.add_argument("--cloud", type=input_path, required=True, help="the scene or object cloud (.pcd, .ply, .npy)")
+    s.add_argument("--model", type=input_path,
+                   help="learnt model (.json); default: the bundled box demonstration model of --method")
     s.add_argument("--method", choices=list(METHODS), default=None, help="with no --model: which bundled model (gmm)")
-    s.add_argument("--hand", help="hand URDF; must be the model's hand")
-    s.add_argument("--samples", type=int, default=o.n_samples, help=f"grasps sampled and ranked ({o.n_samples})")
-    s.add_argument("--optimise-top", type=int, default=o.n_optimise,
+    s.add_argument("--hand", type=input_path, help="hand URDF; must be the model's hand")
+    s.add_argument("--samples", type=int_in(1, MAX_SAMPLES), default=o.n_samples,
+                   help=f"grasps sampled and ranked ({o.n_samples})")
+    s.add_argument("--optimise-top", type=int_in(0, MAX_SAMPLES), default=o.n_optimise,
                    help=f"best grasps optimised by annealing ({o.n_optimise})")
     s.add_argument("--no-optimise", action="store_true", help="rank the samples only")
-    s.add_argument("--query-samples", type=int, default=o.query_samples, help="samples per link for the query densities")
+    s.add_argument("--query-samples", type=int_in(1, MAX_SAMPLES), default=o.query_samples,
+                   help="samples per link for the query densities")
     s.add_argument("--approach-axis", help="prefer wrists approaching along this world axis, e.g. 0,0,-1 for top grasps")
     s.add_argument("--no-plane", action="store_true", help="the cloud is the object alone: find no support plane")
-    s.add_argument("--seed", type=int, default=o.seed)
-    s.add_argument("--top", type=int, default=5, help="grasps to print")
-    s.add_argument("--out", default="grasps.json", help="grasps file (default grasps.json)")
-    s.add_argument("--png", help="draw the cloud and the best grasps' hands")
+    s.add_argument("--seed", type=seed, default=o.seed)
+    s.add_argument("--top", type=int_in(0), default=5, help="grasps to print")
+    s.add_argument("--out", type=output_file, default="grasps.json", help="grasps file (default grasps.json)")
+    s.add_argument("--png", type=output_file, help="draw the cloud and the best grasps' hands")
     s.set_defaults(func=cmd_synthesize)

@@ -6,7 +6,9 @@ import json
 import time
 
 from .. import _core
+from ..io.checks import MAX_SIM_TIME
 from ..model.settings import FeatureSettings
+from .common import float_in, input_path, int_in, output_file, seed
 
 
 def cmd_acquire(args: argparse.Namespace) -> int:
@@ -47,27 +49,29 @@ def cmd_execute(args: argparse.Namespace) -> int:
 
 def add_parsers(sub) -> None:
     s = sub.add_parser("acquire", help="a stitched point cloud of an object from 4 simulated depth cameras (pybullet)")
-    s.add_argument("--object", required=True, help="object URDF: a path, or relative to pybullet_data (random_urdfs/012/012.urdf)")
+    s.add_argument("--object", type=input_path, required=True,
+                   help="object URDF: a path, or relative to pybullet_data (random_urdfs/012/012.urdf)")
     s.add_argument("--noise", action="store_true", help="apply the depth noise model (sigma_p = 1 px, sigma_d = 1 mm)")
-    s.add_argument("--seed", type=int, default=0, help="seed of the noise")
+    s.add_argument("--seed", type=seed, default=0, help="seed of the noise")
     s.add_argument("--keep", choices=["object", "scene"], default="object",
                    help="object: the pixels that see the object (segmentation); scene: the support plane too")
-    s.add_argument("--out", required=True, help="output cloud (.pcd)")
-    s.add_argument("--picture", help="also save a picture of the depth images (.png)")
+    s.add_argument("--out", type=output_file, required=True, help="output cloud (.pcd)")
+    s.add_argument("--picture", type=output_file, help="also save a picture of the depth images (.png)")
     s.add_argument("--clean", action="store_true",
                    help="clean up: voxel grid, outlier removal, and (with --keep scene) support-plane removal")
-    s.add_argument("--voxel-size", type=float, default=FeatureSettings.voxel_size,
+    s.add_argument("--voxel-size", type=float_in(0.0), default=FeatureSettings.voxel_size,
                    help=f"m, voxel grid of --clean (default {FeatureSettings.voxel_size})")
     s.set_defaults(func=cmd_acquire)
 
     d = _core.SimSettings()  # the C++ defaults, for the help texts
     s = sub.add_parser("execute", help="execute a grasp from grasps.json on an object in Bullet physics")
-    s.add_argument("--object", required=True, help="object URDF: a path, or relative to pybullet_data")
-    s.add_argument("--grasps", required=True, help="grasps.json (format graspmix.grasps/1)")
-    s.add_argument("--rank", type=int, default=1, help="which grasp (1 = the best)")
-    s.add_argument("--hand", help="hand URDF (default: the bundled WSG 50)")
-    s.add_argument("--grip-force", type=float, help=f"N (default {d.grip_force:g})")
-    s.add_argument("--lift-height", type=float, help=f"m (default {d.lift_height:g})")
-    s.add_argument("--hold-time", type=float, help=f"s (default {d.hold_time:g})")
+    s.add_argument("--object", type=input_path, required=True, help="object URDF: a path, or relative to pybullet_data")
+    s.add_argument("--grasps", type=input_path, required=True, help="grasps.json (format graspmix.grasps/1)")
+    s.add_argument("--rank", type=int_in(1), default=1, help="which grasp (1 = the best)")
+    s.add_argument("--hand", type=input_path, help="hand URDF (default: the bundled WSG 50)")
+    s.add_argument("--grip-force", type=float_in(gt=0.0), help=f"N (default {d.grip_force:g})")
+    s.add_argument("--lift-height", type=float_in(gt=0.0), help=f"m (default {d.lift_height:g})")
+    s.add_argument("--hold-time", type=float_in(0.0, MAX_SIM_TIME),
+                   help=f"s (default {d.hold_time:g}, at most {MAX_SIM_TIME:g})")
     s.add_argument("--json", action="store_true", help="print the result as JSON")
     s.set_defaults(func=cmd_execute)

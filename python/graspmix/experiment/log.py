@@ -6,6 +6,8 @@ import io
 import os
 from pathlib import Path
 
+from ..io.checks import check_input_file, quote
+
 CSV_NAME = "attempts.csv"
 
 # Columns of attempts.csv. Times are in seconds.
@@ -40,14 +42,17 @@ class AttemptLog:
         """A run killed while writing can leave a partial last line: cut it (its unit is run again)."""
         if not self.path.exists():
             return
-        data = self.path.read_bytes()
+        data = check_input_file(self.path, "attempts").read_bytes()
         if data and not data.endswith(b"\n"):
             cut = data.rfind(b"\n") + 1
             with open(self.path, "r+b") as f:
                 f.truncate(cut)
         if self.path.stat().st_size > 0:
-            with open(self.path, newline="") as f:
-                header = next(csv.reader(f), None)
+            with open(self.path, newline="", encoding="utf-8", errors="replace") as f:
+                try:
+                    header = next(csv.reader(f), None)
+                except csv.Error:
+                    header = None
             if header != COLUMNS:
                 raise ValueError(f"{self.path}: its columns are not those of this graspmix version's attempts.csv")
 
@@ -68,29 +73,39 @@ class AttemptLog:
 def read_rows(path: str | Path) -> list[dict]:
     """The rows of an attempts.csv, typed (ints, floats, None for empty numbers), in file order; a
     trailing partial line (a killed run) is ignored."""
-    path = Path(path)
-    if not path.is_file():
-        raise ValueError(f"{path}: no such attempts file")
-    text = path.read_text()
+    path = check_input_file(path, "attempts")
+    try:
+        text = path.read_bytes().decode("utf-8")
+    except UnicodeDecodeError as e:
+        raise ValueError(f"{path}: not UTF-8 text (byte {e.start})") from None
     if text and not text.endswith("\n"):
         text = text[: text.rfind("\n") + 1]
-    reader = csv.DictReader(io.StringIO(text))
-    if reader.fieldnames is None:
-        return []
-    missing = [c for c in COLUMNS if c not in reader.fieldnames]
-    if missing:
-        raise ValueError(f"{path}: not an attempts.csv (missing columns {', '.join(missing)})")
-    return [_typed(r) for r in reader]
+    try:
+        reader = csv.DictReader(io.StringIO(text))
+        if reader.fieldnames is None:
+            return []
+        missing = [c for c in COLUMNS if c not in reader.fieldnames]
+        if missing:
+            raise ValueError(f"{path}: not an attempts.csv (missing columns {', '.join(missing)})")
+        return [_typed(r, path, reader.line_num) for r in reader]
+    except csv.Error as e:
+        raise ValueError(f"{path}: not a CSV file ({e})") from None
 
 
-def _typed(r: dict) -> dict:
+def _typed(r: dict, path: Path, line: int) -> dict:
     out = {}
     for k in COLUMNS:
         v = r[k]
-        if k in INT_COLUMNS:
-            out[k] = int(v) if v != "" else None
-        elif k in FLOAT_COLUMNS:
-            out[k] = float(v) if v != "" else None
-        else:
-            out[k] = v
+        if v is None:
+            raise ValueError(f"{path}: line {line} has fewer columns than the header")
+        try:
+            if k in INT_COLUMNS:
+                out[k] = int(v) if v != "" else None
+            elif k in FLOAT_COLUMNS:
+                out[k] = float(v) if v != "" else None
+            else:
+                out[k] = v
+        except ValueError:
+            kind = "an integer" if k in INT_COLUMNS else "a number"
+            raise ValueError(f"{path}: line {line}, column {k!r}: expected {kind}, got {quote(v)}") from None
     return out

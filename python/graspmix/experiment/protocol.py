@@ -8,6 +8,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..io import PROTOCOL_FORMAT, read_document, resolve_object, sha256_file, test_objects
+from ..io.checks import MAX_ITERATIONS, MAX_SAMPLES, check_float, check_int, check_seed, quote
 from ..model import default_model_path
 from ..model.settings import METHODS, FeatureSettings, SynthesisOptions
 
@@ -88,29 +89,36 @@ class Protocol:
 
     def validate(self) -> None:
         self._validate_lists()
-        for name in ("n_samples", "n_optimise", "annealing_iterations", "query_samples"):
-            if int(getattr(self, name)) < 1:
-                raise ValueError(f"{name} must be at least 1, got {getattr(self, name)}")
-        if self.closing not in CLOSING:
-            raise ValueError(f"closing must be one of {', '.join(CLOSING)}, got {self.closing!r}")
+        for name in ("n_samples", "n_optimise", "query_samples"):
+            check_int(getattr(self, name), name, 1, MAX_SAMPLES)
+        check_int(self.annealing_iterations, "annealing_iterations", 1, MAX_ITERATIONS)
+        check_float(self.initial_temperature, "initial_temperature", gt=0.0)
+        check_float(self.min_height, "min_height")
+        check_seed(self.seed)
+        if not isinstance(self.closing, str) or self.closing not in CLOSING:
+            raise ValueError(f"closing must be one of {', '.join(CLOSING)}, got {quote(self.closing)}")
+        if not isinstance(self.models, dict):
+            raise ValueError(f"models must be a dict method -> model file, got {quote(self.models)}")
         for m in self.models:
             if m not in METHODS:
-                raise ValueError(f"models: unknown method {m!r}")
+                raise ValueError(f"models: unknown method {quote(m)}")
 
     def _validate_lists(self) -> None:
-        if not self.objects:
-            raise ValueError("the protocol has no objects")
+        if not isinstance(self.objects, (list, tuple)) or not self.objects:
+            raise ValueError(f"the protocol has no objects (objects: {quote(self.objects)})")
+        for o in self.objects:
+            if not isinstance(o, str) or not o:
+                raise ValueError(f"objects must be file names, got {quote(o)}")
         if len(set(self.objects)) != len(self.objects):
             dup = sorted({o for o in self.objects if self.objects.count(o) > 1})
             raise ValueError(f"objects are listed twice: {', '.join(dup)}")
-        if not isinstance(self.trials, int) or self.trials < 1:
-            raise ValueError(f"trials must be a positive integer, got {self.trials!r}")
+        check_int(self.trials, "trials", 1, 100_000)
         for what, values, known in (("condition", self.conditions, CONDITIONS), ("method", self.methods, METHODS)):
-            if not values:
-                raise ValueError(f"no {what}s given")
+            if not isinstance(values, (list, tuple)) or not values:
+                raise ValueError(f"no {what}s given ({what}s: {quote(values)})")
             for v in values:
-                if v not in known:
-                    raise ValueError(f"unknown {what} {v!r} (known: {', '.join(known)})")
+                if not isinstance(v, str) or v not in known:
+                    raise ValueError(f"unknown {what} {quote(v)} (known: {', '.join(known)})")
             if len(set(values)) != len(values):
                 raise ValueError(f"a {what} is listed twice: {','.join(values)}")
 
@@ -174,4 +182,9 @@ def load_protocol(run_dir: str | Path) -> dict:
     path = Path(run_dir) / PROTOCOL_NAME
     if not path.is_file():
         raise ValueError(f"{run_dir}: no {PROTOCOL_NAME} (not an experiment folder)")
-    return read_document(path, PROTOCOL_FORMAT)
+    doc = read_document(path, PROTOCOL_FORMAT)
+    try:
+        protocol_from_json(doc["protocol"])  # the values, beyond the schema's types
+    except ValueError as e:
+        raise ValueError(f"{path}: {e}") from None
+    return doc

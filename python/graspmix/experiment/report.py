@@ -19,9 +19,10 @@ from pathlib import Path
 import numpy as np
 
 from ..io import SUMMARY_FORMAT
+from ..io.checks import check_output_path, quote
 from ..model.grasps import STAGE_LABELS, STAGES
 from ..model.settings import METHOD_LABELS, METHODS
-from ..viz.experiment import COLOURS, STAGE_COLOURS, plot_runtime, plot_success
+from ..viz.experiment import plot_runtime, plot_success
 from .log import CSV_NAME, read_rows
 from .protocol import CONDITIONS, load_protocol
 from .stats import mean_ci, paired_ttest
@@ -42,7 +43,10 @@ def _finite(x):
 
 def summarize(rows: list[dict], protocol_doc: dict) -> dict:
     """summary.json's content from the attempt rows and the protocol document."""
-    proto = protocol_doc["protocol"]
+    proto = dict(protocol_doc["protocol"])
+    # A protocol.json written before condition_definitions existed (or edited) names its conditions only.
+    defs = proto.get("condition_definitions") or {}
+    proto["condition_definitions"] = {c: defs.get(c) or vars(CONDITIONS[c]) for c in proto["conditions"]}
     objects, trials = proto["objects"], proto["trials"]
     conditions = [c for c in proto["conditions"]]
     methods = [m for m in proto["methods"]]
@@ -304,6 +308,20 @@ def _html(blocks, folder: Path) -> str:
     return "\n".join(parts) + "\n"
 
 
+def check_rows(rows: list[dict], proto: dict, path: Path) -> None:
+    """Every row belongs to the protocol (an object, trial, condition and method of it) and has an outcome:
+    a CSV edited by hand is an error naming its row, not a wrong summary."""
+    known = {"object": set(proto["objects"]), "condition": set(proto["conditions"]), "method": set(proto["methods"])}
+    for i, r in enumerate(rows, start=1):
+        for col, values in known.items():
+            if r[col] not in values:
+                raise ValueError(f"{path}: row {i}: {col} {quote(r[col])} is not in the run's protocol")
+        if r["trial"] is None or not 0 <= r["trial"] < proto["trials"]:
+            raise ValueError(f"{path}: row {i}: trial {quote(r['trial'])} is not in 0..{proto['trials'] - 1}")
+        if r["success"] not in (0, 1):
+            raise ValueError(f"{path}: row {i}: success must be 0 or 1, got {quote(r['success'])}")
+
+
 def build_report(run_dir: str | Path) -> dict:
     """Reads attempts.csv and protocol.json of a run folder; writes summary.json, success_rates.png,
     runtime.png, report.md and report.html; returns the summary."""
@@ -314,6 +332,9 @@ def build_report(run_dir: str | Path) -> dict:
     rows = read_rows(run_dir / CSV_NAME)
     if not rows:
         raise ValueError(f"{run_dir / CSV_NAME}: no attempts yet")
+    check_rows(rows, doc["protocol"], run_dir / CSV_NAME)
+    for name in ("summary.json", "success_rates.png", "runtime.png", "report.md", "report.html"):
+        check_output_path(run_dir / name, "report")
     summary = summarize(rows, doc)
     (run_dir / "summary.json").write_text(json.dumps(summary, indent=1) + "\n")
     plot_success(summary, run_dir / "success_rates.png")

@@ -15,6 +15,7 @@ import time
 from pathlib import Path
 
 from ..io import PROTOCOL_FORMAT, git_commit, package_version
+from ..io.checks import check_output_folder
 from .executors import EXECUTORS, check_ray, run_pool, run_ray, run_serial
 from .log import CSV_NAME, AttemptLog
 from .progress import Progress
@@ -35,8 +36,8 @@ def prepare_folder(protocol: Protocol, out: str | Path, command: str | None = No
     """Checks the inputs and the folder; writes protocol.json for a new run. A folder holding another
     protocol's run (or other files) is refused, before any work starts."""
     protocol.validate()
+    out = check_output_folder(out, "out")
     protocol.check_inputs()
-    out = Path(out)
     doc = protocol_document(protocol, command)
     if out.exists() and not out.is_dir():
         raise ValueError(f"{out}: exists and is not a folder")

@@ -10,6 +10,7 @@ from pathlib import Path
 import numpy as np
 
 from ..io import BENCHMARK_FORMAT, git_commit, package_version
+from ..io.checks import check_output_folder
 from ..model.grasps import STAGE_LABELS, STAGES
 from ..model.settings import METHODS, SynthesisOptions
 from ..sim.acquisition import acquire
@@ -46,6 +47,8 @@ def benchmark(objects: list[str], out: str | Path | None = None, *, n_samples: i
     KDE / GMM. Writes benchmark.json and benchmark.png into out if given."""
     p = Protocol(objects=list(objects), trials=1, n_samples=n_samples, n_optimise=n_optimise, seed=seed)
     p.check_inputs()
+    if out is not None:
+        check_output_folder(out, "out")
     load_before = os.getloadavg()
     per_object = _time_objects(p, objects, n_samples, n_optimise, progress)
     medians = {m: {s: float(np.median(v)) for s, v in per_object[m].items()} for m in METHODS}

@@ -5,12 +5,12 @@ from pathlib import Path
 
 import numpy as np
 
+from .checks import check_input_file
+
 
 def load_array(path) -> np.ndarray:
     """A non-empty 2-D float array from .npy, .csv or whitespace-separated text."""
-    p = Path(path)
-    if not p.is_file():
-        raise ValueError(f"{path}: no such file")
+    p = check_input_file(path)
     try:
         if p.suffix == ".npy":
             data = np.load(p, allow_pickle=False)
@@ -42,6 +42,7 @@ def load_points(cloud):
     from .. import _core
 
     if isinstance(cloud, (str, Path)):
+        check_input_file(cloud, "cloud")
         loaded = _core.load_cloud(str(cloud))
         return loaded.points, str(cloud), (loaded.viewpoint[:3] if loaded.has_viewpoint else None)
     return as_points(cloud), "<array>", None

@@ -3,15 +3,18 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from .checks import check_input_file
 from .paths import data_path
 
 
 def read_object_list(path) -> list[str]:
     """The entries of an object list, as written."""
-    p = Path(path)
-    if not p.is_file():
-        raise ValueError(f"{p}: no such object list")
-    return [line.split("#")[0].strip() for line in p.read_text().splitlines() if line.split("#")[0].strip()]
+    p = check_input_file(path, "object list")
+    try:
+        text = p.read_bytes().decode("utf-8")
+    except UnicodeDecodeError as e:
+        raise ValueError(f"{p}: not UTF-8 text (byte {e.start})") from None
+    return [line.split("#")[0].strip() for line in text.splitlines() if line.split("#")[0].strip()]
 
 
 def test_objects(path=None) -> list[str]:
@@ -26,9 +29,7 @@ test_objects.__test__ = False  # a library function, not a pytest test
 def read_objects_file(path: str | Path) -> list[str]:
     """An objects file for the experiment: entries that exist next to the list are made absolute, the
     others are left for pybullet_data."""
-    p = Path(path)
-    if not p.is_file():
-        raise ValueError(f"{path}: no such objects file")
+    p = check_input_file(path, "objects")
     objects = read_object_list(p)
     if not objects:
         raise ValueError(f"{path}: lists no objects")

@@ -6,6 +6,8 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
+from .checks import check_path_text
+
 PACKAGE_PREFIX = "package://graspmix/"
 
 # This file is graspmix/io/paths.py: the package folder is one level up, the source tree's data/ three.
@@ -27,7 +29,8 @@ def default_hand_path() -> Path:
 
 def resolve_path(path_text: str, base: Path) -> Path:
     """A path from a file: package://graspmix/... (the bundled data), absolute, or relative to the file's
-    folder `base` (then to the bundled data)."""
+    folder `base` (then to the bundled data). ValueError for a path that is not UTF-8 or too long."""
+    check_path_text(path_text, "path")
     if path_text.startswith(PACKAGE_PREFIX):
         return data_path(path_text[len(PACKAGE_PREFIX):])
     p = Path(path_text)
@@ -62,7 +65,7 @@ def pybullet_data_path() -> Path:
 
 def resolve_object(path: str | Path) -> Path:
     """An object URDF: an existing path, or a path relative to pybullet_data (e.g. random_urdfs/012/012.urdf)."""
-    p = Path(path)
+    p = check_path_text(path, "object")
     if p.is_file():
         return p.resolve()
     q = pybullet_data_path() / p

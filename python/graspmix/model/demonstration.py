@@ -9,6 +9,7 @@ import numpy as np
 
 from .. import _core
 from ..io import DEMO_FORMAT, read_document, relative_path, require_field, resolve_path
+from ..io.checks import check_input_file, check_output_path, check_path_text
 
 
 @dataclass
@@ -25,7 +26,7 @@ class Demonstration:
 
     @classmethod
     def load(cls, path: str | Path) -> "Demonstration":
-        path = Path(path)
+        path = check_path_text(path, "demonstration")
         data = read_document(path, DEMO_FORMAT)
         base = path.resolve().parent
         hand = resolve_path(require_field(data, "hand", path, str), base)
@@ -38,7 +39,7 @@ class Demonstration:
         return cls(hand, cloud, wrist, pre, grasp, cloud_path, path.resolve())
 
     def save(self, path: str | Path, inline_cloud: bool = False) -> None:
-        path = Path(path)
+        path = check_output_path(path, "demonstration file")
         base = path.resolve().parent
         data = {"format": DEMO_FORMAT, "hand": relative_path(self.hand_path, base)}
         if inline_cloud or self.cloud_path is None:
@@ -54,7 +55,10 @@ class Demonstration:
 def _cloud(value, base: Path, path: Path):
     """(points, path or None) of a demonstration's "cloud": a file path or inline [x, y, z] rows."""
     if isinstance(value, str):
-        cloud_path = resolve_path(value, base)
+        try:
+            cloud_path = check_input_file(resolve_path(value, base), "cloud")
+        except ValueError as e:
+            raise ValueError(f"{path}: 'cloud': {e}") from None
         return _core.load_cloud(str(cloud_path)).points, cloud_path
     cloud = np.asarray(value, dtype=float)
     if cloud.ndim != 2 or cloud.shape[1] != 3 or len(cloud) == 0:

@@ -19,6 +19,16 @@ import numpy as np
 
 from .. import _core
 from ..io import MODEL_FORMAT, data_path, load_points, read_document, relative_path, require_field, resolve_path
+from ..io.checks import (
+    MAX_COMPONENTS,
+    MAX_SAMPLES,
+    check_float,
+    check_input_file,
+    check_int,
+    check_output_path,
+    check_path_text,
+    check_seed,
+)
 from .demonstration import Demonstration
 from .experts import collision_expert, constraint_experts
 from .grasps import GraspSet, grasps_from_result
@@ -75,10 +85,17 @@ class GraspModel:
               seed: int = _L.seed, config: dict | None = None) -> "GraspModel":
         """Learns from one demonstration (a demonstration file or object)."""
         check_method(method)
+        _check_learn_numbers(n_components=n_components, kde_position_bandwidth=kde_position_bandwidth,
+                             kde_orientation_bandwidth=kde_orientation_bandwidth,
+                             kde_feature_bandwidth=kde_feature_bandwidth, max_distance=max_distance,
+                             contact_lambda=contact_lambda, min_points=min_points, voxel_size=voxel_size,
+                             radius=radius, seed=seed)
+        if config is not None and not isinstance(config, dict):
+            raise ValueError(f"config must be a dict of configuration-model settings, got {type(config).__name__}")
         s = LearnSettings(n_components, kde_position_bandwidth, kde_orientation_bandwidth, kde_feature_bandwidth,
                           max_distance, contact_lambda, min_points, seed)
         d = demo if isinstance(demo, Demonstration) else Demonstration.load(demo)
-        hand = _core.Hand.from_urdf(str(d.hand_path))
+        hand = _core.Hand.from_urdf(str(check_input_file(d.hand_path, "hand")))
         feats = FeatureSettings(voxel_size=voxel_size, radius=radius)
         surface, _ = feats.surface(d.cloud, remove_plane=False, seed=seed)
         models = _core.learn_contact_models(hand, d.T_world_wrist, d.grasp_joints, surface.frames, surface.curvatures,
@@ -96,7 +113,7 @@ class GraspModel:
 
     # -- persistence
     def save(self, path: str | Path) -> None:
-        path = Path(path)
+        path = check_output_path(path, "model file")
         base = path.resolve().parent
         cfg = self.synthesizer.config_model
         data = {
@@ -115,12 +132,12 @@ class GraspModel:
 
     @classmethod
     def load(cls, path: str | Path) -> "GraspModel":
-        path = Path(path)
+        path = check_path_text(path, "model")
         data = read_document(path, MODEL_FORMAT)
         check_method(require_field(data, "method", path, str))
         base = path.resolve().parent
         hand_path = resolve_path(require_field(data, "hand", path, str), base)
-        hand = _core.Hand.from_urdf(str(hand_path))
+        hand = _core.Hand.from_urdf(str(check_input_file(hand_path, "hand")))
         f = require_field(data, "features", path, dict)
         feats = FeatureSettings(voxel_size=float(f.get("voxel_size", FeatureSettings.voxel_size)),
                                 radius=float(f.get("radius", FeatureSettings.radius)))
@@ -148,6 +165,11 @@ class GraspModel:
         joints) -> bool array: the hard reachability test; experts: more experts (graspmix.expert(...) or
         graspmix._core.Expert objects); annealing: AnnealingSettings fields to change. The other settings
         and their defaults: SynthesisOptions."""
+        _check_synthesis_numbers(n_samples=n_samples, n_optimise=n_optimise, seed=seed, query_samples=query_samples,
+                                 approach_concentration=approach_concentration, collision_beta=collision_beta,
+                                 contact_tolerance=contact_tolerance, collision_inside_weight=collision_inside_weight)
+        if annealing is not None and not isinstance(annealing, dict):
+            raise ValueError(f"annealing must be a dict of AnnealingSettings fields, got {type(annealing).__name__}")
         opts = SynthesisOptions(n_samples, n_optimise, optimise, seed, remove_plane, approach_concentration,
                                 query_samples, kinematic, clear_pregrasp, collision_beta, contact_tolerance,
                                 collision_inside_weight, table_clearance)
@@ -200,6 +222,27 @@ class GraspModel:
             setattr(a, k, v)
         s.annealing = a
         return s
+
+
+def _check_learn_numbers(**v) -> None:
+    """learn()'s numbers, bounded before they reach a C++ cast (ValueError naming the keyword)."""
+    check_int(v["n_components"], "n_components", 1, MAX_COMPONENTS)
+    check_int(v["min_points"], "min_points", 1, 2**31 - 1)
+    check_seed(v["seed"])
+    for name in ("kde_position_bandwidth", "kde_orientation_bandwidth", "kde_feature_bandwidth", "max_distance",
+                 "contact_lambda", "radius"):
+        check_float(v[name], name, gt=0.0)
+    check_float(v["voxel_size"], "voxel_size", 0.0)
+
+
+def _check_synthesis_numbers(**v) -> None:
+    """synthesize()'s numbers, bounded before they reach a C++ cast (ValueError naming the keyword)."""
+    check_int(v["n_samples"], "n_samples", 1, MAX_SAMPLES)
+    check_int(v["n_optimise"], "n_optimise", 0, MAX_SAMPLES)
+    check_int(v["query_samples"], "query_samples", 1, MAX_SAMPLES)
+    check_seed(v["seed"])
+    for name in ("approach_concentration", "collision_beta", "contact_tolerance", "collision_inside_weight"):
+        check_float(v[name], name, 0.0)
 
 
 def _density_factory(method: str, s: LearnSettings) -> Callable:

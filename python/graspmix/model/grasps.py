@@ -15,6 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from ..io import GRASPS_FORMAT, read_document, relative_path
+from ..io.checks import check_int, check_output_path
 
 # What executing a grasp needs; the other fields describe how it was ranked.
 EXECUTION_KEYS = ("T_world_wrist", "pregrasp_joints", "grasp_joints")
@@ -153,7 +154,7 @@ class GraspSet:
 
     def save(self, path: str | Path) -> None:
         # Non-finite log values (a grasp a hard expert rejected) are written as the strings "-inf"/"inf".
-        path = Path(path)
+        path = check_output_path(path, "grasps file")
         path.write_text(json.dumps(_json_safe(self.to_json(path.resolve().parent)), indent=1) + "\n")
 
 
@@ -192,6 +193,7 @@ def load_grasps(path) -> dict:
 def grasp_by_rank(doc: Mapping, rank: int = 1):
     """The grasp of the given rank of a loaded grasps.json (or a GraspSet)."""
     grasps = doc["grasps"] if isinstance(doc, Mapping) else doc.grasps
+    rank = check_int(rank, "rank", 1)
     for g in grasps:
         if g["rank"] == rank:
             return g

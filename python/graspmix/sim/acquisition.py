@@ -22,6 +22,7 @@ import numpy as np
 
 from .. import _core
 from ..io import pybullet_data_path, resolve_object
+from ..io.checks import check_float, check_int, check_seed, quote
 from ..model.settings import FeatureSettings
 
 
@@ -218,10 +219,8 @@ def acquire(object_path: str | Path, noise: bool = False, seed: int = 0,
     on the Acquisition and returning one (e.g. with fewer points); None keeps the stitched cloud.
     """
     settings = settings or AcquisitionSettings()
-    if settings.keep not in ("object", "scene"):
-        raise ValueError(f"keep must be 'object' or 'scene', got {settings.keep!r}")
-    if not settings.cameras:
-        raise ValueError("at least one camera is needed")
+    check_seed(seed)
+    check_acquisition_settings(settings)
     rng = np.random.default_rng(seed)
     with Scene(object_path, settings) as scene:
         pts, views, idx, images, masks = [], [], [], [], []
@@ -252,12 +251,35 @@ def acquire(object_path: str | Path, noise: bool = False, seed: int = 0,
     return acq
 
 
+def check_acquisition_settings(s: AcquisitionSettings) -> None:
+    """The settings' numbers finite and in range, the images of a bounded size; ValueError naming the field."""
+    if s.keep not in ("object", "scene"):
+        raise ValueError(f"keep must be 'object' or 'scene', got {quote(s.keep)}")
+    if not s.cameras:
+        raise ValueError("at least one camera is needed")
+    check_float(s.object_scale, "object_scale", gt=0.0)
+    check_float(s.pixel_noise_std, "pixel_noise_std", 0.0)
+    check_float(s.depth_noise_std, "depth_noise_std", 0.0)
+    for name, n in (("object_position", 3), ("object_orientation", 4)):
+        v = np.asarray(getattr(s, name), dtype=float) if not isinstance(getattr(s, name), str) else None
+        if v is None or v.shape != (n,) or not np.all(np.isfinite(v)):
+            raise ValueError(f"{name} must be {n} finite numbers, got {quote(getattr(s, name))}")
+    for i, cam in enumerate(s.cameras):
+        check_int(cam.width, f"cameras[{i}].width", 1, 4096)
+        check_int(cam.height, f"cameras[{i}].height", 1, 4096)
+        check_float(cam.fov_deg, f"cameras[{i}].fov_deg", gt=0.0, hi=179.0)
+        near = check_float(cam.near, f"cameras[{i}].near", gt=0.0)
+        check_float(cam.far, f"cameras[{i}].far", gt=near)
+
+
 def clean_up(voxel_size: float = FeatureSettings.voxel_size, remove_outliers: bool = True, remove_plane: bool | None = None,
              seed: int = 0) -> Callable[[Acquisition], Acquisition]:
     """The clean-up of the object representation (graspmix.prepare_cloud) as an acquire() postprocess:
     voxel grid, statistical outlier removal and, for a scene acquisition, RANSAC removal of the support
     plane (remove_plane=None: only when settings.keep == "scene" left the plane in; the plane found is
     kept in Acquisition.plane). Viewpoints and camera indices follow the points that survive."""
+    check_float(voxel_size, "voxel_size", 0.0)
+    check_seed(seed)
 
     def run(acq: Acquisition) -> Acquisition:
         plane_too = remove_plane if remove_plane is not None else acq.keep == "scene"

@@ -12,6 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from .. import _core
+from ..io.checks import MAX_ITERATIONS, check_float, check_input_file, check_int, check_seed
 from ..model import Demonstration
 from .acquisition import AcquisitionSettings, Scene, acquire
 
@@ -25,7 +26,10 @@ def record_demonstration(object_path: str | Path, hand_path: str | Path, T_world
     object and returns the demonstration with the joints where the fingers stopped."""
     import pybullet as p
 
-    hand = _core.Hand.from_urdf(str(hand_path))
+    check_float(grip_force, "grip_force", gt=0.0)
+    check_int(max_steps, "max_steps", 1, MAX_ITERATIONS)
+    check_seed(seed)
+    hand = _core.Hand.from_urdf(str(check_input_file(hand_path, "hand")))
     wrist = np.asarray(T_world_wrist, dtype=float)
     if wrist.shape != (7,) or not np.all(np.isfinite(wrist)):
         raise ValueError("T_world_wrist must be 7 finite numbers [x, y, z, qx, qy, qz, qw]")

@@ -19,6 +19,7 @@ import numpy as np
 
 from .. import _core
 from ..io import default_hand_path, resolve_object, resolve_path
+from ..io.checks import MAX_SIM_TIME, check_float, check_input_file, check_int, quote
 from ..model.grasps import Grasp, grasp_by_rank, load_grasps
 from .acquisition import AcquisitionSettings, Scene
 
@@ -40,7 +41,7 @@ def load_hand(hand=None) -> _core.Hand:
     """A Hand, a URDF path, or None for the bundled WSG 50 (loaded once per path)."""
     if isinstance(hand, _core.Hand):
         return hand
-    return _hand(str(Path(hand or default_hand_path()).resolve()))
+    return _hand(str(check_input_file(hand or default_hand_path(), "hand").resolve()))
 
 
 def load_object(obj) -> SimObject:
@@ -58,9 +59,42 @@ def make_settings(settings: SimSettings | None = None, **overrides) -> SimSettin
             setattr(s, name, getattr(settings, name))
     for name, value in overrides.items():
         if name not in _settings_names():
-            raise ValueError(f"unknown simulation setting {name!r} (known: {', '.join(_settings_names())})")
-        setattr(s, name, value)
+            raise ValueError(f"unknown simulation setting {quote(name)} (known: {', '.join(_settings_names())})")
+        setattr(s, name, _checked_setting(name, value))
+    check_settings(s)
     return s
+
+
+# Settings that are durations (s) or that, over a speed, make one: each phase of the simulation is at most
+# MAX_SIM_TIME simulated seconds, and a step at least MIN_TIME_STEP, so no setting makes the C++ step count
+# overflow or the run last for hours.
+MIN_TIME_STEP = 1e-4  # s
+
+
+def _checked_setting(name: str, value):
+    """A keyword override, its type checked before pybind11 casts it."""
+    if name == "gravity":
+        g = np.asarray(value, dtype=float) if not isinstance(value, str) else None
+        if g is None or g.shape != (3,) or not np.all(np.isfinite(g)):
+            raise ValueError(f"gravity must be 3 finite numbers (m/s^2), got {quote(value)}")
+        return g
+    if name == "solver_iterations":
+        return check_int(value, name, 1, 10_000)
+    return check_float(value, name)
+
+
+def check_settings(s: SimSettings) -> None:
+    """Every SimSettings number finite, every phase at most MAX_SIM_TIME s, the step in [1e-4, 0.1] s."""
+    for name in _settings_names():
+        if name not in ("gravity", "solver_iterations"):
+            check_float(getattr(s, name), f"SimSettings.{name}")
+    check_float(s.time_step, "SimSettings.time_step", MIN_TIME_STEP, 0.1)
+    for name in ("close_time", "hold_time"):
+        check_float(getattr(s, name), f"SimSettings.{name}", 0.0, MAX_SIM_TIME)
+    speed = check_float(s.lift_speed, "SimSettings.lift_speed", gt=0.0)
+    if abs(s.lift_height) / speed > MAX_SIM_TIME:
+        raise ValueError(f"SimSettings.lift_height / lift_speed = {abs(s.lift_height) / speed:g} s: the lift would "
+                         f"take longer than {MAX_SIM_TIME:g} s simulated")
 
 
 def _settings_names() -> list[str]:
@@ -136,6 +170,7 @@ def execute(obj, grasp: Mapping | None = None, *, hand=None, T_world_wrist=None,
     hand: a Hand or URDF path (default: the bundled WSG 50). object_pose: the object's link pose (7,);
     default: where the acquisition places it (rest_pose). settings/overrides: SimSettings fields.
     """
+    settings = make_settings(settings, **overrides)  # checked before anything is loaded
     h = load_hand(hand)
     o = load_object(obj)
     if grasp is None:
@@ -144,13 +179,14 @@ def execute(obj, grasp: Mapping | None = None, *, hand=None, T_world_wrist=None,
         grasp = Grasp(T_world_wrist, pregrasp_joints, grasp_joints)
     wrist, pre, fin = grasp_arrays(h, grasp)
     pose = rest_pose(o) if object_pose is None else np.asarray(object_pose, dtype=float)
-    return _core.sim_execute(h, o, pose, wrist, pre, fin, make_settings(settings, **overrides))
+    return _core.sim_execute(h, o, pose, wrist, pre, fin, settings)
 
 
 def execute_file(obj, grasps_path, rank: int = 1, hand=None, settings: SimSettings | None = None, **overrides) -> SimResult:
     """Executes the grasp of the given rank from a grasps.json. hand: a Hand or URDF; None: the file's
     hand if it can be found (as given or relative to the grasps file), else the bundled WSG 50; either way
     the file's hand must be the one used (ValueError otherwise)."""
+    rank = check_int(rank, "rank", 1)
     doc = load_grasps(grasps_path)
     if hand is None:
         hand = _doc_hand_file(doc.get("hand"), grasps_path)

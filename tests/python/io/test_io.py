@@ -21,13 +21,19 @@ def test_format_checks(tmp_path):
     p = tmp_path / "doc.json"
     for fmt in io.FORMATS:
         p.write_text(json.dumps({"format": fmt, "x": 1}))
-        assert io.read_document(p, fmt)["x"] == 1
+        doc = io.read_json(p, "test")
+        io.check_format(doc, fmt, p)
+        assert doc["x"] == 1
         p.write_text(json.dumps({"format": "other/9"}))
         with pytest.raises(ValueError, match=f"format is 'other/9', expected format '{fmt}'"):
             io.read_document(p, fmt)
+        # read_document also checks the content against the format's schema: here, required fields miss.
+        p.write_text(json.dumps({"format": fmt, "x": 1}))
+        with pytest.raises(io.SchemaError, match=r"doc\.json: field '\w+' is missing"):
+            io.read_document(p, fmt)
     # Only demonstrations may leave the field out.
     p.write_text(json.dumps({"hand": "x"}))
-    assert io.read_document(p, io.DEMO_FORMAT) == {"hand": "x"}
+    assert io.check_format(io.read_json(p, "test"), io.DEMO_FORMAT, p) is None
     with pytest.raises(ValueError, match="format is None"):
         io.read_document(p, io.MODEL_FORMAT)
     p.write_text("[1, 2]")

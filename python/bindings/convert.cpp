@@ -1,4 +1,5 @@
 // Conversions at the Python boundary (declared in common.hpp): shapes checked, inputs named in errors.
+#include <limits>
 #include <map>
 
 #include "common.hpp"
@@ -53,9 +54,15 @@ Eigen::VectorXd to_vector(const py::handle& obj, const char* name, Eigen::Index 
 
 std::uint64_t to_seed(const py::object& seed) {
   if (seed.is_none()) return 0;
-  const long long s = seed.cast<long long>();
-  if (s < 0) throw py::value_error("seed must be a non-negative integer, got " + std::to_string(s));
-  return static_cast<std::uint64_t>(s);
+  // Checked before any cast: a float, a bool or an integer beyond 64 bits is a ValueError, not a cast error.
+  if (!py::isinstance<py::int_>(seed) || py::isinstance<py::bool_>(seed)) {
+    throw py::value_error("seed must be a non-negative integer, got " + std::string(py::str(py::type::of(seed).attr("__name__"))));
+  }
+  const py::int_ value = py::reinterpret_borrow<py::int_>(seed);
+  if (value < py::int_(0) || value > py::int_(std::numeric_limits<std::int64_t>::max())) {
+    throw py::value_error("seed must be an integer in [0, 2**63 - 1], got " + std::string(py::str(seed)).substr(0, 80));
+  }
+  return static_cast<std::uint64_t>(value.cast<long long>());
 }
 
 RowMatrixXd to_features(const py::object& obj, Eigen::Index n_rows, int n_features, const char* name) {

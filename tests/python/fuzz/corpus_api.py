@@ -182,13 +182,11 @@ def gmm_cases():
             "api/gmm/seed=1.5",
             "graspmix.GaussianMixture(n_components=2, seed=1.5)",
             names=("seed",),
-            xfail="bindings: to_seed (convert.cpp) casts before checking, a RuntimeError",
         ),
         api(
             "api/gmm/seed=2p63",
             "graspmix.GaussianMixture(n_components=2, seed=2**63)",
             names=("seed",),
-            xfail="bindings: to_seed (convert.cpp) casts to long long before checking, a RuntimeError",
         ),
     ]
 

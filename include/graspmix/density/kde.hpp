@@ -6,11 +6,17 @@
 
 namespace graspmix {
 
+/// The smallest orientation bandwidth a PoseKDE accepts (rad). Its concentration kappa = 4 / bw^2 is then
+/// 4e12: rounding of a quaternion's dot product (~1e-16) already moves kappa (1 - t) by ~4e-4, and narrower
+/// kernels would score and sample rounding noise rather than rotations.
+inline constexpr double kMinOrientationBandwidth = 1e-6;
+
 struct KdeSettings {
-  double position_bandwidth = 0.005;     ///< std of the position kernel (m)
-  double orientation_bandwidth = 0.15;   ///< approximate std of the rotation angle of the kernel (rad)
-  Eigen::VectorXd feature_bandwidth;     ///< std per feature (same units as the features); one value = all
-                                         ///< features; empty = 0.01 for every feature
+  double position_bandwidth = 0.005;    ///< std of the position kernel (m)
+  double orientation_bandwidth = 0.15;  ///< approximate std of the rotation angle of the kernel (rad),
+                                        ///< at least kMinOrientationBandwidth
+  Eigen::VectorXd feature_bandwidth;    ///< std per feature (same units as the features); one value = all
+                                        ///< features; empty = 0.01 for every feature
 };
 
 class PoseKDE : public PoseDensity {

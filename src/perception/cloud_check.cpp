@@ -69,7 +69,7 @@ std::uint64_t header_count(const std::vector<std::string_view>& tok, const char*
   std::uint64_t v = 0;
   if (tok.size() != 2 || !parse_count(tok[1], v)) {
     bad(std::string(key) + " must be one non-negative integer, got '" +
-        (tok.size() > 1 ? std::string(tok[1]) : std::string()) + "'");
+        (tok.size() > 1 ? printable(tok[1]) : std::string()) + "'");
   }
   if (v > std::numeric_limits<std::uint32_t>::max()) bad(std::string(key) + " " + str(v) + " exceeds 2^32 - 1");
   return v;
@@ -86,18 +86,18 @@ void per_field(const std::vector<std::string_view>& tok, PcdText& h, const Heade
     PcdField& f = h.fields[i];
     const std::string_view t = tok[i + 1];
     std::uint64_t v = 0;
-    const std::string what = key + " of field '" + f.name + "' ";
+    const std::string what = key + " of field '" + printable(f.name) + "' ";
     if (key == "SIZE") {
       if (!parse_count(t, v) || (v != 1 && v != 2 && v != 4 && v != 8))
-        bad(what + "must be 1, 2, 4 or 8, got '" + std::string(t) + "'");
+        bad(what + "must be 1, 2, 4 or 8, got '" + printable(t) + "'");
       f.size = static_cast<int>(v);
     } else if (key == "TYPE") {
-      if (t != "F" && t != "I" && t != "U") bad(what + "must be F, I or U, got '" + std::string(t) + "'");
+      if (t != "F" && t != "I" && t != "U") bad(what + "must be F, I or U, got '" + printable(t) + "'");
       f.type = t[0];
       if (f.type == 'F' && f.size != 4 && f.size != 8) bad(what + "F needs SIZE 4 or 8, got " + std::to_string(f.size));
     } else {
       if (!parse_count(t, v) || v < 1 || v > (1u << 24))
-        bad(what + "must be an integer in [1, 2^24], got '" + std::string(t) + "'");
+        bad(what + "must be an integer in [1, 2^24], got '" + printable(t) + "'");
       f.count = v;
     }
   }
@@ -140,7 +140,7 @@ void read_keyword(int rank, const std::vector<std::string_view>& tok, PcdText& h
         double v = 0;
         const auto [end, ec] = std::from_chars(tok[i].data(), tok[i].data() + tok[i].size(), v);
         if (ec != std::errc() || end != tok[i].data() + tok[i].size() || !std::isfinite(v)) {
-          bad("VIEWPOINT value '" + std::string(tok[i]) + "' is not a finite number");
+          bad("VIEWPOINT value '" + printable(tok[i]) + "' is not a finite number");
         }
       }
       break;
@@ -153,7 +153,7 @@ void read_keyword(int rank, const std::vector<std::string_view>& tok, PcdText& h
       else if (tok[1] == "binary_compressed")
         h.out.data = PcdHeader::kBinaryCompressed;
       else
-        bad("unknown DATA '" + std::string(tok[1]) + "' (expected ascii, binary or binary_compressed)");
+        bad("unknown DATA '" + printable(tok[1]) + "' (expected ascii, binary or binary_compressed)");
       break;
     default:
       break;  // VERSION: any
@@ -177,7 +177,7 @@ PcdText read_pcd_header(const std::string& path, std::istream& in) {
     if (tok[0][0] == '#') continue;
     const int rank = keyword_rank(tok[0]);
     if (rank == kNone) {
-      bad("'" + std::string(tok[0].substr(0, 40)) +
+      bad("'" + printable(tok[0]) +
           "' is not a PCD keyword (VERSION, FIELDS, SIZE, TYPE, COUNT, "
           "WIDTH, HEIGHT, VIEWPOINT, POINTS, DATA)");
     }
@@ -292,9 +292,9 @@ void check_ascii_body(const std::string& path, const PcdText& h, std::istream& i
     for (std::size_t i = 0; i < tok.size(); ++i) {
       const TokenRule& r = rules[i];
       if (r.skip || is_number(tok[i], r.kind, r.size)) continue;
-      fail(path, where + "value " + str(i + 1) + " '" + std::string(tok[i].substr(0, 40)) + "' is not " +
-                     (r.kind == Kind::kFloat ? "a number" : "an integer in range") + " for field '" + r.field->name +
-                     "' (TYPE " + r.field->type + " SIZE " + std::to_string(r.size) + ")");
+      fail(path, where + "value " + str(i + 1) + " '" + printable(tok[i]) + "' is not " +
+                     (r.kind == Kind::kFloat ? "a number" : "an integer in range") + " for field '" +
+                     printable(r.field->name) + "' (TYPE " + r.field->type + " SIZE " + std::to_string(r.size) + ")");
     }
     ++rows;
   }
@@ -363,6 +363,20 @@ bool is_number(std::string_view t, Kind kind, int size) {
   const auto r = std::from_chars(t.data(), end, v);
   if (r.ptr != end || r.ec != std::errc()) return false;
   return bits == 64 || v < (1ULL << bits);
+}
+
+std::string printable(std::string_view token) {
+  std::string out;
+  for (const char ch : token.substr(0, 40)) {
+    const auto c = static_cast<unsigned char>(ch);
+    if (c >= 0x20 && c < 0x7f) {
+      out += ch;
+    } else {
+      const char* hex = "0123456789abcdef";
+      out += {'\\', 'x', hex[c >> 4], hex[c & 15]};
+    }
+  }
+  return out + (token.size() > 40 ? "..." : "");
 }
 
 bool parse_count(std::string_view t, std::uint64_t& value) {

@@ -55,6 +55,10 @@ enum class Kind { kFloat, kSigned, kUnsigned };
 /// float (nan and inf included) for kFloat, an integer within the type's range otherwise.
 bool is_number(std::string_view token, Kind kind, int size);
 
+/// A token of the file for a message: at most 40 characters, bytes outside printable ASCII as \xNN (the
+/// message must stay one line of valid UTF-8 whatever the file holds).
+std::string printable(std::string_view token);
+
 /// Parses a non-negative decimal integer (digits only, at most 2^63 - 1); false otherwise.
 bool parse_count(std::string_view token, std::uint64_t& value);
 

@@ -49,8 +49,7 @@ std::vector<std::uint64_t> read_shape(const std::string& path, std::string_view 
     if (!tok.empty() || comma == std::string_view::npos) {
       std::uint64_t d = 0;
       if (!parse_count(tok, d)) {
-        fail(path, "not a valid .npy header: shape entry '" + std::string(tok.substr(0, 40)) +
-                       "' is not a non-negative integer");
+        fail(path, "not a valid .npy header: shape entry '" + printable(tok) + "' is not a non-negative integer");
       }
       dims.push_back(d);
     }

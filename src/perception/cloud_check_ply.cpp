@@ -79,12 +79,11 @@ Property read_property(const std::vector<std::string_view>& tok, const std::func
   if (tok.size() != (list ? 5u : 3u)) bad("expected 'property TYPE NAME' or 'property list COUNT_TYPE TYPE NAME'");
   p.list = list;
   if (list && (!scalar_type(tok[2], p.count_type) || p.count_type.kind == Kind::kFloat)) {
-    bad("the length type of list '" + std::string(tok[4]) + "' must be an integer type, got '" + std::string(tok[2]) +
-        "'");
+    bad("the length type of list '" + printable(tok[4]) + "' must be an integer type, got '" + printable(tok[2]) + "'");
   }
   const std::string_view type = tok[list ? 3 : 1];
-  if (!scalar_type(type, p.type)) bad("unknown property type '" + std::string(type.substr(0, 40)) + "'");
-  p.name = std::string(tok.back());
+  if (!scalar_type(type, p.type)) bad("unknown property type '" + printable(type) + "'");
+  p.name = printable(tok.back());  // only for messages
   return p;
 }
 
@@ -97,7 +96,7 @@ void read_ply_line(const std::vector<std::string_view>& tok, PlyText& h, bool& h
     if (tok.size() > 1 && (tok[1] == "num_cols" || tok[1] == "num_rows")) {
       std::uint64_t v = 0;
       if (tok.size() != 3 || !parse_count(tok[2], v) || v > std::numeric_limits<std::uint32_t>::max()) {
-        bad("obj_info " + std::string(tok[1]) + " needs one integer in [0, 2^32 - 1]");
+        bad("obj_info " + printable(tok[1]) + " needs one integer in [0, 2^32 - 1]");
       }
       (tok[1] == "num_cols" ? h.num_cols : h.num_rows) = v;
     }
@@ -113,17 +112,17 @@ void read_ply_line(const std::vector<std::string_view>& tok, PlyText& h, bool& h
     else if (tok[1] == "binary_big_endian")
       h.format = PlyText::kBig;
     else
-      bad("unknown format '" + std::string(tok[1].substr(0, 40)) + "'");
+      bad("unknown format '" + printable(tok[1]) + "'");
     have_format = true;
     return;
   }
-  if (!have_format) bad("'" + std::string(key.substr(0, 40)) + "' before the format line");
+  if (!have_format) bad("'" + printable(key) + "' before the format line");
   if (key == "element") {
     Element e;
     if (tok.size() != 3) bad("expected 'element NAME COUNT'");
-    e.name = std::string(tok[1]);
+    e.name = printable(tok[1]);
     if (!parse_count(tok[2], e.count)) {
-      bad("element '" + e.name + "' count '" + std::string(tok[2].substr(0, 40)) + "' is not a non-negative integer");
+      bad("element '" + e.name + "' count '" + printable(tok[2]) + "' is not a non-negative integer");
     }
     if (e.count > std::numeric_limits<std::uint32_t>::max()) bad("element '" + e.name + "' count exceeds 2^32 - 1");
     h.elements.push_back(std::move(e));
@@ -134,7 +133,7 @@ void read_ply_line(const std::vector<std::string_view>& tok, PlyText& h, bool& h
     h.elements.back().properties.push_back(read_property(tok, bad));
     return;
   }
-  bad("'" + std::string(key.substr(0, 40)) +
+  bad("'" + printable(key) +
       "' is not a PLY header keyword (format, comment, obj_info, element, "
       "property, end_header)");
 }
@@ -191,7 +190,7 @@ void check_ascii_rows(const std::string& path, const PlyText& h, std::istream& i
           fail(path, where + "too few values for element '" + e.name + "' (property '" + name + "' is missing)");
         }
         if (!is_number(tok[i], s.kind, s.size)) {
-          fail(path, where + "value " + str(i + 1) + " '" + std::string(tok[i].substr(0, 40)) + "' is not " +
+          fail(path, where + "value " + str(i + 1) + " '" + printable(tok[i]) + "' is not " +
                          (s.kind == Kind::kFloat ? "a number" : "an integer in range") + " for property '" + name +
                          "'");
         }

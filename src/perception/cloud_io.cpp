@@ -1,5 +1,6 @@
 #include "graspmix/perception/cloud_io.hpp"
 
+#include <sys/stat.h>
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -7,13 +8,12 @@
 #include <cstring>
 #include <fstream>
 #include <stdexcept>
-#include <sys/stat.h>
 
 #include <pcl/PCLPointCloud2.h>
+#include <pcl/console/print.h>
 #include <pcl/exceptions.h>
 #include <pcl/io/pcd_io.h>
 #include <pcl/io/ply_io.h>
-#include <pcl/console/print.h>
 
 #include "cloud_check.hpp"
 
@@ -37,15 +37,48 @@ std::string lower_extension(const std::string& path) {
 /// Reads one scalar of a PCL field type as double.
 double read_scalar(const std::uint8_t* p, std::uint8_t datatype) {
   switch (datatype) {
-    case pcl::PCLPointField::INT8: { std::int8_t v; std::memcpy(&v, p, 1); return v; }
-    case pcl::PCLPointField::UINT8: { std::uint8_t v; std::memcpy(&v, p, 1); return v; }
-    case pcl::PCLPointField::INT16: { std::int16_t v; std::memcpy(&v, p, 2); return v; }
-    case pcl::PCLPointField::UINT16: { std::uint16_t v; std::memcpy(&v, p, 2); return v; }
-    case pcl::PCLPointField::INT32: { std::int32_t v; std::memcpy(&v, p, 4); return v; }
-    case pcl::PCLPointField::UINT32: { std::uint32_t v; std::memcpy(&v, p, 4); return v; }
-    case pcl::PCLPointField::FLOAT32: { float v; std::memcpy(&v, p, 4); return v; }
-    case pcl::PCLPointField::FLOAT64: { double v; std::memcpy(&v, p, 8); return v; }
-    default: return std::numeric_limits<double>::quiet_NaN();
+    case pcl::PCLPointField::INT8: {
+      std::int8_t v;
+      std::memcpy(&v, p, 1);
+      return v;
+    }
+    case pcl::PCLPointField::UINT8: {
+      std::uint8_t v;
+      std::memcpy(&v, p, 1);
+      return v;
+    }
+    case pcl::PCLPointField::INT16: {
+      std::int16_t v;
+      std::memcpy(&v, p, 2);
+      return v;
+    }
+    case pcl::PCLPointField::UINT16: {
+      std::uint16_t v;
+      std::memcpy(&v, p, 2);
+      return v;
+    }
+    case pcl::PCLPointField::INT32: {
+      std::int32_t v;
+      std::memcpy(&v, p, 4);
+      return v;
+    }
+    case pcl::PCLPointField::UINT32: {
+      std::uint32_t v;
+      std::memcpy(&v, p, 4);
+      return v;
+    }
+    case pcl::PCLPointField::FLOAT32: {
+      float v;
+      std::memcpy(&v, p, 4);
+      return v;
+    }
+    case pcl::PCLPointField::FLOAT64: {
+      double v;
+      std::memcpy(&v, p, 8);
+      return v;
+    }
+    default:
+      return std::numeric_limits<double>::quiet_NaN();
   }
 }
 
@@ -60,7 +93,8 @@ const pcl::PCLPointField* find_field(const pcl::PCLPointCloud2& c, std::initiali
 /// silently skip a float64 x, which real PLY files have).
 Eigen::VectorXd column(const pcl::PCLPointCloud2& c, const pcl::PCLPointField& f, std::size_t n) {
   Eigen::VectorXd out(static_cast<Eigen::Index>(n));
-  for (std::size_t i = 0; i < n; ++i) out[static_cast<Eigen::Index>(i)] = read_scalar(&c.data[i * c.point_step + f.offset], f.datatype);
+  for (std::size_t i = 0; i < n; ++i)
+    out[static_cast<Eigen::Index>(i)] = read_scalar(&c.data[i * c.point_step + f.offset], f.datatype);
   return out;
 }
 
@@ -74,13 +108,14 @@ CloudData from_pcl(const pcl::PCLPointCloud2& c, const Eigen::Vector4f& origin, 
   for (const auto& f : c.fields) out.fields.push_back(f.name);
   const std::size_t n = static_cast<std::size_t>(c.width) * c.height;
   if (n == 0) fail(path, "the cloud is empty (0 points)");
-  if (c.data.size() < n * c.point_step) fail(path, "the data section is shorter than the header declares (truncated file)");
+  if (c.data.size() < n * c.point_step)
+    fail(path, "the data section is shorter than the header declares (truncated file)");
   const auto* fx = find_field(c, {"x"});
   const auto* fy = find_field(c, {"y"});
   const auto* fz = find_field(c, {"z"});
   if (!fx || !fy || !fz) {
     std::string names;
-    for (const auto& f : out.fields) names += (names.empty() ? "" : " ") + f;
+    for (const auto& f : out.fields) names += (names.empty() ? "" : " ") + cloud_check::printable(f);
     fail(path, "has no x, y, z fields (fields: " + (names.empty() ? std::string("none") : names) + ")");
   }
   RowMatrixXd P(static_cast<Eigen::Index>(n), 3);
@@ -190,7 +225,8 @@ CloudData load_npy(const std::string& path) {
     if (descr[1] == 'i' && size == 2) type = pcl::PCLPointField::INT16;
   }
   if (type == 0) {
-    fail(path, "unsupported .npy dtype '" + descr.substr(0, 40) + "' (use little-endian float32, float64, int16 or int32)");
+    fail(path,
+         "unsupported .npy dtype '" + descr.substr(0, 40) + "' (use little-endian float32, float64, int16 or int32)");
   }
   const std::uint64_t n = h.shape[0], body = h.file_size - h.data_offset, row = 3 * static_cast<std::uint64_t>(size);
   if (n == 0) fail(path, "the cloud is empty (0 points)");
@@ -262,7 +298,7 @@ CloudData cloud_from_arrays(const RowMatrixXd& points, const RowMatrixXd& normal
 }
 
 CloudData load_cloud(const std::string& path) {
-  struct stat st {};
+  struct stat st{};
   if (::stat(path.c_str(), &st) != 0) fail(path, "no such file");
   if (!S_ISREG(st.st_mode)) fail(path, "not a regular file");
   if (st.st_size == 0) fail(path, "the file is empty (0 bytes)");
@@ -328,9 +364,12 @@ void save_cloud(const std::string& path, const Vec3Array& points, const Vec3Arra
   try {
     if (pcd) {
       pcl::PCDWriter w;
-      if (encoding == "ascii") rc = w.writeASCII(path, cloud, origin, orientation, 9);
-      else if (encoding == "binary") rc = w.writeBinary(path, cloud, origin, orientation);
-      else rc = w.writeBinaryCompressed(path, cloud, origin, orientation);
+      if (encoding == "ascii")
+        rc = w.writeASCII(path, cloud, origin, orientation, 9);
+      else if (encoding == "binary")
+        rc = w.writeBinary(path, cloud, origin, orientation);
+      else
+        rc = w.writeBinaryCompressed(path, cloud, origin, orientation);
     } else {
       pcl::PLYWriter w;
       // No camera element: PCL writes intrinsics its own reader then complains about; PLY keeps no viewpoint.

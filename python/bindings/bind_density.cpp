@@ -49,6 +49,15 @@ std::vector<int> to_dims(const py::object& obj, const char* name) {
   }
 }
 
+/// Checked before the features, whose expected width an unfitted density does not know yet.
+void require_fitted(const PoseDensity& d, const char* what) {
+  if (!d.fitted()) {
+    const bool kde = d.kind() == "kde";
+    throw py::value_error(std::string(kde ? "PoseKDE." : "PoseMixture.") + what + ": the density is not fitted yet (" +
+                          (kde ? "call fit)" : "call fit, or make it with from_parameters)"));
+  }
+}
+
 /// The methods every PoseDensity shares, bound once on the base class.
 void bind_pose_density_base(py::module_& m) {
   py::class_<PoseDensity, std::shared_ptr<PoseDensity>>(m, "PoseDensity",
@@ -60,6 +69,7 @@ void bind_pose_density_base(py::module_& m) {
       .def(
           "log_density",
           [](const PoseDensity& d, const py::object& poses, const py::object& features) {
+            require_fitted(d, "log_density");
             const PoseArray P = to_poses(poses, "log_density: poses");
             return d.log_density(P, to_features(features, P.rows(), d.n_features(), "log_density: features"));
           },
@@ -68,12 +78,14 @@ void bind_pose_density_base(py::module_& m) {
       .def(
           "feature_log_density",
           [](const PoseDensity& d, const py::object& features) {
+            require_fitted(d, "feature_log_density");
             return d.feature_log_density(to_matrix(features, "feature_log_density: features", d.n_features(), true));
           },
           py::arg("features"), "log p(r) per row (eq:density_mixture_features).")
       .def(
           "sample",
           [](const PoseDensity& d, int n, const py::object& features, const py::object& seed) {
+            require_fitted(d, "sample");
             if (n < 0) throw py::value_error("sample: n must be >= 0");
             std::mt19937_64 rng(to_seed(seed));
             return d.sample(to_features(features, n, d.n_features(), "sample: features"), rng);

@@ -148,7 +148,11 @@ void GaussianMixture::set_parameters(Eigen::VectorXd weights, RowMatrixXd means,
 }
 
 void GaussianMixture::require_fitted(const char* what) const {
-  if (!fitted()) throw std::logic_error(std::string("GaussianMixture.") + what + ": the mixture is not fitted yet");
+  // invalid_argument (ValueError in Python, like scikit-learn's NotFittedError): the caller passed an unfitted model.
+  if (!fitted()) {
+    throw std::invalid_argument(std::string("GaussianMixture.") + what +
+                                ": the mixture is not fitted yet (call fit, or make it with from_parameters)");
+  }
 }
 
 void GaussianMixture::require_dim(const Eigen::Ref<const RowMatrixXd>& X, const char* what) const {

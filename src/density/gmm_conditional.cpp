@@ -101,7 +101,7 @@ GaussianMixture GaussianMixture::condition(const std::vector<int>& given, const 
 // ---- ConditionalGaussianMixture ------------------------------------------------------------
 
 ConditionalGaussianMixture::ConditionalGaussianMixture(const GaussianMixture& joint, int u_dim) {
-  if (!joint.fitted()) throw std::logic_error("ConditionalGaussianMixture: the joint mixture is not fitted");
+  if (!joint.fitted()) throw std::invalid_argument("ConditionalGaussianMixture: the joint mixture is not fitted");
   if (u_dim < 1 || u_dim > joint.dim()) {
     throw std::invalid_argument("ConditionalGaussianMixture: u_dim " + std::to_string(u_dim) + " outside [1, " +
                                 std::to_string(joint.dim()) + "]");
@@ -181,7 +181,14 @@ Eigen::VectorXd ConditionalGaussianMixture::log_density(const Eigen::Ref<const R
 
 RowMatrixXd ConditionalGaussianMixture::sample(const Eigen::Ref<const RowMatrixXd>& R, std::mt19937_64& rng) const {
   RowMatrixXd logp = log_conditional_weights(R);
-  logp.colwise() -= logsumexp_rows(logp);
+  const Eigen::VectorXd norm = logsumexp_rows(logp);
+  for (Eigen::Index i = 0; i < R.rows(); ++i) {
+    // Every component's weight underflowed: the draw would pick the last component, not a sample.
+    if (!std::isfinite(norm[i])) {
+      throw std::invalid_argument("features row " + str(i) + " has zero density under every component");
+    }
+  }
+  logp.colwise() -= norm;
   std::uniform_real_distribution<double> uni(0.0, 1.0);
   std::normal_distribution<double> normal;
   RowMatrixXd out(R.rows(), u_dim_);

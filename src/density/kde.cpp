@@ -2,11 +2,12 @@
 
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
-#include "graspmix/density/gmm.hpp"
 #include "graspmix/core/se3.hpp"
+#include "graspmix/density/gmm.hpp"
 
 namespace graspmix {
 
@@ -28,6 +29,67 @@ inline double log_q_kernel(double t, double kappa, double log_norm) {
   return log_norm + a + std::log1p(std::exp(-2.0 * a));
 }
 
+std::string format_double(double v) {
+  std::ostringstream out;
+  out << v;  // 1e-06, not to_string's 0.000001 (or 0.000000 for 1e-9)
+  return out.str();
+}
+
+/// Proposals of one draw before the samplers give up; Wood's sampler accepts more than half of its
+/// proposals at every concentration, so this is never reached by valid parameters.
+constexpr int kMaxProposals = 1000;
+
+/// Wood (1994) rejection sampler for the cosine W = <q, mu> of the vMF on S^3 (p = 4), written with
+/// 1 - x0 and 1 - W instead of x0 and W so that large concentrations keep their precision (the direct
+/// form loses b = 3 / (2 kappa + sqrt(4 kappa^2 + 9)) to cancellation at kappa ~ 1e8 and then compares NaNs).
+class WoodSampler {
+ public:
+  explicit WoodSampler(double kappa) : kappa_(kappa) {
+    b_ = kP1 / (2.0 * kappa + std::sqrt(4.0 * kappa * kappa + kP1 * kP1));
+    one_minus_x0_ = 2.0 * b_ / (1.0 + b_);
+    x0_ = 1.0 - one_minus_x0_;
+    log_1_minus_x0sq_ = std::log(one_minus_x0_ * (1.0 + x0_));
+  }
+
+  /// One W; throws when the acceptance test is not a number or nothing is accepted. The caller keeps the
+  /// distributions (they carry state between draws, and the random stream stays that of earlier versions).
+  double operator()(std::mt19937_64& rng, std::gamma_distribution<double>& gamma,
+                    std::uniform_real_distribution<double>& uni) const {
+    for (int i = 0; i < kMaxProposals; ++i) {
+      const double g1 = gamma(rng), g2 = gamma(rng);
+      const double z = g1 / (g1 + g2);
+      const double one_minus_w = 2.0 * b_ * z / (1.0 - (1.0 - b_) * z);
+      // kappa W + 3 log(1 - x0 W) - c with c = kappa x0 + 3 log(1 - x0^2).
+      const double test = kappa_ * (one_minus_x0_ - one_minus_w) +
+                          kP1 * (std::log(one_minus_x0_ + x0_ * one_minus_w) - log_1_minus_x0sq_);
+      if (std::isnan(test)) {
+        throw std::invalid_argument("PoseKDE.sample: the rotation sampler's acceptance test is NaN at concentration " +
+                                    format_double(kappa_) + " (degenerate orientation_bandwidth)");
+      }
+      if (test >= std::log(uni(rng))) return 1.0 - one_minus_w;
+    }
+    throw std::invalid_argument("PoseKDE.sample: the rotation sampler rejected " + std::to_string(kMaxProposals) +
+                                " proposals in a row at concentration " + format_double(kappa_) +
+                                " (degenerate orientation_bandwidth)");
+  }
+
+ private:
+  static constexpr double kP1 = 3.0;  // p - 1
+  double kappa_, b_, one_minus_x0_, x0_, log_1_minus_x0sq_;
+};
+
+/// A unit vector orthogonal to the unit vector mu.
+Eigen::Vector4d orthogonal_direction(const Eigen::Vector4d& mu, std::mt19937_64& rng,
+                                     std::normal_distribution<double>& normal) {
+  for (int i = 0; i < kMaxProposals; ++i) {
+    Eigen::Vector4d v;
+    for (int j = 0; j < 4; ++j) v[j] = normal(rng);
+    v -= v.dot(mu) * mu;
+    if (v.norm() >= 1e-9) return v.normalized();  // fails only for a non-unit or NaN mu
+  }
+  throw std::invalid_argument("PoseKDE.sample: no direction orthogonal to a kernel's quaternion (is it NaN?)");
+}
+
 }  // namespace
 
 double log_vmf_s3_normaliser(double kappa) {
@@ -43,9 +105,11 @@ PoseKDE::PoseKDE(KdeSettings s) : settings_(std::move(s)) {
     throw std::invalid_argument("PoseKDE: position_bandwidth must be positive, got " +
                                 std::to_string(settings_.position_bandwidth));
   }
-  if (!(settings_.orientation_bandwidth > 0.0) || !std::isfinite(settings_.orientation_bandwidth)) {
-    throw std::invalid_argument("PoseKDE: orientation_bandwidth must be positive, got " +
-                                std::to_string(settings_.orientation_bandwidth));
+  if (!(settings_.orientation_bandwidth >= kMinOrientationBandwidth) ||
+      !std::isfinite(settings_.orientation_bandwidth)) {
+    throw std::invalid_argument("PoseKDE: orientation_bandwidth must be finite and at least " +
+                                format_double(kMinOrientationBandwidth) + " rad, got " +
+                                format_double(settings_.orientation_bandwidth));
   }
   for (Eigen::Index i = 0; i < settings_.feature_bandwidth.size(); ++i) {
     if (!(settings_.feature_bandwidth[i] > 0.0) || !std::isfinite(settings_.feature_bandwidth[i])) {
@@ -86,13 +150,15 @@ void PoseKDE::fit(const Eigen::Ref<const PoseArray>& poses, const Eigen::Ref<con
 }
 
 void PoseKDE::require_fitted(const char* what) const {
-  if (!fitted()) throw std::logic_error(std::string("PoseKDE.") + what + ": the density is not fitted yet");
+  if (!fitted())
+    throw std::invalid_argument(std::string("PoseKDE.") + what + ": the density is not fitted yet (call fit)");
 }
 
 Eigen::VectorXd PoseKDE::log_feature_kernels(const Eigen::Ref<const Eigen::RowVectorXd>& r) const {
   if (features_.cols() == 0) return log_weights_;
   const Eigen::RowVectorXd inv = feature_bw_.cwiseInverse().transpose();
-  const Eigen::VectorXd m = ((features_.rowwise() - r).array().rowwise() * inv.array()).matrix().rowwise().squaredNorm();
+  const Eigen::VectorXd m =
+      ((features_.rowwise() - r).array().rowwise() * inv.array()).matrix().rowwise().squaredNorm();
   return log_weights_.array() - 0.5 * m.array() + log_norm_r_;
 }
 
@@ -116,7 +182,8 @@ Eigen::VectorXd PoseKDE::log_density(const Eigen::Ref<const PoseArray>& poses,
     Eigen::VectorXd terms(K);
     for (Eigen::Index k = 0; k < K; ++k) {
       const double d2 = (positions_.row(k) - poses.row(i).head<3>()).squaredNorm();
-      terms[k] = lr[k] - 0.5 * d2 * inv_var + log_norm_p_ + log_q_kernel(orientations_.row(k).dot(q), kappa_, log_norm_q_);
+      terms[k] =
+          lr[k] - 0.5 * d2 * inv_var + log_norm_p_ + log_q_kernel(orientations_.row(k).dot(q), kappa_, log_norm_q_);
     }
     const double mt = terms.maxCoeff(), mr = lr.maxCoeff();
     const double num = mt + std::log((terms.array() - mt).exp().sum());
@@ -149,15 +216,16 @@ PoseArray PoseKDE::sample(const Eigen::Ref<const RowMatrixXd>& features, std::mt
   std::uniform_real_distribution<double> uni(0.0, 1.0);
   std::normal_distribution<double> normal;
   std::gamma_distribution<double> gamma(1.5, 1.0);
-  // Wood (1994) rejection sampler for the vMF on S^3 (p = 4).
-  const double kappa = kappa_, p1 = 3.0;
-  const double b = (-2.0 * kappa + std::sqrt(4.0 * kappa * kappa + p1 * p1)) / p1;
-  const double x0 = (1.0 - b) / (1.0 + b);
-  const double c = kappa * x0 + p1 * std::log(1.0 - x0 * x0);
+  const WoodSampler wood(kappa_);
   PoseArray out(features.rows(), 7);
   for (Eigen::Index i = 0; i < features.rows(); ++i) {
     Eigen::VectorXd lw = log_feature_kernels(features.row(i));
-    lw.array() -= lw.maxCoeff();
+    const double top = lw.maxCoeff();
+    if (!std::isfinite(top)) {
+      throw std::invalid_argument("PoseKDE.sample: feature row " + std::to_string(i) +
+                                  " has zero density under every kernel");
+    }
+    lw.array() -= top;
     const Eigen::VectorXd p = lw.array().exp();
     double u = uni(rng) * p.sum();
     Eigen::Index k = 0;
@@ -165,20 +233,10 @@ PoseArray PoseKDE::sample(const Eigen::Ref<const RowMatrixXd>& features, std::mt
       u -= p[k];
       if (u <= 0.0) break;
     }
-    double W;
-    while (true) {
-      const double g1 = gamma(rng), g2 = gamma(rng);
-      const double z = g1 / (g1 + g2);
-      W = (1.0 - (1.0 + b) * z) / (1.0 - (1.0 - b) * z);
-      if (kappa * W + p1 * std::log(1.0 - x0 * W) - c >= std::log(uni(rng))) break;
-    }
+    const double W = wood(rng, gamma, uni);
     const Eigen::Vector4d mu = orientations_.row(k).transpose();
-    Eigen::Vector4d v;
-    do {
-      for (int j = 0; j < 4; ++j) v[j] = normal(rng);
-      v -= v.dot(mu) * mu;
-    } while (v.norm() < 1e-9);
-    Eigen::Vector4d q = W * mu + std::sqrt(std::max(0.0, 1.0 - W * W)) * v.normalized();
+    const Eigen::Vector4d v = orthogonal_direction(mu, rng, normal);
+    Eigen::Vector4d q = W * mu + std::sqrt(std::max(0.0, (1.0 - W) * (1.0 + W))) * v;
     q.normalize();
     if (q[3] < 0) q = -q;
     const double s = settings_.position_bandwidth;

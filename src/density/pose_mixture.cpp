@@ -139,7 +139,10 @@ void PoseMixture::fit(const Eigen::Ref<const PoseArray>& poses, const Eigen::Ref
 }
 
 void PoseMixture::require_fitted(const char* what) const {
-  if (!fitted()) throw std::logic_error(std::string("PoseMixture.") + what + ": the mixture is not fitted yet");
+  if (!fitted()) {
+    throw std::invalid_argument(std::string("PoseMixture.") + what +
+                                ": the mixture is not fitted yet (call fit, or make it with from_parameters)");
+  }
 }
 
 Eigen::VectorXd PoseMixture::log_density(const Eigen::Ref<const PoseArray>& poses,

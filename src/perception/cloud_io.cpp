@@ -1,5 +1,6 @@
 #include "graspmix/perception/cloud_io.hpp"
 
+#include <sys/stat.h>
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -7,13 +8,14 @@
 #include <cstring>
 #include <fstream>
 #include <stdexcept>
-#include <sys/stat.h>
 
 #include <pcl/PCLPointCloud2.h>
+#include <pcl/console/print.h>
 #include <pcl/exceptions.h>
 #include <pcl/io/pcd_io.h>
 #include <pcl/io/ply_io.h>
-#include <pcl/console/print.h>
+
+#include "cloud_check.hpp"
 
 namespace graspmix {
 
@@ -35,15 +37,48 @@ std::string lower_extension(const std::string& path) {
 /// Reads one scalar of a PCL field type as double.
 double read_scalar(const std::uint8_t* p, std::uint8_t datatype) {
   switch (datatype) {
-    case pcl::PCLPointField::INT8: { std::int8_t v; std::memcpy(&v, p, 1); return v; }
-    case pcl::PCLPointField::UINT8: { std::uint8_t v; std::memcpy(&v, p, 1); return v; }
-    case pcl::PCLPointField::INT16: { std::int16_t v; std::memcpy(&v, p, 2); return v; }
-    case pcl::PCLPointField::UINT16: { std::uint16_t v; std::memcpy(&v, p, 2); return v; }
-    case pcl::PCLPointField::INT32: { std::int32_t v; std::memcpy(&v, p, 4); return v; }
-    case pcl::PCLPointField::UINT32: { std::uint32_t v; std::memcpy(&v, p, 4); return v; }
-    case pcl::PCLPointField::FLOAT32: { float v; std::memcpy(&v, p, 4); return v; }
-    case pcl::PCLPointField::FLOAT64: { double v; std::memcpy(&v, p, 8); return v; }
-    default: return std::numeric_limits<double>::quiet_NaN();
+    case pcl::PCLPointField::INT8: {
+      std::int8_t v;
+      std::memcpy(&v, p, 1);
+      return v;
+    }
+    case pcl::PCLPointField::UINT8: {
+      std::uint8_t v;
+      std::memcpy(&v, p, 1);
+      return v;
+    }
+    case pcl::PCLPointField::INT16: {
+      std::int16_t v;
+      std::memcpy(&v, p, 2);
+      return v;
+    }
+    case pcl::PCLPointField::UINT16: {
+      std::uint16_t v;
+      std::memcpy(&v, p, 2);
+      return v;
+    }
+    case pcl::PCLPointField::INT32: {
+      std::int32_t v;
+      std::memcpy(&v, p, 4);
+      return v;
+    }
+    case pcl::PCLPointField::UINT32: {
+      std::uint32_t v;
+      std::memcpy(&v, p, 4);
+      return v;
+    }
+    case pcl::PCLPointField::FLOAT32: {
+      float v;
+      std::memcpy(&v, p, 4);
+      return v;
+    }
+    case pcl::PCLPointField::FLOAT64: {
+      double v;
+      std::memcpy(&v, p, 8);
+      return v;
+    }
+    default:
+      return std::numeric_limits<double>::quiet_NaN();
   }
 }
 
@@ -58,7 +93,8 @@ const pcl::PCLPointField* find_field(const pcl::PCLPointCloud2& c, std::initiali
 /// silently skip a float64 x, which real PLY files have).
 Eigen::VectorXd column(const pcl::PCLPointCloud2& c, const pcl::PCLPointField& f, std::size_t n) {
   Eigen::VectorXd out(static_cast<Eigen::Index>(n));
-  for (std::size_t i = 0; i < n; ++i) out[static_cast<Eigen::Index>(i)] = read_scalar(&c.data[i * c.point_step + f.offset], f.datatype);
+  for (std::size_t i = 0; i < n; ++i)
+    out[static_cast<Eigen::Index>(i)] = read_scalar(&c.data[i * c.point_step + f.offset], f.datatype);
   return out;
 }
 
@@ -72,13 +108,14 @@ CloudData from_pcl(const pcl::PCLPointCloud2& c, const Eigen::Vector4f& origin, 
   for (const auto& f : c.fields) out.fields.push_back(f.name);
   const std::size_t n = static_cast<std::size_t>(c.width) * c.height;
   if (n == 0) fail(path, "the cloud is empty (0 points)");
-  if (c.data.size() < n * c.point_step) fail(path, "the data section is shorter than the header declares (truncated file)");
+  if (c.data.size() < n * c.point_step)
+    fail(path, "the data section is shorter than the header declares (truncated file)");
   const auto* fx = find_field(c, {"x"});
   const auto* fy = find_field(c, {"y"});
   const auto* fz = find_field(c, {"z"});
   if (!fx || !fy || !fz) {
     std::string names;
-    for (const auto& f : out.fields) names += (names.empty() ? "" : " ") + f;
+    for (const auto& f : out.fields) names += (names.empty() ? "" : " ") + cloud_check::printable(f);
     fail(path, "has no x, y, z fields (fields: " + (names.empty() ? std::string("none") : names) + ")");
   }
   RowMatrixXd P(static_cast<Eigen::Index>(n), 3);
@@ -122,66 +159,29 @@ class QuietPcl {
 }  // namespace
 
 CloudData load_pcd(const std::string& path) {
+  // Header and body are checked against each other and the file's size before PCL reads (and
+  // allocates) anything: PCL trusts the header (cloud_check.hpp).
+  const cloud_check::PcdHeader header = cloud_check::check_pcd(path);
+  const char* encodings[] = {"ascii", "binary", "binary_compressed"};
+  const std::string encoding = encodings[header.data];
   const QuietPcl quiet;
   pcl::PCDReader reader;
   pcl::PCLPointCloud2 cloud;
   Eigen::Vector4f origin;
   Eigen::Quaternionf orientation;
-  int version = 0, data_type = 0;
-  unsigned int data_idx = 0;
-  try {
-    if (reader.readHeader(path, cloud, origin, orientation, version, data_type, data_idx) < 0) {
-      fail(path, "not a valid PCD header (expected FIELDS, SIZE, TYPE, COUNT, WIDTH, HEIGHT, POINTS and DATA lines that agree)");
-    }
-  } catch (const pcl::PCLException& e) {
-    fail(path, std::string("not a valid PCD header (") + e.what() + ")");
-  }
-  const char* encodings[] = {"ascii", "binary", "binary_compressed"};
-  const std::string format = std::string("pcd ") + (data_type >= 0 && data_type <= 2 ? encodings[data_type] : "?");
-  const std::size_t declared = static_cast<std::size_t>(cloud.width) * cloud.height;
-  if (declared == 0) fail(path, "the cloud is empty (the header declares 0 points)");
-  if (data_type == 0) {
-    // PCL's ASCII reader accepts a short body with only a warning; a truncated file must not pass.
-    std::ifstream in(path);
-    std::string line;
-    std::size_t lines = 0;
-    while (std::getline(in, line) && line.rfind("DATA", 0) != 0) {
-    }
-    while (std::getline(in, line)) {
-      if (line.find_first_not_of(" \t\r") != std::string::npos) ++lines;
-    }
-    if (lines < declared) {
-      fail(path, "the data section is truncated: " + std::to_string(lines) + " of " + std::to_string(declared) +
-                     " declared points present");
-    }
-  }
-  if (data_type == 1) {
-    // PCL maps a short binary body without noticing; check the size the header promises.
-    struct stat st {};
-    ::stat(path.c_str(), &st);
-    const std::size_t need = data_idx + declared * cloud.point_step;
-    if (static_cast<std::size_t>(st.st_size) < need) {
-      fail(path, "the data section is truncated: " + std::to_string(st.st_size) + " bytes, the header needs " +
-                     std::to_string(need));
-    }
-  }
+  int version = 0;
   int rc = -1;
   try {
     rc = reader.read(path, cloud, origin, orientation, version);
   } catch (const pcl::PCLException& e) {
     fail(path, std::string("cannot read the data section (") + e.what() + ")");
   }
-  if (rc < 0) fail(path, "cannot read the data section (truncated or corrupt " + format.substr(4) + " data)");
-  return from_pcl(cloud, origin, orientation, path, format);
+  if (rc < 0) fail(path, "cannot read the data section (corrupt " + encoding + " data)");
+  return from_pcl(cloud, origin, orientation, path, "pcd " + encoding);
 }
 
 CloudData load_ply(const std::string& path) {
-  {
-    std::ifstream in(path, std::ios::binary);
-    std::string magic;
-    std::getline(in, magic);
-    if (magic.rfind("ply", 0) != 0) fail(path, "not a valid PLY header (the file does not start with 'ply')");
-  }
+  const std::uint64_t vertices = cloud_check::check_ply(path);  // before PCL allocates what the header claims
   const QuietPcl quiet;
   pcl::PLYReader reader;
   pcl::PCLPointCloud2 cloud;
@@ -194,75 +194,62 @@ CloudData load_ply(const std::string& path) {
   } catch (const pcl::PCLException& e) {
     fail(path, std::string("cannot read PLY (") + e.what() + ")");
   }
-  if (rc < 0) fail(path, "cannot read PLY (a wrong header, or a data section truncated or not matching the header)");
-  const std::size_t n = static_cast<std::size_t>(cloud.width) * cloud.height;
-  if (n > 0 && cloud.data.size() < n * cloud.point_step) fail(path, "the data section is truncated");
+  if (rc < 0) fail(path, "cannot read PLY (a data section not matching the header)");
+  // A camera element's viewport re-sizes the cloud after the vertices are read; it must still hold them all.
+  const std::uint64_t n = static_cast<std::uint64_t>(cloud.width) * cloud.height;
+  if (n != vertices || cloud.data.size() < n * cloud.point_step) {
+    fail(path, "the cloud's organisation (" + std::to_string(cloud.width) + " x " + std::to_string(cloud.height) +
+                   ", from obj_info or the camera element) does not match its " + std::to_string(vertices) +
+                   " vertices");
+  }
   return from_pcl(cloud, origin, orientation, path, "ply");
 }
 
-/// The minimal .npy reader numpy's format spec needs for an (N, 3) float or int array.
+/// The minimal .npy reader numpy's format spec needs for an (N, 3) float or int array; the header is
+/// checked against the file's size before the data is allocated.
 CloudData load_npy(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  char magic[8];
-  if (!in.read(magic, 8) || std::memcmp(magic, "\x93NUMPY", 6) != 0) fail(path, "not a .npy file (bad magic)");
-  std::uint32_t header_len = 0;
-  if (magic[6] == 1) {
-    unsigned char b[2];
-    if (!in.read(reinterpret_cast<char*>(b), 2)) fail(path, "truncated .npy header");
-    header_len = b[0] | (b[1] << 8);
-  } else {
-    unsigned char b[4];
-    if (!in.read(reinterpret_cast<char*>(b), 4)) fail(path, "truncated .npy header");
-    header_len = b[0] | (b[1] << 8) | (b[2] << 16) | (static_cast<std::uint32_t>(b[3]) << 24);
-  }
-  std::string header(header_len, '\0');
-  if (!in.read(header.data(), header_len)) fail(path, "truncated .npy header");
-  auto value_of = [&](const std::string& key) {
-    const auto k = header.find("'" + key + "'");
-    if (k == std::string::npos) fail(path, "the .npy header has no '" + key + "'");
-    auto v = header.find(':', k);
-    return header.substr(v + 1);
-  };
-  std::string descr = value_of("descr");
-  descr = descr.substr(descr.find('\'') + 1);
-  descr = descr.substr(0, descr.find('\''));
-  const bool fortran = value_of("fortran_order").find("True") < value_of("fortran_order").find("False");
-  std::string shape = value_of("shape");
-  shape = shape.substr(shape.find('(') + 1, shape.find(')') - shape.find('(') - 1);
-  std::vector<long long> dims;
-  for (std::size_t pos = 0; pos < shape.size();) {
-    const auto comma = shape.find(',', pos);
-    const std::string tok = shape.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
-    if (tok.find_first_of("0123456789") != std::string::npos) dims.push_back(std::stoll(tok));
-    if (comma == std::string::npos) break;
-    pos = comma + 1;
-  }
-  if (dims.size() != 2 || dims[1] != 3) {
+  const cloud_check::NpyHeader h = cloud_check::check_npy(path);
+  if (h.shape.size() != 2 || h.shape[1] != 3) {
     std::string s;
-    for (auto d : dims) s += (s.empty() ? "" : ", ") + std::to_string(d);
-    fail(path, "expected an (N, 3) array, got shape (" + s + ")");
+    for (auto d : h.shape) s += (s.empty() ? "" : ", ") + std::to_string(d);
+    fail(path, "expected an (N, 3) array, got shape (" + s + (h.shape.size() == 1 ? "," : "") + ")");
   }
-  if (descr.size() < 3 || descr[0] == '>') fail(path, "unsupported .npy dtype '" + descr + "' (use little-endian float or int)");
-  const char kind = descr[1];
-  const int size = std::stoi(descr.substr(2));
+  const std::string& descr = h.descr;
   std::uint8_t type = 0;
-  if (kind == 'f' && size == 4) type = pcl::PCLPointField::FLOAT32;
-  if (kind == 'f' && size == 8) type = pcl::PCLPointField::FLOAT64;
-  if (kind == 'i' && size == 4) type = pcl::PCLPointField::INT32;
-  if (kind == 'i' && size == 2) type = pcl::PCLPointField::INT16;
-  if (type == 0) fail(path, "unsupported .npy dtype '" + descr + "' (use float32, float64, int16 or int32)");
-  const std::size_t n = static_cast<std::size_t>(dims[0]);
-  std::vector<std::uint8_t> data(n * 3 * size);
+  int size = 0;
+  if (descr.size() == 3 && (descr[0] == '<' || descr[0] == '=')) {
+    size = descr[2] - '0';
+    if (descr[1] == 'f' && size == 4) type = pcl::PCLPointField::FLOAT32;
+    if (descr[1] == 'f' && size == 8) type = pcl::PCLPointField::FLOAT64;
+    if (descr[1] == 'i' && size == 4) type = pcl::PCLPointField::INT32;
+    if (descr[1] == 'i' && size == 2) type = pcl::PCLPointField::INT16;
+  }
+  if (type == 0) {
+    fail(path,
+         "unsupported .npy dtype '" + descr.substr(0, 40) + "' (use little-endian float32, float64, int16 or int32)");
+  }
+  const std::uint64_t n = h.shape[0], body = h.file_size - h.data_offset, row = 3 * static_cast<std::uint64_t>(size);
+  if (n == 0) fail(path, "the cloud is empty (0 points)");
+  if (n > body / row) {
+    fail(path, "the data section is truncated: shape (" + std::to_string(n) + ", 3) of " + descr + " needs " +
+                   std::to_string(row) + " bytes a row, only " + std::to_string(body) + " bytes follow the header");
+  }
+  if (body != n * row) {
+    fail(path, "the file has " + std::to_string(body - n * row) + " bytes after the (" + std::to_string(n) +
+                   ", 3) array its header declares");
+  }
+  std::vector<std::uint8_t> data(n * row);
+  std::ifstream in(path, std::ios::binary);
+  in.seekg(static_cast<std::streamoff>(h.data_offset));
   if (!in.read(reinterpret_cast<char*>(data.data()), static_cast<std::streamsize>(data.size()))) {
-    fail(path, "the data section is truncated (shape (" + std::to_string(n) + ", 3) declared)");
+    fail(path, "cannot read the data section");
   }
   RowMatrixXd P(static_cast<Eigen::Index>(n), 3);
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = 0; j < 3; ++j) {
-      const std::size_t k = fortran ? j * n + i : i * 3 + j;
+      const std::size_t k = h.fortran ? j * n + i : i * 3 + j;
       P(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = read_scalar(&data[k * size], type);
     }
-  if (n == 0) fail(path, "the cloud is empty (0 points)");
   CloudData out = cloud_from_arrays(P, {}, path);
   out.format = "npy";
   out.fields = {"x", "y", "z"};
@@ -311,7 +298,7 @@ CloudData cloud_from_arrays(const RowMatrixXd& points, const RowMatrixXd& normal
 }
 
 CloudData load_cloud(const std::string& path) {
-  struct stat st {};
+  struct stat st{};
   if (::stat(path.c_str(), &st) != 0) fail(path, "no such file");
   if (!S_ISREG(st.st_mode)) fail(path, "not a regular file");
   if (st.st_size == 0) fail(path, "the file is empty (0 bytes)");

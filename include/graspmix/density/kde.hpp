@@ -6,13 +6,18 @@
 
 namespace graspmix {
 
+/// The smallest orientation bandwidth a PoseKDE accepts (rad). Its concentration kappa = 4 / bw^2 is then
+/// 4e12: rounding of a quaternion's dot product (~1e-16) already moves kappa (1 - t) by ~4e-4, and narrower
+/// kernels would score and sample rounding noise rather than rotations.
+inline constexpr double kMinOrientationBandwidth = 1e-6;
+
 struct KdeSettings {
-  double position_bandwidth = 0.005;     ///< std of the position kernel (m)
-  double orientation_bandwidth = 0.15;   ///< approximate std of the rotation angle of the kernel (rad)
+  double position_bandwidth = 0.005;    ///< std of the position kernel (m)
+  double orientation_bandwidth = 0.15;  ///< approximate std of the rotation angle of the kernel (rad),
+                                        ///< at least kMinOrientationBandwidth
   /// std per feature (same units as the features); one value = all features. 0.005 suits PCL's
   /// curvatures k1, k2 at the paper's 1 cm radius (they range over about 0-0.1).
   Eigen::VectorXd feature_bandwidth = Eigen::VectorXd::Constant(1, 0.005);
-                                         ///< features; empty = 0.01 for every feature
 };
 
 class PoseKDE : public PoseDensity {

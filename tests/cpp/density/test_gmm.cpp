@@ -3,8 +3,8 @@
 #include <cmath>
 #include <random>
 
-#include <Eigen/LU>
 #include <gtest/gtest.h>
+#include <Eigen/LU>
 
 #include "graspmix/density/gmm.hpp"
 
@@ -188,4 +188,28 @@ TEST(Gmm, DegenerateDataFailsClearly) {
   s.reg_covar = 0.0;
   GaussianMixture h(s);
   EXPECT_THROW(h.fit(dup), std::invalid_argument);
+}
+
+TEST(Gmm, UnfittedMixtureAndFeaturesOfZeroDensityFailClearly) {
+  const GaussianMixture g(GmmSettings{});
+  const RowMatrixXd X = RowMatrixXd::Zero(3, 2);
+  EXPECT_THROW(g.score_samples(X), std::invalid_argument);
+  EXPECT_THROW(g.sample(3, std::uint64_t{0}), std::invalid_argument);
+  EXPECT_THROW(g.marginal({0}), std::invalid_argument);
+  try {
+    g.predict_proba(X);
+    ADD_FAILURE() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("GaussianMixture.predict_proba: the mixture is not fitted"), std::string::npos)
+        << e.what();
+  }
+  // Features so far away that every component's weight underflows: an error, not a draw from the last component.
+  RowMatrixXd mu(2, 2);
+  mu << 0, 0, 1, 1;
+  const GaussianMixture joint = GaussianMixture::from_parameters(
+      Eigen::Vector2d(0.5, 0.5), mu, {Eigen::Matrix2d::Identity(), Eigen::Matrix2d::Identity()});
+  const ConditionalGaussianMixture c(joint, 1);
+  std::mt19937_64 rng(0);
+  EXPECT_NO_THROW(c.sample(RowMatrixXd::Constant(1, 1, 0.5), rng));
+  EXPECT_THROW(c.sample(RowMatrixXd::Constant(1, 1, 1e200), rng), std::invalid_argument);
 }

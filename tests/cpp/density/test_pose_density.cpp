@@ -1,6 +1,8 @@
 // Both PoseDensity implementations (PoseMixture, PoseKDE) against the same properties: normalisation
 // on R^3 x SO(3), q/-q invariance, conditioning on features, reproducible sampling.
 #include <cmath>
+#include <functional>
+#include <limits>
 #include <memory>
 #include <random>
 
@@ -152,7 +154,20 @@ TYPED_TEST(PoseDensityTest, BadInputThrows) {
   RowMatrixXd feats;
   make_data(20, poses, feats, 8);
   auto d = make_density<TypeParam>();
-  EXPECT_THROW(d->log_density(poses, feats), std::logic_error);  // not fitted
+  // Not fitted: a clear invalid_argument (ValueError in Python) from every evaluation and from sampling.
+  for (const auto& call :
+       std::vector<std::function<void()>>{[&] { d->log_density(poses, feats); }, [&] { d->feature_log_density(feats); },
+                                          [&] {
+                                            std::mt19937_64 rng(0);
+                                            d->sample(feats, rng);
+                                          }}) {
+    try {
+      call();
+      ADD_FAILURE() << d->kind() << ": no error from an unfitted density";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("not fitted"), std::string::npos) << e.what();
+    }
+  }
   EXPECT_THROW(d->fit(poses, RowMatrixXd::Zero(19, 1), {}), std::invalid_argument);
   Eigen::VectorXd w = Eigen::VectorXd::Ones(20);
   w[4] = 0.0;
@@ -202,4 +217,32 @@ TEST(PoseMixture, ChartIsCentredOnTheDataSoRotationsNearPiStayTogether) {
   // One component suffices: the fitted rotation spread is the data's (0.1 rad -> 0.05 in half-angle).
   EXPECT_NEAR(std::sqrt(m.joint().covariances()[0](5, 5)), 0.05, 0.01);
   EXPECT_NEAR(std::abs(m.reference().z()), 1.0, 1e-2);
+}
+
+TEST(PoseKde, DegenerateOrientationBandwidthIsRefusedAndSmallOnesSampleTheRightSpread) {
+  for (double bw :
+       {0.0, -0.1, std::nan(""), std::numeric_limits<double>::infinity(), 1e-7, 0.99 * kMinOrientationBandwidth}) {
+    KdeSettings s;
+    s.orientation_bandwidth = bw;
+    EXPECT_THROW(PoseKDE{s}, std::invalid_argument) << bw;
+  }
+  // Down to the bound the sampler terminates (1e-4 used to loop forever on a NaN acceptance test) and
+  // draws rotation vectors with std bw per axis: for kappa = 4 / bw^2 the kernel is exp(-|w|^2 / (2 bw^2))
+  // to second order, so the rms rotation angle is sqrt(3) bw.
+  PoseArray one(1, 7);
+  one << 0, 0, 0, 0, 0, 0, 1;
+  for (double bw : {kMinOrientationBandwidth, 1e-4, 1e-2}) {
+    KdeSettings s;
+    s.orientation_bandwidth = bw;
+    PoseKDE d(s);
+    d.fit(one, RowMatrixXd(1, 0), {});
+    std::mt19937_64 rng(3);
+    const PoseArray draws = d.sample(RowMatrixXd(4000, 0), rng);
+    double sq = 0;
+    for (Eigen::Index i = 0; i < draws.rows(); ++i) {
+      const double angle = 2.0 * std::acos(std::min(1.0, std::abs(draws(i, 6))));
+      sq += angle * angle;
+    }
+    EXPECT_NEAR(std::sqrt(sq / draws.rows()) / (std::sqrt(3.0) * bw), 1.0, 0.05) << bw;
+  }
 }

@@ -16,8 +16,9 @@ namespace {
 struct TempDir {
   fs::path dir;
   TempDir() {
-    dir = fs::temp_directory_path() / ("graspmix_io_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-                                       "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir = fs::temp_directory_path() /
+          ("graspmix_io_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
+           ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::create_directories(dir);
   }
   ~TempDir() { fs::remove_all(dir); }
@@ -51,8 +52,11 @@ TEST(CloudIo, RoundTripEveryEncoding) {
   const Vec3Array N = random_points(500, 2).rowwise().normalized();
   Eigen::Matrix<double, 7, 1> vp;
   vp << 0.1, 0.2, 0.3, 0, 0, std::sin(0.25), std::cos(0.25);
-  for (const auto& [name, enc] : std::vector<std::pair<std::string, std::string>>{
-           {"a.pcd", "ascii"}, {"b.pcd", "binary"}, {"c.pcd", "binary_compressed"}, {"d.ply", "ascii"}, {"e.ply", "binary"}}) {
+  for (const auto& [name, enc] : std::vector<std::pair<std::string, std::string>>{{"a.pcd", "ascii"},
+                                                                                  {"b.pcd", "binary"},
+                                                                                  {"c.pcd", "binary_compressed"},
+                                                                                  {"d.ply", "ascii"},
+                                                                                  {"e.ply", "binary"}}) {
     save_cloud(tmp / name, P, N, enc, vp);
     const CloudData c = load_cloud(tmp / name);
     ASSERT_EQ(c.points.rows(), 500) << name;
@@ -121,27 +125,174 @@ TEST(CloudIo, BrokenFilesNameTheFileAndTheProblem) {
   e = error_of(tmp / "trunc_a.pcd");
   EXPECT_NE(e.find("truncated"), std::string::npos) << e;
 
-  write(tmp / "header.pcd", "VERSION 0.7\nFIELDS x y z\nSIZE 4 4\nTYPE F F F\nWIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA ascii\n1 2 3\n");
+  write(tmp / "header.pcd",
+        "VERSION 0.7\nFIELDS x y z\nSIZE 4 4\nTYPE F F F\nWIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA ascii\n1 2 3\n");
   e = error_of(tmp / "header.pcd");
   EXPECT_NE(e.find("header.pcd"), std::string::npos) << e;
   EXPECT_NE(e.find("header"), std::string::npos) << e;
 
-  write(tmp / "empty.pcd", "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 0\nHEIGHT 1\nPOINTS 0\nDATA ascii\n");
+  write(tmp / "empty.pcd",
+        "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 0\nHEIGHT 1\nPOINTS 0\nDATA ascii\n");
   e = error_of(tmp / "empty.pcd");
   EXPECT_NE(e.find("empty"), std::string::npos) << e;
 
-  write(tmp / "nan.pcd", "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 2\nHEIGHT 1\nPOINTS 2\nDATA ascii\nnan nan nan\nnan 0 0\n");
+  write(tmp / "nan.pcd",
+        "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 2\nHEIGHT 1\nPOINTS 2\nDATA ascii\nnan "
+        "nan nan\nnan 0 0\n");
   e = error_of(tmp / "nan.pcd");
   EXPECT_NE(e.find("NaN"), std::string::npos) << e;
 
   write(tmp / "zero.pcd", "");
   EXPECT_NE(error_of(tmp / "zero.pcd").find("empty"), std::string::npos);
   EXPECT_NE(error_of(tmp / "missing.pcd").find("no such file"), std::string::npos);
-  write(tmp / "noxyz.pcd", "VERSION 0.7\nFIELDS a b c\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA ascii\n1 2 3\n");
+  write(tmp / "noxyz.pcd",
+        "VERSION 0.7\nFIELDS a b c\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA ascii\n1 2 "
+        "3\n");
   EXPECT_NE(error_of(tmp / "noxyz.pcd").find("no x, y, z"), std::string::npos);
   write(tmp / "bad.ply", "plx\nformat ascii 1.0\n");
   EXPECT_NE(error_of(tmp / "bad.ply").find("PLY header"), std::string::npos);
   EXPECT_THROW(save_cloud(tmp / "x.pcd", P, {}, "zip"), std::invalid_argument);
   EXPECT_THROW(save_cloud(tmp / "x.txt", P), std::invalid_argument);
   EXPECT_THROW(save_cloud(tmp / "x.pcd", Vec3Array(0, 3)), std::invalid_argument);
+}
+
+// ---- every header is checked against the file before PCL reads (or allocates) a body ----------
+
+namespace {
+
+std::string pcd_header(const std::string& data, const std::string& points = "4", const std::string& fields = "x y z",
+                       const std::string& size = "4 4 4", const std::string& type = "F F F") {
+  return "# .PCD v0.7\nVERSION 0.7\nFIELDS " + fields + "\nSIZE " + size + "\nTYPE " + type + "\nWIDTH " + points +
+         "\nHEIGHT 1\nPOINTS " + points + "\nDATA " + data + "\n";
+}
+
+std::string le32(std::uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); }
+
+/// The error of a file holding `text`, which must name the file and contain every one of `words`.
+void expect_error(const TempDir& tmp, const std::string& name, const std::string& text,
+                  std::initializer_list<const char*> words) {
+  write(tmp / name, text);
+  const std::string e = error_of(tmp / name);
+  EXPECT_NE(e.find(name), std::string::npos) << name << ": " << e;
+  for (const char* w : words) EXPECT_NE(e.find(w), std::string::npos) << name << ": wanted '" << w << "' in: " << e;
+}
+
+}  // namespace
+
+TEST(CloudIo, PcdHeadersAreCheckedBeforeAnyAllocation) {
+  TempDir tmp;
+  const std::string body(48, '\0');
+  // 4294967295 points of 12 bytes in a 200-byte file: an error, not a 48 GB allocation.
+  expect_error(tmp, "huge.pcd", pcd_header("binary", "4294967295") + body, {"truncated", "4294967295 points"});
+  expect_error(tmp, "neg.pcd", pcd_header("binary", "-1") + body, {"header", "WIDTH", "non-negative"});
+  expect_error(tmp, "wh.pcd", "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 3\nHEIGHT 2\nPOINTS 4\nDATA binary\n" + body,
+               {"WIDTH 3 x HEIGHT 2 != POINTS 4"});
+  expect_error(tmp, "size.pcd", pcd_header("binary", "4", "x y z", "4 4") + body, {"header", "SIZE has 2 entries"});
+  expect_error(tmp, "type.pcd", pcd_header("binary", "4", "x y z", "4 4 4", "F F Q") + body, {"TYPE", "'Q'"});
+  expect_error(tmp, "fsize.pcd", pcd_header("binary", "4", "x y z", "4 4 2", "F F F") + body, {"F needs SIZE 4 or 8"});
+  expect_error(tmp, "data.pcd", pcd_header("zip") + body, {"unknown DATA 'zip'"});
+  expect_error(tmp, "magic.pcd", "ply\nformat ascii 1.0\n", {"header", "'ply' is not a PCD keyword"});
+  expect_error(tmp, "order.pcd", "FIELDS x y z\nTYPE F F F\nSIZE 4 4 4\nPOINTS 1\nDATA ascii\n1 2 3\n",
+               {"TYPE comes before SIZE"});
+  expect_error(tmp, "nodata.pcd", "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nPOINTS 1\n", {"without a DATA line"});
+  expect_error(tmp, "view.pcd",
+               "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nVIEWPOINT 0 0 nan 1 0 0 0\nPOINTS 1\nDATA ascii\n1 2 3\n",
+               {"VIEWPOINT value 'nan'"});
+  expect_error(tmp, "count.pcd", "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 0\nPOINTS 1\nDATA ascii\n1 2 3\n",
+               {"COUNT of field 'z'"});
+}
+
+TEST(CloudIo, BinaryCompressedSizesAreCheckedBeforePclMapsTheBody) {
+  TempDir tmp;
+  const std::string h = pcd_header("binary_compressed", "1000");
+  // The 100-byte file that used to segfault inside PCL: sizes claiming far more than the file holds.
+  std::string crash = h + le32(5000) + le32(12000);
+  crash += std::string(100 - std::min<std::size_t>(100, crash.size()), 'x');
+  expect_error(tmp, "short.pcd", crash, {"truncated", "5000 compressed bytes"});
+  expect_error(tmp, "nosizes.pcd", h + "ab", {"truncated", "two 4-byte sizes"});
+  expect_error(tmp, "usize.pcd", h + le32(4) + le32(999) + "abcd", {"999 uncompressed bytes", "make 12000"});
+  expect_error(tmp, "ratio.pcd", h + le32(4) + le32(12000) + "abcd", {"corrupt", "at most 88 times"});
+  // A well-sized but garbled stream fails in PCL's (bounds-checked) decompressor.
+  expect_error(tmp, "garbled.pcd", h + le32(200) + le32(12000) + std::string(200, '\xff'), {"cannot read"});
+}
+
+TEST(CloudIo, AsciiRowsAreCheckedOneByOne) {
+  TempDir tmp;
+  const std::string h = pcd_header("ascii", "2");
+  expect_error(tmp, "short.pcd", h + "1 2 3\n4 5\n", {"line 11: 2 values, the header's fields need 3"});
+  expect_error(tmp, "long.pcd", h + "1 2 3 4\n4 5 6\n", {"line 10: 4 values"});
+  expect_error(tmp, "word.pcd", h + "1 2 3\n4 five 6\n", {"line 11: value 2 'five' is not a number for field 'y'"});
+  expect_error(tmp, "blank.pcd", h + "1 2 3\n \n4 5 6\n", {"line 11: a blank data row"});
+  expect_error(tmp, "extra.pcd", h + "1 2 3\n4 5 6\n7 8 9\n", {"line 12: more data rows than the 2 points"});
+  expect_error(tmp, "cut.pcd", h + "1 2 3\n4 5", {"truncated", "2 of 3 values of point 2 of 2"});
+  expect_error(tmp, "few.pcd", h + "1 2 3\n", {"truncated: 1 of 2 declared points present"});
+  expect_error(tmp, "range.pcd", pcd_header("ascii", "1", "x y z c", "4 4 4 1", "F F F U") + "1 2 3 256\n",
+               {"'256' is not an integer in range for field 'c' (TYPE U SIZE 1)"});
+  // Valid rows load as written: padding fields, '+' signs, CRLF line ends, empty lines (PCL skips them), blank
+  // lines after the last point.
+  write(tmp / "ok.pcd",
+        "FIELDS x _ y z\r\nSIZE 4 4 4 4\r\nTYPE F F F F\r\nCOUNT 1 2 1 1\r\nPOINTS 2\r\nDATA ascii\r\n"
+        "1 9 9 2 3\r\n\n+4 9 9 -5 6e-1\r\n\r\n \n");
+  const CloudData c = load_cloud(tmp / "ok.pcd");
+  ASSERT_EQ(c.points.rows(), 2);
+  EXPECT_EQ(c.points.row(0), Eigen::RowVector3d(1, 2, 3));
+  EXPECT_NEAR(c.points(1, 2), 0.6, 1e-7);
+  EXPECT_EQ(c.points(1, 1), -5);
+}
+
+TEST(CloudIo, PlyHeadersAndBodiesAreChecked) {
+  TempDir tmp;
+  const std::string xyz = "property float x\nproperty float y\nproperty float z\n";
+  const std::string bin = "ply\nformat binary_little_endian 1.0\n";
+  expect_error(tmp, "neg.ply", bin + "element vertex -1\n" + xyz + "end_header\n",
+               {"count '-1' is not a non-negative"});
+  expect_error(tmp, "huge.ply", bin + "element vertex 4294967295\n" + xyz + "end_header\n" + std::string(24, '\0'),
+               {"truncated", "element 'vertex'"});
+  expect_error(tmp, "faces.ply",
+               bin + "element vertex 1\n" + xyz + "element face 1000\nproperty list uchar int v\n" + "end_header\n" +
+                   std::string(12, '\0') + "\x03" + std::string(12, '\0'),
+               {"truncated", "element 'face'"});
+  expect_error(tmp, "type.ply", bin + "element vertex 1\nproperty float128 x\nend_header\n", {"unknown property type"});
+  expect_error(tmp, "novertex.ply", bin + "element point 1\n" + xyz + "end_header\n" + std::string(12, '\0'),
+               {"no 'vertex' element"});
+  expect_error(tmp, "empty.ply", bin + "element vertex 0\n" + xyz + "end_header\n", {"empty"});
+  expect_error(tmp, "organised.ply",
+               bin + "obj_info num_cols 100000\nobj_info num_rows 100000\nelement vertex 1\n" + xyz + "end_header\n" +
+                   std::string(12, '\0'),
+               {"num_cols 100000 x num_rows 100000 != 1 vertices"});
+  expect_error(tmp, "noprops.ply", bin + "element vertex 1\n" + xyz + "element junk 4000000000\nend_header\n",
+               {"element 'junk' has 4000000000 rows but no properties"});
+  const std::string asc = "ply\nformat ascii 1.0\nelement vertex 2\n" + xyz + "end_header\n";
+  expect_error(tmp, "short.ply", asc + "1 2 3\n4 5\n", {"line 9: too few values", "'z' is missing"});
+  expect_error(tmp, "long.ply", asc + "1 2 3 4\n4 5 6\n", {"line 8: 4 values"});
+  expect_error(tmp, "word.ply", asc + "1 2 3\n4 x 6\n", {"line 9: value 2 'x' is not a number for property 'y'"});
+  expect_error(tmp, "few.ply", asc + "1 2 3\n", {"truncated", "1 of 2 declared rows"});
+  expect_error(tmp, "extra.ply", asc + "1 2 3\n4 5 6\n7 8 9\n", {"line 10: more rows"});
+}
+
+TEST(CloudIo, NpyHeadersAreCheckedAgainstTheFileSize) {
+  TempDir tmp;
+  const auto npy = [](const std::string& dict, const std::string& data) {
+    std::string h = "{" + dict + "}";
+    h += std::string(63 - (10 + h.size()) % 64, ' ') + "\n";
+    return std::string("\x93NUMPY\x01\x00", 8) + static_cast<char>(h.size() & 0xff) + static_cast<char>(h.size() >> 8) +
+           h + data;
+  };
+  const std::string row(24, '\0');
+  expect_error(tmp, "huge.npy", npy("'descr': '<f8', 'fortran_order': False, 'shape': (4000000000000, 3), ", row),
+               {"truncated", "(4000000000000, 3)"});
+  expect_error(tmp, "neg.npy", npy("'descr': '<f8', 'fortran_order': False, 'shape': (-1, 3), ", row),
+               {"shape entry '-1'"});
+  expect_error(tmp, "trailing.npy", npy("'descr': '<f8', 'fortran_order': False, 'shape': (1, 3), ", row + "xx"),
+               {"2 bytes after the (1, 3) array"});
+  expect_error(tmp, "dtype.npy", npy("'descr': '|b1', 'fortran_order': False, 'shape': (1, 3), ", row),
+               {"unsupported .npy dtype '|b1'"});
+  expect_error(tmp, "nodescr.npy", npy("'fortran_order': False, 'shape': (1, 3), ", row), {"no 'descr' entry"});
+  expect_error(tmp, "shape.npy", npy("'descr': '<f8', 'fortran_order': False, 'shape': (1, 3, 1), ", row),
+               {"expected an (N, 3) array, got shape (1, 3, 1)"});
+  expect_error(tmp, "hlen.npy", std::string("\x93NUMPY\x02\x00\xff\xff\xff\x7f", 12) + "{}", {"truncated .npy header"});
+  expect_error(tmp, "version.npy", std::string("\x93NUMPY\x07\x00", 8) + "xx", {"unsupported .npy format version 7"});
+  write(tmp / "ok.npy", npy("'descr': '<f8', 'fortran_order': False, 'shape': (1, 3), ",
+                            std::string("\0\0\0\0\0\0\xf0\x3f", 8) + std::string(16, '\0')));
+  EXPECT_EQ(load_cloud(tmp / "ok.npy").points.row(0), Eigen::RowVector3d(1, 0, 0));
 }

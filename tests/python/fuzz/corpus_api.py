@@ -170,13 +170,12 @@ def experiment_cases():
 
 
 def gmm_cases():
-    """graspmix.GaussianMixture is the C++ class itself: these reach the bindings (see xfail)."""
+    """graspmix.GaussianMixture is the C++ class itself: these reach the bindings."""
     return [
         api(
             "api/gmm/unfitted-score",
             "import numpy as np\ngraspmix.GaussianMixture(n_components=2).score(np.zeros((3, 2)))",
             names=("not fitted",),
-            xfail="C++: GaussianMixture's 'not fitted' is a std::logic_error, a RuntimeError in Python",
         ),
         api(
             "api/gmm/seed=1.5",

@@ -155,7 +155,9 @@ void bind_perception(py::module_& m) {
           [](FeatureSettings& s, const std::string& v) { s.orientation = normal_orientation_from_string(v); },
           "how normals are turned outward: auto | viewpoint | propagate | centroid | given")
       .field("orientation_neighbours", &FeatureSettings::orientation_neighbours, "k of the propagation graph")
-      .field("n_threads", &FeatureSettings::n_threads, "0 = OpenMP's default; results do not depend on it")
+      .field("n_threads", &FeatureSettings::n_threads, "0 = OpenMP's default, else 1..256; results do not depend on it")
+      .field("max_neighbours", &FeatureSettings::max_neighbours,
+             "a neighbourhood holding more points is refused (voxel-downsample such a dense cloud first); 0: no cap")
       .done();
 
   py::class_<SurfaceCloud>(m, "SurfaceCloud",

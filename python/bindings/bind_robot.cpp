@@ -86,8 +86,10 @@ void bind_robot(py::module_& m) {
           },
           py::arg("path"), py::arg("package_dirs") = py::none(), py::kw_only(), py::arg("settings") = py::none(),
           ("Reads a URDF. Mesh files (STL, OBJ, ... via assimp) resolve against the URDF's folder; package://\n"
-           "paths also against its parents and package_dirs. ValueError names a missing file, a URDF without\n"
-           "links, an unsupported joint or an unreadable mesh.\n" +
+           "paths also against its parents and package_dirs. ValueError names a missing file, malformed XML,\n"
+           "a URDF without links or with more than 1000, anything urdfdom complains about, and every bad number\n"
+           "or shape (non-finite, lower > upper limits, zero axis, non-positive size or mesh scale) with the\n"
+           "link or joint at fault, an unsupported joint or an unreadable mesh.\n" +
            settings_doc<HandLoadSettings>())
               .c_str())
       .def_static(

@@ -619,10 +619,11 @@ class SurfaceFeatureSettings:
       flat_curvature = 0.0001: ... and k1 >= flat_curvature (dimensionless)
       orientation = 'auto': how normals are turned outward: auto | viewpoint | propagate | centroid | given
       orientation_neighbours = 10: k of the propagation graph
-      n_threads = 0: 0 = OpenMP's default; results do not depend on it
+      n_threads = 0: 0 = OpenMP's default, else 1..256; results do not depend on it
+      max_neighbours = 5000: a neighbourhood holding more points is refused (voxel-downsample such a dense cloud first); 0: no cap
     """
     __hash__: typing.ClassVar[None] = None
-    _fields: typing.ClassVar[tuple] = ('radius', 'min_neighbours', 'min_anisotropy', 'flat_curvature', 'orientation', 'orientation_neighbours', 'n_threads')
+    _fields: typing.ClassVar[tuple] = ('radius', 'min_neighbours', 'min_anisotropy', 'flat_curvature', 'orientation', 'orientation_neighbours', 'n_threads', 'max_neighbours')
     def __copy__(self) -> SurfaceFeatureSettings:
         ...
     def __deepcopy__(self, memo: typing.Any) -> SurfaceFeatureSettings:
@@ -639,7 +640,7 @@ class SurfaceFeatureSettings:
     @typing.overload
     def __init__(self, **kwargs) -> None:
         """
-        Keyword constructor: any of the fields (radius, min_neighbours, min_anisotropy, flat_curvature, orientation, orientation_neighbours, n_threads); the others keep their defaults.
+        Keyword constructor: any of the fields (radius, min_neighbours, min_anisotropy, flat_curvature, orientation, orientation_neighbours, n_threads, max_neighbours); the others keep their defaults.
         """
     def __repr__(self) -> str:
         ...
@@ -652,6 +653,14 @@ class SurfaceFeatureSettings:
         """
     @flat_curvature.setter
     def flat_curvature(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def max_neighbours(self) -> int:
+        """
+        a neighbourhood holding more points is refused (voxel-downsample such a dense cloud first); 0: no cap
+        """
+    @max_neighbours.setter
+    def max_neighbours(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
     @property
     def min_anisotropy(self) -> float:
@@ -672,7 +681,7 @@ class SurfaceFeatureSettings:
     @property
     def n_threads(self) -> int:
         """
-        0 = OpenMP's default; results do not depend on it
+        0 = OpenMP's default, else 1..256; results do not depend on it
         """
     @n_threads.setter
     def n_threads(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -850,8 +859,10 @@ class Hand:
     def from_urdf(path: typing.Any, package_dirs: typing.Any = None, *, settings: typing.Any = None, **kwargs) -> Hand:
         """
         Reads a URDF. Mesh files (STL, OBJ, ... via assimp) resolve against the URDF's folder; package://
-        paths also against its parents and package_dirs. ValueError names a missing file, a URDF without
-        links, an unsupported joint or an unreadable mesh.
+        paths also against its parents and package_dirs. ValueError names a missing file, malformed XML,
+        a URDF without links or with more than 1000, anything urdfdom complains about, and every bad number
+        or shape (non-finite, lower > upper limits, zero axis, non-positive size or mesh scale) with the
+        link or joint at fault, an unsupported joint or an unreadable mesh.
         Settings: settings= a HandLoadSettings (None: its defaults), and/or its fields as keywords,
         which override it (an unknown keyword is a ValueError):
           package_dirs = []: extra folders searched for package://name/... meshes (each holds package folders, as in ROS_PACKAGE_PATH)
@@ -2382,7 +2393,8 @@ def compute_surface_features(points: typing.Any, radius: typing.Any = None, norm
       flat_curvature = 0.0001: ... and k1 >= flat_curvature (dimensionless)
       orientation = 'auto': how normals are turned outward: auto | viewpoint | propagate | centroid | given
       orientation_neighbours = 10: k of the propagation graph
-      n_threads = 0: 0 = OpenMP's default; results do not depend on it
+      n_threads = 0: 0 = OpenMP's default, else 1..256; results do not depend on it
+      max_neighbours = 5000: a neighbourhood holding more points is refused (voxel-downsample such a dense cloud first); 0: no cap
     """
 def contact_data(hand: Hand, link: typing.SupportsInt | typing.SupportsIndex, T_world_wrist: typing.Any, joints: typing.Any, frames: typing.Any, features: typing.Any, settings: typing.Any = None, **kwargs) -> ContactData:
     """

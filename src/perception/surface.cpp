@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -49,8 +50,8 @@ using RadiusGrid = detail::UniformGrid;
 /// the centroid) and oriented along a minimum spanning tree. The edge cost prefers neighbours with
 /// parallel normals that lie in each other's tangent planes, so the tree follows the surface and
 /// does not jump across thin walls, where neighbours sit along the normal.
-void orient_by_propagation(const RadiusGrid& grid, const std::vector<std::vector<int>>& knn, std::vector<Eigen::Vector3d>& n,
-                           const std::vector<char>& valid) {
+void orient_by_propagation(const RadiusGrid& grid, const std::vector<std::vector<int>>& knn,
+                           std::vector<Eigen::Vector3d>& n, const std::vector<char>& valid) {
   const int N = grid.size();
   std::vector<std::vector<int>> adj(static_cast<std::size_t>(N));
   for (int i = 0; i < N; ++i)
@@ -89,7 +90,8 @@ void orient_by_propagation(const RadiusGrid& grid, const std::vector<std::vector
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap;
   for (const int seed : seeds) {
     if (done[static_cast<std::size_t>(seed)]) continue;
-    if (n[static_cast<std::size_t>(seed)].dot(grid.point(seed) - centroid) < 0) n[static_cast<std::size_t>(seed)] *= -1.0;
+    if (n[static_cast<std::size_t>(seed)].dot(grid.point(seed) - centroid) < 0)
+      n[static_cast<std::size_t>(seed)] *= -1.0;
     done[static_cast<std::size_t>(seed)] = 1;
     for (const int j : adj[static_cast<std::size_t>(seed)]) heap.emplace(cost(seed, j), j, seed);
     while (!heap.empty()) {
@@ -97,7 +99,8 @@ void orient_by_propagation(const RadiusGrid& grid, const std::vector<std::vector
       heap.pop();
       if (done[static_cast<std::size_t>(i)]) continue;
       done[static_cast<std::size_t>(i)] = 1;
-      if (n[static_cast<std::size_t>(i)].dot(n[static_cast<std::size_t>(parent)]) < 0) n[static_cast<std::size_t>(i)] *= -1.0;
+      if (n[static_cast<std::size_t>(i)].dot(n[static_cast<std::size_t>(parent)]) < 0)
+        n[static_cast<std::size_t>(i)] *= -1.0;
       for (const int j : adj[static_cast<std::size_t>(i)])
         if (!done[static_cast<std::size_t>(j)]) heap.emplace(cost(i, j), j, i);
     }
@@ -111,10 +114,19 @@ NormalOrientation check_inputs(const Vec3Array& points, const FeatureSettings& s
   if (N == 0) bad("points: the cloud is empty");
   if (N >= std::numeric_limits<int>::max()) bad("points: too many points");
   for (Eigen::Index i = 0; i < N; ++i)
-    if (!points.row(i).allFinite()) bad("points: row " + std::to_string(i) + " is not finite (load_cloud drops NaN points)");
+    if (!points.row(i).allFinite())
+      bad("points: row " + std::to_string(i) + " is not finite (load_cloud drops NaN points)");
   if (!(s.radius > 0) || !std::isfinite(s.radius)) bad("radius must be > 0 (metres), got " + std::to_string(s.radius));
   if (s.min_neighbours < 3) bad("min_neighbours must be >= 3 (a plane needs 3 points)");
   if (s.orientation_neighbours < 1) bad("orientation_neighbours must be >= 1");
+  if (s.n_threads < 0 || s.n_threads > kMaxFeatureThreads) {
+    bad("n_threads must be 0 (OpenMP's default) or 1.." + std::to_string(kMaxFeatureThreads) + ", got " +
+        std::to_string(s.n_threads));
+  }
+  if (s.max_neighbours < 0 || (s.max_neighbours > 0 && s.max_neighbours < s.min_neighbours)) {
+    bad("max_neighbours must be 0 (no cap) or >= min_neighbours (" + std::to_string(s.min_neighbours) + "), got " +
+        std::to_string(s.max_neighbours));
+  }
   if (!(s.min_anisotropy >= 0) || !(s.flat_curvature >= 0)) bad("min_anisotropy and flat_curvature must be >= 0");
   const bool given = normals_in.rows() > 0;
   if (given && normals_in.rows() != N) {
@@ -128,7 +140,8 @@ NormalOrientation check_inputs(const Vec3Array& points, const FeatureSettings& s
   if (given) {
     for (Eigen::Index i = 0; i < N; ++i) {
       const Eigen::Vector3d v = normals_in.row(i).transpose();
-      if (!v.allFinite() || v.norm() < 1e-12) bad("normals: row " + std::to_string(i) + " is not a finite non-zero vector");
+      if (!v.allFinite() || v.norm() < 1e-12)
+        bad("normals: row " + std::to_string(i) + " is not a finite non-zero vector");
     }
   }
   NormalOrientation rule = s.orientation;
@@ -145,6 +158,9 @@ NormalOrientation check_inputs(const Vec3Array& points, const FeatureSettings& s
 RadiusGrid radius_grid(const Vec3Array& points, double radius) {
   const Eigen::Vector3d lo = points.colwise().minCoeff().transpose();
   const Eigen::Vector3d extent = points.colwise().maxCoeff().transpose() - lo;
+  if (extent.maxCoeff() == 0) {
+    bad("points: all " + std::to_string(points.rows()) + " points coincide (zero extent): no surface to describe");
+  }
   if ((extent / radius).maxCoeff() >= static_cast<double>(RadiusGrid::kMaxCells - 2)) {
     bad("the cloud spans more than 2^21 radii; use a larger radius or crop the cloud");
   }
@@ -157,12 +173,15 @@ RadiusGrid radius_grid(const Vec3Array& points, double radius) {
 struct Normals {
   std::vector<Eigen::Vector3d> n;
   std::vector<char> valid;
+  std::vector<char> degenerate;  ///< no normal because the neighbourhood's points coincide or lie on a line
   std::vector<std::vector<int>> knn;
 };
 
 /// PCL NormalEstimation's definition: the smallest eigenvector of the neighbourhood's covariance,
-/// in double about the query point; zero where it is undetermined.
-Eigen::Vector3d pca_normal(const RadiusGrid& grid, int i, const std::vector<int>& nn) {
+/// in double about the query point; zero where it is undetermined, including a neighbourhood whose
+/// points coincide or lie on one line (there every direction across the line would do: PCL returns
+/// an arbitrary one).
+Eigen::Vector3d pca_normal(const RadiusGrid& grid, int i, const std::vector<int>& nn, char& degenerate) {
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
   for (const int j : nn) {
@@ -173,12 +192,46 @@ Eigen::Vector3d pca_normal(const RadiusGrid& grid, int i, const std::vector<int>
   const double inv = 1.0 / static_cast<double>(nn.size());
   mean *= inv;
   C = C * inv - mean * mean.transpose();
+  // Coincident or collinear points: the covariance has rank < 2, i.e. the sum of its principal 2 x 2
+  // minors (lambda0 lambda1 + lambda0 lambda2 + lambda1 lambda2) vanishes against trace^2. Read from C
+  // itself: computeDirect's eigenvalues are not accurate enough near repeated zeros.
+  const double minors = C(0, 0) * C(1, 1) - C(0, 1) * C(0, 1) + C(0, 0) * C(2, 2) - C(0, 2) * C(0, 2) +
+                        C(1, 1) * C(2, 2) - C(1, 2) * C(1, 2);
+  const double trace = C.trace();
+  degenerate = !(minors > 1e-10 * trace * trace);
+  if (degenerate) return Eigen::Vector3d::Zero();
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
   es.computeDirect(C);
   const Eigen::Vector3d v = es.eigenvectors().col(0);
   if (!v.allFinite() || v.norm() < 0.5) return Eigen::Vector3d::Zero();
   return v.normalized();
 }
+
+/// Watches the neighbourhood sizes of a parallel stage against max_neighbours: the first one over the
+/// cap stops the stage (the remaining iterations skip), and throw_if_hit() then refuses the cloud. The
+/// message names no point, so it is the same for any thread count.
+class NeighbourCap {
+ public:
+  explicit NeighbourCap(const FeatureSettings& s) : s_(s) {}
+  /// True (and remembered) if nn is over the cap.
+  bool over(std::size_t n) {
+    if (s_.max_neighbours == 0 || n <= static_cast<std::size_t>(s_.max_neighbours)) return false;
+    hit_.store(true, std::memory_order_relaxed);
+    return true;
+  }
+  bool hit() const { return hit_.load(std::memory_order_relaxed); }
+  void throw_if_hit() const {
+    if (!hit()) return;
+    bad("a neighbourhood holds more than max_neighbours = " + std::to_string(s_.max_neighbours) +
+        " points within radius " + std::to_string(s_.radius) +
+        " m: the cloud is far denser than the radius needs (time grows with every neighbour); voxel-downsample it "
+        "first (e.g. a leaf of radius / 3), or raise max_neighbours (0: no cap)");
+  }
+
+ private:
+  const FeatureSettings& s_;
+  std::atomic<bool> hit_{false};
+};
 
 /// The k nearest of the neighbours nn (squared distances d2) of i, itself excluded, nearest first.
 void nearest(int i, const std::vector<int>& nn, const std::vector<double>& d2, int k,
@@ -200,7 +253,9 @@ Normals estimate_normals(const RadiusGrid& grid, const FeatureSettings& s, const
   Normals out;
   out.n.assign(static_cast<std::size_t>(M), Eigen::Vector3d::Zero());
   out.valid.assign(static_cast<std::size_t>(M), 1);
+  out.degenerate.assign(static_cast<std::size_t>(M), 0);
   out.knn.resize(propagate ? static_cast<std::size_t>(M) : 0);
+  NeighbourCap cap(s);
 #pragma omp parallel num_threads(n_threads)
   {
     std::vector<int> nn;
@@ -208,17 +263,19 @@ Normals estimate_normals(const RadiusGrid& grid, const FeatureSettings& s, const
     std::vector<std::pair<double, int>> near;
 #pragma omp for schedule(dynamic, 256)
     for (int i = 0; i < M; ++i) {
+      if (cap.hit()) continue;
       if (given) {
         out.n[static_cast<std::size_t>(i)] = normals_in.row(grid.row(i)).transpose().normalized();
         if (!propagate) continue;
       }
       grid.neighbours(i, r2, nn, d2);
+      if (cap.over(nn.size())) continue;
       if (!given) {
         if (nn.size() < 3) {
           out.valid[static_cast<std::size_t>(i)] = 0;
           continue;
         }
-        const Eigen::Vector3d v = pca_normal(grid, i, nn);
+        const Eigen::Vector3d v = pca_normal(grid, i, nn, out.degenerate[static_cast<std::size_t>(i)]);
         if (v.isZero(0.0)) {
           out.valid[static_cast<std::size_t>(i)] = 0;
           continue;
@@ -228,6 +285,7 @@ Normals estimate_normals(const RadiusGrid& grid, const FeatureSettings& s, const
       if (propagate) nearest(i, nn, d2, s.orientation_neighbours, near, out.knn[static_cast<std::size_t>(i)]);
     }
   }
+  cap.throw_if_hit();
   return out;
 }
 
@@ -254,26 +312,31 @@ void orient_normals(NormalOrientation rule, const RadiusGrid& grid, const Vec3Ar
 /// Principal curvatures in canonical order: neighbour counts, [pcx pcy pcz pc1 pc2] and which are finite.
 struct Curvatures {
   std::vector<int> count;
+  std::vector<char> degenerate;  ///< every neighbour coincides with the point (zero extent)
   std::vector<std::array<double, 5>> pc;
   std::vector<char> ok;
 };
 
 /// PCL's PrincipalCurvaturesEstimation has no OpenMP variant, so one estimator per thread over the shared
 /// grid; points are independent, so threads cannot change results.
-Curvatures principal_curvatures(const RadiusGrid& grid, const Normals& normals, const FeatureSettings& s, int n_threads) {
+Curvatures principal_curvatures(const RadiusGrid& grid, const Normals& normals, const FeatureSettings& s,
+                                int n_threads) {
   const int M = grid.size();
   const double r2 = s.radius * s.radius;
   pcl::PointCloud<pcl::Normal> ncloud;
   ncloud.resize(static_cast<std::size_t>(M));
   for (int i = 0; i < M; ++i) {
     const auto& v = normals.n[static_cast<std::size_t>(i)];
-    ncloud[static_cast<std::size_t>(i)] = pcl::Normal(static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z()));
+    ncloud[static_cast<std::size_t>(i)] =
+        pcl::Normal(static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z()));
   }
   const std::vector<char>& valid = normals.valid;
   Curvatures out;
   out.count.assign(static_cast<std::size_t>(M), 0);
   out.pc.resize(static_cast<std::size_t>(M));
   out.ok.assign(static_cast<std::size_t>(M), 0);
+  out.degenerate.assign(static_cast<std::size_t>(M), 0);
+  NeighbourCap cap(s);
 #pragma omp parallel num_threads(n_threads)
   {
     pcl::PrincipalCurvaturesEstimation<pcl::PointXYZ, pcl::Normal, pcl::PrincipalCurvatures> pce;
@@ -282,8 +345,14 @@ Curvatures principal_curvatures(const RadiusGrid& grid, const Normals& normals, 
     pcl::Indices nn_valid;
 #pragma omp for schedule(dynamic, 256)
     for (int i = 0; i < M; ++i) {
-      if (!valid[static_cast<std::size_t>(i)]) continue;
+      if (!valid[static_cast<std::size_t>(i)] || cap.hit()) continue;
       grid.neighbours(i, r2, nn, d2);
+      if (cap.over(nn.size())) continue;
+      // Every neighbour at the point itself (duplicates, with given normals): no surface around it.
+      if (std::all_of(d2.begin(), d2.end(), [](double d) { return d == 0; })) {
+        out.degenerate[static_cast<std::size_t>(i)] = 1;
+        continue;
+      }
       nn_valid.clear();
       for (const int j : nn)
         if (valid[static_cast<std::size_t>(j)]) nn_valid.push_back(static_cast<pcl::index_t>(j));
@@ -298,23 +367,34 @@ Curvatures principal_curvatures(const RadiusGrid& grid, const Normals& normals, 
       out.ok[static_cast<std::size_t>(i)] = std::isfinite(k1) && std::isfinite(k2);
     }
   }
+  cap.throw_if_hit();
   return out;
 }
 
 /// The canonical positions of the stable points, in input order; throws if there is none.
-std::vector<int> stable_points(const RadiusGrid& grid, const Curvatures& curv, const FeatureSettings& s) {
+std::vector<int> stable_points(const RadiusGrid& grid, const Normals& normals, const Curvatures& curv,
+                               const FeatureSettings& s) {
   const int M = grid.size();
   std::vector<int> pos(static_cast<std::size_t>(M));
   for (int i = 0; i < M; ++i) pos[static_cast<std::size_t>(grid.row(i))] = i;
   std::vector<int> keep;
   for (int r = 0; r < M; ++r)
-    if (curv.ok[static_cast<std::size_t>(pos[static_cast<std::size_t>(r)])]) keep.push_back(pos[static_cast<std::size_t>(r)]);
+    if (curv.ok[static_cast<std::size_t>(pos[static_cast<std::size_t>(r)])])
+      keep.push_back(pos[static_cast<std::size_t>(r)]);
   if (keep.empty()) {
+    int degenerate = 0;
+    for (int i = 0; i < M; ++i) {
+      degenerate += normals.degenerate[static_cast<std::size_t>(i)] || curv.degenerate[static_cast<std::size_t>(i)];
+    }
+    if (degenerate == M) {
+      bad("degenerate input: the neighbourhood of every point (" + std::to_string(M) +
+          ") has its points coinciding or on one line, so no surface is defined (duplicated points?)");
+    }
     std::vector<int> c = curv.count;
     std::nth_element(c.begin(), c.begin() + M / 2, c.end());
     bad("no point has a stable neighbourhood: " + std::to_string(s.min_neighbours) + " neighbours within radius " +
-        std::to_string(s.radius) + " m are needed, the median point has " + std::to_string(c[static_cast<std::size_t>(M / 2)]) +
-        "; use a larger radius or a denser cloud");
+        std::to_string(s.radius) + " m are needed, the median point has " +
+        std::to_string(c[static_cast<std::size_t>(M / 2)]) + "; use a larger radius or a denser cloud");
   }
   return keep;
 }
@@ -367,11 +447,16 @@ NormalOrientation normal_orientation_from_string(const std::string& name) {
 
 std::string to_string(NormalOrientation o) {
   switch (o) {
-    case NormalOrientation::Auto: return "auto";
-    case NormalOrientation::Viewpoint: return "viewpoint";
-    case NormalOrientation::Propagate: return "propagate";
-    case NormalOrientation::Centroid: return "centroid";
-    case NormalOrientation::AsGiven: return "given";
+    case NormalOrientation::Auto:
+      return "auto";
+    case NormalOrientation::Viewpoint:
+      return "viewpoint";
+    case NormalOrientation::Propagate:
+      return "propagate";
+    case NormalOrientation::Centroid:
+      return "centroid";
+    case NormalOrientation::AsGiven:
+      return "given";
   }
   return "?";
 }
@@ -428,7 +513,7 @@ SurfaceCloud compute_surface_features(const Vec3Array& points, const FeatureSett
   const Curvatures curv = principal_curvatures(grid, normals, s, n_threads);
   const double t_curv = since(t);
 
-  SurfaceCloud out = assemble(points, grid, normals, curv, stable_points(grid, curv, s), s);
+  SurfaceCloud out = assemble(points, grid, normals, curv, stable_points(grid, normals, curv, s), s);
   out.orientation = to_string(rule);
   out.seconds_normals = t_normals;
   out.seconds_orientation = t_orient;

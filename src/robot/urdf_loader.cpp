@@ -3,7 +3,6 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <functional>
 #include <limits>
 #include <map>
 #include <mutex>
@@ -11,7 +10,6 @@
 #include <sstream>
 #include <stdexcept>
 
-#include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <console_bridge/console.h>
@@ -20,8 +18,10 @@
 #include <libqhullcpp/QhullFacetList.h>
 #include <libqhullcpp/QhullVertexSet.h>
 #include <urdf_parser/urdf_parser.h>
+#include <assimp/Importer.hpp>
 
 #include "graspmix/robot/hand.hpp"
+#include "robot/urdf_text.hpp"
 
 namespace fs = std::filesystem;
 
@@ -46,10 +46,28 @@ class CapturedLog : public console_bridge::OutputHandler {
   std::string errors_;
 };
 
-Eigen::Isometry3d to_isometry(const urdf::Pose& p) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.translation() = Eigen::Vector3d(p.position.x, p.position.y, p.position.z);
+/// A number as %g, for messages.
+std::string number(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+
+/// Throws naming `where` unless v is finite.
+void require_finite(double v, const std::string& where) {
+  if (!std::isfinite(v)) throw std::invalid_argument(where + " is not finite (" + number(v) + ")");
+}
+
+/// An <origin> as a transform; `where` names its element for the error of a non-finite or too distant one.
+Eigen::Isometry3d to_isometry(const urdf::Pose& p, const std::string& where) {
+  const Eigen::Vector3d t(p.position.x, p.position.y, p.position.z);
   Eigen::Quaterniond q(p.rotation.w, p.rotation.x, p.rotation.y, p.rotation.z);
+  if (!t.allFinite() || !q.coeffs().allFinite()) throw std::invalid_argument(where + ": <origin> is not finite");
+  if (t.cwiseAbs().maxCoeff() > kMaxUrdfLength) {
+    throw std::invalid_argument(where + ": <origin> xyz is more than " + number(kMaxUrdfLength) + " m away");
+  }
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.translation() = t;
   if (q.norm() < 1e-12) q = Eigen::Quaterniond::Identity();
   T.linear() = q.normalized().toRotationMatrix();
   return T;
@@ -115,12 +133,17 @@ void convex_hull(const TriangleMesh& mesh, const std::string& what, RowMatrixXd&
 
 /// urdfdom's model of the text; its complaints end up in the exception.
 urdf::ModelInterfaceSharedPtr parse_urdf(const std::string& xml, const std::string& what) {
+  // Truncated or mismatched XML would reach urdfdom as a partial document, and deep nesting would
+  // exhaust TinyXML's recursion: both are refused before parsing.
+  detail::check_urdf_text(xml, what);
   // console_bridge's output handler is process-wide: one parse at a time.
   static std::mutex parse_mutex;
   const std::lock_guard<std::mutex> lock(parse_mutex);
   CapturedLog log;
   urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(xml);
-  if (!model) {
+  // urdfdom logs an error and goes on for a malformed link (it ignores parseLink's result): a bad
+  // <box>, scale or <inertial> then silently drops the rest of that link. Any error it logs is fatal.
+  if (!model || !log.errors().empty()) {
     throw std::invalid_argument(what + ": not a valid URDF" +
                                 (log.errors().empty() ? std::string() : " (" + log.errors() + ")"));
   }
@@ -132,6 +155,10 @@ void read_mesh(const urdf::Mesh& m, const std::string& where, const std::string&
                const HandLoadSettings& settings, CollisionShape& s) {
   s.type = ShapeType::Mesh;
   s.size = Eigen::Vector3d(m.scale.x, m.scale.y, m.scale.z);
+  if (!s.size.allFinite() || !(s.size.cwiseAbs().minCoeff() > 0)) {
+    throw std::invalid_argument(where + ": mesh scale must be finite and non-zero, got [" + number(s.size.x()) + " " +
+                                number(s.size.y()) + " " + number(s.size.z()) + "]");
+  }
   try {
     s.mesh_file = Hand::resolve_mesh_path(m.filename, base_dir, settings.package_dirs);
     if (settings.load_meshes) {
@@ -152,7 +179,7 @@ void read_mesh(const urdf::Mesh& m, const std::string& where, const std::string&
 std::optional<CollisionShape> read_collision(const urdf::Collision& col, const std::string& where,
                                              const std::string& base_dir, const HandLoadSettings& settings) {
   CollisionShape s;
-  s.T_link_shape = to_isometry(col.origin);
+  s.T_link_shape = to_isometry(col.origin, where);
   switch (col.geometry->type) {
     case urdf::Geometry::BOX: {
       const auto& b = static_cast<const urdf::Box&>(*col.geometry);
@@ -178,9 +205,18 @@ std::optional<CollisionShape> read_collision(const urdf::Collision& col, const s
     default:
       return std::nullopt;
   }
-  for (int k = 0; k < 3; ++k) {
-    if (!std::isfinite(s.size[k]) || (s.type != ShapeType::Mesh && s.size[k] < 0)) {
-      throw std::invalid_argument(where + ": collision geometry with a negative or non-finite size");
+  if (s.type != ShapeType::Mesh) {
+    const int n = s.type == ShapeType::Box ? 3 : s.type == ShapeType::Cylinder ? 2 : 1;
+    const char* kind = s.type == ShapeType::Box        ? "box size"
+                       : s.type == ShapeType::Cylinder ? "cylinder radius and length"
+                                                       : "sphere radius";
+    for (int k = 0; k < n; ++k) {
+      if (!(s.size[k] > 0) || !(s.size[k] <= kMaxUrdfLength)) {
+        std::string got;
+        for (int a = 0; a < n; ++a) got += (a ? " " : "") + number(s.size[a]);
+        throw std::invalid_argument(where + ": " + kind + " must be positive, finite and at most " +
+                                    number(kMaxUrdfLength) + " m, got [" + got + "]");
+      }
     }
   }
   return s;
@@ -194,13 +230,20 @@ LinkInfo read_link(const urdf::Link& link, int parent_joint, const std::string& 
   if (link.inertial) {
     const auto& in = *link.inertial;
     info.has_inertial = true;
+    const std::string where = what + ": link '" + link.name + "' <inertial>";
     info.mass = in.mass;
-    info.T_link_inertial = to_isometry(in.origin);
+    require_finite(in.mass, where + " mass");
+    if (in.mass < 0) throw std::invalid_argument(where + ": negative mass " + number(in.mass));
+    info.T_link_inertial = to_isometry(in.origin, where);
     info.inertia << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
+    if (!info.inertia.allFinite()) throw std::invalid_argument(where + ": the inertia is not finite");
   }
-  for (const auto& col : link.collision_array) {
+  for (size_t c = 0; c < link.collision_array.size(); ++c) {
+    const auto& col = link.collision_array[c];
     if (!col || !col->geometry) continue;
-    std::optional<CollisionShape> s = read_collision(*col, what + ": link '" + link.name + "'", base_dir, settings);
+    const std::string where = what + ": link '" + link.name + "' <collision> " + std::to_string(c + 1) + " of " +
+                              std::to_string(link.collision_array.size());
+    std::optional<CollisionShape> s = read_collision(*col, where, base_dir, settings);
     if (s) info.collisions.push_back(std::move(*s));
   }
   return info;
@@ -210,7 +253,8 @@ JointInfo read_joint(const urdf::Joint& j, int parent_link, const std::string& w
   JointInfo ji;
   ji.name = j.name;
   ji.parent_link = parent_link;
-  ji.T_parent_joint = to_isometry(j.parent_to_joint_origin_transform);
+  const std::string where = what + ": joint '" + j.name + "'";
+  ji.T_parent_joint = to_isometry(j.parent_to_joint_origin_transform, where);
   switch (j.type) {
     case urdf::Joint::FIXED:
       ji.type = JointType::Fixed;
@@ -230,7 +274,8 @@ JointInfo read_joint(const urdf::Joint& j, int parent_link, const std::string& w
   }
   if (ji.type == JointType::Fixed) return ji;
   const Eigen::Vector3d axis(j.axis.x, j.axis.y, j.axis.z);
-  if (!(axis.norm() > 1e-12)) throw std::invalid_argument(what + ": joint '" + j.name + "' has a zero axis");
+  if (!axis.allFinite()) throw std::invalid_argument(where + ": <axis> is not finite");
+  if (!(axis.norm() > 1e-12)) throw std::invalid_argument(where + " has a zero axis");
   ji.axis = axis.normalized();
   if (ji.type == JointType::Continuous || !j.limits) {
     ji.lower = -std::numeric_limits<double>::infinity();
@@ -238,11 +283,19 @@ JointInfo read_joint(const urdf::Joint& j, int parent_link, const std::string& w
   } else {
     ji.lower = j.limits->lower;
     ji.upper = j.limits->upper;
+    require_finite(ji.lower, where + ": <limit> lower");
+    require_finite(ji.upper, where + ": <limit> upper");
+    // pybullet reads lower > upper as "no limit"; here it is a mistake (a joint without limits is continuous).
+    if (ji.lower > ji.upper) {
+      throw std::invalid_argument(where + ": <limit> lower " + number(ji.lower) + " > upper " + number(ji.upper));
+    }
   }
   if (j.mimic) {
     ji.mimic = true;
     ji.multiplier = j.mimic->multiplier;
     ji.offset = j.mimic->offset;
+    require_finite(ji.multiplier, where + ": <mimic> multiplier");
+    require_finite(ji.offset, where + ": <mimic> offset");
   }
   return ji;
 }
@@ -274,6 +327,10 @@ void resolve_mimic(JointInfo& j, const std::vector<JointInfo>& joints, const std
     off += mult * mj->mimic->offset;
     mult *= mj->mimic->multiplier;
     master = mj->mimic->joint_name;
+  }
+  if (!std::isfinite(mult) || !std::isfinite(off)) {
+    throw std::invalid_argument(what + ": joint '" + j.name +
+                                "': its chain of mimics multiplies to a non-finite value");
   }
   j.multiplier = mult;
   j.offset = off;
@@ -319,9 +376,8 @@ std::string Hand::resolve_mesh_path(const std::string& filename, const std::stri
 TriangleMesh Hand::load_mesh(const std::string& path, const Eigen::Vector3d& scale) {
   Assimp::Importer importer;
   // Pre-transforming flattens any node hierarchy (e.g. OBJ groups) into the file's frame.
-  const aiScene* scene = importer.ReadFile(
-      path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices |
-                aiProcess_SortByPType);
+  const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                                                     aiProcess_PreTransformVertices | aiProcess_SortByPType);
   if (!scene) throw std::invalid_argument("mesh '" + path + "': " + importer.GetErrorString());
   std::vector<Eigen::Vector3d> verts;
   std::vector<Eigen::Vector3i> tris;
@@ -340,6 +396,12 @@ TriangleMesh Hand::load_mesh(const std::string& path, const Eigen::Vector3d& sca
     }
   }
   if (tris.empty()) throw std::invalid_argument("mesh '" + path + "': no triangles");
+  for (const Eigen::Vector3d& v : verts) {
+    if (!v.allFinite() || v.cwiseAbs().maxCoeff() > kMaxUrdfLength) {
+      throw std::invalid_argument("mesh '" + path + "': a vertex (scaled) is not finite or more than " +
+                                  number(kMaxUrdfLength) + " m from the origin");
+    }
+  }
   TriangleMesh out;
   out.vertices.resize(static_cast<Eigen::Index>(verts.size()), 3);
   for (size_t i = 0; i < verts.size(); ++i) out.vertices.row(static_cast<Eigen::Index>(i)) = verts[i].transpose();
@@ -370,23 +432,35 @@ Hand Hand::from_urdf_string(const std::string& xml, const std::string& base_dir,
   hand.name_ = model->getName();
   hand.source_ = source;
   // Depth-first from the root so that parents come before children; urdfdom keeps children sorted
-  // by joint name, which makes the order deterministic.
-  std::function<void(const urdf::LinkConstSharedPtr&, int)> visit = [&](const urdf::LinkConstSharedPtr& link,
-                                                                       int parent_joint) {
+  // by joint name, which makes the order deterministic. An explicit stack, not recursion: the depth
+  // of the tree is the user's.
+  struct Frame {
+    urdf::LinkConstSharedPtr link;
+    int index;          // into links_
+    size_t next_child;  // into link->child_links
+  };
+  auto enter = [&](const urdf::LinkConstSharedPtr& link, int parent_joint) {
     const int li = static_cast<int>(hand.links_.size());
     hand.links_.push_back(read_link(*link, parent_joint, what, base_dir, settings));
     hand.link_names_.push_back(link->name);
     hand.link_index_[link->name] = li;
-    for (const auto& child : link->child_links) {
-      JointInfo ji = read_joint(*child->parent_joint, li, what);
-      const int ji_index = static_cast<int>(hand.joints_.size());
-      ji.child_link = static_cast<int>(hand.links_.size());
-      hand.joint_index_[ji.name] = ji_index;
-      hand.joints_.push_back(std::move(ji));
-      visit(child, ji_index);
-    }
+    return Frame{link, li, 0};
   };
-  visit(model->getRoot(), -1);
+  std::vector<Frame> stack{enter(model->getRoot(), -1)};
+  while (!stack.empty()) {
+    Frame& top = stack.back();
+    if (top.next_child == top.link->child_links.size()) {
+      stack.pop_back();
+      continue;
+    }
+    const urdf::LinkConstSharedPtr child = top.link->child_links[top.next_child++];
+    JointInfo ji = read_joint(*child->parent_joint, top.index, what);
+    const int ji_index = static_cast<int>(hand.joints_.size());
+    ji.child_link = static_cast<int>(hand.links_.size());
+    hand.joint_index_[ji.name] = ji_index;
+    hand.joints_.push_back(std::move(ji));
+    stack.push_back(enter(child, ji_index));  // `top` is not used after this
+  }
 
   // Independent joints get a degree of freedom; mimics are resolved to one (chains followed).
   for (size_t i = 0; i < hand.joints_.size(); ++i) {

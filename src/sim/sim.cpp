@@ -5,9 +5,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <memory>
+#include <sstream>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <BulletDynamics/Featherstone/btMultiBodyJointLimitConstraint.h>
@@ -21,30 +24,65 @@ namespace {
 
 using namespace sim_detail;
 
+std::string number(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+
+[[noreturn]] void bad_setting(const char* name, const std::string& rule, double v) {
+  throw std::invalid_argument(std::string("SimSettings.") + name + " must be " + rule + ", got " + number(v));
+}
+
+/// Seconds the lift phase runs: the travel at lift_speed plus 0.1 s to settle.
+double lift_time(const SimSettings& s) { return s.lift_height / s.lift_speed + 0.1; }
+
+/// Physics steps of a phase of `seconds`, rounded up to whole steps (a double: check_settings bounds it
+/// before anything casts it to int).
+double phase_steps(double seconds, double dt) { return std::ceil(seconds / dt - 1e-9); }
+
+/// Every setting finite and in its range, and every phase within kMaxPhaseTime and kMaxPhaseSteps, so
+/// that its step count fits an int and a run ends in bounded time (an overflowing count would skip a
+/// phase and report its outcome anyway).
 void check_settings(const SimSettings& s) {
-  auto positive = [](double v, const char* name) {
-    if (!(v > 0) || !std::isfinite(v)) throw std::invalid_argument(std::string("SimSettings.") + name + " must be positive, got " + std::to_string(v));
+  auto in_range = [](double v, const char* name, double lo, double hi, bool lo_open) {
+    if (!std::isfinite(v) || v > hi || (lo_open ? !(v > lo) : !(v >= lo))) {
+      bad_setting(name, std::string(lo_open ? "> " : ">= ") + number(lo) + " and <= " + number(hi), v);
+    }
   };
-  auto nonneg = [](double v, const char* name) {
-    if (!(v >= 0) || !std::isfinite(v)) throw std::invalid_argument(std::string("SimSettings.") + name + " must be >= 0, got " + std::to_string(v));
-  };
-  positive(s.time_step, "time_step");
-  if (s.solver_iterations < 1) throw std::invalid_argument("SimSettings.solver_iterations must be >= 1");
-  nonneg(s.hand_friction, "hand_friction");
-  nonneg(s.support_friction, "support_friction");
-  positive(s.grip_force, "grip_force");
-  positive(s.close_speed, "close_speed");
-  nonneg(s.close_overshoot, "close_overshoot");
-  nonneg(s.close_time, "close_time");
-  positive(s.position_gain, "position_gain");
-  nonneg(s.lift_height, "lift_height");
-  positive(s.lift_speed, "lift_speed");
-  positive(s.lift_force, "lift_force");
-  nonneg(s.hold_time, "hold_time");
-  nonneg(s.start_penetration, "start_penetration");
-  nonneg(s.contact_distance, "contact_distance");
-  nonneg(s.success_fraction, "success_fraction");
+  const double inf = std::numeric_limits<double>::max();
+  in_range(s.time_step, "time_step", 0, kMaxTimeStep, true);
+  if (s.solver_iterations < 1 || s.solver_iterations > kMaxSolverIterations) {
+    bad_setting("solver_iterations", "in 1.." + std::to_string(kMaxSolverIterations), s.solver_iterations);
+  }
+  in_range(s.hand_friction, "hand_friction", 0, inf, false);
+  in_range(s.support_friction, "support_friction", 0, inf, false);
+  if (!std::isfinite(s.object_friction)) bad_setting("object_friction", "finite (< 0: the URDF's)", s.object_friction);
+  if (!std::isfinite(s.object_mass)) bad_setting("object_mass", "finite (< 0: the URDF's)", s.object_mass);
+  in_range(s.grip_force, "grip_force", 0, kMaxForce, true);
+  in_range(s.close_speed, "close_speed", 0, inf, true);
+  in_range(s.close_overshoot, "close_overshoot", 0, inf, false);
+  in_range(s.position_gain, "position_gain", 0, inf, true);
+  in_range(s.lift_height, "lift_height", 0, kMaxLiftHeight, false);
+  in_range(s.lift_speed, "lift_speed", 0, inf, true);
+  in_range(s.lift_force, "lift_force", 0, kMaxForce, true);
+  in_range(s.start_penetration, "start_penetration", 0, inf, false);
+  in_range(s.contact_distance, "contact_distance", 0, inf, false);
+  in_range(s.success_fraction, "success_fraction", 0, 1, false);
   if (!s.gravity.allFinite()) throw std::invalid_argument("SimSettings.gravity must be finite");
+  // name, the setting's seconds (bounded), the phase's seconds (stepped)
+  const std::tuple<const char*, double, double> phases[] = {
+      {"close_time", s.close_time, s.close_time},
+      {"hold_time", s.hold_time, s.hold_time},
+      {"lift_height / lift_speed", lift_time(s) - 0.1, lift_time(s)}};
+  for (const auto& [name, seconds, run] : phases) {
+    in_range(seconds, name, 0, kMaxPhaseTime, false);
+    if (phase_steps(run, s.time_step) > kMaxPhaseSteps) {
+      throw std::invalid_argument(std::string("SimSettings: ") + name + " = " + number(seconds) +
+                                  " s takes more than " + std::to_string(kMaxPhaseSteps) + " steps of time_step " +
+                                  number(s.time_step) + " s; use a larger time_step or a shorter phase");
+    }
+  }
 }
 
 /// One grasp execution: the world (support, object, hand with its motors) and the protocol run in it.
@@ -82,7 +120,7 @@ class Execution {
       return finish(r, SimOutcome::NoContact, t0);
     }
     lift_target_ = s_.lift_height;
-    steps(r, s_.lift_height / s_.lift_speed + 0.1);
+    steps(r, lift_time(s_));
     steps(r, s_.hold_time);
     r.contact_count = scan_contacts(s_.contact_distance, nullptr);
     r.lift_height = object_body_->getBasePos().z() - z0;
@@ -123,8 +161,8 @@ class Execution {
                                  : (object_.lateral_friction() >= 0 ? object_.lateral_friction() : 0.5);
     btCompoundShape* oshape = link_shape(w_, olink, olink.T_link_inertial);
     // pybullet scales the inertia computed from the shape by <contact><inertia_scaling> (random_urdfs use 3).
-    w_.bodies.push_back(std::make_unique<btMultiBody>(0, omass, shape_inertia(oshape, omass) * object_.inertia_scaling(),
-                                                      false, false));
+    w_.bodies.push_back(std::make_unique<btMultiBody>(
+        0, omass, shape_inertia(oshape, omass) * object_.inertia_scaling(), false, false));
     object_body_ = w_.bodies.back().get();
     object_body_->setBaseWorldTransform(bt(T_world_object * olink.T_link_inertial));
     object_body_->finalizeMultiDof();
@@ -160,7 +198,8 @@ class Execution {
     hand_body_->finalizeMultiDof();
     w_.world->addMultiBody(hand_body_);
     for (int i = 0; i < L; ++i) {
-      if (shapes_[static_cast<size_t>(i)]) add_collider(w_, hand_body_, i, shapes_[static_cast<size_t>(i)], s_.hand_friction);
+      if (shapes_[static_cast<size_t>(i)])
+        add_collider(w_, hand_body_, i, shapes_[static_cast<size_t>(i)], s_.hand_friction);
     }
     hand_body_->setJointPos(0, 0.0);
     for (int i = 1; i < L; ++i) {
@@ -183,13 +222,13 @@ class Execution {
         hand_body_->setupFixed(i, m, inertia, parent, rot, offA.getOrigin(), -offB.getOrigin(), true);
         break;
       case JointType::Prismatic:
-        hand_body_->setupPrismatic(i, m, inertia, parent, rot, quatRotate(offB.getRotation(), bt(axis)), offA.getOrigin(),
-                                   -offB.getOrigin(), true);
+        hand_body_->setupPrismatic(i, m, inertia, parent, rot, quatRotate(offB.getRotation(), bt(axis)),
+                                   offA.getOrigin(), -offB.getOrigin(), true);
         break;
       case JointType::Revolute:
       case JointType::Continuous:
-        hand_body_->setupRevolute(i, m, inertia, parent, rot, quatRotate(offB.getRotation(), bt(axis)), offA.getOrigin(),
-                                  -offB.getOrigin(), true);
+        hand_body_->setupRevolute(i, m, inertia, parent, rot, quatRotate(offB.getRotation(), bt(axis)),
+                                  offA.getOrigin(), -offB.getOrigin(), true);
         break;
     }
   }
@@ -250,7 +289,7 @@ class Execution {
 
   /// Steps for `seconds` (rounded up to whole steps), the motors driving towards their targets.
   void steps(SimResult& r, double seconds) {
-    for (int k = 0, n = static_cast<int>(std::ceil(seconds / dt_ - 1e-9)); k < n; ++k) {
+    for (int k = 0, n = static_cast<int>(phase_steps(seconds, dt_)); k < n; ++k) {
       for (auto& f : fingers_) {
         const double err = f.target - hand_body_->getJointPos(f.link);
         f.motor->setVelocityTarget(std::clamp(s_.position_gain * err, -f.speed, f.speed));
@@ -268,6 +307,12 @@ class Execution {
     r.reason = to_string(o);
     r.T_world_object_final =
         eig(object_body_->getBaseWorldTransform()) * object_.model().links().front().T_link_inertial.inverse();
+    // A blown-up simulation would otherwise be reported as "not held".
+    if (!r.T_world_object_final.matrix().allFinite()) {
+      throw std::invalid_argument(
+          "execute: the simulation diverged (the object's pose is no longer finite); check the forces, gains and "
+          "time_step of SimSettings and the masses in the URDFs");
+    }
     r.simulated_time = r.steps * dt_;
     r.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return r;
@@ -292,10 +337,14 @@ class Execution {
 
 const char* to_string(SimOutcome outcome) {
   switch (outcome) {
-    case SimOutcome::Success: return "success";
-    case SimOutcome::StartInCollision: return "start in collision";
-    case SimOutcome::NoContact: return "no contact";
-    case SimOutcome::NotHeld: return "not held";
+    case SimOutcome::Success:
+      return "success";
+    case SimOutcome::StartInCollision:
+      return "start in collision";
+    case SimOutcome::NoContact:
+      return "no contact";
+    case SimOutcome::NotHeld:
+      return "not held";
   }
   return "?";
 }

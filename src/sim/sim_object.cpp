@@ -1,9 +1,11 @@
 // Objects for the simulation: a one-link URDF with pybullet's <contact> extension read from the text.
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <limits>
+#include <locale>
 #include <memory>
-#include <regex>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -11,6 +13,36 @@
 #include "graspmix/sim/sim.hpp"
 
 namespace graspmix {
+
+namespace {
+
+/// The value attribute of <tag> inside the first <contact>...</contact> of the text, if there is one.
+/// A plain search (std::regex recurses per character and overflows the stack on large files).
+std::optional<double> contact_value(const std::string& xml, const std::string& tag, const std::string& what) {
+  const std::size_t begin = xml.find("<contact>");
+  if (begin == std::string::npos) return std::nullopt;
+  const std::size_t end = xml.find("</contact>", begin);
+  const std::size_t at = xml.find("<" + tag, begin);
+  if (at == std::string::npos || (end != std::string::npos && at > end)) return std::nullopt;
+  const std::size_t close = xml.find('>', at);
+  const std::string element = xml.substr(at, close == std::string::npos ? std::string::npos : close - at);
+  const std::size_t v = element.find("value");
+  const std::size_t q = v == std::string::npos ? v : element.find_first_of("\"'", v);
+  const std::size_t q_end = q == std::string::npos ? q : element.find(element[q], q + 1);
+  if (q_end == std::string::npos) throw std::invalid_argument(what + ": <" + tag + "> has no value=\"...\"");
+  const std::string text = element.substr(q + 1, q_end - q - 1);
+  // The whole value must be one finite number (std::stod would take "0.5abc" as 0.5 and accept "nan").
+  std::istringstream is(text);
+  is.imbue(std::locale::classic());
+  double value = 0;
+  is >> value;
+  if (is.fail() || !(is >> std::ws).eof() || !std::isfinite(value)) {
+    throw std::invalid_argument(what + ": <" + tag + "> value '" + text + "' is not a finite number");
+  }
+  return value;
+}
+
+}  // namespace
 
 SimObject SimObject::from_urdf(const std::string& path, const HandLoadSettings& settings) {
   SimObject obj;
@@ -23,23 +55,16 @@ SimObject SimObject::from_urdf(const std::string& path, const HandLoadSettings& 
   if (link.collisions.empty()) throw std::invalid_argument(what + ": the link has no collision geometry");
   obj.mass_ = link.has_inertial ? link.mass : 1.0;  // pybullet's default mass without <inertial>
   if (!(obj.mass_ > 0)) throw std::invalid_argument(what + ": the object needs a positive mass to be lifted");
-  // urdfdom ignores pybullet's <contact> extension; read its lateral friction from the text.
+  // urdfdom ignores pybullet's <contact> extension; read its lateral friction from the text (the text
+  // passed Hand::from_urdf's structural check, so its <contact> element is closed).
   std::ifstream in(path);
   std::stringstream ss;
   ss << in.rdbuf();
   const std::string xml = ss.str();
-  auto contact_value = [&](const char* tag, double fallback) {
-    const std::regex re(std::string(R"(<contact>[\s\S]*?<)") + tag + R"(\s+value\s*=\s*["']([^"']+)["'][\s\S]*?</contact>)");
-    std::smatch m;
-    if (!std::regex_search(xml, m, re)) return fallback;
-    try {
-      return std::stod(m[1].str());
-    } catch (const std::exception&) {
-      throw std::invalid_argument(what + ": <" + tag + "> is not a number");
-    }
-  };
-  obj.friction_ = contact_value("lateral_friction", -1.0);
-  obj.inertia_scaling_ = contact_value("inertia_scaling", 1.0);
+  const std::optional<double> friction = contact_value(xml, "lateral_friction", what);
+  if (friction && *friction < 0) throw std::invalid_argument(what + ": <lateral_friction> must be >= 0");
+  obj.friction_ = friction.value_or(-1.0);
+  obj.inertia_scaling_ = contact_value(xml, "inertia_scaling", what).value_or(1.0);
   if (!(obj.inertia_scaling_ > 0)) throw std::invalid_argument(what + ": <inertia_scaling> must be positive");
   obj.model_ = std::move(model);
   return obj;

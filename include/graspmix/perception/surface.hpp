@@ -43,39 +43,50 @@ enum class NormalOrientation {
 };
 
 struct FeatureSettings {
-  double radius = 0.01;           ///< neighbourhood radius of normals and curvatures (m); paper: 1 cm
-  int min_neighbours = 10;        ///< points with fewer neighbours within radius (itself included) are dropped
+  double radius = 0.01;     ///< neighbourhood radius of normals and curvatures (m); paper: 1 cm
+  int min_neighbours = 10;  ///< points with fewer neighbours within radius (itself included) are dropped
   /// The principal direction is used for x only where (k1 - k2) / k1 >= min_anisotropy ...
   double min_anisotropy = 0.25;
-  double flat_curvature = 1e-4;   ///< ... and k1 >= flat_curvature (dimensionless, like k1)
+  double flat_curvature = 1e-4;  ///< ... and k1 >= flat_curvature (dimensionless, like k1)
   NormalOrientation orientation = NormalOrientation::Auto;
   int orientation_neighbours = 10;  ///< k of the propagation graph
-  int n_threads = 0;              ///< 0 = OpenMP's default; results do not depend on it
+  int n_threads = 0;                ///< 0 = OpenMP's default, else 1..kMaxFeatureThreads; results do not depend on it
+  /// A neighbourhood (within radius) holding more points than this is refused (0: no cap): the cloud is
+  /// far denser than the radius needs, and every stage costs time per neighbour (2M points on a 5 cm
+  /// sphere hold ~20k each, which runs for tens of minutes). Voxel-downsample such a cloud first; with
+  /// the paper's 1 cm radius ordinary clouds hold up to a few hundred, so the cap never changes a result.
+  int max_neighbours = 5000;
 };
+
+/// The largest FeatureSettings::n_threads.
+inline constexpr int kMaxFeatureThreads = 256;
 
 /// O(v, r) for the kept points; row i of every array describes the same point.
 struct SurfaceCloud {
-  Vec3Array points;                 ///< (N, 3) metres
-  Vec3Array normals;                ///< (N, 3) unit, outward
+  Vec3Array points;                                                      ///< (N, 3) metres
+  Vec3Array normals;                                                     ///< (N, 3) unit, outward
   Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor> curvatures;  ///< (N, 2) [k1, k2], k1 >= k2 >= 0
-  PoseArray frames;                 ///< (N, 7) T_world_feature [x, y, z, qx, qy, qz, qw], qw >= 0
-  Eigen::VectorXi indices;          ///< (N) the input row of every kept point
-  Eigen::VectorXi neighbours;       ///< (N) neighbours within radius, itself included
+  PoseArray frames;            ///< (N, 7) T_world_feature [x, y, z, qx, qy, qz, qw], qw >= 0
+  Eigen::VectorXi indices;     ///< (N) the input row of every kept point
+  Eigen::VectorXi neighbours;  ///< (N) neighbours within radius, itself included
   /// (N) true where x came from the deterministic rule (k1 ~ k2 or flat), not from PCL's direction.
   Eigen::Matrix<bool, Eigen::Dynamic, 1> isotropic;
   /// (N) radians: how undetermined the rotation about the normal is, pi exp(-100 ((k1 - k2) / k1)^2)
   /// as in Kopicki's Golem (pi where k1 = 0). A sampler can rotate frames about z by up to this.
   Eigen::VectorXd frame_ambiguity;
-  std::size_t n_input = 0;          ///< points given
-  std::size_t n_dropped = 0;        ///< points dropped (too few neighbours, or no finite estimate)
-  double radius = 0.0;              ///< the radius used (m)
-  std::string orientation;          ///< the rule that oriented the normals: given|viewpoint|propagate|centroid
+  std::size_t n_input = 0;    ///< points given
+  std::size_t n_dropped = 0;  ///< points dropped (too few neighbours, or no finite estimate)
+  double radius = 0.0;        ///< the radius used (m)
+  std::string orientation;    ///< the rule that oriented the normals: given|viewpoint|propagate|centroid
   double seconds_normals = 0.0, seconds_orientation = 0.0, seconds_curvatures = 0.0, seconds_total = 0.0;
 };
 
 /// O(v, r) of a cloud. points (N, 3) finite. normals: empty, or (N, 3) to use instead of estimating
 /// them. viewpoints: empty, (1, 3) for every point or (N, 3) one per point (the camera that saw it).
-/// Throws std::invalid_argument on bad input and when no point has a stable neighbourhood.
+/// Throws std::invalid_argument on bad input (non-finite points, settings out of range, a cloud whose
+/// points all coincide), when a neighbourhood exceeds max_neighbours, and when no point has a stable
+/// neighbourhood (too few neighbours, or every neighbourhood degenerate: its points coincide or lie on
+/// one line, so no plane is defined): degenerate input is an error, never an empty or made-up result.
 SurfaceCloud compute_surface_features(const Vec3Array& points, const FeatureSettings& settings = {},
                                       const Vec3Array& normals = {}, const Vec3Array& viewpoints = {});
 

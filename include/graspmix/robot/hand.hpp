@@ -43,12 +43,12 @@ struct CollisionShape {
   /// Box: full side lengths (m). Cylinder: (radius, length, 0), axis along the shape's z.
   /// Sphere: (radius, 0, 0). Mesh: the <mesh scale>.
   Eigen::Vector3d size = Eigen::Vector3d::Zero();
-  std::string mesh_file;                      ///< the resolved file (meshes only)
-  std::shared_ptr<const TriangleMesh> mesh;   ///< the loaded mesh, scaled (meshes only)
+  std::string mesh_file;                     ///< the resolved file (meshes only)
+  std::shared_ptr<const TriangleMesh> mesh;  ///< the loaded mesh, scaled (meshes only)
   /// The convex hull of the mesh as half-spaces n . x <= offset (rows [nx, ny, nz, offset]), unit n,
   /// in the shape frame (meshes only): the collision expert treats a mesh link as its hull.
   std::shared_ptr<const RowMatrixXd> hull_planes;
-  std::shared_ptr<const TriangleMesh> hull;   ///< the hull's vertices and triangles (meshes only)
+  std::shared_ptr<const TriangleMesh> hull;  ///< the hull's vertices and triangles (meshes only)
 };
 
 enum class JointType { Fixed, Revolute, Continuous, Prismatic };
@@ -59,8 +59,8 @@ struct JointInfo {
   int parent_link = -1;  ///< index into link_names()
   int child_link = -1;
   Eigen::Isometry3d T_parent_joint = Eigen::Isometry3d::Identity();  ///< the joint's <origin>
-  Eigen::Vector3d axis = Eigen::Vector3d::UnitX();  ///< unit, in the joint (= child link) frame
-  double lower = 0.0, upper = 0.0;  ///< limits (m or rad); continuous: -inf, +inf
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitX();                   ///< unit, in the joint (= child link) frame
+  double lower = 0.0, upper = 0.0;                                   ///< limits (m or rad); continuous: -inf, +inf
   int dof = -1;             ///< index into joint_names() of the independent joint that drives it (-1: fixed)
   double multiplier = 1.0;  ///< value = multiplier * q[dof] + offset (1, 0 for independent joints)
   double offset = 0.0;
@@ -79,6 +79,16 @@ struct LinkInfo {
   bool has_inertial = false;
 };
 
+/// What Hand::from_urdf reads at most; a URDF beyond these is refused with a message naming the limit.
+/// Links (and joints) of one URDF: hands have tens, and deeper chains would make urdfdom's recursive
+/// clean-up of its link tree a stack risk.
+inline constexpr int kMaxUrdfLinks = 1000;
+/// Nesting of XML elements (a URDF nests about 6 deep; TinyXML parses nesting recursively).
+inline constexpr int kMaxUrdfXmlDepth = 64;
+/// m: the largest |coordinate| of an <origin>, a box, cylinder or sphere size and a scaled mesh vertex
+/// (anything larger is a units error, and breaks collision checks and physics in double precision).
+inline constexpr double kMaxUrdfLength = 1e4;
+
 /// How a URDF is read.
 struct HandLoadSettings {
   /// Extra folders searched for `package://name/...` meshes (each holds package folders, as in
@@ -91,8 +101,13 @@ struct HandLoadSettings {
 class Hand {
  public:
   /// Reads a URDF file. Throws std::invalid_argument naming the file for a missing or unreadable
-  /// file, a URDF urdfdom rejects (e.g. without links), an unsupported joint type (floating,
-  /// planar), a mimic of an unknown or fixed joint, or a mesh that cannot be found or loaded.
+  /// file, malformed XML (truncated, mismatched tags, nested deeper than kMaxUrdfXmlDepth), more than
+  /// kMaxUrdfLinks links or joints, anything urdfdom complains about (even where urdfdom itself would
+  /// go on with a partly read link, e.g. a malformed <box> that drops the link's collision shapes), an
+  /// unsupported joint type (floating, planar), a zero axis, lower > upper limits, a mimic of an
+  /// unknown or fixed joint, a negative mass, a non-positive or non-finite shape size or mesh scale,
+  /// a length beyond kMaxUrdfLength, or a mesh that cannot be found or loaded. Errors name the link or
+  /// joint (and the collision element) at fault.
   static Hand from_urdf(const std::string& path, const HandLoadSettings& settings = {});
   /// The same from URDF text; relative mesh paths resolve against base_dir.
   static Hand from_urdf_string(const std::string& xml, const std::string& base_dir,
@@ -140,9 +155,10 @@ class Hand {
   /// (either may be one row, broadcast), then calls visit(i, q_i, link poses of hand i) for every hand,
   /// spread over OpenMP threads when N >= parallel_from (visit must then be safe for distinct i).
   /// Returns N. A bad wrist row throws std::invalid_argument naming it.
-  Eigen::Index fk_each(const Eigen::Ref<const PoseArray>& T_world_wrist, const Eigen::Ref<const RowMatrixXd>& q,
-                       Eigen::Index parallel_from,
-                       const std::function<void(Eigen::Index, const Eigen::VectorXd&, const Eigen::Isometry3d*)>& visit) const;
+  Eigen::Index fk_each(
+      const Eigen::Ref<const PoseArray>& T_world_wrist, const Eigen::Ref<const RowMatrixXd>& q,
+      Eigen::Index parallel_from,
+      const std::function<void(Eigen::Index, const Eigen::VectorXd&, const Eigen::Isometry3d*)>& visit) const;
 
   /// A triangle mesh of every collision shape of a link, in the link frame (boxes exactly, cylinders
   /// and spheres tessellated, meshes as loaded), for drawing and for building simulator shapes.

@@ -12,8 +12,8 @@
 //      the support deeper than `start_penetration`, the result is "start in collision";
 //   2. close: every movable joint (mimic joints too, to their mimicked targets) is driven by a velocity
 //      motor towards a target past the grasp joints (grasp + close_overshoot * (grasp - pregrasp)),
-//      speed-limited (close_speed, or faster for long travels) and force-limited by grip_force; no hand-object contact at the end
-//      of this phase is "no contact";
+//      speed-limited (close_speed, or faster for long travels) and force-limited by grip_force; no hand-object contact
+//      at the end of this phase is "no contact";
 //   3. lift: the lift joint raises the wrist by lift_height; 4. hold for hold_time, fingers still pressing;
 //   5. success: the object rose by at least success_fraction * lift_height and still touches the hand;
 //      otherwise "not held".
@@ -28,25 +28,37 @@
 
 namespace graspmix {
 
+/// Bounds of SimSettings (execute refuses settings beyond them, naming the setting): each phase (close,
+/// lift, hold) simulates at most kMaxPhaseTime and kMaxPhaseSteps steps, so a run ends in bounded time.
+inline constexpr double kMaxPhaseTime = 60.0;       ///< s simulated per phase
+inline constexpr int kMaxPhaseSteps = 100000;       ///< physics steps per phase
+inline constexpr double kMaxTimeStep = 0.1;         ///< s: coarser steps are not a simulation of a grasp
+inline constexpr int kMaxSolverIterations = 10000;  ///< per step
+inline constexpr double kMaxForce = 1e6;            ///< N (N m): grip_force and lift_force
+inline constexpr double kMaxLiftHeight = 100.0;     ///< m
+
+/// Every time, speed and force is finite; times are >= 0, speeds, forces and gains > 0,
+/// success_fraction in [0, 1]; see the bounds above.
 struct SimSettings {
   Eigen::Vector3d gravity{0.0, 0.0, -9.81};  ///< m/s^2
   double time_step = 1.0 / 240.0;            ///< s (pybullet's default)
   int solver_iterations = 50;                ///< constraint solver iterations per step (pybullet's default)
-  double hand_friction = 1.0;     ///< lateral friction coefficient of every hand link
-  double object_friction = -1.0;  ///< < 0: the URDF's <contact><lateral_friction>, or 0.5 (pybullet's default) if absent
+  double hand_friction = 1.0;                ///< lateral friction coefficient of every hand link
+  double object_friction =
+      -1.0;  ///< < 0: the URDF's <contact><lateral_friction>, or 0.5 (pybullet's default) if absent
   double support_friction = 1.0;  ///< the plane (pybullet_data's plane.urdf uses 1)
   double object_mass = -1.0;      ///< kg; < 0: the URDF's <inertial><mass>
   double grip_force = 40.0;       ///< N (N m for revolute joints): force limit of every finger joint motor
   /// m/s (rad/s): joint speed limit while closing; a joint whose travel from pregrasp to grasp needs
   /// more to get there within close_time / 2 moves at that faster speed.
   double close_speed = 0.2;
-  double close_overshoot = 0.5;   ///< the motors aim this fraction of (grasp - pregrasp) past the grasp joints
-  double close_time = 0.5;        ///< s spent closing before the lift
-  double position_gain = 20.0;    ///< 1/s: joint velocity command = gain * position error (then clamped)
-  double lift_height = 0.20;      ///< m
-  double lift_speed = 0.5;        ///< m/s
-  double lift_force = 1000.0;     ///< N: force limit of the lift joint
-  double hold_time = 0.5;         ///< s held at the top
+  double close_overshoot = 0.5;      ///< the motors aim this fraction of (grasp - pregrasp) past the grasp joints
+  double close_time = 0.5;           ///< s spent closing before the lift
+  double position_gain = 20.0;       ///< 1/s: joint velocity command = gain * position error (then clamped)
+  double lift_height = 0.20;         ///< m
+  double lift_speed = 0.5;           ///< m/s
+  double lift_force = 1000.0;        ///< N: force limit of the lift joint
+  double hold_time = 0.5;            ///< s held at the top
   double start_penetration = 0.002;  ///< m: a start penetrating deeper than this is "start in collision"
   double contact_distance = 0.001;   ///< m: contact points closer than this count as touching
   double success_fraction = 0.5;     ///< the object must rise by this fraction of lift_height
@@ -86,14 +98,14 @@ const char* to_string(SimOutcome outcome);
 struct SimResult {
   bool success = false;
   SimOutcome outcome = SimOutcome::NotHeld;
-  std::string reason;            ///< to_string(outcome)
-  double lift_height = 0.0;      ///< m: how far the object's centre of mass rose by the end
-  int contact_count = 0;         ///< hand-object contact points at the end (after closing if it stopped there)
+  std::string reason;              ///< to_string(outcome)
+  double lift_height = 0.0;        ///< m: how far the object's centre of mass rose by the end
+  int contact_count = 0;           ///< hand-object contact points at the end (after closing if it stopped there)
   double start_penetration = 0.0;  ///< m: deepest hand penetration (object or support) at the start (>= 0)
   Eigen::Isometry3d T_world_object_final = Eigen::Isometry3d::Identity();  ///< object link frame at the end
-  int steps = 0;                 ///< physics steps taken
-  double simulated_time = 0.0;   ///< s
-  double wall_time = 0.0;        ///< s (measured only; never affects the outcome)
+  int steps = 0;                                                           ///< physics steps taken
+  double simulated_time = 0.0;                                             ///< s
+  double wall_time = 0.0;  ///< s (measured only; never affects the outcome)
 };
 
 /// Executes one grasp: hand at T_world_wrist, pre-grasp configuration `pregrasp`, grasp configuration

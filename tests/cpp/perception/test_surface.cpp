@@ -334,3 +334,70 @@ TEST(Surface, GivenNormalsAreKeptAndViewpointsPerPointOrient) {
   for (Eigen::Index i = 0; i < out.points.rows(); ++i)
     EXPECT_GT(out.normals.row(i).dot(out.points.row(i).normalized()), 0.999);
 }
+
+namespace {
+
+std::string error_of(const Vec3Array& P, const FeatureSettings& s = {}, const Vec3Array& normals = {}) {
+  try {
+    compute_surface_features(P, s, normals);
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "no exception";
+}
+
+}  // namespace
+
+TEST(Surface, ThreadCountOutOfRangeIsRefused) {
+  const Vec3Array P = sphere(0.04, 2000, 43);
+  for (const int n : {5000, kMaxFeatureThreads + 1, -1}) {
+    FeatureSettings s;
+    s.n_threads = n;
+    EXPECT_NE(error_of(P, s).find("n_threads"), std::string::npos) << n;
+  }
+  FeatureSettings most;
+  most.n_threads = kMaxFeatureThreads;
+  EXPECT_NO_THROW(compute_surface_features(P, most));
+}
+
+TEST(Surface, DenseCloudIsRefusedAtTheNeighbourCap) {
+  // 200k points on a 1 cm sphere: every 1 cm neighbourhood holds tens of thousands of points; without
+  // the cap this runs for minutes, with it the first neighbourhood stops it.
+  const Vec3Array P = sphere(0.01, 200000, 47);
+  const std::string m = error_of(P);
+  EXPECT_NE(m.find("max_neighbours"), std::string::npos) << m;
+  EXPECT_NE(m.find("voxel-downsample"), std::string::npos) << m;
+  EXPECT_NE(error_of(P, {}, P.rowwise().normalized()).find("max_neighbours"), std::string::npos);  // given normals
+  FeatureSettings bad;
+  bad.max_neighbours = 5;  // below min_neighbours
+  EXPECT_NE(error_of(P, bad).find("max_neighbours"), std::string::npos);
+}
+
+TEST(Surface, OrdinaryCloudsNeverReachTheCap) {
+  // The paper's setting (1 cm radius) on a sphere as dense as the demonstration clouds: every
+  // neighbourhood is far below the default cap, so the results are those without a cap, bit for bit.
+  const Vec3Array P = sphere(0.035, 6000, 53);
+  FeatureSettings uncapped;
+  uncapped.max_neighbours = 0;
+  const SurfaceCloud a = compute_surface_features(P), b = compute_surface_features(P, uncapped);
+  EXPECT_LT(a.neighbours.maxCoeff(), FeatureSettings{}.max_neighbours / 10);
+  EXPECT_EQ(a.indices, b.indices);
+  EXPECT_EQ(a.frames, b.frames);
+  EXPECT_EQ(a.curvatures, b.curvatures);
+}
+
+TEST(Surface, DegenerateCloudsAreErrorsNotFeatures) {
+  // 2,000 copies of one point: zero extent.
+  const Vec3Array same = Vec3Array::Constant(2000, 3, 0.25);
+  EXPECT_NE(error_of(same).find("coincide"), std::string::npos) << error_of(same);
+  // Points on a line: every neighbourhood is one-dimensional, so no normal is defined.
+  Vec3Array line(2000, 3);
+  for (int i = 0; i < 2000; ++i) line.row(i) << 1e-5 * i, 0.5, 0.5;
+  EXPECT_NE(error_of(line).find("degenerate"), std::string::npos) << error_of(line);
+  // Two bunches of duplicates with given normals: neighbourhoods of zero extent.
+  Vec3Array twice(2000, 3);
+  twice.topRows(1000).setZero();
+  twice.bottomRows(1000).setConstant(0.5);
+  const Vec3Array up = Vec3Array::Constant(2000, 3, 1.0);
+  EXPECT_NE(error_of(twice, {}, up).find("degenerate"), std::string::npos) << error_of(twice, {}, up);
+}

@@ -5,14 +5,16 @@
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
-#include "graspmix/robot/hand.hpp"
 #include "graspmix/core/se3.hpp"
+#include "graspmix/robot/hand.hpp"
 
 namespace fs = std::filesystem;
 using graspmix::Hand;
+using graspmix::kMaxUrdfLinks;
 
 namespace {
 
@@ -62,7 +64,8 @@ std::string cube_obj() {
          std::to_string((i & 4) ? 0.5 : -0.5) + "\n";
   const int f[12][3] = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
                         {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
-  for (const auto& t : f) s += "f " + std::to_string(t[0] + 1) + " " + std::to_string(t[1] + 1) + " " + std::to_string(t[2] + 1) + "\n";
+  for (const auto& t : f)
+    s += "f " + std::to_string(t[0] + 1) + " " + std::to_string(t[1] + 1) + " " + std::to_string(t[2] + 1) + "\n";
   return s;
 }
 
@@ -72,7 +75,8 @@ std::string tetra_stl() {  // ascii STL of the unit corner tetrahedron
   std::string s = "solid t\n";
   for (const auto& t : f) {
     s += "facet normal 0 0 0\nouter loop\n";
-    for (int k : t) s += "vertex " + std::to_string(v[k][0]) + " " + std::to_string(v[k][1]) + " " + std::to_string(v[k][2]) + "\n";
+    for (int k : t)
+      s += "vertex " + std::to_string(v[k][0]) + " " + std::to_string(v[k][1]) + " " + std::to_string(v[k][2]) + "\n";
     s += "endloop\nendfacet\n";
   }
   return s + "endsolid t\n";
@@ -188,9 +192,13 @@ TEST(Hand, LoadErrorsNameTheInput) {
   const std::string m = message([&] { Hand::from_urdf(empty.string()); });
   EXPECT_NE(m.find(empty.string()), std::string::npos) << m;
   EXPECT_NE(m.find("link"), std::string::npos) << m;
-  const auto nomesh = dir.write("nomesh.urdf", R"(<robot name="r"><link name="a"><collision><geometry><mesh filename="gone.stl"/></geometry></collision></link></robot>)");
+  const auto nomesh = dir.write(
+      "nomesh.urdf",
+      R"(<robot name="r"><link name="a"><collision><geometry><mesh filename="gone.stl"/></geometry></collision></link></robot>)");
   EXPECT_NE(message([&] { Hand::from_urdf(nomesh.string()); }).find("gone.stl"), std::string::npos);
-  const auto floating = dir.write("floating.urdf", R"(<robot name="r"><link name="a"/><link name="b"/><joint name="f" type="floating"><parent link="a"/><child link="b"/></joint></robot>)");
+  const auto floating = dir.write(
+      "floating.urdf",
+      R"(<robot name="r"><link name="a"/><link name="b"/><joint name="f" type="floating"><parent link="a"/><child link="b"/></joint></robot>)");
   EXPECT_NE(message([&] { Hand::from_urdf(floating.string()); }).find("'f'"), std::string::npos);
 }
 
@@ -238,7 +246,7 @@ TEST(Hand, CollisionMeshOfPrimitivesIsClosedAndOutward) {
       const Eigen::Vector3d c = mesh.vertices.row(mesh.triangles(t, 2)).transpose();
       volume += a.dot(b.cross(c)) / 6.0;
     }
-    const double expected = std::string(link) == "l1" ? 0.3 * 0.02 * 0.02
+    const double expected = std::string(link) == "l1"   ? 0.3 * 0.02 * 0.02
                             : std::string(link) == "l2" ? M_PI * 0.01 * 0.01 * 0.2
                                                         : 4.0 / 3.0 * M_PI * std::pow(0.015, 3);
     EXPECT_NEAR(volume, expected, 0.05 * expected) << link;
@@ -251,16 +259,143 @@ TEST(Hand, MimicChainsResolveToTheirIndependentJoint) {
     <joint name="j1" type="prismatic"><parent link="a"/><child link="b"/><axis xyz="1 0 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
     <joint name="j2" type="prismatic"><parent link="a"/><child link="c"/><axis xyz="1 0 0"/><limit lower="-9" upper="9" effort="1" velocity="1"/><mimic joint="j1" multiplier="2" offset="0.1"/></joint>
     <joint name="j3" type="prismatic"><parent link="a"/><child link="d"/><axis xyz="1 0 0"/><limit lower="-9" upper="9" effort="1" velocity="1"/><mimic joint="j2" multiplier="-3" offset="0.5"/></joint>
-  </robot>)", ".");
+  </robot>)",
+                                        ".");
   ASSERT_EQ(h.n_dofs(), 1);
   const auto P = h.fk(Eigen::Isometry3d::Identity(), Eigen::VectorXd::Constant(1, 0.2));
   EXPECT_NEAR(P[static_cast<size_t>(h.link_index("c"))].translation().x(), 2 * 0.2 + 0.1, 1e-12);
   EXPECT_NEAR(P[static_cast<size_t>(h.link_index("d"))].translation().x(), -3 * (2 * 0.2 + 0.1) + 0.5, 1e-12);
   try {
     Hand::from_urdf_string(R"(<robot name="r"><link name="a"/><link name="b"/>
-      <joint name="j" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/><mimic joint="ghost"/></joint></robot>)", ".");
+      <joint name="j" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/><mimic joint="ghost"/></joint></robot>)",
+                           ".");
     FAIL();
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("'ghost'"), std::string::npos);
   }
+}
+
+namespace {
+
+std::string load_error(const std::string& xml, const std::string& base_dir = ".") {
+  try {
+    Hand::from_urdf_string(xml, base_dir);
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "no exception";
+}
+
+/// A chain of n links joined by revolute z joints 1 mm apart along x.
+std::string chain(int n) {
+  std::string s = "<robot name=\"chain\">\n";
+  for (int i = 0; i < n; ++i) s += "<link name=\"l" + std::to_string(i) + "\"/>\n";
+  for (int i = 1; i < n; ++i) {
+    s += "<joint name=\"j" + std::to_string(i) + "\" type=\"revolute\"><parent link=\"l" + std::to_string(i - 1) +
+         "\"/><child link=\"l" + std::to_string(i) +
+         "\"/><origin xyz=\"0.001 0 0\"/><axis xyz=\"0 0 1\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" "
+         "velocity=\"1\"/></joint>\n";
+  }
+  return s + "</robot>\n";
+}
+
+/// A two-link gripper whose finger carries `finger` (collision elements and more) and whose joint
+/// carries `joint` (axis, limit, origin, mimic).
+std::string gripper(const std::string& finger, const std::string& joint) {
+  return R"(<robot name="g"><link name="palm"><collision><geometry><box size="0.1 0.05 0.05"/></geometry></collision></link>
+<link name="finger">)" +
+         finger + R"(</link>
+<joint name="slide" type="prismatic"><parent link="palm"/><child link="finger"/>)" +
+         joint + "</joint></robot>";
+}
+
+const std::string kGoodBox = R"(<collision><geometry><box size="0.02 0.02 0.06"/></geometry></collision>)";
+const std::string kGoodJoint = R"(<axis xyz="1 0 0"/><limit lower="0" upper="0.05" effort="1" velocity="1"/>)";
+
+}  // namespace
+
+TEST(HandUrdf, LongChainsLoadIterativelyUpToTheLimitAndFailCleanlyBeyond) {
+  const Hand h = Hand::from_urdf_string(chain(kMaxUrdfLinks), ".");
+  ASSERT_EQ(h.n_links(), kMaxUrdfLinks);
+  EXPECT_EQ(h.link_names().back(), "l" + std::to_string(kMaxUrdfLinks - 1));
+  const auto poses = h.fk(Eigen::Isometry3d::Identity(), Eigen::VectorXd::Zero(h.n_dofs()));
+  EXPECT_NEAR(poses.back().translation().x(), 0.001 * (kMaxUrdfLinks - 1), 1e-9);
+  const std::string m = load_error(chain(10000));
+  EXPECT_NE(m.find("10000 links"), std::string::npos) << m;
+}
+
+TEST(HandUrdf, DeepXmlNestingAndTruncatedOrMismatchedXmlAreRefused) {
+  std::string deep = "<robot name=\"r\"><link name=\"a\">";
+  for (int i = 0; i < 100000; ++i) deep += "<x>";
+  EXPECT_NE(load_error(deep).find("nested more than"), std::string::npos);
+  const std::string good = gripper(kGoodBox, kGoodJoint);
+  ASSERT_NO_THROW(Hand::from_urdf_string(good, "."));
+  // Cut anywhere inside, urdfdom (TinyXML) would read the part before the cut as a smaller robot.
+  for (const std::size_t cut : {good.size() / 3, good.size() / 2, good.size() - 10}) {
+    const std::string m = load_error(good.substr(0, cut));
+    EXPECT_NE(m.find("malformed XML"), std::string::npos) << cut << ": " << m;
+  }
+  std::string mismatched = good;
+  mismatched.replace(mismatched.find("</collision>"), 12, "</colision>");
+  EXPECT_NE(load_error(mismatched).find("</colision>"), std::string::npos) << load_error(mismatched);
+}
+
+TEST(HandUrdf, AMalformedShapeNamesTheLinkInsteadOfDroppingItsCollisions) {
+  // urdfdom alone logs these and returns the finger without any collision shape.
+  for (const std::string bad :
+       {R"(<box size="0.02 0.06"/>)", R"(<box size="nan 0.02 0.06"/>)", R"(<box size="inf 0.02 0.06"/>)",
+        R"(<box size="1e999 0.02 0.06"/>)", R"(<cylinder radius="x" length="0.1"/>)",
+        R"(<mesh filename="m.stl" scale="1 1"/>)", R"(<boxx size="1 1 1"/>)"}) {
+    const std::string m =
+        load_error(gripper(kGoodBox + "<collision><geometry>" + bad + "</geometry></collision>", kGoodJoint));
+    EXPECT_NE(m.find("finger"), std::string::npos) << bad << ": " << m;
+    EXPECT_NE(m.find("collision"), std::string::npos) << bad << ": " << m;
+  }
+  // A bad <visual> comes before the collisions in urdfdom and drops them all.
+  const std::string visual =
+      load_error(gripper(R"(<visual><geometry><box size="1 1"/></geometry></visual>)" + kGoodBox, kGoodJoint));
+  EXPECT_NE(visual.find("finger"), std::string::npos) << visual;
+  // Values urdfdom accepts but no shape has.
+  for (const std::string bad :
+       {R"(<box size="-0.02 0.02 0.06"/>)", R"(<box size="0 0.02 0.06"/>)", R"(<box size="1e300 0.02 0.06"/>)",
+        R"(<sphere radius="-1"/>)", R"(<cylinder radius="0.01" length="0"/>)"}) {
+    const std::string m =
+        load_error(gripper(kGoodBox + "<collision><geometry>" + bad + "</geometry></collision>", kGoodJoint));
+    EXPECT_NE(m.find("link 'finger' <collision> 2 of 2"), std::string::npos) << bad << ": " << m;
+  }
+  TempDir dir;
+  dir.write("cube.obj", cube_obj());
+  for (const std::string scale : {"0 1 1", "1e300 1 1"}) {
+    const std::string m = load_error(
+        gripper("<collision><geometry><mesh filename=\"cube.obj\" scale=\"" + scale + "\"/></geometry></collision>",
+                kGoodJoint),
+        dir.path.string());
+    EXPECT_NE(m.find("link 'finger' <collision> 1 of 1"), std::string::npos) << scale << ": " << m;
+  }
+  const std::string far = load_error(gripper(
+      R"(<collision><origin xyz="1e5 0 0"/><geometry><sphere radius="0.01"/></geometry></collision>)", kGoodJoint));
+  EXPECT_NE(far.find("link 'finger'"), std::string::npos) << far;
+}
+
+TEST(HandUrdf, JointNumbersAreCheckedAndNamed) {
+  const std::string lower_upper =
+      load_error(gripper(kGoodBox, R"(<axis xyz="1 0 0"/><limit lower="0.05" upper="0" effort="1" velocity="1"/>)"));
+  EXPECT_NE(lower_upper.find("joint 'slide': <limit> lower 0.05 > upper 0"), std::string::npos) << lower_upper;
+  EXPECT_NE(
+      load_error(gripper(kGoodBox, R"(<axis xyz="0 0 0"/><limit lower="0" upper="0.05" effort="1" velocity="1"/>)"))
+          .find("'slide' has a zero axis"),
+      std::string::npos);
+  for (const std::string& bad :
+       std::vector<std::string>{R"(<axis xyz="nan 0 1"/><limit lower="0" upper="0.05" effort="1" velocity="1"/>)",
+                                R"(<axis xyz="1 0 0"/><limit lower="nan" upper="0.05" effort="1" velocity="1"/>)",
+                                R"(<origin xyz="0 inf 0"/>)" + kGoodJoint}) {
+    const std::string m = load_error(gripper(kGoodBox, bad));
+    EXPECT_NE(m.find("slide"), std::string::npos) << bad << ": " << m;
+  }
+  const std::string mimic = load_error(gripper(kGoodBox, kGoodJoint + R"(<mimic joint="slide" multiplier="nan"/>)"));
+  EXPECT_NE(mimic.find("not a valid URDF"), std::string::npos) << mimic;
+  const std::string mass = load_error(gripper(
+      R"(<inertial><mass value="-1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial>)" + kGoodBox,
+      kGoodJoint));
+  EXPECT_NE(mass.find("link 'finger' <inertial>: negative mass"), std::string::npos) << mass;
 }

@@ -2,8 +2,12 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -20,8 +24,9 @@ const fs::path kRepo = GRASPMIX_SOURCE_DIR;  // set by CMakeLists.txt for the te
 struct TempDir {
   fs::path path;
   TempDir() {
-    path = fs::temp_directory_path() / ("graspmix_test_sim_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    path = fs::temp_directory_path() /
+           ("graspmix_test_sim_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::create_directories(path);
   }
   ~TempDir() { fs::remove_all(path); }
@@ -86,7 +91,8 @@ TEST(Sim, CubeGraspedAcrossTwoFacesIsLifted) {
   // Rotating the whole scene about z (grasp across the other pair of faces) changes nothing.
   Eigen::Isometry3d Rz = Eigen::Isometry3d::Identity();
   Rz.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  const SimResult r2 = execute(hand, cube, Rz * cube.rest_pose(0, 0), Rz * top_wrist(0, 0, 0.01), q(0.035), q(0.018), s);
+  const SimResult r2 =
+      execute(hand, cube, Rz * cube.rest_pose(0, 0), Rz * top_wrist(0, 0, 0.01), q(0.035), q(0.018), s);
   EXPECT_TRUE(r2.success) << r2.reason;
 }
 
@@ -146,13 +152,14 @@ std::string two_blocks_obj() {
   for (double cx : {-0.035, 0.035}) {
     out += "o block_" + std::to_string(base) + "\n";
     for (int k = 0; k < 8; ++k) {
-      out += "v " + std::to_string(cx + ((k & 1) ? 0.015 : -0.015)) + " " + std::to_string((k & 2) ? 0.015 : -0.015) + " " +
-             std::to_string((k & 4) ? 0.015 : -0.015) + "\n";
+      out += "v " + std::to_string(cx + ((k & 1) ? 0.015 : -0.015)) + " " + std::to_string((k & 2) ? 0.015 : -0.015) +
+             " " + std::to_string((k & 4) ? 0.015 : -0.015) + "\n";
     }
     const int f[12][3] = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
                           {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
     for (const auto& t : f) {
-      out += "f " + std::to_string(base + t[0] + 1) + " " + std::to_string(base + t[1] + 1) + " " + std::to_string(base + t[2] + 1) + "\n";
+      out += "f " + std::to_string(base + t[0] + 1) + " " + std::to_string(base + t[1] + 1) + " " +
+             std::to_string(base + t[2] + 1) + "\n";
     }
     base += 8;
   }
@@ -200,5 +207,94 @@ TEST(Sim, ErrorsNameTheInput) {
   }
   SimSettings bad;
   bad.time_step = 0;
-  EXPECT_THROW(execute(hand, cube, cube.rest_pose(0, 0), top_wrist(0, 0, 0.01), q(0.03), q(0.01), bad), std::invalid_argument);
+  EXPECT_THROW(execute(hand, cube, cube.rest_pose(0, 0), top_wrist(0, 0, 0.01), q(0.03), q(0.01), bad),
+               std::invalid_argument);
+}
+
+namespace {
+
+template <class F>
+std::string error_of(F&& f) {
+  try {
+    f();
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "no exception";
+}
+
+/// The cube with one line of its text replaced.
+std::string cube_with(const std::string& from, const std::string& to) {
+  std::string s = kCube;
+  s.replace(s.find(from), from.size(), to);
+  return s;
+}
+
+}  // namespace
+
+TEST(Sim, TimesForcesAndSpeedsOutOfRangeAreRefusedByName) {
+  TempDir dir;
+  const Hand hand = wsg50();
+  const SimObject cube = SimObject::from_urdf(dir.write("cube.urdf", kCube));
+  auto run = [&](const SimSettings& s) {
+    return error_of([&] { execute(hand, cube, cube.rest_pose(0, 0), top_wrist(0, 0, 0.01), q(0.03), q(0.01), s); });
+  };
+  // hold_time 1e7 s is 2.4e9 steps: the count overflowed an int, the hold was skipped and SUCCESS reported.
+  SimSettings hold;
+  hold.hold_time = 1e7;
+  EXPECT_NE(run(hold).find("SimSettings.hold_time"), std::string::npos) << run(hold);
+  const std::vector<std::pair<std::string, std::function<void(SimSettings&)>>> cases = {
+      {"hold_time", [](SimSettings& s) { s.hold_time = kMaxPhaseTime * 1.01; }},
+      {"hold_time", [](SimSettings& s) { s.hold_time = std::nan(""); }},
+      {"close_time", [](SimSettings& s) { s.close_time = -1; }},
+      {"close_time", [](SimSettings& s) { s.time_step = 1e-9; }},  // 0.5 s in 5e8 steps
+      {"lift_height / lift_speed", [](SimSettings& s) { s.lift_speed = 1e-9; }},
+      {"lift_height", [](SimSettings& s) { s.lift_height = 1e9; }},
+      {"time_step", [](SimSettings& s) { s.time_step = 1.0; }},
+      {"grip_force", [](SimSettings& s) { s.grip_force = std::numeric_limits<double>::infinity(); }},
+      {"lift_force", [](SimSettings& s) { s.lift_force = 1e300; }},
+      {"object_friction", [](SimSettings& s) { s.object_friction = std::nan(""); }},
+      {"object_mass", [](SimSettings& s) { s.object_mass = -std::numeric_limits<double>::infinity(); }},
+      {"success_fraction", [](SimSettings& s) { s.success_fraction = 1.5; }},
+      {"solver_iterations", [](SimSettings& s) { s.solver_iterations = 2000000000; }},
+  };
+  for (const auto& [name, change] : cases) {
+    SimSettings s;
+    change(s);
+    const std::string m = run(s);
+    EXPECT_NE(m.find(name), std::string::npos) << name << ": " << m;
+  }
+  // Settings within the bounds run as before.
+  SimSettings within;
+  within.hold_time = 2.0;
+  EXPECT_NO_THROW(execute(hand, cube, cube.rest_pose(0, 0), top_wrist(0, 0, 0.01), q(0.03), q(0.01), within));
+}
+
+TEST(SimObject, BadObjectUrdfsAreRefusedByName) {
+  TempDir dir;
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      // (change of the cube's text, what the message must hold)
+      {cube_with(R"(<mass value="0.1"/>)", R"(<mass value="0"/>)"), "positive mass"},
+      {cube_with(R"(<mass value="0.1"/>)", R"(<mass value="-0.1"/>)"), "negative mass"},
+      {cube_with(R"(<mass value="0.1"/>)", R"(<mass value="nan"/>)"), "Inertial"},
+      {cube_with(R"(<box size="0.04 0.04 0.04"/>)", R"(<box size="0.04 0.04"/>)"), "Link [cube]"},
+      {cube_with(R"(<box size="0.04 0.04 0.04"/>)", R"(<mesh filename="gone.obj"/>)"), "gone.obj"},
+      {cube_with(R"(<box size="0.04 0.04 0.04"/>)", R"(<mesh filename="gone.obj" scale="0 0 0"/>)"), "mesh scale"},
+      {cube_with(R"(<lateral_friction value="0.8"/>)", R"(<lateral_friction value="nan"/>)"), "lateral_friction"},
+      {cube_with(R"(<lateral_friction value="0.8"/>)", R"(<lateral_friction value="0.8abc"/>)"), "lateral_friction"},
+      {cube_with(R"(<lateral_friction value="0.8"/>)", R"(<lateral_friction value="-1"/>)"), "lateral_friction"},
+      {cube_with(R"(<inertia_scaling value="3"/>)", R"(<inertia_scaling value="inf"/>)"), "inertia_scaling"},
+      {cube_with("</robot>", ""), "malformed XML"},
+  };
+  int k = 0;
+  for (const auto& [text, mention] : cases) {
+    const std::string path = dir.write("bad" + std::to_string(k++) + ".urdf", text);
+    const std::string m = error_of([&] { SimObject::from_urdf(path); });
+    EXPECT_NE(m.find(mention), std::string::npos) << mention << ": " << m;
+    EXPECT_NE(m.find(path), std::string::npos) << m;
+  }
+  // 2 MB inside <contact>: read by a plain search (std::regex recursed per character and overflowed).
+  std::string big = kCube;
+  big.insert(big.find("<contact>") + 9, "<!--" + std::string(2000000, 'x') + "-->");
+  EXPECT_NO_THROW(SimObject::from_urdf(dir.write("big.urdf", big)));
 }

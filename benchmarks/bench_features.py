@@ -6,15 +6,15 @@ Target: 20k points in under 0.5 s.
 
     python benchmarks/bench_features.py [--repeats 5] [--threads 0] [--sizes 5000 20000 100000]
 """
+
 from __future__ import annotations
 
 import argparse
 import os
 import time
 
-import numpy as np
-
 import graspmix
+import numpy as np
 
 
 def sphere(n, rng, R=0.035):
@@ -39,9 +39,13 @@ def main() -> None:
     p.add_argument("--radius", type=float, default=0.01)
     args = p.parse_args()
     rng = np.random.default_rng(0)
-    print(f"graspmix {graspmix.__version__}, PCL {graspmix.build_info().get('pcl', '?')}, "
-          f"{os.cpu_count()} cores, load average {os.getloadavg()[0]:.1f}, radius {args.radius} m")
-    print(f"{'object':<14}{'points':>8}{'neighbours':>12}{'median s':>10}{'normals':>9}{'orient':>8}{'curv':>8}{'min s':>8}")
+    print(
+        f"graspmix {graspmix.__version__}, PCL {graspmix.build_info().get('pcl', '?')}, "
+        f"{os.cpu_count()} cores, load average {os.getloadavg()[0]:.1f}, radius {args.radius} m"
+    )
+    print(
+        f"{'object':<14}{'points':>8}{'neighbours':>12}{'median s':>10}{'normals':>9}{'orient':>8}{'curv':>8}{'min s':>8}"
+    )
     for name, make in [("sphere 3.5cm", sphere), ("mug cylinder", closed_cylinder)]:
         for n in args.sizes:
             P = make(n, rng)
@@ -53,8 +57,11 @@ def main() -> None:
                 runs.append((time.perf_counter() - t, s.timings))
             med = float(np.median([r[0] for r in runs]))
             stage = {k: float(np.median([r[1][k] for r in runs])) for k in ("normals", "orientation", "curvatures")}
-            print(f"{name:<14}{n:>8}{int(np.median(s.neighbours)):>12}{med:>10.3f}{stage['normals']:>9.3f}"
-                  f"{stage['orientation']:>8.3f}{stage['curvatures']:>8.3f}{min(r[0] for r in runs):>8.3f}", flush=True)
+            print(
+                f"{name:<14}{n:>8}{int(np.median(s.neighbours)):>12}{med:>10.3f}{stage['normals']:>9.3f}"
+                f"{stage['orientation']:>8.3f}{stage['curvatures']:>8.3f}{min(r[0] for r in runs):>8.3f}",
+                flush=True,
+            )
 
 
 if __name__ == "__main__":

@@ -7,15 +7,15 @@ z = 0, the support plane passed to the expert. Wrists are sampled on a sphere ar
 axis, at distances where roughly half of the grasps collide, as in annealing. Figures are medians over
 repeats; OMP_NUM_THREADS bounds the threads (the batched calls are OpenMP-parallel).
 """
+
 import argparse
 import os
 import time
 from pathlib import Path
 
+import graspmix
 import numpy as np
 from scipy.spatial.transform import Rotation
-
-import graspmix
 
 
 def mug_cloud(n, rng):
@@ -75,19 +75,24 @@ def main():
     expert = graspmix.CollisionExpert(hand, cloud, plane=[0, 0, 1, 0])
     build = time.perf_counter() - t0
 
-    print(f"graspmix {graspmix.__version__}: WSG 50 ({hand.n_links} links), cloud of {len(cloud)} points, "
-          f"{args.hands} hands, OMP_NUM_THREADS={os.environ.get('OMP_NUM_THREADS', 'unset')}, "
-          f"{os.cpu_count()} CPUs, median of {args.repeats}")
+    print(
+        f"graspmix {graspmix.__version__}: WSG 50 ({hand.n_links} links), cloud of {len(cloud)} points, "
+        f"{args.hands} hands, OMP_NUM_THREADS={os.environ.get('OMP_NUM_THREADS', 'unset')}, "
+        f"{os.cpu_count()} CPUs, median of {args.repeats}"
+    )
     rate, t = median_rate(lambda: hand.fk_batch(wrists, joints), args.hands, args.repeats)
     print(f"fk_batch:                  {rate:12,.0f} hands/s   ({t * 1e3:.1f} ms per batch)")
     rate, t = median_rate(lambda: expert.evaluate_batch(wrists, joints), args.hands, args.repeats)
     res = expert.evaluate_batch(wrists, joints)
-    print(f"collision evaluate_batch:  {rate:12,.0f} evals/s   ({t * 1e3:.1f} ms per batch; "
-          f"{100 * (1 - res.collision_free.mean()):.0f}% in collision, index built in {build * 1e3:.1f} ms, "
-          f"cell {expert.cell_size * 1e3:.1f} mm)")
+    print(
+        f"collision evaluate_batch:  {rate:12,.0f} evals/s   ({t * 1e3:.1f} ms per batch; "
+        f"{100 * (1 - res.collision_free.mean()):.0f}% in collision, index built in {build * 1e3:.1f} ms, "
+        f"cell {expert.cell_size * 1e3:.1f} mm)"
+    )
     n_single = min(2000, args.hands)
-    rate, t = median_rate(lambda: [expert.evaluate(wrists[i], joints[i]) for i in range(n_single)], n_single,
-                          args.repeats)
+    rate, t = median_rate(
+        lambda: [expert.evaluate(wrists[i], joints[i]) for i in range(n_single)], n_single, args.repeats
+    )
     print(f"collision evaluate (one call per hand, from Python): {rate:,.0f} evals/s")
     print("target: >= 20,000 collision evaluations per second (batched)")
 

@@ -8,11 +8,11 @@ centre (held: the full close, lift and hold) and one beside it (stops after clos
 objects with the noise model on. The estimate of the paper's experiment counts 60 objects x 10 trials x
 4 conditions x 2 methods = 4,800 executions and 60 x 10 x 2 (noise on/off) = 1,200 acquisitions.
 """
+
 import argparse
 import time
 
 import numpy as np
-
 from graspmix import sim
 from graspmix.sim import acquisition
 
@@ -46,16 +46,21 @@ def main():
         t = time.perf_counter()
         acquisition.acquire(obj, noise=True, seed=k)
         acq.append(time.perf_counter() - t)
-    all_exec = full + early
-    print(f"execution (full close + lift + hold, {int(np.median(steps))} steps of 1/240 s): median "
-          f"{np.median(full) * 1e3:.1f} ms (min {np.min(full) * 1e3:.1f}, max {np.max(full) * 1e3:.1f}) over {len(full)}")
+    print(
+        f"execution (full close + lift + hold, {int(np.median(steps))} steps of 1/240 s): median "
+        f"{np.median(full) * 1e3:.1f} ms (min {np.min(full) * 1e3:.1f}, max {np.max(full) * 1e3:.1f}) over {len(full)}"
+    )
     print(f"execution stopped after closing (no contact): median {np.median(early) * 1e3:.1f} ms over {len(early)}")
-    print(f"4-camera acquisition (320x240, noise on): median {np.median(acq) * 1e3:.0f} ms "
-          f"(min {np.min(acq) * 1e3:.0f}, max {np.max(acq) * 1e3:.0f}) over {len(acq)}")
+    print(
+        f"4-camera acquisition (320x240, noise on): median {np.median(acq) * 1e3:.0f} ms "
+        f"(min {np.min(acq) * 1e3:.0f}, max {np.max(acq) * 1e3:.0f}) over {len(acq)}"
+    )
     print(f"top grasps over the centre held: {np.mean(held):.0%}")
     total = 4800 * np.median(full) + 1200 * np.median(acq)
-    print(f"estimate for the experiment's simulation (4,800 full executions + 1,200 acquisitions): {total / 60:.1f} min "
-          f"(targets: execution < 200 ms, acquisition < 1 s)")
+    print(
+        f"estimate for the experiment's simulation (4,800 full executions + 1,200 acquisitions): {total / 60:.1f} min "
+        f"(targets: execution < 200 ms, acquisition < 1 s)"
+    )
 
 
 if __name__ == "__main__":

@@ -8,10 +8,9 @@ the median over objects (of the median over repeats) of each stage: query densit
 sampling and ranking, optimisation; their total; and the KDE/GMM ratio. Feature computation is shared
 by both methods and printed apart.
 """
+
 import argparse
 import statistics
-
-import numpy as np
 
 import graspmix
 from graspmix.sim.acquisition import acquire
@@ -38,7 +37,9 @@ def main():
         g, k = per_method["gmm"], per_method["kde"]
         tg = sum(g[s][-1] for s in STAGES)
         tk = sum(k[s][-1] for s in STAGES)
-        print(f"{name:<28} {g['points'][-1]:>5} pts  GMM {tg * 1e3:7.1f} ms  KDE {tk * 1e3:7.1f} ms  ratio {tk / tg:5.2f}")
+        print(
+            f"{name:<28} {g['points'][-1]:>5} pts  GMM {tg * 1e3:7.1f} ms  KDE {tk * 1e3:7.1f} ms  ratio {tk / tg:5.2f}"
+        )
     print()
     print(f"{'median over objects':<22} {'GMM (ms)':>10} {'KDE (ms)':>10} {'KDE/GMM':>8}")
     totals = {}
@@ -47,10 +48,12 @@ def main():
         print(f"{s:<22} {mg * 1e3:>10.1f} {mk * 1e3:>10.1f} {mk / mg:>8.2f}")
     for m in models:
         totals[m] = statistics.median(sum(per_method[m][s][i] for s in STAGES) for i in range(len(clouds)))
-    print(f"{'total of the three':<22} {totals['gmm'] * 1e3:>10.1f} {totals['kde'] * 1e3:>10.1f} "
-          f"{totals['kde'] / totals['gmm']:>8.2f}")
+    print(
+        f"{'total of the three':<22} {totals['gmm'] * 1e3:>10.1f} {totals['kde'] * 1e3:>10.1f} "
+        f"{totals['kde'] / totals['gmm']:>8.2f}"
+    )
     print(f"{'features (shared)':<22} {statistics.median(per_method['gmm']['features']) * 1e3:>10.1f}")
-    print(f"query samples per link: 500; KDE query kernels per link: 500; GMM query components: 5")
+    print("query samples per link: 500; KDE query kernels per link: 500; GMM query components: 5")
 
 
 if __name__ == "__main__":

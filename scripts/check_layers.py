@@ -2,6 +2,7 @@
 includes graspmix headers (public ones as graspmix/<layer>/..., private ones of src/ as <layer>/...) of L and of
 earlier layers only, and no public header includes a third-party
 library other than Eigen. Prints every violation and exits 1 if there is one."""
+
 from __future__ import annotations
 
 import re

@@ -10,6 +10,7 @@ so the README's numbers always come from a run, never from a hand.
                                      [--extra results/paper-learnt-closing/summary.json] [--readme README.md]
 (--benchmark and --extra can be given more than once.)
 """
+
 import argparse
 import json
 import re
@@ -28,8 +29,14 @@ def runtime_table_md(bench: dict) -> str:
     med, ratio = bench["median_s"], bench["ratio_kde_over_gmm"]
     rows = [["stage (median over %d objects)" % len(bench["objects"]), "GMM (ms)", "KDE (ms)", "KDE / GMM"]]
     for s in (*STAGES, "total"):
-        rows.append([STAGE_LABELS.get(s, "total of the three"), f"{med['gmm'][s] * 1e3:.1f}",
-                     f"{med['kde'][s] * 1e3:.1f}", f"{ratio[s]:.2f}"])
+        rows.append(
+            [
+                STAGE_LABELS.get(s, "total of the three"),
+                f"{med['gmm'][s] * 1e3:.1f}",
+                f"{med['kde'][s] * 1e3:.1f}",
+                f"{ratio[s]:.2f}",
+            ]
+        )
     return md_table(rows)
 
 
@@ -50,33 +57,53 @@ def verdict(summary: dict) -> str:
 def render(summary_path: Path, bench_paths: list[Path], extra: list[Path]) -> str:
     s = json.loads(summary_path.read_text())
     prov = s["provenance"]
-    out = [f"Run: `{prov.get('command', '?')}` on commit `{prov.get('commit', '?')}` "
-           f"({s['attempts']['done']} of {s['attempts']['expected']} attempts).", "",
-           success_table(s), "",
-           f"Against the paper's claim (GMM at least 10 points above KDE with p < 0.05 in every condition): "
-           f"{verdict(s)}.", ""]
+    out = [
+        f"Run: `{prov.get('command', '?')}` on commit `{prov.get('commit', '?')}` "
+        f"({s['attempts']['done']} of {s['attempts']['expected']} attempts).",
+        "",
+        success_table(s),
+        "",
+        f"Against the paper's claim (GMM at least 10 points above KDE with p < 0.05 in every condition): {verdict(s)}.",
+        "",
+    ]
     rt = s["runtime"]
     if rt.get("median_s"):
         g, k = rt["median_s"]["gmm"], rt["median_s"]["kde"]
-        out += [f"Synthesis time in the run (conditions {','.join(rt['conditions'])}, two jobs sharing two cores; "
-                f"median over objects): GMM {g['total'] * 1e3:.0f} ms, KDE {k['total'] * 1e3:.0f} ms, "
-                f"KDE / GMM = {rt['ratio_kde_over_gmm']['total']:.2f}.", ""]
+        out += [
+            f"Synthesis time in the run (conditions {','.join(rt['conditions'])}, two jobs sharing two cores; "
+            f"median over objects): GMM {g['total'] * 1e3:.0f} ms, KDE {k['total'] * 1e3:.0f} ms, "
+            f"KDE / GMM = {rt['ratio_kde_over_gmm']['total']:.2f}.",
+            "",
+        ]
     for bench_path in bench_paths:
         b = json.loads(bench_path.read_text())
         m = b.get("machine", {})
         threads = m.get("OMP_NUM_THREADS") or f"unset (OpenMP's default: {m.get('cpu_count', '?')} threads)"
         load = m.get("load_average_before", [None])[0]
-        out += [f"`graspmix_cli benchmark` ({bench_path.parent.name}/{bench_path.name}): one process, "
-                f"OMP_NUM_THREADS {threads}, machine load average {load:.1f} at the start, commit "
-                f"`{b.get('commit', '?')}`:" if load is not None else f"`graspmix_cli benchmark` ({bench_path}):", "",
-                runtime_table_md(b), "",
-                f"The paper: GMM nearly 5x faster. Here: {b['ratio_kde_over_gmm']['total']:.2f}x in total.", ""]
+        out += [
+            f"`graspmix_cli benchmark` ({bench_path.parent.name}/{bench_path.name}): one process, "
+            f"OMP_NUM_THREADS {threads}, machine load average {load:.1f} at the start, commit "
+            f"`{b.get('commit', '?')}`:"
+            if load is not None
+            else f"`graspmix_cli benchmark` ({bench_path}):",
+            "",
+            runtime_table_md(b),
+            "",
+            f"The paper: GMM nearly 5x faster. Here: {b['ratio_kde_over_gmm']['total']:.2f}x in total.",
+            "",
+        ]
     for e in extra:
         x = json.loads(e.read_text())
         xp = x["provenance"]
-        out += [f"With `--closing {x['protocol'].get('closing', 'full')}` (`{xp.get('command', '?')}`, commit "
-                f"`{xp.get('commit', '?')}`, {x['attempts']['done']} of {x['attempts']['expected']} attempts):", "",
-                success_table(x), "", f"Against the paper's claim: {verdict(x)}.", ""]
+        out += [
+            f"With `--closing {x['protocol'].get('closing', 'full')}` (`{xp.get('command', '?')}`, commit "
+            f"`{xp.get('commit', '?')}`, {x['attempts']['done']} of {x['attempts']['expected']} attempts):",
+            "",
+            success_table(x),
+            "",
+            f"Against the paper's claim: {verdict(x)}.",
+            "",
+        ]
     return "\n".join(out).rstrip() + "\n"
 
 

@@ -4,11 +4,11 @@
 
     python3 scripts/make_example_clouds.py
 """
+
 from pathlib import Path
 
-import numpy as np
-
 import graspmix
+import numpy as np
 from graspmix.sim.acquisition import AcquisitionSettings, acquire
 
 root = Path(__file__).resolve().parent.parent

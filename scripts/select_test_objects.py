@@ -16,6 +16,7 @@ log size), one object per cluster, the member nearest the centre.
 
 Run from the repository root: python3 scripts/select_test_objects.py [--out data/objects/test60.txt]
 """
+
 from __future__ import annotations
 
 import argparse
@@ -24,17 +25,24 @@ import sys
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
+import graspmix
 import numpy as np
 from scipy.cluster.vq import kmeans2
 from scipy.spatial import ConvexHull, Delaunay
 from scipy.stats import qmc
 
-import graspmix
-
 # Named single-link objects considered besides random_urdfs (cube-like boxes are left out: the
 # demonstration is a box).
-NAMED = ["objects/mug.urdf", "duck_vhacd.urdf", "teddy_vhacd.urdf", "domino/domino.urdf", "soccerball.urdf",
-         "sphere_small.urdf", "jenga/jenga.urdf", "lego/lego.urdf"]
+NAMED = [
+    "objects/mug.urdf",
+    "duck_vhacd.urdf",
+    "teddy_vhacd.urdf",
+    "domino/domino.urdf",
+    "soccerball.urdf",
+    "sphere_small.urdf",
+    "jenga/jenga.urdf",
+    "lego/lego.urdf",
+]
 WIDTH = (0.015, 0.100)  # m
 HEIGHT = (0.020, 0.200)  # m
 MIN_CONVEXITY = 0.2  # some random_urdfs are loose clouds of tiny parts (a few % of their hull): not objects
@@ -50,7 +58,11 @@ def mesh_of(urdf: Path):
     if len(root.findall("link")) != 1:
         return None
     meshes = root.findall("link/collision/geometry/mesh")
-    if len(meshes) != 1 or root.findall("link/collision/geometry/box") or root.findall("link/collision/geometry/sphere"):
+    if (
+        len(meshes) != 1
+        or root.findall("link/collision/geometry/box")
+        or root.findall("link/collision/geometry/sphere")
+    ):
         return None
     m = meshes[0]
     scale = np.array([float(x) for x in m.get("scale", "1 1 1").split()])
@@ -96,8 +108,14 @@ def describe(parts: list[np.ndarray]) -> dict:
     volume = inside.mean() * ext.prod()
     hv = allv[hull.vertices][:, :2]
     widths = [np.ptp(hv @ np.array([math.cos(a), math.sin(a)])) for a in np.linspace(0, math.pi, 180, endpoint=False)]
-    return {"width": min(widths), "height": ext[2], "size": ext.max(), "convexity": volume / hull.volume,
-            "boxiness": volume / ext.prod(), "elongation": ext.max() / max(ext.min(), 1e-6)}
+    return {
+        "width": min(widths),
+        "height": ext[2],
+        "size": ext.max(),
+        "convexity": volume / hull.volume,
+        "boxiness": volume / ext.prod(),
+        "elongation": ext.max() / max(ext.min(), 1e-6),
+    }
 
 
 def main(argv=None) -> int:
@@ -125,8 +143,13 @@ def main(argv=None) -> int:
             continue
         d["path"] = rel
         rows.append(d)
-    fit = [r for r in rows if WIDTH[0] <= r["width"] <= WIDTH[1] and HEIGHT[0] <= r["height"] <= HEIGHT[1]
-           and r["convexity"] >= MIN_CONVEXITY]
+    fit = [
+        r
+        for r in rows
+        if WIDTH[0] <= r["width"] <= WIDTH[1]
+        and HEIGHT[0] <= r["height"] <= HEIGHT[1]
+        and r["convexity"] >= MIN_CONVEXITY
+    ]
     print(f"[select] {len(rows)} described, {len(fit)} fit the WSG 50", file=sys.stderr)
     if len(fit) < args.n:
         raise SystemExit(f"only {len(fit)} objects fit, {args.n} wanted")
@@ -149,17 +172,29 @@ def main(argv=None) -> int:
     conv = sum(r["convexity"] > 0.95 for r in picked)
     boxy = sum(r["boxiness"] > 0.75 for r in picked)
     with out.open("w") as f:
-        f.write(f"# {args.n} test objects (paths relative to pybullet_data), written by scripts/select_test_objects.py.\n")
-        f.write(f"# Candidates: the one-link mesh objects of pybullet_data ({len(rows)}); kept: narrowest horizontal width\n")
-        f.write(f"# {WIDTH[0]*1e3:.0f}-{WIDTH[1]*1e3:.0f} mm, height {HEIGHT[0]*1e3:.0f}-{HEIGHT[1]*1e3:.0f} mm as they rest, convexity >= {MIN_CONVEXITY} ({len(fit)});\n")
-        f.write(f"# chosen: one per k-means cluster (seed {args.seed}) of convexity, boxiness, log elongation, log size.\n")
-        f.write(f"# Of these, {conv} are nearly convex (volume/hull > 0.95), {args.n - conv} non-convex, {boxy} box-like (volume/box > 0.75);\n")
-        f.write(f"# sizes {min(r['size'] for r in picked)*1e3:.0f}-{max(r['size'] for r in picked)*1e3:.0f} mm.\n")
+        f.write(
+            f"# {args.n} test objects (paths relative to pybullet_data), written by scripts/select_test_objects.py.\n"
+        )
+        f.write(
+            f"# Candidates: the one-link mesh objects of pybullet_data ({len(rows)}); kept: narrowest horizontal width\n"
+        )
+        f.write(
+            f"# {WIDTH[0] * 1e3:.0f}-{WIDTH[1] * 1e3:.0f} mm, height {HEIGHT[0] * 1e3:.0f}-{HEIGHT[1] * 1e3:.0f} mm as they rest, convexity >= {MIN_CONVEXITY} ({len(fit)});\n"
+        )
+        f.write(
+            f"# chosen: one per k-means cluster (seed {args.seed}) of convexity, boxiness, log elongation, log size.\n"
+        )
+        f.write(
+            f"# Of these, {conv} are nearly convex (volume/hull > 0.95), {args.n - conv} non-convex, {boxy} box-like (volume/box > 0.75);\n"
+        )
+        f.write(f"# sizes {min(r['size'] for r in picked) * 1e3:.0f}-{max(r['size'] for r in picked) * 1e3:.0f} mm.\n")
         for r in picked:
             f.write(f"{r['path']}\n")
     for r in picked:
-        print(f"{r['path']:<32} width {r['width']*1e3:4.0f} mm height {r['height']*1e3:4.0f} mm convexity "
-              f"{r['convexity']:.2f} boxiness {r['boxiness']:.2f} elongation {r['elongation']:.1f}")
+        print(
+            f"{r['path']:<32} width {r['width'] * 1e3:4.0f} mm height {r['height'] * 1e3:4.0f} mm convexity "
+            f"{r['convexity']:.2f} boxiness {r['boxiness']:.2f} elongation {r['elongation']:.1f}"
+        )
     print(f"[select] wrote {out} ({len(picked)} objects)", file=sys.stderr)
     return 0
 

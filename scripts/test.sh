@@ -3,6 +3,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 PY=${PYTHON:-python3}
+echo "[test] lint (formatting, lint, C++ layering)"
+bash scripts/lint.sh
 echo "[test] ctest"
 ctest --test-dir build --output-on-failure -j2
 echo "[test] pytest"

@@ -8,8 +8,8 @@
 #include <cstdlib>
 #include <iostream>
 #include <map>
-#include <optional>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -34,9 +34,9 @@ std::vector<double> parse_numbers(const std::string& text, std::size_t n, const 
   return out;
 }
 
-
 int run(int argc, char** argv) {
-  if (argc != 6) throw std::invalid_argument("usage: synthesize_grasps HAND.urdf DEMO.pcd WRIST JOINT=PRE:GRASP QUERY.pcd");
+  if (argc != 6)
+    throw std::invalid_argument("usage: synthesize_grasps HAND.urdf DEMO.pcd WRIST JOINT=PRE:GRASP QUERY.pcd");
   auto hand = std::make_shared<graspmix::Hand>(graspmix::Hand::from_urdf(argv[1]));
   const std::vector<double> w = parse_numbers(argv[3], 7, "wrist pose");
   const Eigen::Isometry3d T_world_wrist = graspmix::pose_from_vector(Eigen::Map<const Eigen::VectorXd>(w.data(), 7));
@@ -55,9 +55,8 @@ int run(int argc, char** argv) {
   demo_scene.remove_plane = false;
   const graspmix::SurfaceCloud demo = graspmix::compute_surface_features(
       graspmix::prepare_cloud(graspmix::load_cloud(argv[2]).points, demo_scene).points);
-  std::vector<graspmix::ContactModel> models = graspmix::learn_contact_models(
-      *hand, T_world_wrist, grasp, demo.frames, demo.curvatures,
-      [] {
+  std::vector<graspmix::ContactModel> models =
+      graspmix::learn_contact_models(*hand, T_world_wrist, grasp, demo.frames, demo.curvatures, [] {
         graspmix::GmmSettings gmm;
         gmm.n_components = 2;  // the bundled model's K
         return std::make_shared<graspmix::PoseMixture>(gmm);

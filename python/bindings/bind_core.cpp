@@ -6,15 +6,18 @@ namespace graspmix::py_bind {
 
 void bind_core(py::module_& m) {
   m.def(
-      "quat_log", [](const py::object& q) { return batch_quat_log(QuatArray(to_matrix(q, "quat_log: q", 4))); }, py::arg("q"),
+      "quat_log", [](const py::object& q) { return batch_quat_log(QuatArray(to_matrix(q, "quat_log: q", 4))); },
+      py::arg("q"),
       "eq:log_map on (N, 4) quaternions [x, y, z, w]: arccos(w) v/|v| after canonicalising w >= 0 -> (N, 3).");
   m.def(
-      "quat_exp", [](const py::object& w) { return batch_quat_exp(Vec3Array(to_matrix(w, "quat_exp: w", 3))); }, py::arg("w"),
+      "quat_exp", [](const py::object& w) { return batch_quat_exp(Vec3Array(to_matrix(w, "quat_exp: w", 3))); },
+      py::arg("w"),
       "eq:exp_map on (N, 3) rotation vectors (half-angle convention) -> (N, 4) quaternions [x, y, z, w].");
   m.def(
       "pose_multiply",
       [](const py::object& a, const py::object& b) {
-        return pose_multiply(PoseArray(to_matrix(a, "pose_multiply: a", 7)), PoseArray(to_matrix(b, "pose_multiply: b", 7)));
+        return pose_multiply(PoseArray(to_matrix(a, "pose_multiply: a", 7)),
+                             PoseArray(to_matrix(b, "pose_multiply: b", 7)));
       },
       py::arg("a"), py::arg("b"),
       "Row-wise a o b over (N, 7) poses [x, y, z, qx, qy, qz, qw]; a side with one row is broadcast.");
@@ -30,10 +33,15 @@ void bind_core(py::module_& m) {
         }
         const Vec3Array pts(to_matrix(points, "orient_plane: points", 3));
         PlaneSide side;
-        if (rule == "majority") side = PlaneSide::Majority;
-        else if (rule == "mean") side = PlaneSide::Mean;
-        else if (rule == "median") side = PlaneSide::Median;
-        else throw py::value_error("orient_plane: rule must be majority, mean or median, got '" + rule.substr(0, 80) + "'");
+        if (rule == "majority")
+          side = PlaneSide::Majority;
+        else if (rule == "mean")
+          side = PlaneSide::Mean;
+        else if (rule == "median")
+          side = PlaneSide::Median;
+        else
+          throw py::value_error("orient_plane: rule must be majority, mean or median, got '" + rule.substr(0, 80) +
+                                "'");
         const Eigen::Vector4d out = orient_plane(p, pts, side);
         return out;
       },

@@ -1,10 +1,10 @@
 #include <random>
 
 #include "common.hpp"
-#include "settings.hpp"
 #include "graspmix/density/gmm.hpp"
 #include "graspmix/density/kde.hpp"
 #include "graspmix/density/pose_mixture.hpp"
+#include "settings.hpp"
 
 namespace graspmix::py_bind {
 
@@ -60,8 +60,8 @@ void require_fitted(const PoseDensity& d, const char* what) {
 
 /// The methods every PoseDensity shares, bound once on the base class.
 void bind_pose_density_base(py::module_& m) {
-  py::class_<PoseDensity, std::shared_ptr<PoseDensity>>(m, "PoseDensity",
-                          "A density over poses given features: PoseMixture (the paper's) or PoseKDE (the baseline).")
+  py::class_<PoseDensity, std::shared_ptr<PoseDensity>>(
+      m, "PoseDensity", "A density over poses given features: PoseMixture (the paper's) or PoseKDE (the baseline).")
       .def_property_readonly("fitted", &PoseDensity::fitted)
       .def_property_readonly("n_features", &PoseDensity::n_features)
       .def_property_readonly("n_kernels", &PoseDensity::n_kernels, "Components (GMM) or kernels (KDE).")
@@ -124,31 +124,44 @@ void bind_density(py::module_& m) {
              return GaussianMixture(settings_from<GmmSettings>(settings, kw, "GaussianMixture"));
            }),
            py::arg("settings") = py::none(),
-           ("An unfitted mixture, e.g. GaussianMixture(n_components=3, seed=0).\n" + settings_doc<GmmSettings>()).c_str())
-      .def_property_readonly("settings", [](const GaussianMixture& g) { return GmmSettings(g.settings()); }, "The GmmSettings it fits with (a copy).")
+           ("An unfitted mixture, e.g. GaussianMixture(n_components=3, seed=0).\n" + settings_doc<GmmSettings>())
+               .c_str())
+      .def_property_readonly(
+          "settings", [](const GaussianMixture& g) { return GmmSettings(g.settings()); },
+          "The GmmSettings it fits with (a copy).")
       .def_static("from_parameters", &mixture_from, py::arg("weights"), py::arg("means"), py::arg("covariances"),
                   "A mixture from weights (K,), means (K, d), covariances (K, d, d).")
       .def(
           "fit",
-          [](GaussianMixture& g, const py::object& X, const py::object& weights, const py::object& means_init) -> GaussianMixture& {
+          [](GaussianMixture& g, const py::object& X, const py::object& weights,
+             const py::object& means_init) -> GaussianMixture& {
             const RowMatrixXd x = to_matrix(X, "fit: X");
-            const RowMatrixXd mi = means_init.is_none() ? RowMatrixXd() : to_matrix(means_init, "fit: means_init", x.cols());
+            const RowMatrixXd mi =
+                means_init.is_none() ? RowMatrixXd() : to_matrix(means_init, "fit: means_init", x.cols());
             py::gil_scoped_release release;
             g.fit(x, to_weights(weights, "fit: weights"), mi);
             return g;
           },
           py::arg("X"), py::arg("weights") = py::none(), py::arg("means_init") = py::none(),
           py::return_value_policy::reference_internal, "Weighted EM; returns self.")
-      .def("score_samples", [](const GaussianMixture& g, const py::object& X) { return g.score_samples(to_matrix(X, "score_samples: X")); },
-           py::arg("X"), "Log density of every row.")
+      .def(
+          "score_samples",
+          [](const GaussianMixture& g, const py::object& X) {
+            return g.score_samples(to_matrix(X, "score_samples: X"));
+          },
+          py::arg("X"), "Log density of every row.")
       .def(
           "score",
           [](const GaussianMixture& g, const py::object& X, const py::object& w) {
             return g.score(to_matrix(X, "score: X"), to_weights(w, "score: weights"));
           },
           py::arg("X"), py::arg("weights") = py::none(), "(Weighted) mean log density.")
-      .def("predict_proba", [](const GaussianMixture& g, const py::object& X) { return g.predict_proba(to_matrix(X, "predict_proba: X")); },
-           py::arg("X"))
+      .def(
+          "predict_proba",
+          [](const GaussianMixture& g, const py::object& X) {
+            return g.predict_proba(to_matrix(X, "predict_proba: X"));
+          },
+          py::arg("X"))
       .def(
           "predict",
           [](const GaussianMixture& g, const py::object& X) {
@@ -161,8 +174,10 @@ void bind_density(py::module_& m) {
       .def(
           "sample", [](const GaussianMixture& g, int n, const py::object& seed) { return g.sample(n, to_seed(seed)); },
           py::arg("n"), py::arg("seed") = py::none(), "n draws, (n, d).")
-      .def("marginal", [](const GaussianMixture& g, const py::object& dims) { return g.marginal(to_dims(dims, "marginal: dims")); },
-           py::arg("dims"))
+      .def(
+          "marginal",
+          [](const GaussianMixture& g, const py::object& dims) { return g.marginal(to_dims(dims, "marginal: dims")); },
+          py::arg("dims"))
       .def(
           "condition",
           [](const GaussianMixture& g, const py::object& dims, const py::object& values) {
@@ -174,7 +189,8 @@ void bind_density(py::module_& m) {
       .def_property_readonly("n_components", &GaussianMixture::n_components)
       .def_property_readonly("weights_", &GaussianMixture::weights)
       .def_property_readonly("means_", &GaussianMixture::means)
-      .def_property_readonly("covariances_", [](const GaussianMixture& g) { return covariances_array(g.covariances()); })
+      .def_property_readonly("covariances_",
+                             [](const GaussianMixture& g) { return covariances_array(g.covariances()); })
       .def_property_readonly("converged_", [](const GaussianMixture& g) { return g.result().converged; })
       .def_property_readonly("n_iter_", [](const GaussianMixture& g) { return g.result().n_iter; })
       .def_property_readonly("lower_bound_", [](const GaussianMixture& g) { return g.result().lower_bound; })
@@ -196,16 +212,22 @@ void bind_density(py::module_& m) {
       m, "PoseMixture",
       "The paper's mixture over (p, q, r), fitted in (p, log q, r): p(u|r) by conditioning, p(r) by marginalising.")
       .def(py::init([](const py::object& settings, const py::kwargs& kw) {
-             return PoseMixture(settings_from<GmmSettings>(settings, kw, "PoseMixture", PoseMixture::default_settings()));
+             return PoseMixture(
+                 settings_from<GmmSettings>(settings, kw, "PoseMixture", PoseMixture::default_settings()));
            }),
            py::arg("settings") = py::none(),
            ("An unfitted pose mixture. Its defaults are PoseMixture.default_settings() (the paper's K = 2), not\n"
-            "GmmSettings()'s.\n" + settings_doc<GmmSettings>(PoseMixture::default_settings())).c_str())
+            "GmmSettings()'s.\n" +
+            settings_doc<GmmSettings>(PoseMixture::default_settings()))
+               .c_str())
       .def_static("default_settings", &PoseMixture::default_settings, "GmmSettings with the paper's K = 2 components.")
-      .def_property_readonly("settings", [](const PoseMixture& d) { return GmmSettings(d.settings()); }, "The GmmSettings it fits with (a copy).")
+      .def_property_readonly(
+          "settings", [](const PoseMixture& d) { return GmmSettings(d.settings()); },
+          "The GmmSettings it fits with (a copy).")
       .def(
           "fit",
-          [](PoseMixture& d, const py::object& poses, const py::object& features, const py::object& weights) -> PoseMixture& {
+          [](PoseMixture& d, const py::object& poses, const py::object& features,
+             const py::object& weights) -> PoseMixture& {
             const PoseArray P = to_poses(poses, "fit: poses");
             const RowMatrixXd F = features.is_none() ? RowMatrixXd(P.rows(), 0) : to_matrix(features, "fit: features");
             const Eigen::VectorXd w = to_weights(weights, "fit: weights");
@@ -214,7 +236,8 @@ void bind_density(py::module_& m) {
             return d;
           },
           py::arg("poses"), py::arg("features") = py::none(), py::arg("weights") = py::none(),
-          py::return_value_policy::reference_internal, "Fits to poses (N, 7), features (N, n), weights (N,); returns self.")
+          py::return_value_policy::reference_internal,
+          "Fits to poses (N, 7), features (N, n), weights (N,); returns self.")
       .def_static(
           "from_parameters",
           [](const py::object& reference, const GaussianMixture& joint) {
@@ -223,12 +246,13 @@ void bind_density(py::module_& m) {
           },
           py::arg("reference"), py::arg("joint"))
       .def_property_readonly("joint", &PoseMixture::joint, "The mixture over (p, log(q_ref^-1 q), r).")
-      .def_property_readonly("reference",
-                             [](const PoseMixture& d) {
-                               const auto& q = d.reference();
-                               return Eigen::Vector4d(q.x(), q.y(), q.z(), q.w());
-                             },
-                             "The chart's reference rotation [x, y, z, w].")
+      .def_property_readonly(
+          "reference",
+          [](const PoseMixture& d) {
+            const auto& q = d.reference();
+            return Eigen::Vector4d(q.x(), q.y(), q.z(), q.w());
+          },
+          "The chart's reference rotation [x, y, z, w].")
       .def(py::pickle(
           [](const PoseMixture& d) {
             const auto& q = d.reference();
@@ -236,16 +260,19 @@ void bind_density(py::module_& m) {
           },
           [](const py::tuple& t) {
             const Eigen::VectorXd q = to_vector(t[0], "reference", 4);
-            return PoseMixture::from_parameters(Eigen::Quaterniond(q[3], q[0], q[1], q[2]), t[1].cast<GaussianMixture>());
+            return PoseMixture::from_parameters(Eigen::Quaterniond(q[3], q[0], q[1], q[2]),
+                                                t[1].cast<GaussianMixture>());
           }));
 
-  py::class_<PoseKDE, PoseDensity, std::shared_ptr<PoseKDE>>(m, "PoseKDE",
-                                   "Kopicki et al. 2015's non-parametric density: one weighted kernel per data point.")
+  py::class_<PoseKDE, PoseDensity, std::shared_ptr<PoseKDE>>(
+      m, "PoseKDE", "Kopicki et al. 2015's non-parametric density: one weighted kernel per data point.")
       .def(py::init([](const py::object& settings, const py::kwargs& kw) {
              return PoseKDE(settings_from<KdeSettings>(settings, kw, "PoseKDE"));
            }),
            py::arg("settings") = py::none(), ("An unfitted KDE.\n" + settings_doc<KdeSettings>()).c_str())
-      .def_property_readonly("settings", [](const PoseKDE& d) { return KdeSettings(d.settings()); }, "The KdeSettings it was made with (a copy).")
+      .def_property_readonly(
+          "settings", [](const PoseKDE& d) { return KdeSettings(d.settings()); },
+          "The KdeSettings it was made with (a copy).")
       .def(
           "fit",
           [](PoseKDE& d, const py::object& poses, const py::object& features, const py::object& weights) -> PoseKDE& {
@@ -262,7 +289,8 @@ void bind_density(py::module_& m) {
       .def_property_readonly("features", &PoseKDE::features)
       .def_property_readonly("weights", &PoseKDE::weights)
       .def_property_readonly("position_bandwidth", [](const PoseKDE& d) { return d.settings().position_bandwidth; })
-      .def_property_readonly("orientation_bandwidth", [](const PoseKDE& d) { return d.settings().orientation_bandwidth; })
+      .def_property_readonly("orientation_bandwidth",
+                             [](const PoseKDE& d) { return d.settings().orientation_bandwidth; })
       .def_property_readonly("feature_bandwidth", &PoseKDE::feature_bandwidth);
 
   m.def("log_vmf_s3_normaliser", &log_vmf_s3_normaliser, py::arg("kappa"),

@@ -3,12 +3,12 @@
 #include <pybind11/functional.h>
 
 #include "common.hpp"
-#include "settings.hpp"
 #include "graspmix/grasp/collision.hpp"
 #include "graspmix/grasp/config_model.hpp"
 #include "graspmix/grasp/contact_model.hpp"
 #include "graspmix/grasp/experts.hpp"
 #include "graspmix/grasp/synthesis.hpp"
+#include "settings.hpp"
 
 namespace graspmix::py_bind {
 
@@ -34,7 +34,8 @@ ExpertList to_experts(const py::object& obj) {
 
 void bind_grasp(py::module_& m) {
   SettingsClass<CollisionSettings>(m, "CollisionSettings", "The collision expert W(h) (eq:opt_criterion_std_col).")
-      .field("beta", &CollisionSettings::beta, "1/m: log W = -beta * total depth (2000: 0.5 mm of penetration costs one nat)")
+      .field("beta", &CollisionSettings::beta,
+             "1/m: log W = -beta * total depth (2000: 0.5 mm of penetration costs one nat)")
       .field("point_radius", &CollisionSettings::point_radius, "m: cloud points are balls of this radius (>= 0)")
       .field("plane_margin", &CollisionSettings::plane_margin,
              "m: the support plane is raised by this much (negative: tolerate contact)")
@@ -47,9 +48,11 @@ void bind_grasp(py::module_& m) {
              "m per point: each cloud point inside a link adds this much to the total depth (0: depths alone)")
       .done();
 
-  py::class_<CollisionResult>(m, "CollisionResult", "The collision expert for one configuration (depths in m, per link).")
+  py::class_<CollisionResult>(m, "CollisionResult",
+                              "The collision expert for one configuration (depths in m, per link).")
       .def_readonly("cloud_depth", &CollisionResult::cloud_depth, "(n_links,) deepest cloud point inside each link.")
-      .def_readonly("plane_depth", &CollisionResult::plane_depth, "(n_links,) depth of each link below the support plane.")
+      .def_readonly("plane_depth", &CollisionResult::plane_depth,
+                    "(n_links,) depth of each link below the support plane.")
       .def_readonly("points_inside", &CollisionResult::points_inside, "(n_links,) cloud points inside each link.")
       .def_readonly("total_depth", &CollisionResult::total_depth)
       .def_readonly("log_w", &CollisionResult::log_w, "log W(h) = -beta * total_depth.")
@@ -74,20 +77,22 @@ void bind_grasp(py::module_& m) {
       "(eq:opt_criterion_std_col). Cloud depth of a link: the deepest cloud point inside it (exact for boxes,\n"
       "cylinders, spheres; meshes as their convex hulls); plane depth: the deepest point of the link below the\n"
       "plane (FCL half-space). The cloud is indexed once at construction.")
-      .def(py::init([](HandPtr hand, const py::object& cloud, const py::object& plane, const py::object& settings,
-                       const py::kwargs& kw) {
-             if (!hand) throw py::value_error("hand: expected a Hand, got None");
-             const CollisionSettings s = settings_from<CollisionSettings>(settings, kw, "CollisionExpert");
-             const Vec3Array P = cloud.is_none() ? Vec3Array(0, 3) : Vec3Array(to_matrix(cloud, "cloud", 3));
-             std::optional<Eigen::Vector4d> pl;
-             if (!plane.is_none()) pl = Eigen::Vector4d(to_vector(plane, "plane", 4));
-             py::gil_scoped_release release;
-             return std::make_shared<CollisionExpert>(std::move(hand), P, pl, s);
-           }),
-           py::arg("hand"), py::arg("cloud"), py::arg("plane") = py::none(), py::kw_only(), py::arg("settings") = py::none(),
-           ("hand: Hand; cloud: (N, 3) points (world frame); plane: [a, b, c, d] of a x + b y + c z + d = 0 or None.\n" +
-            settings_doc<CollisionSettings>())
-               .c_str())
+      .def(
+          py::init([](HandPtr hand, const py::object& cloud, const py::object& plane, const py::object& settings,
+                      const py::kwargs& kw) {
+            if (!hand) throw py::value_error("hand: expected a Hand, got None");
+            const CollisionSettings s = settings_from<CollisionSettings>(settings, kw, "CollisionExpert");
+            const Vec3Array P = cloud.is_none() ? Vec3Array(0, 3) : Vec3Array(to_matrix(cloud, "cloud", 3));
+            std::optional<Eigen::Vector4d> pl;
+            if (!plane.is_none()) pl = Eigen::Vector4d(to_vector(plane, "plane", 4));
+            py::gil_scoped_release release;
+            return std::make_shared<CollisionExpert>(std::move(hand), P, pl, s);
+          }),
+          py::arg("hand"), py::arg("cloud"), py::arg("plane") = py::none(), py::kw_only(),
+          py::arg("settings") = py::none(),
+          ("hand: Hand; cloud: (N, 3) points (world frame); plane: [a, b, c, d] of a x + b y + c z + d = 0 or None.\n" +
+           settings_doc<CollisionSettings>())
+              .c_str())
       .def(
           "evaluate",
           [](const CollisionExpert& e, const py::object& T_world_wrist, const py::object& joints) {
@@ -104,7 +109,8 @@ void bind_grasp(py::module_& m) {
             py::gil_scoped_release release;
             return e.evaluate_batch(W, q);
           },
-          py::arg("T_world_wrist"), py::arg("joints"), "The expert over wrists (N, 7) and joints (N, n_dofs) (or one for all).")
+          py::arg("T_world_wrist"), py::arg("joints"),
+          "The expert over wrists (N, 7) and joints (N, n_dofs) (or one for all).")
       .def(
           "log_w",
           [](const CollisionExpert& e, const py::object& T_world_wrist, const py::object& joints) {
@@ -122,15 +128,20 @@ void bind_grasp(py::module_& m) {
             py::gil_scoped_release release;
             return Eigen::Matrix<bool, Eigen::Dynamic, 1>(e.evaluate_batch(W, q).collision_free);
           },
-          py::arg("T_world_wrist"), py::arg("joints"), "(N,) bool: no cloud point inside the hand and nothing below the plane.")
-      .def_property_readonly("plane", [](const CollisionExpert& e) -> py::object {
-        if (!e.has_plane()) return py::none();
-        return py::cast(Eigen::Vector4d(e.plane()));
-      }, "The normalised, oriented plane [a, b, c, d] (free side a x + b y + c z + d > 0), or None.")
+          py::arg("T_world_wrist"), py::arg("joints"),
+          "(N,) bool: no cloud point inside the hand and nothing below the plane.")
+      .def_property_readonly(
+          "plane",
+          [](const CollisionExpert& e) -> py::object {
+            if (!e.has_plane()) return py::none();
+            return py::cast(Eigen::Vector4d(e.plane()));
+          },
+          "The normalised, oriented plane [a, b, c, d] (free side a x + b y + c z + d > 0), or None.")
       .def_property_readonly("n_points", &CollisionExpert::n_points)
       .def_property_readonly("cell_size", &CollisionExpert::cell_size, "The grid cell of the cloud index (m).")
-      .def_property_readonly("settings", [](const CollisionExpert& e) { return CollisionSettings(e.settings()); },
-                             "The CollisionSettings it was built with (a copy).")
+      .def_property_readonly(
+          "settings", [](const CollisionExpert& e) { return CollisionSettings(e.settings()); },
+          "The CollisionSettings it was built with (a copy).")
       .def_property_readonly("beta", [](const CollisionExpert& e) { return e.settings().beta; })
       .def_property_readonly("point_radius", [](const CollisionExpert& e) { return e.settings().point_radius; })
       .def_property_readonly("plane_margin", [](const CollisionExpert& e) { return e.settings().plane_margin; });
@@ -142,14 +153,15 @@ void bind_grasp(py::module_& m) {
       .field("min_points", &ContactSettings::min_points, "a link with fewer contact points gets no contact model")
       .done();
 
-  auto contact = py::class_<ContactData>(m, "ContactData", "The demonstration data D_O of one link (contact_data).")
-      .def_readonly("link", &ContactData::link)
-      .def_readonly("indices", &ContactData::indices, "(M) object points used (rows of frames / features)")
-      .def_readonly("u", &ContactData::u, "(M, 7) the link pose in each point's frame")
-      .def_readonly("r", &ContactData::r, "(M, n) the points' features")
-      .def_readonly("weights", &ContactData::weights, "(M) exp(-lambda d^2)")
-      .def_readonly("distance", &ContactData::distance, "(M) m, from the point to the link's geometry (0 inside)")
-      .def("__len__", [](const ContactData& d) { return d.u.rows(); });
+  auto contact =
+      py::class_<ContactData>(m, "ContactData", "The demonstration data D_O of one link (contact_data).")
+          .def_readonly("link", &ContactData::link)
+          .def_readonly("indices", &ContactData::indices, "(M) object points used (rows of frames / features)")
+          .def_readonly("u", &ContactData::u, "(M, 7) the link pose in each point's frame")
+          .def_readonly("r", &ContactData::r, "(M, n) the points' features")
+          .def_readonly("weights", &ContactData::weights, "(M) exp(-lambda d^2)")
+          .def_readonly("distance", &ContactData::distance, "(M) m, from the point to the link's geometry (0 inside)")
+          .def("__len__", [](const ContactData& d) { return d.u.rows(); });
   dict_compatible(contact, {"indices", "u", "r", "weights", "distance"});
 
   m.def(
@@ -173,7 +185,8 @@ void bind_grasp(py::module_& m) {
            py::arg("link"), py::arg("link_name"), py::arg("density"), py::arg("n_points") = 0)
       .def_readonly("link", &ContactModel::link)
       .def_readonly("link_name", &ContactModel::link_name)
-      .def_property_readonly("density", [](const ContactModel& c) { return std::const_pointer_cast<PoseDensity>(c.density); })
+      .def_property_readonly("density",
+                             [](const ContactModel& c) { return std::const_pointer_cast<PoseDensity>(c.density); })
       .def_readonly("n_points", &ContactModel::n_points);
 
   m.def(
@@ -199,8 +212,10 @@ void bind_grasp(py::module_& m) {
        settings_doc<ContactSettings>())
           .c_str());
 
-  SettingsClass<ConfigModelSettings>(m, "ConfigModelSettings", "The hand configuration model C(h_c) (eq:manipulator_model).")
-      .field("beta", &ConfigModelSettings::beta, "gamma range: configurations up to beta (h_e - h_g) either side of h_g")
+  SettingsClass<ConfigModelSettings>(m, "ConfigModelSettings",
+                                     "The hand configuration model C(h_c) (eq:manipulator_model).")
+      .field("beta", &ConfigModelSettings::beta,
+             "gamma range: configurations up to beta (h_e - h_g) either side of h_g")
       .field("n_kernels", &ConfigModelSettings::n_kernels, "kernels along the line (odd keeps one on h_g)")
       .field("alpha", &ConfigModelSettings::alpha, "decay of the kernel weights away from h_g (unitless)")
       .field("bandwidth", &ConfigModelSettings::bandwidth, "kernel std as a fraction of |h_e - h_g|")
@@ -216,8 +231,10 @@ void bind_grasp(py::module_& m) {
            }),
            py::arg("pregrasp"), py::arg("grasp"), py::arg("limits"), py::arg("settings") = py::none(),
            ("pregrasp h_e and grasp h_g (D,), limits (D, 2).\n" + settings_doc<ConfigModelSettings>()).c_str())
-      .def("log_density", [](const ConfigModel& c, const py::object& q) { return c.log_density(to_matrix(q, "q", c.dim(), true)); },
-           py::arg("q"))
+      .def(
+          "log_density",
+          [](const ConfigModel& c, const py::object& q) { return c.log_density(to_matrix(q, "q", c.dim(), true)); },
+          py::arg("q"))
       .def(
           "sample",
           [](const ConfigModel& c, int n, const py::object& seed) {
@@ -225,7 +242,8 @@ void bind_grasp(py::module_& m) {
             return c.sample(n, rng);
           },
           py::arg("n"), py::arg("seed") = py::none())
-      .def("pregrasp_for", [](const ConfigModel& c, const py::object& q) { return c.pregrasp_for(to_vector(q, "q", c.dim())); })
+      .def("pregrasp_for",
+           [](const ConfigModel& c, const py::object& q) { return c.pregrasp_for(to_vector(q, "q", c.dim())); })
       .def_property_readonly("pregrasp", &ConfigModel::pregrasp)
       .def_property_readonly("grasp", &ConfigModel::grasp)
       .def_property_readonly("limits", &ConfigModel::limits)
@@ -246,7 +264,8 @@ void bind_grasp(py::module_& m) {
 
   SettingsClass<KinematicFeasibilitySettings>(m, "KinematicFeasibilitySettings",
                                               "The hard kinematic-feasibility expert.")
-      .field("plane_margin", &KinematicFeasibilitySettings::plane_margin, "m: links must stay this far above the support plane")
+      .field("plane_margin", &KinematicFeasibilitySettings::plane_margin,
+             "m: links must stay this far above the support plane")
       .field("plane_tolerance", &KinematicFeasibilitySettings::plane_tolerance,
              "m: a link this little below the (raised) plane still counts as clear (rounding, not penetration)")
       .field("limit_tolerance", &KinematicFeasibilitySettings::limit_tolerance,
@@ -342,8 +361,10 @@ void bind_grasp(py::module_& m) {
   SettingsClass<AnnealingSettings>(m, "AnnealingSettings", "Simulated annealing of the best candidates.")
       .field("iterations", &AnnealingSettings::iterations, "the paper's 100")
       .field("initial_temperature", &AnnealingSettings::initial_temperature, "the paper's 1.0, falling linearly to 0")
-      .field("position_step", &AnnealingSettings::position_step, "m: std of wrist translation proposals at temperature 1")
-      .field("rotation_step", &AnnealingSettings::rotation_step, "rad: std of wrist rotation proposals at temperature 1")
+      .field("position_step", &AnnealingSettings::position_step,
+             "m: std of wrist translation proposals at temperature 1")
+      .field("rotation_step", &AnnealingSettings::rotation_step,
+             "rad: std of wrist rotation proposals at temperature 1")
       .field("joint_step", &AnnealingSettings::joint_step,
              "std of joint proposals at temperature 1, in units of the config model's kernel std")
       .done();
@@ -361,33 +382,36 @@ void bind_grasp(py::module_& m) {
       .seed("seed", &SynthesisSettings::seed, "seeds everything random in synthesis (None: 0)")
       .done();
 
-  const std::vector<std::string> grasp_keys = {"T_world_wrist", "joints", "pregrasp", "log_likelihood", "log_collision",
-                                               "log_config", "log_pregrasp", "log_contact", "log_experts", "optimised"};
-  auto grasp = py::class_<Grasp>(m, "Grasp", "One synthesised grasp and its log-likelihood terms.")
-      .def_readonly("T_world_wrist", &Grasp::T_world_wrist, "(7,) [x, y, z, qx, qy, qz, qw]")
-      .def_readonly("joints", &Grasp::joints, "grasp configuration h_c (Hand.joint_names order)")
-      .def_readonly("pregrasp", &Grasp::pregrasp, "the configuration to approach with")
-      .def_readonly("log_likelihood", &Grasp::log_likelihood, "log L (eq:opt_criterion_extended)")
-      .def_readonly("log_collision", &Grasp::log_collision, "log W")
-      .def_readonly("log_config", &Grasp::log_config, "log C")
-      .def_readonly("log_pregrasp", &Grasp::log_pregrasp, "log W of the pre-grasp configuration (clear_pregrasp)")
-      .def_readonly("log_contact", &Grasp::log_contact, "log Q_i per query link (SynthesisResult.contact_links)")
-      .def_readonly("log_experts", &Grasp::log_experts, "log E_k per expert (SynthesisResult.expert_names)")
-      .def_readonly("optimised", &Grasp::optimised)
-      .def("__repr__", [](const Grasp& g) {
-        return "<Grasp log_likelihood=" + std::to_string(g.log_likelihood) + (g.optimised ? ", optimised>" : ">");
-      });
+  const std::vector<std::string> grasp_keys = {"T_world_wrist", "joints",     "pregrasp",     "log_likelihood",
+                                               "log_collision", "log_config", "log_pregrasp", "log_contact",
+                                               "log_experts",   "optimised"};
+  auto grasp =
+      py::class_<Grasp>(m, "Grasp", "One synthesised grasp and its log-likelihood terms.")
+          .def_readonly("T_world_wrist", &Grasp::T_world_wrist, "(7,) [x, y, z, qx, qy, qz, qw]")
+          .def_readonly("joints", &Grasp::joints, "grasp configuration h_c (Hand.joint_names order)")
+          .def_readonly("pregrasp", &Grasp::pregrasp, "the configuration to approach with")
+          .def_readonly("log_likelihood", &Grasp::log_likelihood, "log L (eq:opt_criterion_extended)")
+          .def_readonly("log_collision", &Grasp::log_collision, "log W")
+          .def_readonly("log_config", &Grasp::log_config, "log C")
+          .def_readonly("log_pregrasp", &Grasp::log_pregrasp, "log W of the pre-grasp configuration (clear_pregrasp)")
+          .def_readonly("log_contact", &Grasp::log_contact, "log Q_i per query link (SynthesisResult.contact_links)")
+          .def_readonly("log_experts", &Grasp::log_experts, "log E_k per expert (SynthesisResult.expert_names)")
+          .def_readonly("optimised", &Grasp::optimised)
+          .def("__repr__", [](const Grasp& g) {
+            return "<Grasp log_likelihood=" + std::to_string(g.log_likelihood) + (g.optimised ? ", optimised>" : ">");
+          });
   dict_compatible(grasp, grasp_keys);
 
-  auto timing = py::class_<SynthesisTiming>(m, "SynthesisTiming", "Seconds spent in each stage of synthesis.")
-      .def_readonly("query", &SynthesisTiming::query, "s: query density estimation")
-      .def_readonly("sampling", &SynthesisTiming::sampling, "s: sampling and ranking")
-      .def_readonly("optimisation", &SynthesisTiming::optimisation, "s: annealing the best candidates")
-      .def_readonly("total", &SynthesisTiming::total, "s")
-      .def("__repr__", [](const SynthesisTiming& t) {
-        return "SynthesisTiming(query=" + std::to_string(t.query) + ", sampling=" + std::to_string(t.sampling) +
-               ", optimisation=" + std::to_string(t.optimisation) + ", total=" + std::to_string(t.total) + ")";
-      });
+  auto timing =
+      py::class_<SynthesisTiming>(m, "SynthesisTiming", "Seconds spent in each stage of synthesis.")
+          .def_readonly("query", &SynthesisTiming::query, "s: query density estimation")
+          .def_readonly("sampling", &SynthesisTiming::sampling, "s: sampling and ranking")
+          .def_readonly("optimisation", &SynthesisTiming::optimisation, "s: annealing the best candidates")
+          .def_readonly("total", &SynthesisTiming::total, "s")
+          .def("__repr__", [](const SynthesisTiming& t) {
+            return "SynthesisTiming(query=" + std::to_string(t.query) + ", sampling=" + std::to_string(t.sampling) +
+                   ", optimisation=" + std::to_string(t.optimisation) + ", total=" + std::to_string(t.total) + ")";
+          });
   dict_compatible(timing, {"query", "sampling", "optimisation", "total"});
 
   py::class_<SynthesisResult>(m, "SynthesisResult", "Grasps best first, with diagnostics.")
@@ -399,18 +423,19 @@ void bind_grasp(py::module_& m) {
       .def_readonly("timing", &SynthesisResult::timing, "SynthesisTiming (dict(result.timing) still works)");
 
   auto evaluation = py::class_<Evaluation>(m, "Evaluation", "log L and its terms for a batch of grasps.")
-      .def_readonly("total", &Evaluation::total, "(N,) log L")
-      .def_readonly("log_collision", &Evaluation::log_collision, "(N,)")
-      .def_readonly("log_config", &Evaluation::log_config, "(N,)")
-      .def_readonly("log_pregrasp", &Evaluation::log_pregrasp, "(N,)")
-      .def_readonly("log_contact", &Evaluation::log_contact, "(N, query links)")
-      .def_readonly("log_experts", &Evaluation::log_experts, "(N, experts)");
+                        .def_readonly("total", &Evaluation::total, "(N,) log L")
+                        .def_readonly("log_collision", &Evaluation::log_collision, "(N,)")
+                        .def_readonly("log_config", &Evaluation::log_config, "(N,)")
+                        .def_readonly("log_pregrasp", &Evaluation::log_pregrasp, "(N,)")
+                        .def_readonly("log_contact", &Evaluation::log_contact, "(N, query links)")
+                        .def_readonly("log_experts", &Evaluation::log_experts, "(N, experts)");
   dict_compatible(evaluation, {"total", "log_collision", "log_config", "log_pregrasp", "log_contact", "log_experts"});
 
   py::class_<QueryDensity>(m, "QueryDensity", "Q_i: one link's query density on an object.")
       .def_readonly("link", &QueryDensity::link)
       .def_readonly("link_name", &QueryDensity::link_name)
-      .def_property_readonly("density", [](const QueryDensity& q) { return std::const_pointer_cast<PoseDensity>(q.density); });
+      .def_property_readonly("density",
+                             [](const QueryDensity& q) { return std::const_pointer_cast<PoseDensity>(q.density); });
 
   py::class_<GraspSynthesizer, std::shared_ptr<GraspSynthesizer>>(
       m, "GraspSynthesizer", "Query densities, sampling, ranking and annealing for one learnt model.")
@@ -440,8 +465,8 @@ void bind_grasp(py::module_& m) {
               .c_str())
       .def(
           "query_densities",
-          [](const GraspSynthesizer& g, const py::object& frames, const py::object& features, const py::object& settings,
-             const py::object& seed, const py::kwargs& kw) {
+          [](const GraspSynthesizer& g, const py::object& frames, const py::object& features,
+             const py::object& settings, const py::object& seed, const py::kwargs& kw) {
             const QuerySettings s = settings_from<QuerySettings>(settings, kw, "query_densities");
             std::mt19937_64 rng(to_seed(seed));
             const PoseArray v = to_poses(frames, "frames");
@@ -471,7 +496,8 @@ void bind_grasp(py::module_& m) {
           },
           py::arg("query"), py::arg("collision"), py::arg("experts"), py::arg("wrists"), py::arg("joints"),
           py::arg("clear_pregrasp") = py::none(),
-          "log L and its terms (an Evaluation) for a batch of grasps; clear_pregrasp=None: SynthesisSettings' default.");
+          "log L and its terms (an Evaluation) for a batch of grasps; clear_pregrasp=None: SynthesisSettings' "
+          "default.");
 }
 
 }  // namespace graspmix::py_bind

@@ -2,10 +2,10 @@
 #include <limits>
 
 #include "common.hpp"
-#include "settings.hpp"
 #include "graspmix/perception/cloud_io.hpp"
 #include "graspmix/perception/scene.hpp"
 #include "graspmix/perception/surface.hpp"
+#include "settings.hpp"
 
 namespace graspmix::py_bind {
 
@@ -19,15 +19,15 @@ Vec3Array to_points3(const py::object& obj, const char* name) {
   return Vec3Array(to_matrix(obj, name, 3, true));
 }
 
-
 }  // namespace
 
 void bind_perception(py::module_& m) {
   // ---- clouds ----------------------------------------------------------------------------------
   py::class_<CloudData>(m, "CloudData", "A point cloud read from a file, with what the file said about it.")
       .def_readonly("points", &CloudData::points, "(N, 3) finite points (m); NaN points of the file are dropped.")
-      .def_property_readonly("normals", [](const CloudData& c) { return optional_rows(c.normals); },
-                             "(N, 3) normals from the file (normal_x/y/z or nx/ny/nz), or None.")
+      .def_property_readonly(
+          "normals", [](const CloudData& c) { return optional_rows(c.normals); },
+          "(N, 3) normals from the file (normal_x/y/z or nx/ny/nz), or None.")
       .def_readonly("viewpoint", &CloudData::viewpoint,
                     "Sensor pose [x, y, z, qx, qy, qz, qw] from the PCD VIEWPOINT (identity when absent).")
       .def_readonly("has_viewpoint", &CloudData::has_viewpoint, "True when the file's viewpoint is not the identity.")
@@ -40,7 +40,8 @@ void bind_perception(py::module_& m) {
       .def("__len__", [](const CloudData& c) { return c.points.rows(); })
       .def("__repr__", [](const CloudData& c) {
         return "<CloudData " + std::to_string(c.points.rows()) + " points from '" + c.path + "' (" + c.format + ")" +
-               (c.normals.rows() ? ", normals" : "") + (c.n_invalid ? ", " + std::to_string(c.n_invalid) + " invalid dropped" : "") + ">";
+               (c.normals.rows() ? ", normals" : "") +
+               (c.n_invalid ? ", " + std::to_string(c.n_invalid) + " invalid dropped" : "") + ">";
       });
 
   m.def(
@@ -59,7 +60,8 @@ void bind_perception(py::module_& m) {
          const py::object& viewpoint) {
         const std::string p = to_path(path, "path");
         const Vec3Array P(to_matrix(points, "save_cloud: points", 3));
-        const Vec3Array N = normals.is_none() ? Vec3Array(0, 3) : Vec3Array(to_matrix(normals, "save_cloud: normals", 3));
+        const Vec3Array N =
+            normals.is_none() ? Vec3Array(0, 3) : Vec3Array(to_matrix(normals, "save_cloud: normals", 3));
         Eigen::Matrix<double, 7, 1> vp;
         vp << 0, 0, 0, 0, 0, 0, 1;
         if (!viewpoint.is_none()) vp = to_vector(viewpoint, "save_cloud: viewpoint", 7);
@@ -104,8 +106,9 @@ void bind_perception(py::module_& m) {
       .def_readonly("sources", &SceneResult::sources,
                     "(N) input row whose per-point data (viewpoint, camera) every point carries: its own, or for a\n"
                     "voxel centroid the input point nearest to it in its voxel; index per-point arrays with it")
-      .def_property_readonly("plane", [](const SceneResult& r) { return r.plane_found ? py::cast(r.plane) : py::none(); },
-                             "[a, b, c, d] of a x + b y + c z + d = 0, (a, b, c) unit towards the object; None if none found")
+      .def_property_readonly(
+          "plane", [](const SceneResult& r) { return r.plane_found ? py::cast(r.plane) : py::none(); },
+          "[a, b, c, d] of a x + b y + c z + d = 0, (a, b, c) unit towards the object; None if none found")
       .def_readonly("plane_found", &SceneResult::plane_found)
       .def_readonly("n_input", &SceneResult::n_input)
       .def_readonly("n_after_crop", &SceneResult::n_after_crop)
@@ -160,8 +163,8 @@ void bind_perception(py::module_& m) {
              "a neighbourhood holding more points is refused (voxel-downsample such a dense cloud first); 0: no cap")
       .done();
 
-  py::class_<SurfaceCloud>(m, "SurfaceCloud",
-                           "The object representation O(v, r): points, outward normals, curvatures [k1, k2] and frames.")
+  py::class_<SurfaceCloud>(
+      m, "SurfaceCloud", "The object representation O(v, r): points, outward normals, curvatures [k1, k2] and frames.")
       .def_readonly("points", &SurfaceCloud::points, "(N, 3) metres")
       .def_readonly("normals", &SurfaceCloud::normals, "(N, 3) unit, outward")
       .def_readonly("curvatures", &SurfaceCloud::curvatures, "(N, 2) PCL's [pc1, pc2] = [k1, k2], k1 >= k2 >= 0")
@@ -181,14 +184,17 @@ void bind_perception(py::module_& m) {
       .def_readonly("seconds_orientation", &SurfaceCloud::seconds_orientation, "s")
       .def_readonly("seconds_curvatures", &SurfaceCloud::seconds_curvatures, "s")
       .def_readonly("seconds_total", &SurfaceCloud::seconds_total, "s")
-      .def_property_readonly("timings", [](const SurfaceCloud& s) {
-        py::dict d;
-        d["normals"] = s.seconds_normals;
-        d["orientation"] = s.seconds_orientation;
-        d["curvatures"] = s.seconds_curvatures;
-        d["total"] = s.seconds_total;
-        return d;
-      }, "seconds per stage")
+      .def_property_readonly(
+          "timings",
+          [](const SurfaceCloud& s) {
+            py::dict d;
+            d["normals"] = s.seconds_normals;
+            d["orientation"] = s.seconds_orientation;
+            d["curvatures"] = s.seconds_curvatures;
+            d["total"] = s.seconds_total;
+            return d;
+          },
+          "seconds per stage")
       .def("__len__", [](const SurfaceCloud& s) { return s.points.rows(); })
       .def("__repr__", [](const SurfaceCloud& s) {
         return "<SurfaceCloud " + std::to_string(s.points.rows()) + " points (" + std::to_string(s.n_dropped) +
@@ -199,8 +205,8 @@ void bind_perception(py::module_& m) {
       [](const py::object& points, const py::object& radius, const py::object& normals, const py::object& viewpoints,
          const py::object& settings, py::kwargs kw) {
         const Vec3Array P(to_matrix(points, "compute_surface_features: points", 3));
-        const Vec3Array N = normals.is_none() ? Vec3Array(0, 3)
-                                              : Vec3Array(to_matrix(normals, "compute_surface_features: normals", 3));
+        const Vec3Array N =
+            normals.is_none() ? Vec3Array(0, 3) : Vec3Array(to_matrix(normals, "compute_surface_features: normals", 3));
         const Vec3Array V = to_points3(viewpoints, "compute_surface_features: viewpoints");
         if (!radius.is_none()) kw["radius"] = radius;
         const FeatureSettings s = settings_from<FeatureSettings>(settings, kw, "compute_surface_features");

@@ -4,12 +4,11 @@
 #include <optional>
 
 #include "common.hpp"
-#include "settings.hpp"
-#include "graspmix/robot/hand.hpp"
 #include "graspmix/core/se3.hpp"
+#include "graspmix/robot/hand.hpp"
+#include "settings.hpp"
 
 namespace graspmix::py_bind {
-
 
 namespace {
 
@@ -22,20 +21,28 @@ py::array_t<double> poses_3d(const RowMatrixXd& flat, Eigen::Index n_links) {
 
 const char* shape_name(ShapeType t) {
   switch (t) {
-    case ShapeType::Box: return "box";
-    case ShapeType::Cylinder: return "cylinder";
-    case ShapeType::Sphere: return "sphere";
-    case ShapeType::Mesh: return "mesh";
+    case ShapeType::Box:
+      return "box";
+    case ShapeType::Cylinder:
+      return "cylinder";
+    case ShapeType::Sphere:
+      return "sphere";
+    case ShapeType::Mesh:
+      return "mesh";
   }
   return "?";
 }
 
 const char* joint_type_name(JointType t) {
   switch (t) {
-    case JointType::Fixed: return "fixed";
-    case JointType::Revolute: return "revolute";
-    case JointType::Continuous: return "continuous";
-    case JointType::Prismatic: return "prismatic";
+    case JointType::Fixed:
+      return "fixed";
+    case JointType::Revolute:
+      return "revolute";
+    case JointType::Continuous:
+      return "continuous";
+    case JointType::Prismatic:
+      return "prismatic";
   }
   return "?";
 }
@@ -49,18 +56,22 @@ void bind_robot(py::module_& m) {
           [](HandLoadSettings& s, const py::object& v) {
             s.package_dirs.clear();
             if (v.is_none()) return;
-            if (py::isinstance<py::str>(v)) throw py::value_error("package_dirs: expected a list of folders, got one string");
-            for (const auto& d : v) s.package_dirs.push_back(to_path(py::reinterpret_borrow<py::object>(d), "package_dirs"));
+            if (py::isinstance<py::str>(v))
+              throw py::value_error("package_dirs: expected a list of folders, got one string");
+            for (const auto& d : v)
+              s.package_dirs.push_back(to_path(py::reinterpret_borrow<py::object>(d), "package_dirs"));
           },
           "extra folders searched for package://name/... meshes (each holds package folders, as in ROS_PACKAGE_PATH)")
-      .field("load_meshes", &HandLoadSettings::load_meshes, "False: mesh shapes keep only their file names (no geometry)")
+      .field("load_meshes", &HandLoadSettings::load_meshes,
+             "False: mesh shapes keep only their file names (no geometry)")
       .done();
 
   m.def(
       "load_mesh",
       [](const py::object& path, const py::object& scale) {
         const std::string p = to_path(path, "path");
-        const Eigen::Vector3d sc = scale.is_none() ? Eigen::Vector3d::Ones() : Eigen::Vector3d(to_vector(scale, "scale", 3));
+        const Eigen::Vector3d sc =
+            scale.is_none() ? Eigen::Vector3d::Ones() : Eigen::Vector3d(to_vector(scale, "scale", 3));
         TriangleMesh mesh;
         {
           py::gil_scoped_release release;
@@ -70,11 +81,12 @@ void bind_robot(py::module_& m) {
       },
       py::arg("path"), py::arg("scale") = py::none(),
       "(vertices (V, 3), triangles (T, 3)) of every triangle in a mesh file (STL, OBJ, ... via assimp), scaled.");
-  py::class_<Hand, HandPtr>(m, "Hand",
-                            "A hand as a kinematic tree from a URDF (urdfdom): fk (eq:fk_function) and collision geometry.\n"
-                            "The wrist is the root link; joint_names are the independent joints (mimic joints follow\n"
-                            "value = multiplier * master + offset and are not listed); poses are [x, y, z, qx, qy, qz, qw]\n"
-                            "of the URDF link frames (not inertial frames).")
+  py::class_<Hand, HandPtr>(
+      m, "Hand",
+      "A hand as a kinematic tree from a URDF (urdfdom): fk (eq:fk_function) and collision geometry.\n"
+      "The wrist is the root link; joint_names are the independent joints (mimic joints follow\n"
+      "value = multiplier * master + offset and are not listed); poses are [x, y, z, qx, qy, qz, qw]\n"
+      "of the URDF link frames (not inertial frames).")
       .def_static(
           "from_urdf",
           [](const py::object& path, const py::object& package_dirs, const py::object& settings, py::kwargs kw) {
@@ -94,8 +106,8 @@ void bind_robot(py::module_& m) {
               .c_str())
       .def_static(
           "from_urdf_string",
-          [](const std::string& xml, const py::object& base_dir, const py::object& package_dirs, const py::object& settings,
-             py::kwargs kw) {
+          [](const std::string& xml, const py::object& base_dir, const py::object& package_dirs,
+             const py::object& settings, py::kwargs kw) {
             if (!package_dirs.is_none()) kw["package_dirs"] = package_dirs;
             const HandLoadSettings s = settings_from<HandLoadSettings>(settings, kw, "Hand.from_urdf_string");
             const std::string dir = to_path(base_dir, "base_dir");
@@ -109,8 +121,10 @@ void bind_robot(py::module_& m) {
       .def_property_readonly("name", &Hand::name)
       .def_property_readonly("source", &Hand::source, "The URDF file it was read from.")
       .def_property_readonly("joint_names", &Hand::joint_names, "Independent joints, the order of joint arrays.")
-      .def_property_readonly("joint_limits", &Hand::joint_limits, "(n_dofs, 2) lower, upper (m or rad; +-inf if unbounded).")
-      .def_property_readonly("link_names", &Hand::link_names, "Every link, the wrist (root) first; the order of fk rows.")
+      .def_property_readonly("joint_limits", &Hand::joint_limits,
+                             "(n_dofs, 2) lower, upper (m or rad; +-inf if unbounded).")
+      .def_property_readonly("link_names", &Hand::link_names,
+                             "Every link, the wrist (root) first; the order of fk rows.")
       .def_property_readonly("root_link", [](const Hand& h) { return h.link_names().front(); })
       .def_property_readonly("n_dofs", &Hand::n_dofs)
       .def_property_readonly("n_links", &Hand::n_links)
@@ -119,7 +133,9 @@ void bind_robot(py::module_& m) {
           [](const Hand& h) {
             py::dict out;
             for (const auto& j : h.joints())
-              if (j.mimic) out[py::str(j.name)] = py::make_tuple(h.joint_names()[static_cast<size_t>(j.dof)], j.multiplier, j.offset);
+              if (j.mimic)
+                out[py::str(j.name)] =
+                    py::make_tuple(h.joint_names()[static_cast<size_t>(j.dof)], j.multiplier, j.offset);
             return out;
           },
           "name -> (independent joint, multiplier, offset): value = multiplier * joints[master] + offset.")
@@ -136,7 +152,8 @@ void bind_robot(py::module_& m) {
               d["origin"] = pose_to_vector(j.T_parent_joint);
               d["axis"] = j.axis;
               d["limits"] = py::make_tuple(j.lower, j.upper);
-              d["mimic"] = j.mimic ? py::object(py::str(h.joint_names()[static_cast<size_t>(j.dof)])) : py::object(py::none());
+              d["mimic"] =
+                  j.mimic ? py::object(py::str(h.joint_names()[static_cast<size_t>(j.dof)])) : py::object(py::none());
               out.append(d);
             }
             return out;
@@ -147,7 +164,10 @@ void bind_robot(py::module_& m) {
           "joints_array", [](const Hand& h, const py::object& joints) { return to_configuration(h, joints, "joints"); },
           py::arg("joints"), "A configuration (mapping or array) as an array in joint_names order.")
       .def(
-          "joints_dict", [](const Hand& h, const py::object& joints) { return h.joints_to_map(to_configuration(h, joints, "joints")); },
+          "joints_dict",
+          [](const Hand& h, const py::object& joints) {
+            return h.joints_to_map(to_configuration(h, joints, "joints"));
+          },
           py::arg("joints"), "A configuration as {joint name: value}.")
       .def(
           "all_joint_values",
@@ -155,12 +175,16 @@ void bind_robot(py::module_& m) {
             const Eigen::VectorXd v = h.all_joint_values(to_configuration(h, joints, "joints"));
             py::dict out;
             for (size_t i = 0; i < h.joints().size(); ++i)
-              if (h.joints()[i].type != JointType::Fixed) out[py::str(h.joints()[i].name)] = v[static_cast<Eigen::Index>(i)];
+              if (h.joints()[i].type != JointType::Fixed)
+                out[py::str(h.joints()[i].name)] = v[static_cast<Eigen::Index>(i)];
             return out;
           },
-          py::arg("joints"), "{name: value} for every movable URDF joint, mimic joints resolved (e.g. to drive a simulator).")
-      .def("clamp", [](const Hand& h, const py::object& joints) { return h.clamp(to_configuration(h, joints, "joints")); },
-           py::arg("joints"), "The configuration clamped into the joint limits.")
+          py::arg("joints"),
+          "{name: value} for every movable URDF joint, mimic joints resolved (e.g. to drive a simulator).")
+      .def(
+          "clamp",
+          [](const Hand& h, const py::object& joints) { return h.clamp(to_configuration(h, joints, "joints")); },
+          py::arg("joints"), "The configuration clamped into the joint limits.")
       .def(
           "within_limits",
           [](const Hand& h, const py::object& joints, const py::object& tol) {
@@ -168,14 +192,16 @@ void bind_robot(py::module_& m) {
             return tol.is_none() ? h.within_limits(q) : h.within_limits(q, tol.cast<double>());
           },
           py::arg("joints"), py::arg("tolerance") = py::none(),
-          "True when every joint is within its limits, up to tolerance (joint units; None: the C++ default of Hand::within_limits).")
+          "True when every joint is within its limits, up to tolerance (joint units; None: the C++ default of "
+          "Hand::within_limits).")
       .def(
           "fk",
           [](const Hand& h, const py::object& T_world_wrist, const py::object& joints) {
             const Eigen::Isometry3d W = to_pose(T_world_wrist, "T_world_wrist");
             const auto poses = h.fk(W, to_configuration(h, joints, "joints"));
             RowMatrixXd out(static_cast<Eigen::Index>(poses.size()), 7);
-            for (size_t i = 0; i < poses.size(); ++i) out.row(static_cast<Eigen::Index>(i)) = pose_to_vector(poses[i]).transpose();
+            for (size_t i = 0; i < poses.size(); ++i)
+              out.row(static_cast<Eigen::Index>(i)) = pose_to_vector(poses[i]).transpose();
             return out;
           },
           py::arg("T_world_wrist"), py::arg("joints"),
@@ -205,9 +231,16 @@ void bind_robot(py::module_& m) {
               d["type"] = shape_name(s.type);
               d["origin"] = pose_to_vector(s.T_link_shape);
               switch (s.type) {
-                case ShapeType::Box: d["size"] = s.size; break;
-                case ShapeType::Cylinder: d["radius"] = s.size.x(); d["length"] = s.size.y(); break;
-                case ShapeType::Sphere: d["radius"] = s.size.x(); break;
+                case ShapeType::Box:
+                  d["size"] = s.size;
+                  break;
+                case ShapeType::Cylinder:
+                  d["radius"] = s.size.x();
+                  d["length"] = s.size.y();
+                  break;
+                case ShapeType::Sphere:
+                  d["radius"] = s.size.x();
+                  break;
                 case ShapeType::Mesh:
                   d["file"] = s.mesh_file;
                   d["scale"] = s.size;
@@ -235,9 +268,9 @@ void bind_robot(py::module_& m) {
           "(vertices (V, 3), triangles (T, 3)) of all of a link's collision geometry in the link frame\n"
           "(cylinders and spheres tessellated).")
       .def("__repr__", [](const Hand& h) {
-        return "Hand(name='" + h.name() + "', links=" + std::to_string(h.n_links()) + ", dofs=" + std::to_string(h.n_dofs()) + ")";
+        return "Hand(name='" + h.name() + "', links=" + std::to_string(h.n_links()) +
+               ", dofs=" + std::to_string(h.n_dofs()) + ")";
       });
-
 }
 
 }  // namespace graspmix::py_bind

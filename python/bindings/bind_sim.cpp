@@ -2,9 +2,9 @@
 #include <memory>
 
 #include "common.hpp"
-#include "settings.hpp"
 #include "graspmix/core/se3.hpp"
 #include "graspmix/sim/sim.hpp"
+#include "settings.hpp"
 
 namespace graspmix::py_bind {
 
@@ -50,9 +50,11 @@ void bind_sim(py::module_& m) {
       .def_property_readonly("source", &SimObject::source)
       .def_property_readonly("mass", &SimObject::mass, "kg")
       .def_property_readonly("lateral_friction", &SimObject::lateral_friction, "the URDF's <contact> value, -1 if none")
-      .def_property_readonly("inertia_scaling", &SimObject::inertia_scaling, "the URDF's <contact><inertia_scaling>, 1 if none")
-      .def_property_readonly("model", [](const SimObject& o) { return std::make_shared<Hand>(o.model()); },
-                             "The object as a (one-link) Hand: its collision geometry.")
+      .def_property_readonly("inertia_scaling", &SimObject::inertia_scaling,
+                             "the URDF's <contact><inertia_scaling>, 1 if none")
+      .def_property_readonly(
+          "model", [](const SimObject& o) { return std::make_shared<Hand>(o.model()); },
+          "The object as a (one-link) Hand: its collision geometry.")
       .def(
           "rest_pose",
           [](const SimObject& o, double x, double y, const py::object& q) {
@@ -73,21 +75,24 @@ void bind_sim(py::module_& m) {
       .def_readonly("lift_height", &SimResult::lift_height, "m the object's centre of mass rose")
       .def_readonly("contact_count", &SimResult::contact_count, "hand-object contact points at the end")
       .def_readonly("start_penetration", &SimResult::start_penetration, "m")
-      .def_property_readonly("object_pose", [](const SimResult& r) { return Eigen::Matrix<double, 7, 1>(pose_to_vector(r.T_world_object_final)); },
-                             "the object's final link pose (7,)")
+      .def_property_readonly(
+          "object_pose",
+          [](const SimResult& r) { return Eigen::Matrix<double, 7, 1>(pose_to_vector(r.T_world_object_final)); },
+          "the object's final link pose (7,)")
       .def_readonly("steps", &SimResult::steps)
       .def_readonly("simulated_time", &SimResult::simulated_time, "s")
       .def_readonly("wall_time", &SimResult::wall_time, "s")
       .def("__repr__", [](const SimResult& r) {
         return "SimResult(success=" + std::string(r.success ? "True" : "False") + ", reason='" + r.reason +
-               "', lift_height=" + std::to_string(r.lift_height) + ", contact_count=" + std::to_string(r.contact_count) + ")";
+               "', lift_height=" + std::to_string(r.lift_height) +
+               ", contact_count=" + std::to_string(r.contact_count) + ")";
       });
 
   m.def(
       "sim_execute",
       [](const std::shared_ptr<Hand>& hand, const std::shared_ptr<SimObject>& object, const py::object& T_world_object,
-         const py::object& T_world_wrist, const py::object& pregrasp, const py::object& grasp, const py::object& settings_obj,
-         const py::kwargs& kw) {
+         const py::object& T_world_wrist, const py::object& pregrasp, const py::object& grasp,
+         const py::object& settings_obj, const py::kwargs& kw) {
         const SimSettings settings = settings_from<SimSettings>(settings_obj, kw, "sim_execute");
         if (!hand) throw py::value_error("hand: expected a Hand, got None");
         if (!object) throw py::value_error("object: expected a SimObject, got None");

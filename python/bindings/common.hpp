@@ -11,8 +11,8 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include "graspmix/robot/hand.hpp"
 #include "graspmix/core/types.hpp"
+#include "graspmix/robot/hand.hpp"
 
 namespace graspmix::py_bind {
 

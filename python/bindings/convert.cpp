@@ -41,10 +41,12 @@ Eigen::VectorXd to_vector(const py::handle& obj, const char* name, Eigen::Index 
   if (a.ndim() == 0) {
     Eigen::VectorXd v(1);
     v[0] = *a.data();
-    if (n >= 0 && n != 1) throw py::value_error(std::string(name) + ": expected " + std::to_string(n) + " values, got 1");
+    if (n >= 0 && n != 1)
+      throw py::value_error(std::string(name) + ": expected " + std::to_string(n) + " values, got 1");
     return v;
   }
-  if (a.ndim() != 1) throw py::value_error(std::string(name) + ": expected a 1-D array, got " + std::to_string(a.ndim()) + "-D");
+  if (a.ndim() != 1)
+    throw py::value_error(std::string(name) + ": expected a 1-D array, got " + std::to_string(a.ndim()) + "-D");
   if (n >= 0 && a.shape(0) != n) {
     throw py::value_error(std::string(name) + ": expected " + std::to_string(n) + " values, got " +
                           std::to_string(a.shape(0)));
@@ -56,7 +58,8 @@ std::uint64_t to_seed(const py::object& seed) {
   if (seed.is_none()) return 0;
   // Checked before any cast: a float, a bool or an integer beyond 64 bits is a ValueError, not a cast error.
   if (!py::isinstance<py::int_>(seed) || py::isinstance<py::bool_>(seed)) {
-    throw py::value_error("seed must be a non-negative integer, got " + std::string(py::str(py::type::of(seed).attr("__name__"))));
+    throw py::value_error("seed must be a non-negative integer, got " +
+                          std::string(py::str(py::type::of(seed).attr("__name__"))));
   }
   const py::int_ value = py::reinterpret_borrow<py::int_>(seed);
   if (value < py::int_(0) || value > py::int_(std::numeric_limits<std::int64_t>::max())) {
@@ -149,8 +152,6 @@ RowMatrixXd to_configurations(const Hand& hand, const py::handle& obj, const cha
   return to_matrix(obj, what, hand.n_dofs());
 }
 
-Eigen::Isometry3d to_pose(const py::handle& obj, const char* name) {
-  return pose_from_vector(to_vector(obj, name, 7));
-}
+Eigen::Isometry3d to_pose(const py::handle& obj, const char* name) { return pose_from_vector(to_vector(obj, name, 7)); }
 
 }  // namespace graspmix::py_bind

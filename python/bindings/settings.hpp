@@ -83,7 +83,8 @@ template <class T>
 std::string settings_doc(const T& defaults = T{}) {
   using Info = SettingsInfo<T>;
   const py::object d = py::cast(defaults);
-  std::string out = "Settings: settings= a " + Info::name() + " (None: its defaults), and/or its fields as keywords,\n"
+  std::string out = "Settings: settings= a " + Info::name() +
+                    " (None: its defaults), and/or its fields as keywords,\n"
                     "which override it (an unknown keyword is a ValueError):\n";
   for (const auto& f : Info::fields()) {
     out += "  " + f.name + " = " + std::string(py::repr(d.attr(f.name.c_str())));
@@ -107,7 +108,7 @@ class SettingsClass {
 
   /// A plain member; `doc` gives its unit.
   template <class D>
-  SettingsClass& field(const char* name, D T::*member, const char* doc = "") {
+  SettingsClass& field(const char* name, D T::* member, const char* doc = "") {
     cls_.def_readwrite(name, member, doc);
     Info::fields().push_back({name, doc});
     return *this;
@@ -122,7 +123,7 @@ class SettingsClass {
   }
 
   /// A seed: a non-negative integer; None means 0 (graspmix never seeds from the clock).
-  SettingsClass& seed(const char* name, std::uint64_t T::*member, const char* doc) {
+  SettingsClass& seed(const char* name, std::uint64_t T::* member, const char* doc) {
     return property(
         name, [member](const T& s) { return s.*member; },
         [member](T& s, const py::object& v) { s.*member = to_seed(v); }, doc);
@@ -131,8 +132,9 @@ class SettingsClass {
   /// The keyword constructor, __repr__, ==, copy, pickling, `_fields` and the field list in the doc.
   py::class_<T>& done() {
     const std::string name = Info::name();
-    cls_.def(py::init([name](const py::kwargs& kw) { return settings_from<T>(py::none(), kw, name); }),
-             ("Keyword constructor: any of the fields (" + Info::names() + "); the others keep their defaults.").c_str());
+    cls_.def(
+        py::init([name](const py::kwargs& kw) { return settings_from<T>(py::none(), kw, name); }),
+        ("Keyword constructor: any of the fields (" + Info::names() + "); the others keep their defaults.").c_str());
     py::list names;
     for (const auto& f : Info::fields()) names.append(f.name);
     cls_.attr("_fields") = py::tuple(names);
@@ -153,8 +155,8 @@ class SettingsClass {
           const py::object array_equal = py::module_::import("numpy").attr("array_equal");
           for (const auto& f : Info::fields()) {
             const py::object a = self.attr(f.name.c_str()), b = other.attr(f.name.c_str());
-            const bool same = py::isinstance(a, ndarray) || py::isinstance(b, ndarray) ? array_equal(a, b).cast<bool>()
-                                                                                         : a.equal(b);
+            const bool same =
+                py::isinstance(a, ndarray) || py::isinstance(b, ndarray) ? array_equal(a, b).cast<bool>() : a.equal(b);
             if (!same) return py::bool_(false);
           }
           return py::bool_(true);

@@ -12,50 +12,56 @@ layers, each importing only from the ones before it:
 
 The module paths graspmix.acquisition, .demo, .plots, .report and .stats are deprecated aliases.
 """
+
 import numpy as _np
 
-from . import _core
+from . import (
+    _core,
+    acquisition,  # noqa: E402  (deprecated alias of graspmix.sim.acquisition)
+    io,
+    model,
+    sim,
+    viz,
+)
 from ._core import (
-    # densities (foundation)
-    GaussianMixture,
-    PoseDensity,
-    PoseKDE,
-    PoseMixture,
-    build_info,
+    # contact models, configuration model, experts, synthesis
+    AxisAlignmentExpert,
     # object representation
     CloudData,
-    SceneResult,
-    SurfaceCloud,
-    compute_surface_features,
-    load_cloud,
-    prepare_cloud,
-    save_cloud,
     # hands and the collision expert
     CollisionBatchResult,
     CollisionExpert,
     CollisionResult,
-    Hand,
-    load_mesh,
-    # simulation
-    SimObject,
-    SimResult,
-    SimSettings,
-    # contact models, configuration model, experts, synthesis
-    AxisAlignmentExpert,
     ConfigModel,
     ConfigModelSettings,
     ContactModel,
     ContactSettings,
     Expert,
     FunctionExpert,
+    # densities (foundation)
+    GaussianMixture,
     GraspSynthesizer,
+    Hand,
     KinematicFeasibilityExpert,
+    PoseDensity,
+    PoseKDE,
+    PoseMixture,
+    SceneResult,
+    # simulation
+    SimObject,
+    SimResult,
+    SimSettings,
+    SurfaceCloud,
     SynthesisSettings,
+    build_info,
+    compute_surface_features,
     contact_data,
     learn_contact_models,
+    load_cloud,
+    load_mesh,
+    prepare_cloud,
+    save_cloud,
 )
-from . import io, model, sim, viz
-from . import acquisition  # noqa: E402  (deprecated alias of graspmix.sim.acquisition)
 from .io import data_path
 from .model import Demonstration, FeatureSettings, Grasp, GraspModel, GraspSet, default_model_path, expert, learn
 

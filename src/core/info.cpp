@@ -1,9 +1,9 @@
 #include "graspmix/core/info.hpp"
 
-#include <Eigen/Core>
 #include <LinearMath/btScalar.h>
 #include <fcl/config.h>
 #include <pcl/pcl_config.h>
+#include <Eigen/Core>
 
 namespace graspmix {
 

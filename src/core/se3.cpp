@@ -32,9 +32,7 @@ void require_finite(const Eigen::Ref<const RowMatrixXd>& m, const char* what) {
   }
 }
 
-Eigen::Quaterniond canonical(const Eigen::Quaterniond& q) {
-  return q.w() < 0.0 ? Eigen::Quaterniond(-q.coeffs()) : q;
-}
+Eigen::Quaterniond canonical(const Eigen::Quaterniond& q) { return q.w() < 0.0 ? Eigen::Quaterniond(-q.coeffs()) : q; }
 
 Eigen::Vector3d quat_log(const Eigen::Quaterniond& q_in) {
   const Eigen::Quaterniond q = canonical(q_in);
@@ -95,8 +93,7 @@ struct RowPose {
 
 RowPose row_pose(const Eigen::Ref<const PoseArray>& a, Eigen::Index i, const char* what) {
   if (!a.row(i).head<3>().allFinite()) {
-    throw std::invalid_argument(std::string(what) + ": row " + std::to_string(i) +
-                                " has a NaN or infinite position");
+    throw std::invalid_argument(std::string(what) + ": row " + std::to_string(i) + " has a NaN or infinite position");
   }
   return {a.row(i).head<3>().transpose(), checked_quaternion(a(i, 3), a(i, 4), a(i, 5), a(i, 6), i, what)};
 }

@@ -21,7 +21,8 @@ inline std::string str(Eigen::Index v) { return std::to_string(v); }
 inline std::pair<Eigen::MatrixXd, double> cholesky(const Eigen::MatrixXd& S, const std::string& what) {
   Eigen::LLT<Eigen::MatrixXd> llt(S);
   if (llt.info() != Eigen::Success || !S.allFinite()) {
-    throw std::invalid_argument(what + " is not positive definite (degenerate data: increase reg_covar, "
+    throw std::invalid_argument(what +
+                                " is not positive definite (degenerate data: increase reg_covar, "
                                 "use fewer components, or give more distinct points)");
   }
   Eigen::MatrixXd L = llt.matrixL();
@@ -30,7 +31,7 @@ inline std::pair<Eigen::MatrixXd, double> cholesky(const Eigen::MatrixXd& S, con
 
 /// -0.5 * (d log 2 pi + log|S| + maha) for every row of D (already centred), given L = chol(S).
 inline Eigen::VectorXd gaussian_log_density_centred(const Eigen::Ref<const RowMatrixXd>& D, const Eigen::MatrixXd& L,
-                                             double log_det) {
+                                                    double log_det) {
   const Eigen::Index n = D.rows(), d = D.cols();
   Eigen::VectorXd out(n);
   const Eigen::Index block = 1024;

@@ -9,8 +9,8 @@
 
 #include <Eigen/Cholesky>
 
-#include "graspmix/core/se3.hpp"
 #include "gaussian.hpp"
+#include "graspmix/core/se3.hpp"
 
 namespace graspmix {
 

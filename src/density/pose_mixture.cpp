@@ -118,7 +118,8 @@ RowMatrixXd PoseMixture::to_coordinates(const Eigen::Ref<const PoseArray>& poses
 PoseArray PoseMixture::from_coordinates(const Eigen::Ref<const RowMatrixXd>& coords) const {
   PoseArray out(coords.rows(), 7);
   for (Eigen::Index i = 0; i < coords.rows(); ++i) {
-    const Eigen::Quaterniond q = canonical((reference_ * quat_exp(Eigen::Vector3d(coords.row(i).segment<3>(3)))).normalized());
+    const Eigen::Quaterniond q =
+        canonical((reference_ * quat_exp(Eigen::Vector3d(coords.row(i).segment<3>(3)))).normalized());
     out.row(i) << coords(i, 0), coords(i, 1), coords(i, 2), q.x(), q.y(), q.z(), q.w();
   }
   return out;

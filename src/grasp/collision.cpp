@@ -288,18 +288,19 @@ CollisionBatchResult CollisionExpert::evaluate_batch(const Eigen::Ref<const Pose
   out.collision_free.resize(n);
   // Small batches (annealing scores ~10 hands at a time) stay on one thread: waking a team costs more
   // than it saves, and its spinning threads stall badly on a loaded machine.
-  const Eigen::Index N = hand_->fk_each(T_world_wrist, q, 64, [&](Eigen::Index i, const Eigen::VectorXd&,
-                                                                   const Eigen::Isometry3d* poses) {
-    std::vector<int> inside(static_cast<size_t>(L), 0);
-    Eigen::VectorXd cd = Eigen::VectorXd::Zero(L), pd = Eigen::VectorXd::Zero(L);
-    evaluate_into(poses, cd.data(), pd.data(), inside.data());
-    out.cloud_depth.row(i) = cd.transpose();
-    out.plane_depth.row(i) = pd.transpose();
-    out.total_depth[i] = cd.sum() + pd.sum() + settings_.inside_weight * std::accumulate(inside.begin(), inside.end(), 0);
-    out.log_w[i] = -settings_.beta * out.total_depth[i];
-    out.w[i] = std::exp(out.log_w[i]);
-    out.collision_free[i] = out.total_depth[i] <= 0.0;
-  });
+  const Eigen::Index N =
+      hand_->fk_each(T_world_wrist, q, 64, [&](Eigen::Index i, const Eigen::VectorXd&, const Eigen::Isometry3d* poses) {
+        std::vector<int> inside(static_cast<size_t>(L), 0);
+        Eigen::VectorXd cd = Eigen::VectorXd::Zero(L), pd = Eigen::VectorXd::Zero(L);
+        evaluate_into(poses, cd.data(), pd.data(), inside.data());
+        out.cloud_depth.row(i) = cd.transpose();
+        out.plane_depth.row(i) = pd.transpose();
+        out.total_depth[i] =
+            cd.sum() + pd.sum() + settings_.inside_weight * std::accumulate(inside.begin(), inside.end(), 0);
+        out.log_w[i] = -settings_.beta * out.total_depth[i];
+        out.w[i] = std::exp(out.log_w[i]);
+        out.collision_free[i] = out.total_depth[i] <= 0.0;
+      });
   if (N != n) {  // an empty side broadcasts to no hands
     out.cloud_depth.conservativeResize(N, Eigen::NoChange);
     out.plane_depth.conservativeResize(N, Eigen::NoChange);
@@ -334,4 +335,3 @@ Eigen::VectorXd link_signed_distances(const Hand& hand, int link, const Eigen::I
 }
 
 }  // namespace graspmix
-

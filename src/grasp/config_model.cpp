@@ -18,13 +18,14 @@ ConfigModel::ConfigModel(const Eigen::VectorXd& pregrasp, const Eigen::VectorXd&
     : settings_(s), pregrasp_(pregrasp), grasp_(grasp), limits_(limits) {
   const Eigen::Index D = grasp.size();
   if (pregrasp.size() != D) {
-    throw std::invalid_argument("ConfigModel: pregrasp has " + std::to_string(pregrasp.size()) +
-                                " joints, grasp has " + std::to_string(D));
+    throw std::invalid_argument("ConfigModel: pregrasp has " + std::to_string(pregrasp.size()) + " joints, grasp has " +
+                                std::to_string(D));
   }
   if (limits.rows() != D || limits.cols() != 2) {
     throw std::invalid_argument("ConfigModel: limits must be (" + std::to_string(D) + ", 2)");
   }
-  if (!pregrasp.allFinite() || !grasp.allFinite()) throw std::invalid_argument("ConfigModel: joints contain NaN or inf");
+  if (!pregrasp.allFinite() || !grasp.allFinite())
+    throw std::invalid_argument("ConfigModel: joints contain NaN or inf");
   for (Eigen::Index j = 0; j < D; ++j) {
     if (std::isnan(limits(j, 0)) || std::isnan(limits(j, 1)) || limits(j, 0) > limits(j, 1)) {
       throw std::invalid_argument("ConfigModel: joint " + std::to_string(j) + " has limits [" +

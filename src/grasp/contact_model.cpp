@@ -4,8 +4,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "graspmix/grasp/collision.hpp"
 #include "graspmix/core/se3.hpp"
+#include "graspmix/grasp/collision.hpp"
 
 namespace graspmix {
 
@@ -49,10 +49,12 @@ ContactData contact_data(const Hand& hand, int link, const Eigen::Isometry3d& T_
   return out;
 }
 
-std::vector<ContactModel> learn_contact_models(
-    const Hand& hand, const Eigen::Isometry3d& T_world_wrist, const Eigen::Ref<const Eigen::VectorXd>& q,
-    const Eigen::Ref<const PoseArray>& frames, const Eigen::Ref<const RowMatrixXd>& features,
-    const std::function<std::shared_ptr<PoseDensity>()>& make_density, const ContactSettings& s) {
+std::vector<ContactModel> learn_contact_models(const Hand& hand, const Eigen::Isometry3d& T_world_wrist,
+                                               const Eigen::Ref<const Eigen::VectorXd>& q,
+                                               const Eigen::Ref<const PoseArray>& frames,
+                                               const Eigen::Ref<const RowMatrixXd>& features,
+                                               const std::function<std::shared_ptr<PoseDensity>()>& make_density,
+                                               const ContactSettings& s) {
   std::vector<ContactModel> models;
   for (int link = 0; link < hand.n_links(); ++link) {
     if (hand.links()[link].collisions.empty()) continue;

@@ -29,15 +29,17 @@ KinematicFeasibilityExpert::KinematicFeasibilityExpert(std::shared_ptr<const Han
 }
 
 KinematicFeasibilityExpert::KinematicFeasibilityExpert(std::shared_ptr<const Hand> hand,
-                                                       const std::optional<Eigen::Vector4d>& plane,
-                                                       double plane_margin, Reachability reachable,
-                                                       double limit_tolerance)
-    : KinematicFeasibilityExpert(std::move(hand), plane, [&] {
-        KinematicFeasibilitySettings s;
-        s.plane_margin = plane_margin;
-        s.limit_tolerance = limit_tolerance;
-        return s;
-      }(), std::move(reachable)) {}
+                                                       const std::optional<Eigen::Vector4d>& plane, double plane_margin,
+                                                       Reachability reachable, double limit_tolerance)
+    : KinematicFeasibilityExpert(
+          std::move(hand), plane,
+          [&] {
+            KinematicFeasibilitySettings s;
+            s.plane_margin = plane_margin;
+            s.limit_tolerance = limit_tolerance;
+            return s;
+          }(),
+          std::move(reachable)) {}
 
 Eigen::VectorXd KinematicFeasibilityExpert::log_value(const GraspBatch& b) const {
   const Eigen::Index n = b.wrists.rows();

@@ -67,7 +67,8 @@ GraspSynthesizer::GraspSynthesizer(std::shared_ptr<const Hand> hand, std::vector
                                 " joints, the hand '" + hand_->name() + "' has " + std::to_string(hand_->n_dofs()));
   }
   for (const ContactModel& m : contact_models_) {
-    if (!m.density || !m.density->fitted()) throw std::invalid_argument("GraspSynthesizer: contact model of link '" + m.link_name + "' is not fitted");
+    if (!m.density || !m.density->fitted())
+      throw std::invalid_argument("GraspSynthesizer: contact model of link '" + m.link_name + "' is not fitted");
     if (m.link < 0 || m.link >= hand_->n_links() || hand_->link_names()[m.link] != m.link_name) {
       throw std::invalid_argument("GraspSynthesizer: contact model link '" + m.link_name + "' is not link " +
                                   std::to_string(m.link) + " of hand '" + hand_->name() + "'");
@@ -113,7 +114,8 @@ std::vector<QueryDensity> GraspSynthesizer::query_densities(const Eigen::Ref<con
         const double k1 = features(j, 0), k2 = features(j, 1);
         const double rel = k1 > 1e-12 ? (k1 - k2) / k1 : 0.0;
         const double angle = frame_jitter_angle(rel, s.jitter_sharpness, uni(rng));
-        const Eigen::Quaterniond q = quat_row(v, k) * Eigen::Quaterniond(Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitZ()));
+        const Eigen::Quaterniond q =
+            quat_row(v, k) * Eigen::Quaterniond(Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitZ()));
         v.row(k).tail<4>() << q.x(), q.y(), q.z(), q.w();
       }
     }
@@ -167,7 +169,8 @@ Evaluation GraspSynthesizer::evaluate(const std::vector<QueryDensity>& query, co
   // Bad rows fail here, named by the caller's row, before any expert or subset sees them.
   for (Eigen::Index i = 0; i < n; ++i) {
     if (!wrists.row(i).allFinite() || !(wrists.row(i).tail<4>().norm() > 1e-12)) {
-      throw std::invalid_argument("evaluate: wrist pose " + std::to_string(i) + " is not finite or has a zero quaternion");
+      throw std::invalid_argument("evaluate: wrist pose " + std::to_string(i) +
+                                  " is not finite or has a zero quaternion");
     }
   }
   require_finite(joints, "evaluate: joints");
@@ -179,7 +182,8 @@ Evaluation GraspSynthesizer::evaluate(const std::vector<QueryDensity>& query, co
   for (size_t k = 0; k < experts.size(); ++k) {
     const Eigen::VectorXd v = experts[k]->log_value(batch);
     if (v.size() != n || v.array().isNaN().any() || (v.array() == std::numeric_limits<double>::infinity()).any()) {
-      throw std::invalid_argument("expert '" + experts[k]->name() + "' returned NaN, +inf or the wrong number of values");
+      throw std::invalid_argument("expert '" + experts[k]->name() +
+                                  "' returned NaN, +inf or the wrong number of values");
     }
     e.log_experts.col(k) = v;
   }
@@ -246,7 +250,8 @@ int GraspSynthesizer::anneal(const std::vector<QueryDensity>& query, const Colli
     for (Eigen::Index i = 0; i < n; ++i) {
       const Eigen::Vector3d dp(normal(rng), normal(rng), normal(rng));
       const Eigen::Vector3d dr(normal(rng), normal(rng), normal(rng));
-      const Eigen::Quaterniond q = canonical((quat_row(wrists, i) * quat_exp(0.5 * s.rotation_step * T * dr)).normalized());
+      const Eigen::Quaterniond q =
+          canonical((quat_row(wrists, i) * quat_exp(0.5 * s.rotation_step * T * dr)).normalized());
       prop_w.row(i).head<3>() = wrists.row(i).head<3>() + s.position_step * T * dp.transpose();
       prop_w.row(i).tail<4>() << q.x(), q.y(), q.z(), q.w();
       for (Eigen::Index j = 0; j < joints.cols(); ++j) {
@@ -363,7 +368,8 @@ GraspSynthesizer::Candidates GraspSynthesizer::sample_passing(const std::vector<
     }
   }
   // Too few passed: rejected samples fill up (ranked last; still optimised if among the best).
-  for (size_t k = 0; static_cast<int>(passed.size()) < s.n_samples && k < rejected.size(); ++k) passed.push_back(rejected[k]);
+  for (size_t k = 0; static_cast<int>(passed.size()) < s.n_samples && k < rejected.size(); ++k)
+    passed.push_back(rejected[k]);
   Candidates c;
   const Eigen::Index n = static_cast<Eigen::Index>(passed.size());
   c.wrists.resize(n, 7);
@@ -378,7 +384,8 @@ GraspSynthesizer::Candidates GraspSynthesizer::sample_passing(const std::vector<
   return c;
 }
 
-std::vector<bool> GraspSynthesizer::optimise_best(const std::vector<QueryDensity>& query, const CollisionExpert& collision,
+std::vector<bool> GraspSynthesizer::optimise_best(const std::vector<QueryDensity>& query,
+                                                  const CollisionExpert& collision,
                                                   const std::vector<std::shared_ptr<const Expert>>& experts,
                                                   const SynthesisSettings& s, const std::vector<int>& order,
                                                   std::mt19937_64& rng, Candidates& c, SynthesisResult& res) const {

@@ -403,9 +403,12 @@ void save_cloud(const std::string& path, const Vec3Array& points, const Vec3Arra
   try {
     if (pcd) {
       pcl::PCDWriter w;
-      if (encoding == "ascii") rc = w.writeASCII(path, cloud, origin, orientation, 9);
-      else if (encoding == "binary") rc = w.writeBinary(path, cloud, origin, orientation);
-      else rc = w.writeBinaryCompressed(path, cloud, origin, orientation);
+      if (encoding == "ascii")
+        rc = w.writeASCII(path, cloud, origin, orientation, 9);
+      else if (encoding == "binary")
+        rc = w.writeBinary(path, cloud, origin, orientation);
+      else
+        rc = w.writeBinaryCompressed(path, cloud, origin, orientation);
     } else if (encoding == "binary") {
       pcl::PLYWriter w;
       rc = w.writeBinary(path, cloud, origin, orientation, false);

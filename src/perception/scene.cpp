@@ -1,8 +1,8 @@
 #include "graspmix/perception/scene.hpp"
 
 #include <chrono>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -75,8 +75,8 @@ void check_inputs(const Vec3Array& points, const SceneSettings& s) {
   if (s.remove_outliers && (s.outlier_neighbours < 1 || !(s.outlier_std_ratio > 0))) {
     bad("outlier_neighbours must be >= 1 and outlier_std_ratio > 0");
   }
-  if (s.remove_plane && (!(s.plane_distance > 0) || s.plane_max_iterations < 1 || s.plane_min_fraction < 0 ||
-                         s.plane_min_fraction > 1)) {
+  if (s.remove_plane &&
+      (!(s.plane_distance > 0) || s.plane_max_iterations < 1 || s.plane_min_fraction < 0 || s.plane_min_fraction > 1)) {
     bad("plane_distance must be > 0, plane_max_iterations >= 1 and plane_min_fraction in [0, 1]");
   }
   if (s.crop && (s.crop_min.array() > s.crop_max.array()).any()) bad("crop_min must be <= crop_max in every axis");
@@ -88,8 +88,8 @@ Cloud::Ptr to_pcl(const Vec3Array& points, Rows& rows) {
   cloud->resize(static_cast<std::size_t>(points.rows()));
   rows.origin.resize(static_cast<std::size_t>(points.rows()));
   for (Eigen::Index i = 0; i < points.rows(); ++i) {
-    (*cloud)[static_cast<std::size_t>(i)] = pcl::PointXYZ(static_cast<float>(points(i, 0)), static_cast<float>(points(i, 1)),
-                                                          static_cast<float>(points(i, 2)));
+    (*cloud)[static_cast<std::size_t>(i)] = pcl::PointXYZ(
+        static_cast<float>(points(i, 0)), static_cast<float>(points(i, 1)), static_cast<float>(points(i, 2)));
     rows.origin[static_cast<std::size_t>(i)] = static_cast<int>(i);
   }
   rows.source = rows.origin;
@@ -137,7 +137,8 @@ void check_voxel_count(const Cloud& cloud, double voxel) {
 Cloud::Ptr voxel_down(const Cloud::Ptr& cloud, const SceneSettings& s, Rows& rows) {
   check_voxel_count(*cloud, s.voxel_size);
   pcl::VoxelGrid<pcl::PointXYZ> grid;
-  grid.setLeafSize(static_cast<float>(s.voxel_size), static_cast<float>(s.voxel_size), static_cast<float>(s.voxel_size));
+  grid.setLeafSize(static_cast<float>(s.voxel_size), static_cast<float>(s.voxel_size),
+                   static_cast<float>(s.voxel_size));
   grid.setInputCloud(cloud);
   Cloud::Ptr down(new Cloud);
   grid.filter(*down);
@@ -186,8 +187,7 @@ bool fit_plane(const Cloud::Ptr& cloud, const SceneSettings& s, Eigen::VectorXf&
 /// The support plane found and removed (with what lies below it if asked), oriented towards the
 /// object: the side most of the points off the plane are on (PlaneSide::Majority). Records the plane
 /// in r; the cloud unchanged if there is no plane with enough inliers.
-Cloud::Ptr remove_support_plane(const Cloud::Ptr& cloud, const SceneSettings& s, Rows& rows,
-                                SceneResult& r) {
+Cloud::Ptr remove_support_plane(const Cloud::Ptr& cloud, const SceneSettings& s, Rows& rows, SceneResult& r) {
   Eigen::VectorXf coeffs;
   pcl::Indices inliers;
   if (!fit_plane(cloud, s, coeffs, inliers)) return cloud;

@@ -3,8 +3,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "graspmix/robot/hand.hpp"
 #include "graspmix/core/se3.hpp"
+#include "graspmix/robot/hand.hpp"
 
 namespace graspmix {
 
@@ -46,7 +46,8 @@ Eigen::VectorXd Hand::joints_from_map(const std::map<std::string, double>& value
     }
     if (!std::isfinite(value)) throw std::invalid_argument("joints: joint '" + name + "' has a non-finite value");
     const JointInfo& j = joints_[static_cast<size_t>(it->second)];
-    if (j.type == JointType::Fixed) throw std::invalid_argument("joints: joint '" + name + "' is fixed and has no value");
+    if (j.type == JointType::Fixed)
+      throw std::invalid_argument("joints: joint '" + name + "' is fixed and has no value");
     if (j.mimic) {
       mimics.emplace_back(&j, value);
     } else {
@@ -54,13 +55,14 @@ Eigen::VectorXd Hand::joints_from_map(const std::map<std::string, double>& value
     }
   }
   for (int d = 0; d < n_dofs(); ++d) {
-    if (std::isnan(q[d])) throw std::invalid_argument("joints: joint '" + joint_names_[static_cast<size_t>(d)] + "' is missing");
+    if (std::isnan(q[d]))
+      throw std::invalid_argument("joints: joint '" + joint_names_[static_cast<size_t>(d)] + "' is missing");
   }
   for (const auto& [j, value] : mimics) {
     const double expected = j->multiplier * q[j->dof] + j->offset;
     if (std::abs(value - expected) > 1e-9) {
-      throw std::invalid_argument("joints: mimic joint '" + j->name + "' = " + std::to_string(value) + " disagrees with " +
-                                  std::to_string(expected) + " from its master '" +
+      throw std::invalid_argument("joints: mimic joint '" + j->name + "' = " + std::to_string(value) +
+                                  " disagrees with " + std::to_string(expected) + " from its master '" +
                                   joint_names_[static_cast<size_t>(j->dof)] + "'");
     }
   }
@@ -88,8 +90,8 @@ void Hand::check_configuration(const Eigen::Ref<const Eigen::VectorXd>& q, const
   if (q.size() != n_dofs()) {
     std::string names;
     for (const auto& n : joint_names_) names += (names.empty() ? "" : ", ") + n;
-    throw std::invalid_argument(std::string(what) + ": expected " + std::to_string(n_dofs()) + " joint values (" + names +
-                                "), got " + std::to_string(q.size()));
+    throw std::invalid_argument(std::string(what) + ": expected " + std::to_string(n_dofs()) + " joint values (" +
+                                names + "), got " + std::to_string(q.size()));
   }
   if (!q.allFinite()) throw std::invalid_argument(std::string(what) + ": joint values must be finite");
 }
@@ -135,7 +137,8 @@ std::vector<Eigen::Isometry3d> Hand::fk(const Eigen::Isometry3d& T_world_wrist,
 }
 
 Eigen::Index Hand::fk_each(
-    const Eigen::Ref<const PoseArray>& T_world_wrist, const Eigen::Ref<const RowMatrixXd>& q, Eigen::Index parallel_from,
+    const Eigen::Ref<const PoseArray>& T_world_wrist, const Eigen::Ref<const RowMatrixXd>& q,
+    Eigen::Index parallel_from,
     const std::function<void(Eigen::Index, const Eigen::VectorXd&, const Eigen::Isometry3d*)>& visit) const {
   // Either side may be a single row, broadcast over the other.
   const Eigen::Index N = T_world_wrist.rows() == 1 ? q.rows() : T_world_wrist.rows();
@@ -173,13 +176,15 @@ Eigen::Index Hand::fk_each(
   return N;
 }
 
-RowMatrixXd Hand::fk_batch(const Eigen::Ref<const PoseArray>& T_world_wrist, const Eigen::Ref<const RowMatrixXd>& q) const {
+RowMatrixXd Hand::fk_batch(const Eigen::Ref<const PoseArray>& T_world_wrist,
+                           const Eigen::Ref<const RowMatrixXd>& q) const {
   const int L = n_links();
   RowMatrixXd out(std::max(T_world_wrist.rows(), q.rows()), 7 * L);
   // fk is a fraction of a microsecond per hand: only large batches are worth a thread team.
-  const Eigen::Index N = fk_each(T_world_wrist, q, 2048, [&](Eigen::Index i, const Eigen::VectorXd&, const Eigen::Isometry3d* poses) {
-    for (int l = 0; l < L; ++l) out.block<1, 7>(i, 7 * l) = pose_to_vector(poses[l]).transpose();
-  });
+  const Eigen::Index N =
+      fk_each(T_world_wrist, q, 2048, [&](Eigen::Index i, const Eigen::VectorXd&, const Eigen::Isometry3d* poses) {
+        for (int l = 0; l < L; ++l) out.block<1, 7>(i, 7 * l) = pose_to_vector(poses[l]).transpose();
+      });
   out.conservativeResize(N, Eigen::NoChange);
   return out;
 }
@@ -224,7 +229,8 @@ void revolve(const std::vector<std::pair<double, double>>& rings, int segments, 
 }  // namespace
 
 TriangleMesh Hand::collision_mesh(int link) const {
-  if (link < 0 || link >= n_links()) throw std::invalid_argument("link: index " + std::to_string(link) + " out of range");
+  if (link < 0 || link >= n_links())
+    throw std::invalid_argument("link: index " + std::to_string(link) + " out of range");
   TriangleMesh out;
   out.vertices.resize(0, 3);
   out.triangles.resize(0, 3);

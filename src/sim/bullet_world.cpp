@@ -36,7 +36,7 @@ World::World(const SimSettings& s) {
   // The solver settings pybullet's physics server uses.
   auto& info = world->getSolverInfo();
   info.m_numIterations = s.solver_iterations;
-  info.m_erp2 = 0.08;         // contact error reduction
+  info.m_erp2 = 0.08;  // contact error reduction
   info.m_frictionERP = 0.2;
   info.m_linearSlop = 0.00001;
   info.m_warmstartingFactor = 0.1;
@@ -114,13 +114,15 @@ btCompoundShape* link_shape(World& w, const LinkInfo& link, const Eigen::Isometr
         child = w.own_shape(std::make_unique<btSphereShape>(c.size.x()));
         break;
       case ShapeType::Mesh: {
-        if (!c.hull) throw std::invalid_argument("link '" + link.name + "': mesh '" + c.mesh_file + "' was read without geometry");
+        if (!c.hull)
+          throw std::invalid_argument("link '" + link.name + "': mesh '" + c.mesh_file + "' was read without geometry");
         // pybullet makes one convex hull per object/group of an OBJ file (a convex decomposition such as
         // pybullet_data's random_urdfs, six parts each); any other mesh is one hull.
         std::vector<std::vector<Eigen::Vector3d>> parts = obj_parts(c.mesh_file, c.size);
         if (parts.empty()) {
           parts.emplace_back();
-          for (Eigen::Index i = 0; i < c.hull->vertices.rows(); ++i) parts.back().emplace_back(c.hull->vertices.row(i).transpose());
+          for (Eigen::Index i = 0; i < c.hull->vertices.rows(); ++i)
+            parts.back().emplace_back(c.hull->vertices.row(i).transpose());
         }
         for (const auto& part : parts) {
           auto hull = std::make_unique<btConvexHullShape>();

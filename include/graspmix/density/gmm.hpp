@@ -26,9 +26,9 @@ struct GmmSettings {
 /// Diagnostics of the last fit.
 struct GmmFitResult {
   bool converged = false;
-  int n_iter = 0;                     ///< EM iterations of the winning initialisation
-  double lower_bound = 0.0;           ///< weighted mean log-likelihood of the winning fit
-  std::vector<double> history;        ///< lower bound at every iteration of the winning initialisation
+  int n_iter = 0;               ///< EM iterations of the winning initialisation
+  double lower_bound = 0.0;     ///< weighted mean log-likelihood of the winning fit
+  std::vector<double> history;  ///< lower bound at every iteration of the winning initialisation
   int best_init = 0;
 };
 

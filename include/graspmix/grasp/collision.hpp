@@ -32,8 +32,8 @@
 
 #include <Eigen/Geometry>
 
-#include "graspmix/robot/hand.hpp"
 #include "graspmix/core/types.hpp"
+#include "graspmix/robot/hand.hpp"
 
 namespace graspmix {
 
@@ -42,10 +42,10 @@ struct CollisionSettings {
   /// has always run with from Python (it was 1000 here): W must outweigh the contact terms of a grasp whose
   /// fingers sink a few millimetres into the object.
   double beta = 2000.0;
-  double point_radius = 0.0;   ///< m: cloud points are balls of this radius (>= 0)
-  double plane_margin = 0.0;   ///< m: the support plane is raised by this much (negative: tolerate contact)
-  double cell_size = 0.0;      ///< m: grid cell of the cloud index; 0 picks one from the cloud's extent and size
-  bool orient_plane = true;    ///< flip the plane's sign so the cloud's mean lies on its free (positive) side
+  double point_radius = 0.0;  ///< m: cloud points are balls of this radius (>= 0)
+  double plane_margin = 0.0;  ///< m: the support plane is raised by this much (negative: tolerate contact)
+  double cell_size = 0.0;     ///< m: grid cell of the cloud index; 0 picks one from the cloud's extent and size
+  bool orient_plane = true;   ///< flip the plane's sign so the cloud's mean lies on its free (positive) side
   /// m: depths up to this count as touching, not penetrating: a sensed cloud is a noisy surface, and a
   /// point a hair inside a finger is a contact (whatever the rounding of the link's pose). 1 mm is what
   /// grasp synthesis has always used; pass ~1e-9 for exact depths.
@@ -59,12 +59,12 @@ struct CollisionSettings {
 
 /// One configuration's penetration, per link in Hand::link_names() order.
 struct CollisionResult {
-  Eigen::VectorXd cloud_depth;   ///< D_l (m)
-  Eigen::VectorXd plane_depth;   ///< P_l (m)
-  Eigen::VectorXi points_inside; ///< cloud points that penetrate each link
-  double total_depth = 0.0;      ///< sum_l D_l + P_l + inside_weight * n_l (m; see the header comment)
-  double log_w = 0.0;            ///< -beta * total_depth
-  double w = 1.0;                ///< exp(log_w)
+  Eigen::VectorXd cloud_depth;    ///< D_l (m)
+  Eigen::VectorXd plane_depth;    ///< P_l (m)
+  Eigen::VectorXi points_inside;  ///< cloud points that penetrate each link
+  double total_depth = 0.0;       ///< sum_l D_l + P_l + inside_weight * n_l (m; see the header comment)
+  double log_w = 0.0;             ///< -beta * total_depth
+  double w = 1.0;                 ///< exp(log_w)
   bool collision_free = true;
 };
 

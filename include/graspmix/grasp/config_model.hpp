@@ -14,10 +14,10 @@
 namespace graspmix {
 
 struct ConfigModelSettings {
-  double beta = 1.0;         ///< gamma range: configurations up to beta * (h_e - h_g) either side of h_g
-  int n_kernels = 21;        ///< kernels along the line (odd keeps one on h_g)
-  double alpha = 2.0;        ///< decay of the kernel weights away from h_g (unitless, see above)
-  double bandwidth = 0.1;    ///< kernel std as a fraction of |h_e - h_g|
+  double beta = 1.0;            ///< gamma range: configurations up to beta * (h_e - h_g) either side of h_g
+  int n_kernels = 21;           ///< kernels along the line (odd keeps one on h_g)
+  double alpha = 2.0;           ///< decay of the kernel weights away from h_g (unitless, see above)
+  double bandwidth = 0.1;       ///< kernel std as a fraction of |h_e - h_g|
   double min_bandwidth = 1e-3;  ///< floor of the kernel std (joint units: m or rad)
 };
 

@@ -11,9 +11,9 @@
 
 #include <Eigen/Geometry>
 
-#include "graspmix/robot/hand.hpp"
-#include "graspmix/density/pose_density.hpp"
 #include "graspmix/core/types.hpp"
+#include "graspmix/density/pose_density.hpp"
+#include "graspmix/robot/hand.hpp"
 
 namespace graspmix {
 
@@ -26,11 +26,11 @@ struct ContactSettings {
 /// The demonstration data set D_O of one link: u_ij = v_j^-1 o s_i for every object point j near it.
 struct ContactData {
   int link = -1;
-  std::vector<int> indices;   ///< object points used (rows of frames / features)
-  PoseArray u;                ///< (M, 7) link pose in each point's frame
-  RowMatrixXd r;              ///< (M, n) the points' features
-  Eigen::VectorXd weights;    ///< (M) exp(-lambda d^2)
-  Eigen::VectorXd distance;   ///< (M) m, distance from the point to the link's geometry (0 inside)
+  std::vector<int> indices;  ///< object points used (rows of frames / features)
+  PoseArray u;               ///< (M, 7) link pose in each point's frame
+  RowMatrixXd r;             ///< (M, n) the points' features
+  Eigen::VectorXd weights;   ///< (M) exp(-lambda d^2)
+  Eigen::VectorXd distance;  ///< (M) m, distance from the point to the link's geometry (0 inside)
 };
 
 /// Contact data of one link for the demonstrated grasp: the hand at T_world_wrist with joints q
@@ -48,9 +48,11 @@ struct ContactModel {
 
 /// Fits a contact model for every link with at least settings.min_points contact points, each with a
 /// fresh density from make_density. Throws std::invalid_argument if no link touches the object.
-std::vector<ContactModel> learn_contact_models(
-    const Hand& hand, const Eigen::Isometry3d& T_world_wrist, const Eigen::Ref<const Eigen::VectorXd>& q,
-    const Eigen::Ref<const PoseArray>& frames, const Eigen::Ref<const RowMatrixXd>& features,
-    const std::function<std::shared_ptr<PoseDensity>()>& make_density, const ContactSettings& settings = {});
+std::vector<ContactModel> learn_contact_models(const Hand& hand, const Eigen::Isometry3d& T_world_wrist,
+                                               const Eigen::Ref<const Eigen::VectorXd>& q,
+                                               const Eigen::Ref<const PoseArray>& frames,
+                                               const Eigen::Ref<const RowMatrixXd>& features,
+                                               const std::function<std::shared_ptr<PoseDensity>()>& make_density,
+                                               const ContactSettings& settings = {});
 
 }  // namespace graspmix

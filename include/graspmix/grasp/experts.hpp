@@ -10,9 +10,9 @@
 
 #include <Eigen/Core>
 
+#include "graspmix/core/types.hpp"
 #include "graspmix/grasp/collision.hpp"
 #include "graspmix/robot/hand.hpp"
-#include "graspmix/core/types.hpp"
 
 namespace graspmix {
 
@@ -32,7 +32,7 @@ class Expert {
 };
 
 struct KinematicFeasibilitySettings {
-  double plane_margin = 0.0;      ///< m: links must stay this far above the support plane
+  double plane_margin = 0.0;  ///< m: links must stay this far above the support plane
   /// m: a link this little below the (raised) plane still counts as clear (rounding, not penetration)
   double plane_tolerance = 1e-9;
   double limit_tolerance = 1e-9;  ///< joint units (m or rad): slack allowed past the joint limits
@@ -48,7 +48,8 @@ class KinematicFeasibilityExpert : public Expert {
   /// must stay this far above it; limit_tolerance: joint slack allowed past the limits.
   KinematicFeasibilityExpert(std::shared_ptr<const Hand> hand, const std::optional<Eigen::Vector4d>& plane,
                              const KinematicFeasibilitySettings& settings, Reachability reachable = nullptr);
-  KinematicFeasibilityExpert(std::shared_ptr<const Hand> hand, const std::optional<Eigen::Vector4d>& plane = std::nullopt,
+  KinematicFeasibilityExpert(std::shared_ptr<const Hand> hand,
+                             const std::optional<Eigen::Vector4d>& plane = std::nullopt,
                              double plane_margin = KinematicFeasibilitySettings{}.plane_margin,
                              Reachability reachable = nullptr,
                              double limit_tolerance = KinematicFeasibilitySettings{}.limit_tolerance);
@@ -79,7 +80,8 @@ class AxisAlignmentExpert : public Expert {
  public:
   AxisAlignmentExpert(const Eigen::Vector3d& world_axis, const AxisAlignmentSettings& settings)
       : AxisAlignmentExpert(world_axis, settings.hand_axis, settings.concentration, settings.name) {}
-  AxisAlignmentExpert(const Eigen::Vector3d& world_axis, const Eigen::Vector3d& hand_axis = AxisAlignmentSettings{}.hand_axis,
+  AxisAlignmentExpert(const Eigen::Vector3d& world_axis,
+                      const Eigen::Vector3d& hand_axis = AxisAlignmentSettings{}.hand_axis,
                       double concentration = AxisAlignmentSettings{}.concentration,
                       std::string name = AxisAlignmentSettings{}.name);
   std::string name() const override { return name_; }

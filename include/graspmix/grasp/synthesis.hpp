@@ -18,23 +18,23 @@
 
 #include <Eigen/Geometry>
 
+#include "graspmix/density/gmm.hpp"
+#include "graspmix/density/kde.hpp"
+#include "graspmix/density/pose_density.hpp"
 #include "graspmix/grasp/collision.hpp"
 #include "graspmix/grasp/config_model.hpp"
 #include "graspmix/grasp/contact_model.hpp"
 #include "graspmix/grasp/experts.hpp"
-#include "graspmix/density/gmm.hpp"
 #include "graspmix/robot/hand.hpp"
-#include "graspmix/density/kde.hpp"
-#include "graspmix/density/pose_density.hpp"
 
 namespace graspmix {
 
 struct QuerySettings {
-  int n_samples = 500;      ///< N_Q: samples per link to fit each query density from
-  int n_components = 5;     ///< K_Q for GMM models
-  int max_iter = 100;       ///< EM iterations of the query mixtures
+  int n_samples = 500;   ///< N_Q: samples per link to fit each query density from
+  int n_components = 5;  ///< K_Q for GMM models
+  int max_iter = 100;    ///< EM iterations of the query mixtures
   double reg_covar = 1e-6;
-  KdeSettings kde;          ///< kernels of KDE query densities (features unused)
+  KdeSettings kde;  ///< kernels of KDE query densities (features unused)
   /// Rotate each sampled surface frame about its normal by a random angle of size
   /// pi * exp(-jitter_sharpness ((k1 - k2) / k1)^2) (Kopicki's rule): where k1 ~ k2 the first principal
   /// direction is arbitrary, so the frame's heading carries no information. Needs features [k1, k2].
@@ -47,12 +47,12 @@ struct AnnealingSettings {
   double initial_temperature = 1.0;  ///< the paper's 1.0, falling linearly to 0
   double position_step = 0.005;      ///< m: std of wrist translation proposals at temperature 1
   double rotation_step = 0.1;        ///< rad: std of wrist rotation proposals at temperature 1
-  double joint_step = 0.5;           ///< std of joint proposals at temperature 1, in units of the config model's kernel std
+  double joint_step = 0.5;  ///< std of joint proposals at temperature 1, in units of the config model's kernel std
 };
 
 struct SynthesisSettings {
-  int n_samples = 200;   ///< grasps sampled and ranked
-  int n_optimise = 10;   ///< the best this many are optimised
+  int n_samples = 200;  ///< grasps sampled and ranked
+  int n_optimise = 10;  ///< the best this many are optimised
   bool optimise = true;
   /// An extra collision expert on the grasp's pre-grasp configuration (the hand starts there, so a
   /// pre-grasp in collision cannot be executed): log W of the opened hand, soft like W itself.
@@ -67,14 +67,14 @@ struct SynthesisSettings {
 
 struct Grasp {
   Eigen::Matrix<double, 7, 1> T_world_wrist;
-  Eigen::VectorXd joints;     ///< grasp configuration h_c (Hand::joint_names() order)
-  Eigen::VectorXd pregrasp;   ///< the configuration to approach with
+  Eigen::VectorXd joints;    ///< grasp configuration h_c (Hand::joint_names() order)
+  Eigen::VectorXd pregrasp;  ///< the configuration to approach with
   double log_likelihood = 0.0;
-  double log_collision = 0.0;        ///< log W
-  double log_config = 0.0;           ///< log C
-  double log_pregrasp = 0.0;         ///< log W of the pre-grasp configuration (clear_pregrasp)
-  Eigen::VectorXd log_contact;       ///< log Q_i per query link (SynthesisResult::contact_links)
-  Eigen::VectorXd log_experts;       ///< log E_k per expert (SynthesisResult::expert_names)
+  double log_collision = 0.0;   ///< log W
+  double log_config = 0.0;      ///< log C
+  double log_pregrasp = 0.0;    ///< log W of the pre-grasp configuration (clear_pregrasp)
+  Eigen::VectorXd log_contact;  ///< log Q_i per query link (SynthesisResult::contact_links)
+  Eigen::VectorXd log_experts;  ///< log E_k per expert (SynthesisResult::expert_names)
   bool optimised = false;
 };
 
@@ -86,12 +86,12 @@ struct SynthesisTiming {
 };
 
 struct SynthesisResult {
-  std::vector<Grasp> grasps;              ///< best first
+  std::vector<Grasp> grasps;  ///< best first
   std::vector<std::string> contact_links;
   std::vector<std::string> expert_names;
   SynthesisTiming timing;
-  int evaluations = 0;                    ///< grasps scored in all
-  int rejected = 0;                       ///< samples a hard constraint rejected (rejection sampling)
+  int evaluations = 0;  ///< grasps scored in all
+  int rejected = 0;     ///< samples a hard constraint rejected (rejection sampling)
 };
 
 /// One link's query density Q_i.
@@ -104,8 +104,8 @@ struct QueryDensity {
 /// Log-likelihood terms of a batch of grasps.
 struct Evaluation {
   Eigen::VectorXd total, log_collision, log_config, log_pregrasp;
-  RowMatrixXd log_contact;   ///< (N, n query links)
-  RowMatrixXd log_experts;   ///< (N, n experts)
+  RowMatrixXd log_contact;  ///< (N, n query links)
+  RowMatrixXd log_experts;  ///< (N, n experts)
 };
 
 class GraspSynthesizer {
@@ -127,8 +127,9 @@ class GraspSynthesizer {
   void sample_grasps(const std::vector<QueryDensity>& query, int n, std::mt19937_64& rng, PoseArray& wrists,
                      RowMatrixXd& joints) const;
   Evaluation evaluate(const std::vector<QueryDensity>& query, const CollisionExpert& collision,
-                      const std::vector<std::shared_ptr<const Expert>>& experts, const Eigen::Ref<const PoseArray>& wrists,
-                      const Eigen::Ref<const RowMatrixXd>& joints, bool clear_pregrasp = true) const;
+                      const std::vector<std::shared_ptr<const Expert>>& experts,
+                      const Eigen::Ref<const PoseArray>& wrists, const Eigen::Ref<const RowMatrixXd>& joints,
+                      bool clear_pregrasp = true) const;
   /// Anneals every row of (wrists, joints) in place; returns the evaluations spent.
   int anneal(const std::vector<QueryDensity>& query, const CollisionExpert& collision,
              const std::vector<std::shared_ptr<const Expert>>& experts, const AnnealingSettings& settings,

@@ -21,12 +21,12 @@ struct CloudData {
   /// The sensor pose [x, y, z, qx, qy, qz, qw] from the PCD VIEWPOINT / PLY camera element, in the
   /// cloud's frame (PCL's sensor_origin_ / sensor_orientation_); identity when the file had none.
   Eigen::Matrix<double, 7, 1> viewpoint = (Eigen::Matrix<double, 7, 1>() << 0, 0, 0, 0, 0, 0, 1).finished();
-  bool has_viewpoint = false;       ///< true when the file gave a viewpoint other than the identity
-  std::vector<std::string> fields;  ///< every field of the file, in file order (x, y, z, rgb, ...)
+  bool has_viewpoint = false;           ///< true when the file gave a viewpoint other than the identity
+  std::vector<std::string> fields;      ///< every field of the file, in file order (x, y, z, rgb, ...)
   std::uint32_t width = 0, height = 0;  ///< as in the header: height > 1 for organised clouds
-  std::size_t n_invalid = 0;        ///< points dropped for a NaN or infinite coordinate
-  std::string format;               ///< "pcd ascii", "pcd binary", "pcd binary_compressed", "ply", "npy"
-  std::string path;                 ///< where it came from
+  std::size_t n_invalid = 0;            ///< points dropped for a NaN or infinite coordinate
+  std::string format;                   ///< "pcd ascii", "pcd binary", "pcd binary_compressed", "ply", "npy"
+  std::string path;                     ///< where it came from
 };
 
 /// Reads .pcd, .ply or .npy (by extension, case-insensitive). Throws std::invalid_argument naming
@@ -42,8 +42,9 @@ CloudData cloud_from_arrays(const RowMatrixXd& points, const RowMatrixXd& normal
 /// Writes float32 x y z (and normal_x normal_y normal_z when normals has rows) as an unorganised
 /// cloud. .pcd encodings: "ascii", "binary" (default), "binary_compressed"; .ply: "ascii" or
 /// "binary". viewpoint (7) goes into the PCD header (PLY files keep none). Throws std::invalid_argument.
-void save_cloud(const std::string& path, const Vec3Array& points, const Vec3Array& normals = {},
-                const std::string& encoding = "binary",
-                const Eigen::Matrix<double, 7, 1>& viewpoint = (Eigen::Matrix<double, 7, 1>() << 0, 0, 0, 0, 0, 0, 1).finished());
+void save_cloud(
+    const std::string& path, const Vec3Array& points, const Vec3Array& normals = {},
+    const std::string& encoding = "binary",
+    const Eigen::Matrix<double, 7, 1>& viewpoint = (Eigen::Matrix<double, 7, 1>() << 0, 0, 0, 0, 0, 0, 1).finished());
 
 }  // namespace graspmix

@@ -4,6 +4,7 @@ One module per group of subcommands, each a thin layer of argument parsing over 
 core_commands (info, fit-gmm, features), grasp_commands (demo, learn, synthesize), sim_commands
 (acquire, execute), experiment_commands (experiment, report, benchmark).
 """
+
 from ..io import data_path
 from .common import CliError
 from .main import build_parser, main

@@ -1,4 +1,5 @@
 """python -m graspmix.cli ..."""
+
 import sys
 
 from .main import main

@@ -2,6 +2,7 @@
 the parsers of option values. Every number is checked (finite, in its range) and every path (UTF-8,
 names <= 255 bytes; outputs writable) while the command line is parsed, so a bad value is reported
 before any work starts, by the helpers of graspmix.io.checks."""
+
 from __future__ import annotations
 
 import argparse

@@ -1,4 +1,5 @@
 """experiment, report, benchmark: the paper's experiment and its runtime figure."""
+
 from __future__ import annotations
 
 import argparse
@@ -19,8 +20,15 @@ def _protocol(args):
     objects = read_objects_file(args.objects) if args.objects else None
     if args.jobs < 1:
         raise CliError(f"--jobs must be at least 1, got {args.jobs}")
-    return Protocol.preset(args.preset, objects=objects, trials=args.trials, conditions=conditions,
-                           methods=methods, seed=args.seed, closing=args.closing)
+    return Protocol.preset(
+        args.preset,
+        objects=objects,
+        trials=args.trials,
+        conditions=conditions,
+        methods=methods,
+        seed=args.seed,
+        closing=args.closing,
+    )
 
 
 def cmd_experiment(args: argparse.Namespace) -> int:
@@ -29,13 +37,25 @@ def cmd_experiment(args: argparse.Namespace) -> int:
     protocol = _protocol(args)
     command = "graspmix_cli " + " ".join(shlex.quote(a) for a in (args.argv or []))
     n = len(protocol.all_attempts())
-    print(f"experiment: {len(protocol.objects)} objects x {protocol.trials} trials x conditions "
-          f"{','.join(protocol.conditions)} x methods {','.join(protocol.methods)} = {n} attempts; "
-          f"{args.jobs} job(s), executor {args.executor}; into {args.out}", flush=True)
-    res = run(protocol, args.out, jobs=args.jobs, executor=args.executor, progress=not args.quiet,
-              ray_address=args.ray_address, command=command)
-    print(f"ran {res['ran']} attempts in {res['seconds']:.1f} s ({res['skipped']} already done); "
-          f"{res['rows']}/{res['total']} in {Path(args.out) / CSV_NAME}")
+    print(
+        f"experiment: {len(protocol.objects)} objects x {protocol.trials} trials x conditions "
+        f"{','.join(protocol.conditions)} x methods {','.join(protocol.methods)} = {n} attempts; "
+        f"{args.jobs} job(s), executor {args.executor}; into {args.out}",
+        flush=True,
+    )
+    res = run(
+        protocol,
+        args.out,
+        jobs=args.jobs,
+        executor=args.executor,
+        progress=not args.quiet,
+        ray_address=args.ray_address,
+        command=command,
+    )
+    print(
+        f"ran {res['ran']} attempts in {res['seconds']:.1f} s ({res['skipped']} already done); "
+        f"{res['rows']}/{res['total']} in {Path(args.out) / CSV_NAME}"
+    )
     if res["rows"] > 0:
         print_findings(Path(args.out))
     return 0
@@ -66,8 +86,9 @@ def cmd_benchmark(args: argparse.Namespace) -> int:
         if args.limit < 1:
             raise CliError(f"--limit must be at least 1, got {args.limit}")
         objects = objects[: args.limit]
-    res = benchmark(objects, args.out, n_samples=args.samples, n_optimise=args.optimise_top, seed=args.seed,
-                    progress=not args.quiet)
+    res = benchmark(
+        objects, args.out, n_samples=args.samples, n_optimise=args.optimise_top, seed=args.seed, progress=not args.quiet
+    )
     print(format_benchmark(res))
     print(f"GMM is {res['ratio_kde_over_gmm']['total']:.2f}x faster than KDE in total (median over objects)")
     print(f"wrote {Path(args.out) / 'benchmark.json'} and {Path(args.out) / 'benchmark.png'}")
@@ -75,24 +96,45 @@ def cmd_benchmark(args: argparse.Namespace) -> int:
 
 
 def add_parsers(sub) -> None:
-    s = sub.add_parser("experiment", help="the paper's experiment: conditions A-D, GMM vs KDE, success rates, t-tests, runtimes")
-    s.add_argument("--out", type=output_folder, required=True,
-                   help="run folder (e.g. runs/NAME): attempts.csv, protocol.json, summary.json, "
-                   "report.md/html; running again into it resumes")
-    s.add_argument("--preset", choices=["smoke", "paper"], default="paper",
-                   help="paper: the 60 test objects, 10 trials (default); smoke: 3 objects, 2 trials")
-    s.add_argument("--objects", type=input_path,
-                   help="objects file, one URDF a line (a path, or relative to pybullet_data); default: the preset's")
+    s = sub.add_parser(
+        "experiment", help="the paper's experiment: conditions A-D, GMM vs KDE, success rates, t-tests, runtimes"
+    )
+    s.add_argument(
+        "--out",
+        type=output_folder,
+        required=True,
+        help="run folder (e.g. runs/NAME): attempts.csv, protocol.json, summary.json, "
+        "report.md/html; running again into it resumes",
+    )
+    s.add_argument(
+        "--preset",
+        choices=["smoke", "paper"],
+        default="paper",
+        help="paper: the 60 test objects, 10 trials (default); smoke: 3 objects, 2 trials",
+    )
+    s.add_argument(
+        "--objects",
+        type=input_path,
+        help="objects file, one URDF a line (a path, or relative to pybullet_data); default: the preset's",
+    )
     s.add_argument("--trials", type=int_in(1, 100_000), help="trials (default: the preset's)")
     s.add_argument("--conditions", help="comma-separated subset of A,B,C,D (default: all)")
     s.add_argument("--methods", help="comma-separated subset of gmm,kde (default: both)")
     s.add_argument("--seed", type=seed, default=None, help="base of every derived seed (default 0)")
-    s.add_argument("--closing", choices=["full", "learnt"], default=None,
-                   help="full (default): the fingers close until they stop on the object, force-limited; learnt: "
-                        "the simulation's default target just past the synthesised grasp joints")
+    s.add_argument(
+        "--closing",
+        choices=["full", "learnt"],
+        default=None,
+        help="full (default): the fingers close until they stop on the object, force-limited; learnt: "
+        "the simulation's default target just past the synthesised grasp joints",
+    )
     s.add_argument("--jobs", type=int_in(1, 1024), default=1, help="parallel worker processes (or Ray tasks)")
-    s.add_argument("--executor", choices=["local", "ray"], default="local",
-                   help="local processes, or a Ray cluster (a local Ray instance unless --ray-address)")
+    s.add_argument(
+        "--executor",
+        choices=["local", "ray"],
+        default="local",
+        help="local processes, or a Ray cluster (a local Ray instance unless --ray-address)",
+    )
     s.add_argument("--ray-address", help="address of a running Ray cluster (default: start a local one)")
     s.add_argument("--quiet", action="store_true", help="no progress bar")
     s.set_defaults(func=cmd_experiment)
@@ -105,12 +147,21 @@ def add_parsers(sub) -> None:
     s = sub.add_parser("benchmark", help="the paper's runtime comparison: medians over objects per stage, GMM vs KDE")
     s.add_argument("--objects", type=input_path, help="objects file (default: the 60 test objects)")
     s.add_argument("--limit", type=int_in(1), help="only the first N objects")
-    s.add_argument("--samples", type=int_in(1, MAX_SAMPLES), default=o.n_samples,
-                   help=f"grasps sampled per object ({o.n_samples})")
-    s.add_argument("--optimise-top", type=int_in(1, MAX_SAMPLES), default=o.n_optimise,
-                   help=f"best grasps annealed ({o.n_optimise})")
+    s.add_argument(
+        "--samples", type=int_in(1, MAX_SAMPLES), default=o.n_samples, help=f"grasps sampled per object ({o.n_samples})"
+    )
+    s.add_argument(
+        "--optimise-top",
+        type=int_in(1, MAX_SAMPLES),
+        default=o.n_optimise,
+        help=f"best grasps annealed ({o.n_optimise})",
+    )
     s.add_argument("--seed", type=seed, default=0)
-    s.add_argument("--out", type=output_folder, default="benchmark",
-                   help="folder for benchmark.json and benchmark.png (default ./benchmark)")
+    s.add_argument(
+        "--out",
+        type=output_folder,
+        default="benchmark",
+        help="folder for benchmark.json and benchmark.png (default ./benchmark)",
+    )
     s.add_argument("--quiet", action="store_true", help="no progress bar")
     s.set_defaults(func=cmd_benchmark)

@@ -1,4 +1,5 @@
 """demo, learn, synthesize: from a demonstration to grasps on a new cloud."""
+
 from __future__ import annotations
 
 import argparse
@@ -17,8 +18,15 @@ def cmd_demo(args: argparse.Namespace) -> int:
     from ..sim.demonstration import record_demonstration
 
     wrist = parse_floats(args.wrist, 7, "--wrist")
-    demo = record_demonstration(args.object, args.hand, wrist, parse_joints(args.pregrasp, "--pregrasp"),
-                                parse_joints(args.close, "--close"), grip_force=args.force, seed=args.seed)
+    demo = record_demonstration(
+        args.object,
+        args.hand,
+        wrist,
+        parse_joints(args.pregrasp, "--pregrasp"),
+        parse_joints(args.close, "--close"),
+        grip_force=args.force,
+        seed=args.seed,
+    )
     out = Path(args.out)
     if args.cloud_out:
         _core.save_cloud(args.cloud_out, demo.cloud)
@@ -33,8 +41,10 @@ def cmd_learn(args: argparse.Namespace) -> int:
     t0 = time.perf_counter()
     model = learn(args.demo, args.method, n_components=args.components, seed=args.seed, max_distance=args.max_distance)
     model.save(args.out)
-    print(f"learnt a {model.method} model in {time.perf_counter() - t0:.2f} s: contact models for "
-          + ", ".join(f"{m.link_name} ({m.n_points} points)" for m in model.synthesizer.contact_models))
+    print(
+        f"learnt a {model.method} model in {time.perf_counter() - t0:.2f} s: contact models for "
+        + ", ".join(f"{m.link_name} ({m.n_points} points)" for m in model.synthesizer.contact_models)
+    )
     print(f"wrote {args.out}")
     return 0
 
@@ -63,24 +73,36 @@ def _model_for(args) -> tuple[GraspModel, Path]:
     if args.hand and Path(args.hand).resolve() != model.hand_path.resolve():
         other = _core.Hand.from_urdf(args.hand)
         if other.name != model.hand.name or other.link_names != model.hand.link_names:
-            raise CliError(f"the model {model_path.name} was learnt for hand '{model.hand.name}', "
-                           f"not '{other.name}' ({args.hand})")
+            raise CliError(
+                f"the model {model_path.name} was learnt for hand '{model.hand.name}', not '{other.name}' ({args.hand})"
+            )
     return model, model_path
 
 
 def cmd_synthesize(args: argparse.Namespace) -> int:
     model, model_path = _model_for(args)
     axis = parse_floats(args.approach_axis, 3, "--approach-axis") if args.approach_axis else None
-    grasps = model.synthesize(args.cloud, n_samples=args.samples, n_optimise=args.optimise_top,
-                              optimise=not args.no_optimise, seed=args.seed, remove_plane=not args.no_plane,
-                              approach_axis=axis, query_samples=args.query_samples)
+    grasps = model.synthesize(
+        args.cloud,
+        n_samples=args.samples,
+        n_optimise=args.optimise_top,
+        optimise=not args.no_optimise,
+        seed=args.seed,
+        remove_plane=not args.no_plane,
+        approach_axis=axis,
+        query_samples=args.query_samples,
+    )
     t = grasps.timing
-    print(f"{model.method} model '{model_path.name}' on {args.cloud}: {len(grasps.surface.points)} surface points, "
-          f"support plane {'found' if grasps.plane is not None else 'none'}")
-    print(f"time: features {t['features'] * 1e3:.0f} ms, query densities {t['query'] * 1e3:.0f} ms, "
-          f"sampling+ranking {t['sampling'] * 1e3:.0f} ms, optimisation {t['optimisation'] * 1e3:.0f} ms, "
-          f"total {t['total'] * 1e3:.0f} ms ({grasps.evaluations} grasp evaluations, {grasps.rejected} samples rejected "
-          f"by hard constraints)")
+    print(
+        f"{model.method} model '{model_path.name}' on {args.cloud}: {len(grasps.surface.points)} surface points, "
+        f"support plane {'found' if grasps.plane is not None else 'none'}"
+    )
+    print(
+        f"time: features {t['features'] * 1e3:.0f} ms, query densities {t['query'] * 1e3:.0f} ms, "
+        f"sampling+ranking {t['sampling'] * 1e3:.0f} ms, optimisation {t['optimisation'] * 1e3:.0f} ms, "
+        f"total {t['total'] * 1e3:.0f} ms ({grasps.evaluations} grasp evaluations, {grasps.rejected} samples rejected "
+        f"by hard constraints)"
+    )
     print_grasps(grasps, args.top)
     grasps.save(args.out)
     print(f"wrote {args.out} ({len(grasps)} grasps, best first)")
@@ -93,50 +115,91 @@ def cmd_synthesize(args: argparse.Namespace) -> int:
 
 
 def add_parsers(sub) -> None:
+    _add_demo(sub)
+    _add_learn(sub)
+    _add_synthesize(sub)
+
+
+def _add_demo(sub) -> None:
     from ..sim.demonstration import DEMO_GRIP_FORCE
 
     s = sub.add_parser("demo", help="record a demonstrated grasp in simulation (pybullet) as a demonstration file")
-    s.add_argument("--object", type=input_path, default=str(data_path("objects", "box.urdf")),
-                   help="object URDF (a path, or relative to pybullet_data); default: the bundled box")
-    s.add_argument("--hand", type=input_path, default=str(data_path("hands", "wsg50.urdf")),
-                   help="hand URDF (default: WSG 50)")
+    s.add_argument(
+        "--object",
+        type=input_path,
+        default=str(data_path("objects", "box.urdf")),
+        help="object URDF (a path, or relative to pybullet_data); default: the bundled box",
+    )
+    s.add_argument(
+        "--hand", type=input_path, default=str(data_path("hands", "wsg50.urdf")), help="hand URDF (default: WSG 50)"
+    )
     s.add_argument("--wrist", required=True, help="wrist pose x,y,z,qx,qy,qz,qw in the world (m)")
     s.add_argument("--pregrasp", required=True, help="pre-grasp joints name=value,...")
-    s.add_argument("--close", required=True, help="joints to close towards, name=value,... (the fingers stop on contact)")
+    s.add_argument(
+        "--close", required=True, help="joints to close towards, name=value,... (the fingers stop on contact)"
+    )
     s.add_argument("--force", type=float_in(gt=0.0), default=DEMO_GRIP_FORCE, help="motor force limit (N or N m)")
     s.add_argument("--seed", type=seed, default=0)
     s.add_argument("--out", type=output_file, required=True, help="demonstration file (.json)")
-    s.add_argument("--cloud-out", type=output_file,
-                   help="write the object cloud to this PCD and refer to it (default: inline)")
+    s.add_argument(
+        "--cloud-out", type=output_file, help="write the object cloud to this PCD and refer to it (default: inline)"
+    )
     s.set_defaults(func=cmd_demo)
 
+
+def _add_learn(sub) -> None:
     s = sub.add_parser("learn", help="learn contact and configuration models from one demonstration")
-    s.add_argument("--demo", type=input_path, default=str(data_path("demos", "box_wsg50.json")),
-                   help="demonstration file")
+    s.add_argument(
+        "--demo", type=input_path, default=str(data_path("demos", "box_wsg50.json")), help="demonstration file"
+    )
     s.add_argument("--method", default="gmm", choices=list(METHODS))
-    s.add_argument("--components", type=int_in(1, MAX_COMPONENTS), default=LearnSettings.n_components,
-                   help="K of the contact mixtures (GMM)")
-    s.add_argument("--max-distance", type=float_in(gt=0.0), default=LearnSettings.max_distance,
-                   help="m: object points this close to a link are its contacts")
+    s.add_argument(
+        "--components",
+        type=int_in(1, MAX_COMPONENTS),
+        default=LearnSettings.n_components,
+        help="K of the contact mixtures (GMM)",
+    )
+    s.add_argument(
+        "--max-distance",
+        type=float_in(gt=0.0),
+        default=LearnSettings.max_distance,
+        help="m: object points this close to a link are its contacts",
+    )
     s.add_argument("--seed", type=seed, default=LearnSettings.seed)
     s.add_argument("--out", type=output_file, required=True, help="model file (.json)")
     s.set_defaults(func=cmd_learn)
 
+
+def _add_synthesize(sub) -> None:
     o = SynthesisOptions
     s = sub.add_parser("synthesize", help="synthesise, rank and optimise grasps on a cloud")
     s.add_argument("--cloud", type=input_path, required=True, help="the scene or object cloud (.pcd, .ply, .npy)")
-    s.add_argument("--model", type=input_path,
-                   help="learnt model (.json); default: the bundled box demonstration model of --method")
+    s.add_argument(
+        "--model",
+        type=input_path,
+        help="learnt model (.json); default: the bundled box demonstration model of --method",
+    )
     s.add_argument("--method", choices=list(METHODS), default=None, help="with no --model: which bundled model (gmm)")
     s.add_argument("--hand", type=input_path, help="hand URDF; must be the model's hand")
-    s.add_argument("--samples", type=int_in(1, MAX_SAMPLES), default=o.n_samples,
-                   help=f"grasps sampled and ranked ({o.n_samples})")
-    s.add_argument("--optimise-top", type=int_in(0, MAX_SAMPLES), default=o.n_optimise,
-                   help=f"best grasps optimised by annealing ({o.n_optimise})")
+    s.add_argument(
+        "--samples", type=int_in(1, MAX_SAMPLES), default=o.n_samples, help=f"grasps sampled and ranked ({o.n_samples})"
+    )
+    s.add_argument(
+        "--optimise-top",
+        type=int_in(0, MAX_SAMPLES),
+        default=o.n_optimise,
+        help=f"best grasps optimised by annealing ({o.n_optimise})",
+    )
     s.add_argument("--no-optimise", action="store_true", help="rank the samples only")
-    s.add_argument("--query-samples", type=int_in(1, MAX_SAMPLES), default=o.query_samples,
-                   help="samples per link for the query densities")
-    s.add_argument("--approach-axis", help="prefer wrists approaching along this world axis, e.g. 0,0,-1 for top grasps")
+    s.add_argument(
+        "--query-samples",
+        type=int_in(1, MAX_SAMPLES),
+        default=o.query_samples,
+        help="samples per link for the query densities",
+    )
+    s.add_argument(
+        "--approach-axis", help="prefer wrists approaching along this world axis, e.g. 0,0,-1 for top grasps"
+    )
     s.add_argument("--no-plane", action="store_true", help="the cloud is the object alone: find no support plane")
     s.add_argument("--seed", type=seed, default=o.seed)
     s.add_argument("--top", type=int_in(0), default=5, help="grasps to print")

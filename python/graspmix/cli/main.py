@@ -2,6 +2,7 @@
 
 Every subcommand turns a bad input into one line on stderr and exit status 2.
 """
+
 from __future__ import annotations
 
 import argparse
@@ -40,6 +41,8 @@ def main(argv: list[str] | None = None) -> int:
     except RecursionError:
         return report_error(args.command, "an input is nested too deeply")
     except KeyboardInterrupt:
-        print(f"\ngraspmix_cli {args.command}: stopped; finished attempts are kept, the same command resumes",
-              file=sys.stderr)
+        print(
+            f"\ngraspmix_cli {args.command}: stopped; finished attempts are kept, the same command resumes",
+            file=sys.stderr,
+        )
         return 130

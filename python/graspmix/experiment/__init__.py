@@ -22,6 +22,7 @@ log (attempts.csv), progress, runner (run, resume), stats (t-tests), report (sum
 runtime_benchmark (Fig. runtime). This package is also the module path ``graspmix.experiment`` of earlier
 versions: every name it had is here.
 """
+
 from ..io import PROTOCOL_FORMAT, git_commit, read_objects_file
 from ..model.grasps import STAGE_LABELS, STAGES
 from ..model.settings import METHODS
@@ -43,8 +44,36 @@ from .protocol import (
 from .runner import prepare_folder, run
 from .runtime_benchmark import benchmark, format_benchmark
 
-__all__ = ["PROTOCOL_FORMAT", "CSV_NAME", "PROTOCOL_NAME", "Condition", "CONDITIONS", "METHODS", "CLOSING", "PRESETS",
-           "SMOKE_OBJECTS", "KEY_COLUMNS", "RESULT_COLUMNS", "TIME_COLUMNS", "COLUMNS", "STAGES", "STAGE_LABELS",
-           "derive_seed", "git_commit", "Protocol", "read_objects_file", "crop_above_plane", "run_unit", "AttemptLog",
-           "read_rows", "Progress", "load_protocol", "prepare_folder", "run", "benchmark", "format_benchmark",
-           "report", "stats"]
+__all__ = [
+    "PROTOCOL_FORMAT",
+    "CSV_NAME",
+    "PROTOCOL_NAME",
+    "Condition",
+    "CONDITIONS",
+    "METHODS",
+    "CLOSING",
+    "PRESETS",
+    "SMOKE_OBJECTS",
+    "KEY_COLUMNS",
+    "RESULT_COLUMNS",
+    "TIME_COLUMNS",
+    "COLUMNS",
+    "STAGES",
+    "STAGE_LABELS",
+    "derive_seed",
+    "git_commit",
+    "Protocol",
+    "read_objects_file",
+    "crop_above_plane",
+    "run_unit",
+    "AttemptLog",
+    "read_rows",
+    "Progress",
+    "load_protocol",
+    "prepare_folder",
+    "run",
+    "benchmark",
+    "format_benchmark",
+    "report",
+    "stats",
+]

@@ -1,5 +1,6 @@
 """One work unit of the experiment (runs in a worker): one (object, trial, noise) acquisition and every
 attempt that shares it, each a synthesis and the execution of its best grasp, as attempts.csv rows."""
+
 from __future__ import annotations
 
 import dataclasses
@@ -30,19 +31,28 @@ def crop_above_plane(min_height: float) -> Callable:
 
     def cleanup(acq: Acquisition) -> Acquisition:
         keep = acq.points[:, 2] > min_height
-        return dataclasses.replace(acq, points=acq.points[keep], viewpoints=acq.viewpoints[keep],
-                                   camera_index=acq.camera_index[keep])
+        return dataclasses.replace(
+            acq, points=acq.points[keep], viewpoints=acq.viewpoints[keep], camera_index=acq.camera_index[keep]
+        )
 
     return cleanup
 
 
 def synthesize_on(model: GraspModel, acq: Acquisition, p: Protocol, seed: int, optimise: bool):
     """The synthesis of one attempt on an acquired cloud (the known support plane, the cameras' positions)."""
-    return model.synthesize(acq.points, n_samples=p.n_samples, n_optimise=p.n_optimise, optimise=optimise,
-                            seed=seed, remove_plane=False, plane=list(SUPPORT_PLANE), viewpoints=acq.viewpoints,
-                            query_samples=p.query_samples, table_clearance=p.min_height,
-                            annealing={"iterations": p.annealing_iterations,
-                                       "initial_temperature": p.initial_temperature})
+    return model.synthesize(
+        acq.points,
+        n_samples=p.n_samples,
+        n_optimise=p.n_optimise,
+        optimise=optimise,
+        seed=seed,
+        remove_plane=False,
+        plane=list(SUPPORT_PLANE),
+        viewpoints=acq.viewpoints,
+        query_samples=p.query_samples,
+        table_clearance=p.min_height,
+        annealing={"iterations": p.annealing_iterations, "initial_temperature": p.initial_temperature},
+    )
 
 
 def _unit_order(p: Protocol, keys: list, acq_seed: int) -> list:
@@ -55,33 +65,68 @@ def _unit_order(p: Protocol, keys: list, acq_seed: int) -> list:
 
 def _failed(row: dict, error: Exception, t_synthesis: float) -> dict:
     """A failed synthesis is a failed attempt (nothing to execute), recorded with its reason."""
-    row.update(success=0, reason="synthesis failed", lift_height=0.0, contact_count=0, log_likelihood="",
-               grasp="", evaluations=0, rejected=0, error=" ".join(str(error).split()),
-               t_features="", t_query="", t_sampling="", t_optimisation="", t_synthesis=t_synthesis, t_execution=0.0)
+    row.update(
+        success=0,
+        reason="synthesis failed",
+        lift_height=0.0,
+        contact_count=0,
+        log_likelihood="",
+        grasp="",
+        evaluations=0,
+        rejected=0,
+        error=" ".join(str(error).split()),
+        t_features="",
+        t_query="",
+        t_sampling="",
+        t_optimisation="",
+        t_synthesis=t_synthesis,
+        t_execution=0.0,
+    )
     return row
 
 
 def _executed(row: dict, grasps, result, t_exec: float) -> dict:
     best, tm = grasps.best(), grasps.timing
-    row.update(success=int(bool(result.success)), reason=result.reason, lift_height=float(result.lift_height),
-               contact_count=int(result.contact_count), log_likelihood=float(best["log_likelihood"]),
-               grasp=json.dumps(best.to_dict(execution_only=True), separators=(",", ":")),
-               evaluations=int(grasps.evaluations), rejected=int(grasps.rejected), t_features=tm["features"],
-               t_query=tm["query"], t_sampling=tm["sampling"], t_optimisation=tm["optimisation"],
-               t_synthesis=tm["total"], t_execution=t_exec)
+    row.update(
+        success=int(bool(result.success)),
+        reason=result.reason,
+        lift_height=float(result.lift_height),
+        contact_count=int(result.contact_count),
+        log_likelihood=float(best["log_likelihood"]),
+        grasp=json.dumps(best.to_dict(execution_only=True), separators=(",", ":")),
+        evaluations=int(grasps.evaluations),
+        rejected=int(grasps.rejected),
+        t_features=tm["features"],
+        t_query=tm["query"],
+        t_sampling=tm["sampling"],
+        t_optimisation=tm["optimisation"],
+        t_synthesis=tm["total"],
+        t_execution=t_exec,
+    )
     return row
 
 
-def run_attempt(p: Protocol, model_path: str, key: tuple, noise: bool, acq: Acquisition, acq_seed: int,
-                t_acq: float, pose) -> dict:
+def run_attempt(
+    p: Protocol, model_path: str, key: tuple, noise: bool, acq: Acquisition, acq_seed: int, t_acq: float, pose
+) -> dict:
     """One attempt: synthesise on the unit's cloud, execute the best grasp at the object's rest pose."""
     obj, trial, cond, method = key
     c = CONDITIONS[cond]
     model = cached_model(model_path)
     seed = p.synthesis_seed(obj, trial, cond)
-    row = {"object": obj, "trial": trial, "condition": cond, "method": method, "noise": int(noise),
-           "optimise": int(c.optimise), "acquisition_seed": acq_seed, "synthesis_seed": seed,
-           "n_points": len(acq.points), "t_acquisition": t_acq, "error": ""}
+    row = {
+        "object": obj,
+        "trial": trial,
+        "condition": cond,
+        "method": method,
+        "noise": int(noise),
+        "optimise": int(c.optimise),
+        "acquisition_seed": acq_seed,
+        "synthesis_seed": seed,
+        "n_points": len(acq.points),
+        "t_acquisition": t_acq,
+        "error": "",
+    }
     t1 = time.perf_counter()
     try:
         grasps = synthesize_on(model, acq, p, seed, c.optimise)
@@ -109,5 +154,7 @@ def run_unit(protocol: dict, unit: tuple, todo: Iterable[tuple] | None = None) -
     acq = acquire(obj, noise=noise, seed=acq_seed, postprocess=crop_above_plane(p.min_height))
     t_acq = time.perf_counter() - t0
     pose = rest_pose(obj)
-    return [run_attempt(p, protocol["model_paths"][k[3]], (obj, trial, k[2], k[3]), noise, acq, acq_seed, t_acq, pose)
-            for k in keys]
+    return [
+        run_attempt(p, protocol["model_paths"][k[3]], (obj, trial, k[2], k[3]), noise, acq, acq_seed, t_acq, pose)
+        for k in keys
+    ]

@@ -1,5 +1,6 @@
 """How work units run: in this process, in a pool of local worker processes, or as Ray tasks. Each
 calls record(rows) in this process as units finish (in any order: rows do not depend on it)."""
+
 from __future__ import annotations
 
 import os
@@ -59,8 +60,12 @@ def run_ray(pdoc: dict, work: list, jobs: int, record: Callable, address: str | 
         if address:
             ray.init(address=address, log_to_driver=False)
         else:
-            ray.init(num_cpus=jobs, include_dashboard=False, log_to_driver=False,
-                     runtime_env={"env_vars": {"OMP_NUM_THREADS": "1"}})
+            ray.init(
+                num_cpus=jobs,
+                include_dashboard=False,
+                log_to_driver=False,
+                runtime_env={"env_vars": {"OMP_NUM_THREADS": "1"}},
+            )
         started = True
     try:
         task = ray.remote(num_cpus=1)(run_unit)

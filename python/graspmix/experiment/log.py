@@ -1,4 +1,5 @@
 """attempts.csv: one row per executed grasp, appended as work units finish."""
+
 from __future__ import annotations
 
 import csv
@@ -12,13 +13,36 @@ CSV_NAME = "attempts.csv"
 
 # Columns of attempts.csv. Times are in seconds.
 KEY_COLUMNS = ["object", "trial", "condition", "method"]
-RESULT_COLUMNS = ["noise", "optimise", "acquisition_seed", "synthesis_seed", "n_points", "success", "reason",
-                  "lift_height", "contact_count", "log_likelihood", "grasp", "evaluations", "rejected", "error"]
-TIME_COLUMNS = ["t_acquisition", "t_features", "t_query", "t_sampling", "t_optimisation", "t_synthesis",
-                "t_execution"]
+RESULT_COLUMNS = [
+    "noise",
+    "optimise",
+    "acquisition_seed",
+    "synthesis_seed",
+    "n_points",
+    "success",
+    "reason",
+    "lift_height",
+    "contact_count",
+    "log_likelihood",
+    "grasp",
+    "evaluations",
+    "rejected",
+    "error",
+]
+TIME_COLUMNS = ["t_acquisition", "t_features", "t_query", "t_sampling", "t_optimisation", "t_synthesis", "t_execution"]
 COLUMNS = KEY_COLUMNS + RESULT_COLUMNS + TIME_COLUMNS
-INT_COLUMNS = {"trial", "noise", "optimise", "acquisition_seed", "synthesis_seed", "n_points", "success",
-               "contact_count", "evaluations", "rejected"}
+INT_COLUMNS = {
+    "trial",
+    "noise",
+    "optimise",
+    "acquisition_seed",
+    "synthesis_seed",
+    "n_points",
+    "success",
+    "contact_count",
+    "evaluations",
+    "rejected",
+}
 FLOAT_COLUMNS = {"lift_height", "log_likelihood", *TIME_COLUMNS}
 
 

@@ -1,4 +1,5 @@
 """A progress bar with the time left, for long runs."""
+
 from __future__ import annotations
 
 import math
@@ -32,8 +33,10 @@ class Progress:
         elapsed = time.perf_counter() - self.t0
         new = self.done - self.start_done
         left = elapsed / new * (self.total - self.done) if new > 0 else math.inf
-        return (f"[{'#' * n}{'.' * (self.width - n)}] {self.done}/{self.total} attempts {frac * 100:5.1f}%  "
-                f"elapsed {hms(elapsed)}  left {hms(left)}")
+        return (
+            f"[{'#' * n}{'.' * (self.width - n)}] {self.done}/{self.total} attempts {frac * 100:5.1f}%  "
+            f"elapsed {hms(elapsed)}  left {hms(left)}"
+        )
 
     def update(self, n: int) -> None:
         self.done += n

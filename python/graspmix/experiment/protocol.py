@@ -1,5 +1,6 @@
 """The experiment's protocol: conditions A-D, the methods, how grasps close, the seeds, and everything
 else that decides the results (written to protocol.json)."""
+
 from __future__ import annotations
 
 import dataclasses
@@ -10,7 +11,7 @@ from pathlib import Path
 from ..io import PROTOCOL_FORMAT, read_document, resolve_object, sha256_file, test_objects
 from ..io.checks import MAX_ITERATIONS, MAX_SAMPLES, check_float, check_int, check_seed, quote
 from ..model import default_model_path
-from ..model.settings import METHODS, FeatureSettings, SynthesisOptions
+from ..model.settings import METHODS, SynthesisOptions
 
 PROTOCOL_NAME = "protocol.json"
 
@@ -75,7 +76,7 @@ class Protocol:
 
     @classmethod
     def preset(cls, name: str, **overrides) -> "Protocol":
-        """"paper": the 60 test objects, 10 trials, A-D, GMM and KDE. "smoke": the same with 3 objects and
+        """ "paper": the 60 test objects, 10 trials, A-D, GMM and KDE. "smoke": the same with 3 objects and
         2 trials (minutes, for tests and a first look)."""
         if name not in PRESETS:
             raise ValueError(f"preset must be one of {', '.join(PRESETS)}, got {name!r}")
@@ -131,8 +132,11 @@ class Protocol:
             except ValueError:
                 missing.append(o)
         if missing:
-            raise ValueError(f"{len(missing)} object(s) not found (neither a file nor in pybullet_data): "
-                             + ", ".join(missing[:5]) + (" ..." if len(missing) > 5 else ""))
+            raise ValueError(
+                f"{len(missing)} object(s) not found (neither a file nor in pybullet_data): "
+                + ", ".join(missing[:5])
+                + (" ..." if len(missing) > 5 else "")
+            )
         for m in self.methods:
             path = self.model_path(m)
             if not path.is_file():
@@ -144,8 +148,9 @@ class Protocol:
     def to_json(self) -> dict:
         """The protocol as written to protocol.json; models are identified by content (sha256), not path."""
         d = dataclasses.asdict(self)
-        d["models"] = {m: {"file": self.model_path(m).name, "sha256": sha256_file(self.model_path(m))}
-                       for m in self.methods}
+        d["models"] = {
+            m: {"file": self.model_path(m).name, "sha256": sha256_file(self.model_path(m))} for m in self.methods
+        }
         d["condition_definitions"] = {c: dataclasses.asdict(CONDITIONS[c]) for c in self.conditions}
         return d
 

@@ -7,6 +7,7 @@ per-trial rates as dots), the stacked runtime bars of the paper's Fig. runtime (
 query density estimation, sampling and ranking, optimising the top 10), and the table of the paired
 t-tests GMM vs KDE per condition.
 """
+
 from __future__ import annotations
 
 import base64
@@ -53,17 +54,19 @@ def summarize(rows: list[dict], protocol_doc: dict) -> dict:
     expected = len(objects) * trials * len(conditions) * len(methods)
     rows = _unique(rows)
     success, ttests, reasons = _success_rates(rows, conditions, methods, len(objects), trials)
-    return _finite({
-        "format": SUMMARY_FORMAT,
-        "protocol": proto,
-        "provenance": protocol_doc.get("provenance", {}),
-        "attempts": {"done": len(rows), "expected": expected, "complete": len(rows) == expected},
-        "success_rate": success,
-        "ttest_gmm_vs_kde": ttests,
-        "outcomes": reasons,
-        "runtime": _runtime(rows, conditions, methods),
-        "per_object_success_rate": _per_object(rows, objects, methods),
-    })
+    return _finite(
+        {
+            "format": SUMMARY_FORMAT,
+            "protocol": proto,
+            "provenance": protocol_doc.get("provenance", {}),
+            "attempts": {"done": len(rows), "expected": expected, "complete": len(rows) == expected},
+            "success_rate": success,
+            "ttest_gmm_vs_kde": ttests,
+            "outcomes": reasons,
+            "runtime": _runtime(rows, conditions, methods),
+            "per_object_success_rate": _per_object(rows, objects, methods),
+        }
+    )
 
 
 def _unique(rows: list[dict]) -> list[dict]:
@@ -85,8 +88,9 @@ def _success_rates(rows, conditions, methods, n_objects: int, trials: int) -> tu
         complete_trials = {}
         for m in methods:
             success[c][m], complete_trials[m] = _rate_entry(cells, c, m, n_objects, trials)
-            reasons.setdefault(c, {})[m] = dict(Counter(r["reason"] for r in rows
-                                                        if r["condition"] == c and r["method"] == m))
+            reasons.setdefault(c, {})[m] = dict(
+                Counter(r["reason"] for r in rows if r["condition"] == c and r["method"] == m)
+            )
         if "gmm" in methods and "kde" in methods:
             ttests[c] = _ttest_entry(success[c], sorted(complete_trials["gmm"] & complete_trials["kde"]))
     return success, ttests, reasons
@@ -102,10 +106,12 @@ def _rate_entry(cells, c: str, m: str, n_objects: int, trials: int) -> tuple[dic
             if len(s) == n_objects:
                 complete.append(t)
     rates = [per_trial[t] for t in sorted(per_trial)]
-    entry = {"per_trial": {str(t): v for t, v in sorted(per_trial.items())},
-             "trials_complete": len(complete),
-             "successes": int(sum(sum(cells.get((c, m, t), [])) for t in range(trials))),
-             "attempts": int(sum(len(cells.get((c, m, t), [])) for t in range(trials)))}
+    entry = {
+        "per_trial": {str(t): v for t, v in sorted(per_trial.items())},
+        "trials_complete": len(complete),
+        "successes": int(sum(sum(cells.get((c, m, t), [])) for t in range(trials))),
+        "attempts": int(sum(len(cells.get((c, m, t), [])) for t in range(trials))),
+    }
     if rates:
         ci = mean_ci(rates)
         entry.update(mean=ci.mean, ci_low=ci.low, ci_high=ci.high, std=ci.std, n_trials=ci.n)
@@ -127,8 +133,12 @@ def _runtime(rows, conditions, methods) -> dict:
     """Runtime: the paper's figure includes optimisation, so take the attempts of conditions with it
     (all attempts if none has). Per object the median over its attempts, then the median over objects."""
     opt_conditions = [c for c in conditions if CONDITIONS[c].optimise] or conditions
-    runtime = {"conditions": opt_conditions, "statistic": "median over objects of the per-object median",
-               "median_s": {}, "ratio_kde_over_gmm": {}}
+    runtime = {
+        "conditions": opt_conditions,
+        "statistic": "median over objects of the per-object median",
+        "median_s": {},
+        "ratio_kde_over_gmm": {},
+    }
     for m in methods:
         per_obj = defaultdict(lambda: defaultdict(list))
         for r in rows:
@@ -161,6 +171,7 @@ def _per_object(rows, objects, methods) -> dict:
 
 # ---- the report --------------------------------------------------------------------------------
 
+
 def _pct(x) -> str:
     return "n/a" if x is None else f"{100 * x:.1f}"
 
@@ -180,13 +191,23 @@ def _num(x, fmt="{:.3g}") -> str:
 def findings_table(summary: dict) -> list[list[str]]:
     """Rows (with a header row) of the findings table: per condition the success rates, the difference and
     the paired t-test."""
-    out = [["condition", "GMM success (95% CI)", "KDE success (95% CI)", "GMM - KDE (95% CI), points",
-            "t", "p (two-tailed)"]]
+    out = [
+        [
+            "condition",
+            "GMM success (95% CI)",
+            "KDE success (95% CI)",
+            "GMM - KDE (95% CI), points",
+            "t",
+            "p (two-tailed)",
+        ]
+    ]
     for c, per in summary["success_rate"].items():
         tt = summary["ttest_gmm_vs_kde"].get(c, {})
         if "mean_difference" in tt:
-            diff = (f"{100 * tt['mean_difference']:+.1f} [{_num(tt['ci_low'] and 100 * tt['ci_low'], '{:+.1f}')}, "
-                    f"{_num(tt['ci_high'] and 100 * tt['ci_high'], '{:+.1f}')}]")
+            diff = (
+                f"{100 * tt['mean_difference']:+.1f} [{_num(tt['ci_low'] and 100 * tt['ci_low'], '{:+.1f}')}, "
+                f"{_num(tt['ci_high'] and 100 * tt['ci_high'], '{:+.1f}')}]"
+            )
             t, p = _num(tt["t"], "{:.2f}"), _num(tt["p"], "{:.2g}")
         else:
             diff, t, p = "n/a", "n/a", "n/a"
@@ -199,11 +220,18 @@ def runtime_table(summary: dict) -> list[list[str]]:
     med, ratio = rt.get("median_s", {}), rt.get("ratio_kde_over_gmm", {})
     out = [["stage", "GMM (ms)", "KDE (ms)", "KDE / GMM"]]
     for s in (*STAGES, "total"):
-        out.append([STAGE_LABELS.get(s, "total of the three"),
-                    *[_num(med[m][s] * 1e3, "{:.1f}") if m in med else "n/a" for m in METHODS],
-                    _num(ratio.get(s), "{:.2f}")])
-    for s, label in (("features", "surface features (shared, not in total)"),
-                     ("execution", "grasp execution in Bullet"), ("acquisition", "4-camera acquisition")):
+        out.append(
+            [
+                STAGE_LABELS.get(s, "total of the three"),
+                *[_num(med[m][s] * 1e3, "{:.1f}") if m in med else "n/a" for m in METHODS],
+                _num(ratio.get(s), "{:.2f}"),
+            ]
+        )
+    for s, label in (
+        ("features", "surface features (shared, not in total)"),
+        ("execution", "grasp execution in Bullet"),
+        ("acquisition", "4-camera acquisition"),
+    ):
         out.append([label, *[_num(med[m][s] * 1e3, "{:.1f}") if m in med else "n/a" for m in METHODS], ""])
     return out
 
@@ -237,35 +265,50 @@ def _blocks(summary: dict) -> list[tuple]:
     prov, proto = summary["provenance"], summary["protocol"]
     att = summary["attempts"]
     rt = summary["runtime"]
-    blocks = [("h1", "graspmix experiment report"),
-              ("p", f"{len(proto['objects'])} objects x {proto['trials']} trials x conditions "
-                    f"{','.join(proto['conditions'])} x methods {','.join(proto['methods'])}: "
-                    f"{att['done']} of {att['expected']} attempts" + ("" if att["complete"] else " (INCOMPLETE run)")
-                    + f". {proto['n_samples']} grasps sampled per attempt, the best {proto['n_optimise']} annealed "
-                    f"({proto['annealing_iterations']} iterations, initial temperature {proto['initial_temperature']}, "
-                    f"linear decay) in conditions with optimisation; the best grasp is executed "
-                    + ("with the fingers closing until they stop on the object (force-limited). "
-                       if proto.get("closing", "full") == "full" else
-                       "with the simulation's default closing (just past the synthesised grasp joints). ")
-                    + f"Clouds: 4 cameras, points within {1000 * proto['min_height']:.0f} mm of the support plane "
-                    f"dropped, the same for both methods. graspmix "
-                    f"{prov.get('graspmix', '?')}, commit {prov.get('commit') or 'unknown'}."),
-              ]
+    blocks = [
+        ("h1", "graspmix experiment report"),
+        (
+            "p",
+            f"{len(proto['objects'])} objects x {proto['trials']} trials x conditions "
+            f"{','.join(proto['conditions'])} x methods {','.join(proto['methods'])}: "
+            f"{att['done']} of {att['expected']} attempts"
+            + ("" if att["complete"] else " (INCOMPLETE run)")
+            + f". {proto['n_samples']} grasps sampled per attempt, the best {proto['n_optimise']} annealed "
+            f"({proto['annealing_iterations']} iterations, initial temperature {proto['initial_temperature']}, "
+            f"linear decay) in conditions with optimisation; the best grasp is executed "
+            + (
+                "with the fingers closing until they stop on the object (force-limited). "
+                if proto.get("closing", "full") == "full"
+                else "with the simulation's default closing (just past the synthesised grasp joints). "
+            )
+            + f"Clouds: 4 cameras, points within {1000 * proto['min_height']:.0f} mm of the support plane "
+            f"dropped, the same for both methods. graspmix "
+            f"{prov.get('graspmix', '?')}, commit {prov.get('commit') or 'unknown'}.",
+        ),
+    ]
     if prov.get("command"):
         blocks.append(("code", prov["command"]))
-    blocks += [("h2", "Success rates and paired t-tests (GMM vs KDE)"),
-               ("p", "Success rate of a trial = successful grasps / objects. Means over trials with 95% confidence "
-                     "intervals (t distribution); differences in percentage points with the 95% CI of the mean "
-                     "per-trial difference; two-tailed paired t-test over trials (scipy.stats.ttest_rel)."),
-               ("table", findings_table(summary)),
-               ("img", "success_rates.png", "Success rate per condition and method"),
-               ("h2", "Runtime (the paper's Fig. runtime)"),
-               ("p", f"Medians over {rt.get('n_objects', 0)} objects (per object the median over its attempts in "
-                     f"conditions {','.join(rt['conditions'])}) of the synthesis stages."),
-               ("table", runtime_table(summary)),
-               ("img", "runtime.png", "Stacked runtime per method"),
-               ("h2", "Outcomes of the executed grasps"),
-               ("table", outcomes_table(summary))]
+    blocks += [
+        ("h2", "Success rates and paired t-tests (GMM vs KDE)"),
+        (
+            "p",
+            "Success rate of a trial = successful grasps / objects. Means over trials with 95% confidence "
+            "intervals (t distribution); differences in percentage points with the 95% CI of the mean "
+            "per-trial difference; two-tailed paired t-test over trials (scipy.stats.ttest_rel).",
+        ),
+        ("table", findings_table(summary)),
+        ("img", "success_rates.png", "Success rate per condition and method"),
+        ("h2", "Runtime (the paper's Fig. runtime)"),
+        (
+            "p",
+            f"Medians over {rt.get('n_objects', 0)} objects (per object the median over its attempts in "
+            f"conditions {','.join(rt['conditions'])}) of the synthesis stages.",
+        ),
+        ("table", runtime_table(summary)),
+        ("img", "runtime.png", "Stacked runtime per method"),
+        ("h2", "Outcomes of the executed grasps"),
+        ("table", outcomes_table(summary)),
+    ]
     return blocks
 
 
@@ -288,10 +331,12 @@ def _markdown(blocks) -> str:
 
 
 def _html(blocks, folder: Path) -> str:
-    parts = ["<!DOCTYPE html><html><head><meta charset='utf-8'><title>graspmix experiment report</title>",
-             "<style>body{font-family:sans-serif;max-width:60em;margin:2em auto;}table{border-collapse:collapse;}"
-             "td,th{border:1px solid #ccc;padding:3px 8px;font-size:90%;}pre{background:#f4f4f4;padding:6px;}"
-             "</style></head><body>"]
+    parts = [
+        "<!DOCTYPE html><html><head><meta charset='utf-8'><title>graspmix experiment report</title>",
+        "<style>body{font-family:sans-serif;max-width:60em;margin:2em auto;}table{border-collapse:collapse;}"
+        "td,th{border:1px solid #ccc;padding:3px 8px;font-size:90%;}pre{background:#f4f4f4;padding:6px;}"
+        "</style></head><body>",
+    ]
     for b in blocks:
         if b[0] in ("h1", "h2"):
             parts.append(f"<{b[0]}>{html.escape(b[1])}</{b[0]}>")
@@ -339,8 +384,11 @@ def build_report(run_dir: str | Path) -> dict:
     (run_dir / "summary.json").write_text(json.dumps(summary, indent=1) + "\n")
     plot_success(summary, run_dir / "success_rates.png")
     if summary["runtime"]["median_s"]:
-        plot_runtime(summary["runtime"]["median_s"], run_dir / "runtime.png",
-                     title=f"Synthesis time per object, median over {summary['runtime'].get('n_objects', 0)} objects")
+        plot_runtime(
+            summary["runtime"]["median_s"],
+            run_dir / "runtime.png",
+            title=f"Synthesis time per object, median over {summary['runtime'].get('n_objects', 0)} objects",
+        )
     blocks = _blocks(summary)
     if not summary["runtime"]["median_s"]:
         blocks = [b for b in blocks if not (b[0] == "img" and b[1] == "runtime.png")]

@@ -8,6 +8,7 @@ Resuming: attempts.csv gets one row per executed grasp as soon as its unit is do
 synced), so a stopped run loses at most the units in flight. Running again into the same folder
 skips every attempt already in the CSV; a folder written by a different protocol is refused.
 """
+
 from __future__ import annotations
 
 import json
@@ -25,8 +26,11 @@ from .report import build_report
 
 def protocol_document(protocol: Protocol, command: str | None = None) -> dict:
     """protocol.json's content: the protocol and its provenance (version, commit, time, command)."""
-    prov = {"graspmix": package_version(), "commit": git_commit(),
-            "created_utc": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())}
+    prov = {
+        "graspmix": package_version(),
+        "commit": git_commit(),
+        "created_utc": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
+    }
     if command:
         prov["command"] = command
     return {"format": PROTOCOL_FORMAT, "protocol": protocol.to_json(), "provenance": prov}
@@ -46,8 +50,10 @@ def prepare_folder(protocol: Protocol, out: str | Path, command: str | None = No
         old = load_protocol(out)["protocol"]
         if old != doc["protocol"]:
             diff = sorted(k for k in set(old) | set(doc["protocol"]) if old.get(k) != doc["protocol"].get(k))
-            raise ValueError(f"{out}: holds a run of a different protocol (differs in: {', '.join(diff)}); "
-                             "use another --out folder, or the same options to resume")
+            raise ValueError(
+                f"{out}: holds a run of a different protocol (differs in: {', '.join(diff)}); "
+                "use another --out folder, or the same options to resume"
+            )
     else:
         if out.is_dir() and any(out.iterdir()):
             raise ValueError(f"{out}: is not empty and holds no {PROTOCOL_NAME}; use a new or empty folder")
@@ -75,9 +81,18 @@ def _pending_work(protocol: Protocol, done: set, max_units: int | None) -> list:
     return work if max_units is None else work[:max_units]
 
 
-def run(protocol: Protocol, out: str | Path, *, jobs: int = 1, executor: str = "local", progress: bool = True,
-        report: bool = True, ray_address: str | None = None, max_units: int | None = None,
-        command: str | None = None) -> dict:
+def run(
+    protocol: Protocol,
+    out: str | Path,
+    *,
+    jobs: int = 1,
+    executor: str = "local",
+    progress: bool = True,
+    report: bool = True,
+    ray_address: str | None = None,
+    max_units: int | None = None,
+    command: str | None = None,
+) -> dict:
     """Runs (or resumes) the experiment into the folder out; returns {"rows", "ran", "skipped", "seconds"}.
 
     jobs: parallel worker processes (local) or Ray tasks in flight (ray). executor: "local" or "ray"
@@ -113,8 +128,13 @@ def run(protocol: Protocol, out: str | Path, *, jobs: int = 1, executor: str = "
             run_pool(pdoc, work, jobs, record)
     finally:
         bar.close()
-    result = {"rows": len(log.done()), "ran": ran, "skipped": len(done), "seconds": time.perf_counter() - t0,
-              "total": total}
+    result = {
+        "rows": len(log.done()),
+        "ran": ran,
+        "skipped": len(done),
+        "seconds": time.perf_counter() - t0,
+        "total": total,
+    }
     if report and result["rows"] > 0:
         build_report(out)
     return result

@@ -1,5 +1,6 @@
 """The paper's Fig. runtime: the synthesis stages of GMM and KDE on the test objects' noise-free clouds,
 medians over objects, and KDE / GMM."""
+
 from __future__ import annotations
 
 import json
@@ -26,12 +27,19 @@ def _time_objects(p: Protocol, objects: list[str], n_samples: int, n_optimise: i
     bar = Progress(len(objects) * len(METHODS), enabled=progress)
     for i, obj in enumerate(objects):
         acq = acquire(obj, noise=False, seed=p.acquisition_seed(obj, 0), postprocess=crop_above_plane(p.min_height))
-        for m in (METHODS if i % 2 == 0 else METHODS[::-1]):  # alternate which method runs first
+        for m in METHODS if i % 2 == 0 else METHODS[::-1]:  # alternate which method runs first
             g = cached_model(str(p.model_path(m).resolve())).synthesize(
-                acq.points, n_samples=n_samples, n_optimise=n_optimise, optimise=True,
-                seed=p.synthesis_seed(obj, 0, "A"), remove_plane=False, plane=list(SUPPORT_PLANE),
-                viewpoints=acq.viewpoints, query_samples=p.query_samples,
-                table_clearance=p.min_height)
+                acq.points,
+                n_samples=n_samples,
+                n_optimise=n_optimise,
+                optimise=True,
+                seed=p.synthesis_seed(obj, 0, "A"),
+                remove_plane=False,
+                plane=list(SUPPORT_PLANE),
+                viewpoints=acq.viewpoints,
+                query_samples=p.query_samples,
+                table_clearance=p.min_height,
+            )
             for s in (*STAGES, "features"):
                 per_object[m][s].append(float(g.timing[s]))
             per_object[m]["total"].append(float(sum(g.timing[s] for s in STAGES)))
@@ -40,8 +48,15 @@ def _time_objects(p: Protocol, objects: list[str], n_samples: int, n_optimise: i
     return per_object
 
 
-def benchmark(objects: list[str], out: str | Path | None = None, *, n_samples: int = SynthesisOptions.n_samples,
-              n_optimise: int = SynthesisOptions.n_optimise, seed: int = 0, progress: bool = True) -> dict:
+def benchmark(
+    objects: list[str],
+    out: str | Path | None = None,
+    *,
+    n_samples: int = SynthesisOptions.n_samples,
+    n_optimise: int = SynthesisOptions.n_optimise,
+    seed: int = 0,
+    progress: bool = True,
+) -> dict:
     """Fig. runtime: per object, a noise-free acquisition and one synthesis per method (n_samples grasps,
     the best n_optimise annealed); stage times, their medians over objects per method and the ratio
     KDE / GMM. Writes benchmark.json and benchmark.png into out if given."""
@@ -52,36 +67,55 @@ def benchmark(objects: list[str], out: str | Path | None = None, *, n_samples: i
     load_before = os.getloadavg()
     per_object = _time_objects(p, objects, n_samples, n_optimise, progress)
     medians = {m: {s: float(np.median(v)) for s, v in per_object[m].items()} for m in METHODS}
-    ratio = {s: medians["kde"][s] / medians["gmm"][s] if medians["gmm"][s] > 0 else math.nan
-             for s in (*STAGES, "total")}
+    ratio = {
+        s: medians["kde"][s] / medians["gmm"][s] if medians["gmm"][s] > 0 else math.nan for s in (*STAGES, "total")
+    }
     # The annealing runs with the C++ defaults (AnnealingSettings), which are the protocol's values.
-    result = {"format": BENCHMARK_FORMAT, "graspmix": package_version(), "commit": git_commit(),
-              "objects": list(objects), "n_samples": n_samples, "n_optimise": n_optimise,
-              "annealing_iterations": p.annealing_iterations,
-              "note": "total = query + sampling + optimisation (the paper's Fig. runtime); features (shared by "
-                      "both methods) is listed apart",
-              "median_s": medians, "ratio_kde_over_gmm": ratio, "per_object_s": per_object,
-              "machine": {"cpu_count": os.cpu_count(), "load_average_before": list(load_before),
-                          "load_average_after": list(os.getloadavg()),
-                          "OMP_NUM_THREADS": os.environ.get("OMP_NUM_THREADS"),
-                          "OMP_WAIT_POLICY": os.environ.get("OMP_WAIT_POLICY")}}
+    result = {
+        "format": BENCHMARK_FORMAT,
+        "graspmix": package_version(),
+        "commit": git_commit(),
+        "objects": list(objects),
+        "n_samples": n_samples,
+        "n_optimise": n_optimise,
+        "annealing_iterations": p.annealing_iterations,
+        "note": "total = query + sampling + optimisation (the paper's Fig. runtime); features (shared by "
+        "both methods) is listed apart",
+        "median_s": medians,
+        "ratio_kde_over_gmm": ratio,
+        "per_object_s": per_object,
+        "machine": {
+            "cpu_count": os.cpu_count(),
+            "load_average_before": list(load_before),
+            "load_average_after": list(os.getloadavg()),
+            "OMP_NUM_THREADS": os.environ.get("OMP_NUM_THREADS"),
+            "OMP_WAIT_POLICY": os.environ.get("OMP_WAIT_POLICY"),
+        },
+    }
     if out is not None:
         out = Path(out)
         out.mkdir(parents=True, exist_ok=True)
         (out / "benchmark.json").write_text(json.dumps(result, indent=1) + "\n")
-        plot_runtime(medians, out / "benchmark.png",
-                     title=f"Synthesis time, median over {len(objects)} objects ({n_samples} grasps)")
+        plot_runtime(
+            medians,
+            out / "benchmark.png",
+            title=f"Synthesis time, median over {len(objects)} objects ({n_samples} grasps)",
+        )
     return result
 
 
 def format_benchmark(result: dict) -> str:
     """The benchmark's medians as a text table (ms)."""
     med, ratio = result["median_s"], result["ratio_kde_over_gmm"]
-    lines = [f"runtime per object (median over {len(result['objects'])} objects, {result['n_samples']} grasps, "
-             f"top {result['n_optimise']} optimised), ms:",
-             f"{'stage':<28} {'GMM':>9} {'KDE':>9} {'KDE/GMM':>8}"]
+    lines = [
+        f"runtime per object (median over {len(result['objects'])} objects, {result['n_samples']} grasps, "
+        f"top {result['n_optimise']} optimised), ms:",
+        f"{'stage':<28} {'GMM':>9} {'KDE':>9} {'KDE/GMM':>8}",
+    ]
     for s in (*STAGES, "total"):
         label = STAGE_LABELS.get(s, "total (the three stages)")
         lines.append(f"{label:<28} {med['gmm'][s] * 1e3:>9.1f} {med['kde'][s] * 1e3:>9.1f} {ratio[s]:>8.2f}")
-    lines.append(f"{'(features, shared)':<28} {med['gmm']['features'] * 1e3:>9.1f} {med['kde']['features'] * 1e3:>9.1f}")
+    lines.append(
+        f"{'(features, shared)':<28} {med['gmm']['features'] * 1e3:>9.1f} {med['kde']['features'] * 1e3:>9.1f}"
+    )
     return "\n".join(lines)

@@ -5,6 +5,7 @@ success rate is the fraction of objects whose best grasp held. Confidence interv
 trials use Student's t distribution with n - 1 degrees of freedom; the paired test is scipy's
 ``ttest_rel`` (two-tailed), and its interval is that of the mean of the per-trial differences.
 """
+
 from __future__ import annotations
 
 import math

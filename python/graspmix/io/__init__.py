@@ -6,6 +6,7 @@ graspmix but the C++ core.
     graspmix.io.read_document(path, graspmix.io.GRASPS_FORMAT)   # checked against its format's schema
     graspmix.io.check_output_path(path, "--out")                   # before the work whose result it holds
 """
+
 from .arrays import as_points, load_array, load_points
 from .checks import (
     MAX_SIM_TIME,
@@ -49,5 +50,8 @@ from .paths import (
 from .provenance import git_commit, package_version, sha256_file
 from .schema import SchemaError
 
-__all__ = [n for n in dir() if not n.startswith("_") and n not in ("arrays", "checks", "formats", "objects",
-                                                                    "paths", "provenance", "schema")]
+__all__ = [
+    n
+    for n in dir()
+    if not n.startswith("_") and n not in ("arrays", "checks", "formats", "objects", "paths", "provenance", "schema")
+]

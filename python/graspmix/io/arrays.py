@@ -1,4 +1,5 @@
 """Numbers from files: (N, d) arrays (.npy, .csv, whitespace text) and point clouds as (N, 3) arrays."""
+
 from __future__ import annotations
 
 from pathlib import Path

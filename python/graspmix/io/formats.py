@@ -3,6 +3,7 @@ format, and its content is checked against the format's schema (SCHEMAS, one per
 reader looks at a field. The layouts are written by the types that write them (Demonstration, GraspModel,
 Grasp/GraspSet, Protocol, the report's summary, the benchmark, fit-gmm); a schema states what a reader
 relies on (types, shapes, finiteness), and allows fields a newer writer adds."""
+
 from __future__ import annotations
 
 import json
@@ -41,78 +42,197 @@ _VECTOR = Tensor(1)
 # grasps.json writes the log value of a grasp a hard expert rejected as "-inf" (and NaN as null).
 _LOG = Num(also=("-inf", "inf", None))
 
-_DEMO = Obj({"format": Str(), "hand": Str(nonempty=True),
-             "cloud": Either(Str(nonempty=True), Tensor(2, (None, 3), "a file name or a non-empty list of "
-                                                                       "[x, y, z] rows of finite numbers")),
-             "T_world_wrist": _POSE, "pregrasp_joints": _JOINTS, "grasp_joints": _JOINTS},
-            required=["hand", "cloud", "T_world_wrist", "pregrasp_joints", "grasp_joints"])
+_DEMO = Obj(
+    {
+        "format": Str(),
+        "hand": Str(nonempty=True),
+        "cloud": Either(
+            Str(nonempty=True),
+            Tensor(2, (None, 3), "a file name or a non-empty list of [x, y, z] rows of finite numbers"),
+        ),
+        "T_world_wrist": _POSE,
+        "pregrasp_joints": _JOINTS,
+        "grasp_joints": _JOINTS,
+    },
+    required=["hand", "cloud", "T_world_wrist", "pregrasp_joints", "grasp_joints"],
+)
 
-_GMM_DENSITY = Obj({"kind": Str(), "reference": _VECTOR, "weights": _VECTOR, "means": Tensor(2),
-                    "covariances": Tensor(3)}, required=["reference", "weights", "means", "covariances"])
-_KDE_DENSITY = Obj({"kind": Str(), "position_bandwidth": _POSITIVE, "orientation_bandwidth": _POSITIVE,
-                    "feature_bandwidth": Tensor(1), "poses": Tensor(2, (None, 7)), "features": Tensor(2),
-                    "weights": _VECTOR},
-                   required=["position_bandwidth", "orientation_bandwidth", "feature_bandwidth", "poses",
-                             "features", "weights"])
-_CONFIG_SETTINGS = Obj({"beta": Num(), "n_kernels": Int(lo=1, hi=1_000_000), "alpha": Num(), "bandwidth": Num(),
-                        "min_bandwidth": Num()})
-_MODEL = Obj({
-    "format": Str(), "method": Str(choices=["gmm", "kde"]), "hand": Str(nonempty=True),
-    "demonstration": Either(Str(), Null()),
-    "features": Obj({"voxel_size": _NONNEGATIVE, "radius": _POSITIVE}),
-    "learn_settings": Obj({"n_components": Int(lo=1), "kde_position_bandwidth": _POSITIVE,
-                           "kde_orientation_bandwidth": _POSITIVE, "kde_feature_bandwidth": _POSITIVE,
-                           "max_distance": _POSITIVE, "contact_lambda": _POSITIVE, "min_points": _COUNT,
-                           "seed": _COUNT, "config": _CONFIG_SETTINGS}),
-    "config_model": Obj({"pregrasp": _VECTOR, "grasp": _VECTOR, "settings": _CONFIG_SETTINGS},
-                        required=["pregrasp", "grasp"]),
-    "contact_models": Arr(Obj({"link": Str(nonempty=True), "n_points": _COUNT,
-                               "density": Tagged("kind", {"gmm": _GMM_DENSITY, "kde": _KDE_DENSITY})},
-                              required=["link", "density"]), min_len=1),
-}, required=["method", "hand", "features", "config_model", "contact_models"])
+_GMM_DENSITY = Obj(
+    {"kind": Str(), "reference": _VECTOR, "weights": _VECTOR, "means": Tensor(2), "covariances": Tensor(3)},
+    required=["reference", "weights", "means", "covariances"],
+)
+_KDE_DENSITY = Obj(
+    {
+        "kind": Str(),
+        "position_bandwidth": _POSITIVE,
+        "orientation_bandwidth": _POSITIVE,
+        "feature_bandwidth": Tensor(1),
+        "poses": Tensor(2, (None, 7)),
+        "features": Tensor(2),
+        "weights": _VECTOR,
+    },
+    required=["position_bandwidth", "orientation_bandwidth", "feature_bandwidth", "poses", "features", "weights"],
+)
+_CONFIG_SETTINGS = Obj(
+    {"beta": Num(), "n_kernels": Int(lo=1, hi=1_000_000), "alpha": Num(), "bandwidth": Num(), "min_bandwidth": Num()}
+)
+_MODEL = Obj(
+    {
+        "format": Str(),
+        "method": Str(choices=["gmm", "kde"]),
+        "hand": Str(nonempty=True),
+        "demonstration": Either(Str(), Null()),
+        "features": Obj({"voxel_size": _NONNEGATIVE, "radius": _POSITIVE}),
+        "learn_settings": Obj(
+            {
+                "n_components": Int(lo=1),
+                "kde_position_bandwidth": _POSITIVE,
+                "kde_orientation_bandwidth": _POSITIVE,
+                "kde_feature_bandwidth": _POSITIVE,
+                "max_distance": _POSITIVE,
+                "contact_lambda": _POSITIVE,
+                "min_points": _COUNT,
+                "seed": _COUNT,
+                "config": _CONFIG_SETTINGS,
+            }
+        ),
+        "config_model": Obj(
+            {"pregrasp": _VECTOR, "grasp": _VECTOR, "settings": _CONFIG_SETTINGS}, required=["pregrasp", "grasp"]
+        ),
+        "contact_models": Arr(
+            Obj(
+                {
+                    "link": Str(nonempty=True),
+                    "n_points": _COUNT,
+                    "density": Tagged("kind", {"gmm": _GMM_DENSITY, "kde": _KDE_DENSITY}),
+                },
+                required=["link", "density"],
+            ),
+            min_len=1,
+        ),
+    },
+    required=["method", "hand", "features", "config_model", "contact_models"],
+)
 
-_GRASP = Obj({"rank": Int(lo=1), "T_world_wrist": _POSE, "pregrasp_joints": _JOINTS, "grasp_joints": _JOINTS,
-              "log_likelihood": _LOG, "optimised": Bool(), "experts": Map(_LOG)},
-             required=["T_world_wrist", "pregrasp_joints", "grasp_joints"])
-_GRASPS = Obj({"format": Str(), "hand": Str(), "method": Str(), "cloud": Str(),
-               "timing_s": Map(Num(lo=0.0)), "grasps": Arr(_GRASP, min_len=1)}, required=["grasps"])
+_GRASP = Obj(
+    {
+        "rank": Int(lo=1),
+        "T_world_wrist": _POSE,
+        "pregrasp_joints": _JOINTS,
+        "grasp_joints": _JOINTS,
+        "log_likelihood": _LOG,
+        "optimised": Bool(),
+        "experts": Map(_LOG),
+    },
+    required=["T_world_wrist", "pregrasp_joints", "grasp_joints"],
+)
+_GRASPS = Obj(
+    {
+        "format": Str(),
+        "hand": Str(),
+        "method": Str(),
+        "cloud": Str(),
+        "timing_s": Map(Num(lo=0.0)),
+        "grasps": Arr(_GRASP, min_len=1),
+    },
+    required=["grasps"],
+)
 
 _STRINGS = Arr(Str(nonempty=True), min_len=1)
-_PROTOCOL = Obj({
-    "format": Str(),
-    "protocol": Obj({"objects": _STRINGS, "trials": Int(lo=1), "conditions": _STRINGS, "methods": _STRINGS,
-                     "n_samples": Int(lo=1), "n_optimise": Int(lo=1), "annealing_iterations": Int(lo=1),
-                     "initial_temperature": Num(), "query_samples": Int(lo=1), "min_height": Num(),
-                     "closing": Str(), "seed": _COUNT,
-                     "models": Map(Obj({"file": Str(), "sha256": Str()})),
-                     "condition_definitions": Map(Obj({"noise": Bool(), "optimise": Bool()},
-                                                      required=["noise", "optimise"]))},
-                    required=["objects", "trials", "conditions", "methods"]),
-    "provenance": Map(Any()),
-}, required=["protocol"])
+_PROTOCOL = Obj(
+    {
+        "format": Str(),
+        "protocol": Obj(
+            {
+                "objects": _STRINGS,
+                "trials": Int(lo=1),
+                "conditions": _STRINGS,
+                "methods": _STRINGS,
+                "n_samples": Int(lo=1),
+                "n_optimise": Int(lo=1),
+                "annealing_iterations": Int(lo=1),
+                "initial_temperature": Num(),
+                "query_samples": Int(lo=1),
+                "min_height": Num(),
+                "closing": Str(),
+                "seed": _COUNT,
+                "models": Map(Obj({"file": Str(), "sha256": Str()})),
+                "condition_definitions": Map(
+                    Obj({"noise": Bool(), "optimise": Bool()}, required=["noise", "optimise"])
+                ),
+            },
+            required=["objects", "trials", "conditions", "methods"],
+        ),
+        "provenance": Map(Any()),
+    },
+    required=["protocol"],
+)
 
 _RATE = Num(lo=0.0, hi=1.0, also=(None,))
-_SUMMARY = Obj({
-    "format": Str(), "protocol": _PROTOCOL.fields["protocol"], "provenance": Map(Any()),
-    "attempts": Obj({"done": _COUNT, "expected": _COUNT, "complete": Bool()}, required=["done", "expected"]),
-    "success_rate": Map(Map(Obj({"mean": _RATE, "ci_low": Num(also=(None,)), "ci_high": Num(also=(None,)),
-                                 "per_trial": Map(_RATE), "successes": _COUNT, "attempts": _COUNT}))),
-    "ttest_gmm_vs_kde": Map(Map(Any())), "outcomes": Map(Map(Map(_COUNT))), "runtime": Map(Any()),
-    "per_object_success_rate": Map(Any()),
-}, required=["protocol", "attempts", "success_rate"])
+_SUMMARY = Obj(
+    {
+        "format": Str(),
+        "protocol": _PROTOCOL.fields["protocol"],
+        "provenance": Map(Any()),
+        "attempts": Obj({"done": _COUNT, "expected": _COUNT, "complete": Bool()}, required=["done", "expected"]),
+        "success_rate": Map(
+            Map(
+                Obj(
+                    {
+                        "mean": _RATE,
+                        "ci_low": Num(also=(None,)),
+                        "ci_high": Num(also=(None,)),
+                        "per_trial": Map(_RATE),
+                        "successes": _COUNT,
+                        "attempts": _COUNT,
+                    }
+                )
+            )
+        ),
+        "ttest_gmm_vs_kde": Map(Map(Any())),
+        "outcomes": Map(Map(Map(_COUNT))),
+        "runtime": Map(Any()),
+        "per_object_success_rate": Map(Any()),
+    },
+    required=["protocol", "attempts", "success_rate"],
+)
 
 _SECONDS = Num(lo=0.0, finite=False, also=(None,))
-_BENCHMARK = Obj({
-    "format": Str(), "objects": _STRINGS, "n_samples": Int(lo=1), "n_optimise": Int(lo=0),
-    "median_s": Map(Map(_SECONDS)), "ratio_kde_over_gmm": Map(_SECONDS), "per_object_s": Map(Map(Arr(_SECONDS))),
-}, required=["objects", "median_s"])
+_BENCHMARK = Obj(
+    {
+        "format": Str(),
+        "objects": _STRINGS,
+        "n_samples": Int(lo=1),
+        "n_optimise": Int(lo=0),
+        "median_s": Map(Map(_SECONDS)),
+        "ratio_kde_over_gmm": Map(_SECONDS),
+        "per_object_s": Map(Map(Arr(_SECONDS))),
+    },
+    required=["objects", "median_s"],
+)
 
-_GMM = Obj({"format": Str(), "weights": _VECTOR, "means": Tensor(2), "covariances": Tensor(3),
-            "converged": Bool(), "n_iter": _COUNT, "lower_bound": Num()},
-           required=["weights", "means", "covariances"])
+_GMM = Obj(
+    {
+        "format": Str(),
+        "weights": _VECTOR,
+        "means": Tensor(2),
+        "covariances": Tensor(3),
+        "converged": Bool(),
+        "n_iter": _COUNT,
+        "lower_bound": Num(),
+    },
+    required=["weights", "means", "covariances"],
+)
 
-SCHEMAS = {DEMO_FORMAT: _DEMO, MODEL_FORMAT: _MODEL, GRASPS_FORMAT: _GRASPS, PROTOCOL_FORMAT: _PROTOCOL,
-           SUMMARY_FORMAT: _SUMMARY, BENCHMARK_FORMAT: _BENCHMARK, GMM_FORMAT: _GMM}
+SCHEMAS = {
+    DEMO_FORMAT: _DEMO,
+    MODEL_FORMAT: _MODEL,
+    GRASPS_FORMAT: _GRASPS,
+    PROTOCOL_FORMAT: _PROTOCOL,
+    SUMMARY_FORMAT: _SUMMARY,
+    BENCHMARK_FORMAT: _BENCHMARK,
+    GMM_FORMAT: _GMM,
+}
 
 
 # ---- reading ---------------------------------------------------------------------------------------

@@ -1,4 +1,5 @@
 """Object lists: one object URDF a line (a path, or relative to pybullet_data), '#' starts a comment."""
+
 from __future__ import annotations
 
 from pathlib import Path
@@ -33,5 +34,6 @@ def read_objects_file(path: str | Path) -> list[str]:
     objects = read_object_list(p)
     if not objects:
         raise ValueError(f"{path}: lists no objects")
-    return [str((p.parent / o).resolve()) if not Path(o).is_absolute() and (p.parent / o).is_file() else o
-            for o in objects]
+    return [
+        str((p.parent / o).resolve()) if not Path(o).is_absolute() and (p.parent / o).is_file() else o for o in objects
+    ]

@@ -1,6 +1,7 @@
 """Where files are: the bundled data folder (found here and nowhere else), paths written into graspmix
 files (package://graspmix/..., absolute, or relative to the file), and object URDFs (a path, or relative
 to pybullet_data)."""
+
 from __future__ import annotations
 
 import os
@@ -32,7 +33,7 @@ def resolve_path(path_text: str, base: Path) -> Path:
     folder `base` (then to the bundled data). ValueError for a path that is not UTF-8 or too long."""
     check_path_text(path_text, "path")
     if path_text.startswith(PACKAGE_PREFIX):
-        return data_path(path_text[len(PACKAGE_PREFIX):])
+        return data_path(path_text[len(PACKAGE_PREFIX) :])
     p = Path(path_text)
     if p.is_absolute():
         return p

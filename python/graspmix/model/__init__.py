@@ -3,6 +3,7 @@ synthesis, Grasp and GraspSet (grasps.json), experts, and the settings with thei
 
 Also the module path ``graspmix.model`` of earlier versions: every name it had is here.
 """
+
 from ..io import DEMO_FORMAT, GRASPS_FORMAT, MODEL_FORMAT, PACKAGE_PREFIX, data_path
 from .demonstration import Demonstration
 from .experts import expert
@@ -17,7 +18,28 @@ from .settings import (
     check_method,
 )
 
-__all__ = ["DEMO_FORMAT", "GRASPS_FORMAT", "MODEL_FORMAT", "PACKAGE_PREFIX", "METHODS", "METHOD_LABELS",
-           "EXECUTION_KEYS", "STAGES", "STAGE_LABELS", "data_path", "default_model_path",
-           "Demonstration", "FeatureSettings", "LearnSettings", "SynthesisOptions", "Grasp", "GraspSet",
-           "GraspModel", "learn", "expert", "check_method", "load_grasps", "grasp_by_rank"]
+__all__ = [
+    "DEMO_FORMAT",
+    "GRASPS_FORMAT",
+    "MODEL_FORMAT",
+    "PACKAGE_PREFIX",
+    "METHODS",
+    "METHOD_LABELS",
+    "EXECUTION_KEYS",
+    "STAGES",
+    "STAGE_LABELS",
+    "data_path",
+    "default_model_path",
+    "Demonstration",
+    "FeatureSettings",
+    "LearnSettings",
+    "SynthesisOptions",
+    "Grasp",
+    "GraspSet",
+    "GraspModel",
+    "learn",
+    "expert",
+    "check_method",
+    "load_grasps",
+    "grasp_by_rank",
+]

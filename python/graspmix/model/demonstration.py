@@ -1,4 +1,5 @@
 """One demonstrated grasp and its file (format graspmix.demo/1)."""
+
 from __future__ import annotations
 
 import json

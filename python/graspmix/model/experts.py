@@ -1,5 +1,6 @@
 """Experts of the product a grasp is ranked by: user-defined ones from Python functions, and the
 standard set a synthesis builds (collision, kinematic feasibility, approach axis)."""
+
 from __future__ import annotations
 
 from typing import Callable, Iterable
@@ -43,12 +44,26 @@ def oriented_plane(plane, points):
 
 def collision_expert(hand, points, plane, opts: SynthesisOptions) -> "_core.CollisionExpert":
     """W on the query cloud and the support plane; depths up to contact_tolerance are touching."""
-    return _core.CollisionExpert(hand, points, plane=plane, beta=opts.collision_beta,
-                                 contact_tolerance=opts.contact_tolerance, inside_weight=opts.collision_inside_weight)
+    return _core.CollisionExpert(
+        hand,
+        points,
+        plane=plane,
+        beta=opts.collision_beta,
+        contact_tolerance=opts.contact_tolerance,
+        inside_weight=opts.collision_inside_weight,
+    )
 
 
-def constraint_experts(hand, points, plane, opts: SynthesisOptions, *, approach_axis=None,
-                       reachable: Callable | None = None, experts: Iterable = ()) -> list:
+def constraint_experts(
+    hand,
+    points,
+    plane,
+    opts: SynthesisOptions,
+    *,
+    approach_axis=None,
+    reachable: Callable | None = None,
+    experts: Iterable = (),
+) -> list:
     """The kinematic expert (joint limits, support plane, reachability), the approach-axis expert, then
     the caller's experts, in this order."""
     out = []
@@ -57,6 +72,8 @@ def constraint_experts(hand, points, plane, opts: SynthesisOptions, *, approach_
     elif reachable is not None:
         raise ValueError("reachable needs the kinematic expert (kinematic=True)")
     if approach_axis is not None:
-        out.append(_core.AxisAlignmentExpert(np.asarray(approach_axis, float), concentration=opts.approach_concentration))
+        out.append(
+            _core.AxisAlignmentExpert(np.asarray(approach_axis, float), concentration=opts.approach_concentration)
+        )
     out.extend(experts)
     return out

@@ -8,8 +8,10 @@
 File formats (demonstration, learnt model, grasps) are those of the design guide; every file is JSON
 with a versioned "format" field.
 """
+
 from __future__ import annotations
 
+import dataclasses
 import json
 import time
 from pathlib import Path
@@ -48,8 +50,15 @@ class GraspModel:
     """Contact models M_i for every link that touched the object, the configuration model C, and how
     they were learnt; synthesises grasps on new clouds."""
 
-    def __init__(self, hand: "_core.Hand", hand_path: Path, synthesizer: "_core.GraspSynthesizer",
-                 features: FeatureSettings, learn_settings: dict, demo: str | None = None):
+    def __init__(
+        self,
+        hand: "_core.Hand",
+        hand_path: Path,
+        synthesizer: "_core.GraspSynthesizer",
+        features: FeatureSettings,
+        learn_settings: dict,
+        demo: str | None = None,
+    ):
         self._hand = hand
         self.hand_path = Path(hand_path)
         self.synthesizer = synthesizer
@@ -71,45 +80,89 @@ class GraspModel:
         return [m.link_name for m in self.synthesizer.contact_models]
 
     def __repr__(self):
-        return (f"GraspModel(method={self.method!r}, hand={self.hand_path.name!r}, "
-                f"contact links={self.contact_links})")
+        return f"GraspModel(method={self.method!r}, hand={self.hand_path.name!r}, contact links={self.contact_links})"
 
     # -- learning
     @classmethod
-    def learn(cls, demo: str | Path | Demonstration, method: str = "gmm", *, n_components: int = _L.n_components,
-              kde_position_bandwidth: float = _L.kde_position_bandwidth,
-              kde_orientation_bandwidth: float = _L.kde_orientation_bandwidth,
-              kde_feature_bandwidth: float = _L.kde_feature_bandwidth, max_distance: float = _L.max_distance,
-              contact_lambda: float = _L.contact_lambda, min_points: int = _L.min_points,
-              voxel_size: float = FeatureSettings.voxel_size, radius: float = FeatureSettings.radius,
-              seed: int = _L.seed, config: dict | None = None) -> "GraspModel":
+    def learn(
+        cls,
+        demo: str | Path | Demonstration,
+        method: str = "gmm",
+        *,
+        n_components: int = _L.n_components,
+        kde_position_bandwidth: float = _L.kde_position_bandwidth,
+        kde_orientation_bandwidth: float = _L.kde_orientation_bandwidth,
+        kde_feature_bandwidth: float = _L.kde_feature_bandwidth,
+        max_distance: float = _L.max_distance,
+        contact_lambda: float = _L.contact_lambda,
+        min_points: int = _L.min_points,
+        voxel_size: float = FeatureSettings.voxel_size,
+        radius: float = FeatureSettings.radius,
+        seed: int = _L.seed,
+        config: dict | None = None,
+    ) -> "GraspModel":
         """Learns from one demonstration (a demonstration file or object)."""
         check_method(method)
-        _check_learn_numbers(n_components=n_components, kde_position_bandwidth=kde_position_bandwidth,
-                             kde_orientation_bandwidth=kde_orientation_bandwidth,
-                             kde_feature_bandwidth=kde_feature_bandwidth, max_distance=max_distance,
-                             contact_lambda=contact_lambda, min_points=min_points, voxel_size=voxel_size,
-                             radius=radius, seed=seed)
+        _check_learn_numbers(
+            n_components=n_components,
+            kde_position_bandwidth=kde_position_bandwidth,
+            kde_orientation_bandwidth=kde_orientation_bandwidth,
+            kde_feature_bandwidth=kde_feature_bandwidth,
+            max_distance=max_distance,
+            contact_lambda=contact_lambda,
+            min_points=min_points,
+            voxel_size=voxel_size,
+            radius=radius,
+            seed=seed,
+        )
         if config is not None and not isinstance(config, dict):
             raise ValueError(f"config must be a dict of configuration-model settings, got {type(config).__name__}")
-        s = LearnSettings(n_components, kde_position_bandwidth, kde_orientation_bandwidth, kde_feature_bandwidth,
-                          max_distance, contact_lambda, min_points, seed)
+        s = LearnSettings(
+            n_components,
+            kde_position_bandwidth,
+            kde_orientation_bandwidth,
+            kde_feature_bandwidth,
+            max_distance,
+            contact_lambda,
+            min_points,
+            seed,
+        )
         d = demo if isinstance(demo, Demonstration) else Demonstration.load(demo)
         hand = _core.Hand.from_urdf(str(check_input_file(d.hand_path, "hand")))
         feats = FeatureSettings(voxel_size=voxel_size, radius=radius)
         surface, _ = feats.surface(d.cloud, remove_plane=False, seed=seed)
-        models = _core.learn_contact_models(hand, d.T_world_wrist, d.grasp_joints, surface.frames, surface.curvatures,
-                                            _density_factory(method, s), _contact_settings(s))
+        models = _core.learn_contact_models(
+            hand,
+            d.T_world_wrist,
+            d.grasp_joints,
+            surface.frames,
+            surface.curvatures,
+            _density_factory(method, s),
+            _contact_settings(s),
+        )
         cfg_settings = config_settings(config or {})
-        cfg = _core.ConfigModel(hand.joints_array(d.pregrasp_joints), hand.joints_array(d.grasp_joints),
-                                hand.joint_limits, cfg_settings)
-        learn_settings = {"n_components": n_components, "kde_position_bandwidth": kde_position_bandwidth,
-                          "kde_orientation_bandwidth": kde_orientation_bandwidth,
-                          "kde_feature_bandwidth": kde_feature_bandwidth, "max_distance": max_distance,
-                          "contact_lambda": contact_lambda, "min_points": min_points, "seed": seed,
-                          "config": config_dict(cfg_settings)}
-        return cls(hand, d.hand_path, _core.GraspSynthesizer(hand, models, cfg), feats, learn_settings,
-                   str(d.source) if d.source else None)
+        cfg = _core.ConfigModel(
+            hand.joints_array(d.pregrasp_joints), hand.joints_array(d.grasp_joints), hand.joint_limits, cfg_settings
+        )
+        learn_settings = {
+            "n_components": n_components,
+            "kde_position_bandwidth": kde_position_bandwidth,
+            "kde_orientation_bandwidth": kde_orientation_bandwidth,
+            "kde_feature_bandwidth": kde_feature_bandwidth,
+            "max_distance": max_distance,
+            "contact_lambda": contact_lambda,
+            "min_points": min_points,
+            "seed": seed,
+            "config": config_dict(cfg_settings),
+        }
+        return cls(
+            hand,
+            d.hand_path,
+            _core.GraspSynthesizer(hand, models, cfg),
+            feats,
+            learn_settings,
+            str(d.source) if d.source else None,
+        )
 
     # -- persistence
     def save(self, path: str | Path) -> None:
@@ -123,10 +176,15 @@ class GraspModel:
             "demonstration": relative_path(Path(self.demo), base) if self.demo else None,
             "features": {"voxel_size": self.features.voxel_size, "radius": self.features.radius},
             "learn_settings": self.learn_settings,
-            "config_model": {"pregrasp": cfg.pregrasp.tolist(), "grasp": cfg.grasp.tolist(),
-                             "settings": config_dict(cfg.settings)},
-            "contact_models": [{"link": m.link_name, "n_points": m.n_points, "density": density_to_json(m.density)}
-                               for m in self.synthesizer.contact_models],
+            "config_model": {
+                "pregrasp": cfg.pregrasp.tolist(),
+                "grasp": cfg.grasp.tolist(),
+                "settings": config_dict(cfg.settings),
+            },
+            "contact_models": [
+                {"link": m.link_name, "n_points": m.n_points, "density": density_to_json(m.density)}
+                for m in self.synthesizer.contact_models
+            ],
         }
         path.write_text(json.dumps(data) + "\n")
 
@@ -139,24 +197,47 @@ class GraspModel:
         hand_path = resolve_path(require_field(data, "hand", path, str), base)
         hand = _core.Hand.from_urdf(str(check_input_file(hand_path, "hand")))
         f = require_field(data, "features", path, dict)
-        feats = FeatureSettings(voxel_size=float(f.get("voxel_size", FeatureSettings.voxel_size)),
-                                radius=float(f.get("radius", FeatureSettings.radius)))
+        feats = FeatureSettings(
+            voxel_size=float(f.get("voxel_size", FeatureSettings.voxel_size)),
+            radius=float(f.get("radius", FeatureSettings.radius)),
+        )
         models = _load_contact_models(data, hand, hand_path, path)
         cfg = _load_config_model(require_field(data, "config_model", path, dict), hand, path)
         demo = data.get("demonstration")
-        return cls(hand, hand_path, _core.GraspSynthesizer(hand, models, cfg), feats, data.get("learn_settings", {}),
-                   str(resolve_path(demo, base)) if demo else None)
+        return cls(
+            hand,
+            hand_path,
+            _core.GraspSynthesizer(hand, models, cfg),
+            feats,
+            data.get("learn_settings", {}),
+            str(resolve_path(demo, base)) if demo else None,
+        )
 
     # -- synthesis
-    def synthesize(self, cloud, *, n_samples: int = _S.n_samples, n_optimise: int = _S.n_optimise,
-                   optimise: bool = _S.optimise, seed: int = _S.seed, remove_plane: bool = _S.remove_plane,
-                   plane=None, viewpoints=None, approach_axis: Sequence[float] | None = None,
-                   approach_concentration: float = _S.approach_concentration, reachable: Callable | None = None,
-                   experts: Iterable = (), query_samples: int = _S.query_samples, kinematic: bool = _S.kinematic,
-                   clear_pregrasp: bool = _S.clear_pregrasp, collision_beta: float = _S.collision_beta,
-                   contact_tolerance: float = _S.contact_tolerance,
-                   collision_inside_weight: float = _S.collision_inside_weight,
-                   table_clearance: float = _S.table_clearance, annealing: dict | None = None) -> GraspSet:
+    def synthesize(
+        self,
+        cloud,
+        *,
+        n_samples: int = _S.n_samples,
+        n_optimise: int = _S.n_optimise,
+        optimise: bool = _S.optimise,
+        seed: int = _S.seed,
+        remove_plane: bool = _S.remove_plane,
+        plane=None,
+        viewpoints=None,
+        approach_axis: Sequence[float] | None = None,
+        approach_concentration: float = _S.approach_concentration,
+        reachable: Callable | None = None,
+        experts: Iterable = (),
+        query_samples: int = _S.query_samples,
+        kinematic: bool = _S.kinematic,
+        clear_pregrasp: bool = _S.clear_pregrasp,
+        collision_beta: float = _S.collision_beta,
+        contact_tolerance: float = _S.contact_tolerance,
+        collision_inside_weight: float = _S.collision_inside_weight,
+        table_clearance: float = _S.table_clearance,
+        annealing: dict | None = None,
+    ) -> GraspSet:
         """Grasps on a novel object's cloud: a path (PCD/PLY/npy) or an (N, 3) array of points.
 
         remove_plane: find and remove the support plane (a scene cloud); plane: give it instead
@@ -165,30 +246,30 @@ class GraspModel:
         joints) -> bool array: the hard reachability test; experts: more experts (graspmix.expert(...) or
         graspmix._core.Expert objects); annealing: AnnealingSettings fields to change. The other settings
         and their defaults: SynthesisOptions."""
-        _check_synthesis_numbers(n_samples=n_samples, n_optimise=n_optimise, seed=seed, query_samples=query_samples,
-                                 approach_concentration=approach_concentration, collision_beta=collision_beta,
-                                 contact_tolerance=contact_tolerance, collision_inside_weight=collision_inside_weight)
+        # Every keyword but the cloud, plane, viewpoints, experts and annealing is a SynthesisOptions field.
+        opts = _synthesis_options(locals())
         if annealing is not None and not isinstance(annealing, dict):
             raise ValueError(f"annealing must be a dict of AnnealingSettings fields, got {type(annealing).__name__}")
-        opts = SynthesisOptions(n_samples, n_optimise, optimise, seed, remove_plane, approach_concentration,
-                                query_samples, kinematic, clear_pregrasp, collision_beta, contact_tolerance,
-                                collision_inside_weight, table_clearance)
         t0 = time.perf_counter()
         # Phase 1: the query object's representation O(v, r) (and the support plane).
         surface, plane, name = self._query_surface(cloud, plane, viewpoints, opts)
         t_features = time.perf_counter() - t0
         # Phase 2: the experts and the settings of the C++ synthesis; phase 3: sample, rank, anneal.
         collision = collision_expert(self.hand, surface.points, plane, opts)
-        extra = constraint_experts(self.hand, surface.points, plane, opts, approach_axis=approach_axis,
-                                   reachable=reachable, experts=experts)
-        res = self.synthesizer.synthesize(surface.frames, surface.curvatures, collision, extra,
-                                          self._synthesis_settings(opts, annealing))
+        extra = constraint_experts(
+            self.hand, surface.points, plane, opts, approach_axis=approach_axis, reachable=reachable, experts=experts
+        )
+        res = self.synthesizer.synthesize(
+            surface.frames, surface.curvatures, collision, extra, self._synthesis_settings(opts, annealing)
+        )
         # Phase 4: the result as Grasps, with the stage times.
         timing = dict(res.timing)
         timing["features"] = t_features
         timing["total"] = time.perf_counter() - t0
-        return GraspSet(grasps_from_result(res, self.hand), self.hand_path, self.method, name, timing, surface,
-                        plane, res.evaluations, res.rejected)
+        grasps = grasps_from_result(res, self.hand)
+        return GraspSet(
+            grasps, self.hand_path, self.method, name, timing, surface, plane, res.evaluations, res.rejected
+        )
 
     def _query_surface(self, cloud, plane, viewpoints, opts: SynthesisOptions):
         """(SurfaceCloud, plane or None, the cloud's name) of the cloud to synthesise on."""
@@ -199,9 +280,14 @@ class GraspModel:
             plane = np.asarray(plane, dtype=float)
             if plane.shape != (4,) or not np.all(np.isfinite(plane)) or not np.linalg.norm(plane[:3]) > 0:
                 raise ValueError("plane must be 4 finite numbers [a, b, c, d] with a non-zero normal")
-        surface, scene = self.features.surface(points, remove_plane=opts.remove_plane and plane is None,
-                                               seed=opts.seed, viewpoints=viewpoints, plane=plane,
-                                               table_clearance=opts.table_clearance)
+        surface, scene = self.features.surface(
+            points,
+            remove_plane=opts.remove_plane and plane is None,
+            seed=opts.seed,
+            viewpoints=viewpoints,
+            plane=plane,
+            table_clearance=opts.table_clearance,
+        )
         if plane is None and scene.plane_found:
             plane = np.asarray(scene.plane)
         return surface, plane, name
@@ -212,8 +298,10 @@ class GraspModel:
         s.clear_pregrasp = opts.clear_pregrasp
         q = s.query
         q.n_samples = opts.query_samples
-        q.kde_bandwidths = (self.learn_settings.get("kde_position_bandwidth", _L.kde_position_bandwidth),
-                            self.learn_settings.get("kde_orientation_bandwidth", _L.kde_orientation_bandwidth))
+        q.kde_bandwidths = (
+            self.learn_settings.get("kde_position_bandwidth", _L.kde_position_bandwidth),
+            self.learn_settings.get("kde_orientation_bandwidth", _L.kde_orientation_bandwidth),
+        )
         s.query = q
         a = s.annealing
         for k, v in (annealing or {}).items():
@@ -229,28 +317,39 @@ def _check_learn_numbers(**v) -> None:
     check_int(v["n_components"], "n_components", 1, MAX_COMPONENTS)
     check_int(v["min_points"], "min_points", 1, 2**31 - 1)
     check_seed(v["seed"])
-    for name in ("kde_position_bandwidth", "kde_orientation_bandwidth", "kde_feature_bandwidth", "max_distance",
-                 "contact_lambda", "radius"):
+    for name in (
+        "kde_position_bandwidth",
+        "kde_orientation_bandwidth",
+        "kde_feature_bandwidth",
+        "max_distance",
+        "contact_lambda",
+        "radius",
+    ):
         check_float(v[name], name, gt=0.0)
     check_float(v["voxel_size"], "voxel_size", 0.0)
 
 
-def _check_synthesis_numbers(**v) -> None:
-    """synthesize()'s numbers, bounded before they reach a C++ cast (ValueError naming the keyword)."""
+def _synthesis_options(args: dict) -> SynthesisOptions:
+    """synthesize()'s keywords as SynthesisOptions, its numbers bounded before they reach a C++ cast
+    (ValueError naming the keyword)."""
+    v = {f.name: args[f.name] for f in dataclasses.fields(SynthesisOptions)}
     check_int(v["n_samples"], "n_samples", 1, MAX_SAMPLES)
     check_int(v["n_optimise"], "n_optimise", 0, MAX_SAMPLES)
     check_int(v["query_samples"], "query_samples", 1, MAX_SAMPLES)
     check_seed(v["seed"])
     for name in ("approach_concentration", "collision_beta", "contact_tolerance", "collision_inside_weight"):
         check_float(v[name], name, 0.0)
+    return SynthesisOptions(**v)
 
 
 def _density_factory(method: str, s: LearnSettings) -> Callable:
     if method == "gmm":
         return lambda: _core.PoseMixture(n_components=s.n_components, seed=s.seed)
-    return lambda: _core.PoseKDE(position_bandwidth=s.kde_position_bandwidth,
-                                 orientation_bandwidth=s.kde_orientation_bandwidth,
-                                 feature_bandwidth=s.kde_feature_bandwidth)
+    return lambda: _core.PoseKDE(
+        position_bandwidth=s.kde_position_bandwidth,
+        orientation_bandwidth=s.kde_orientation_bandwidth,
+        feature_bandwidth=s.kde_feature_bandwidth,
+    )
 
 
 def _contact_settings(s: LearnSettings) -> "_core.ContactSettings":
@@ -265,8 +364,10 @@ def _load_contact_models(data: dict, hand, hand_path: Path, path: Path) -> list:
         where = f"{path}: contact model {i}"
         link_name = entry.get("link")
         if link_name not in hand.link_names:
-            raise ValueError(f"{where}: link {link_name!r} is not a link of hand '{hand_path.name}' "
-                             f"(links: {', '.join(hand.link_names)}); was the model learnt for another hand?")
+            raise ValueError(
+                f"{where}: link {link_name!r} is not a link of hand '{hand_path.name}' "
+                f"(links: {', '.join(hand.link_names)}); was the model learnt for another hand?"
+            )
         density = density_from_json(entry.get("density", {}), where)
         if density.kind != data["method"]:
             raise ValueError(f"{where}: a {density.kind} density in a {data['method']} model")
@@ -276,8 +377,12 @@ def _load_contact_models(data: dict, hand, hand_path: Path, path: Path) -> list:
 
 def _load_config_model(c: dict, hand, path: Path) -> "_core.ConfigModel":
     try:
-        return _core.ConfigModel(np.asarray(c["pregrasp"], float), np.asarray(c["grasp"], float), hand.joint_limits,
-                                 config_settings(c.get("settings", {})))
+        return _core.ConfigModel(
+            np.asarray(c["pregrasp"], float),
+            np.asarray(c["grasp"], float),
+            hand.joint_limits,
+            config_settings(c.get("settings", {})),
+        )
     except KeyError as e:
         raise ValueError(f"{path}: config_model misses {e}") from None
     except ValueError as e:

@@ -4,6 +4,7 @@ GraspSet a synthesis returns, and grasps.json itself (format graspmix.grasps/1).
 A Grasp is a dataclass that also reads like the dictionary it is written as, so code written for the
 dictionaries keeps working: ``grasps.best()["T_world_wrist"]``, ``dict(grasp)``, ``grasp["experts"]``.
 """
+
 from __future__ import annotations
 
 import json
@@ -22,8 +23,11 @@ EXECUTION_KEYS = ("T_world_wrist", "pregrasp_joints", "grasp_joints")
 # The stages of a synthesis' timing that the paper's Fig. runtime shows (timing_s also has "features" and
 # "total").
 STAGES = ("query", "sampling", "optimisation")
-STAGE_LABELS = {"query": "query density estimation", "sampling": "sampling and ranking",
-                "optimisation": "optimising the top 10"}
+STAGE_LABELS = {
+    "query": "query density estimation",
+    "sampling": "sampling and ranking",
+    "optimisation": "optimising the top 10",
+}
 
 
 @dataclass(eq=False)
@@ -100,8 +104,11 @@ class Grasp(MutableMapping):
         return len(self.to_dict())
 
     def __repr__(self):
-        body = ", ".join(f"{f.name}={getattr(self, f.name)!r}" for f in fields(self)
-                         if getattr(self, f.name) not in (None, {}) or f.name in EXECUTION_KEYS)
+        body = ", ".join(
+            f"{f.name}={getattr(self, f.name)!r}"
+            for f in fields(self)
+            if getattr(self, f.name) not in (None, {}) or f.name in EXECUTION_KEYS
+        )
         return f"Grasp({body})"
 
 
@@ -112,10 +119,17 @@ def grasps_from_result(result, hand) -> list[Grasp]:
         experts = {"collision": g["log_collision"], "config": g["log_config"], "pregrasp_clear": g["log_pregrasp"]}
         experts.update({f"contact/{n}": float(v) for n, v in zip(result.contact_links, g["log_contact"])})
         experts.update({n: float(v) for n, v in zip(result.expert_names, g["log_experts"])})
-        grasps.append(Grasp(T_world_wrist=[float(x) for x in g["T_world_wrist"]],
-                            pregrasp_joints=hand.joints_dict(g["pregrasp"]), grasp_joints=hand.joints_dict(g["joints"]),
-                            rank=rank, log_likelihood=float(g["log_likelihood"]), optimised=bool(g["optimised"]),
-                            experts={k: float(v) for k, v in experts.items()}))
+        grasps.append(
+            Grasp(
+                T_world_wrist=[float(x) for x in g["T_world_wrist"]],
+                pregrasp_joints=hand.joints_dict(g["pregrasp"]),
+                grasp_joints=hand.joints_dict(g["joints"]),
+                rank=rank,
+                log_likelihood=float(g["log_likelihood"]),
+                optimised=bool(g["optimised"]),
+                experts={k: float(v) for k, v in experts.items()},
+            )
+        )
     return grasps
 
 
@@ -149,8 +163,14 @@ class GraspSet:
             hand = relative_path(self.hand_path, base)
             if Path(cloud).exists():
                 cloud = relative_path(Path(cloud), base)
-        return {"format": GRASPS_FORMAT, "hand": hand, "method": self.method, "cloud": cloud,
-                "timing_s": self.timing, "grasps": [_as_dict(g) for g in self.grasps]}
+        return {
+            "format": GRASPS_FORMAT,
+            "hand": hand,
+            "method": self.method,
+            "cloud": cloud,
+            "timing_s": self.timing,
+            "grasps": [_as_dict(g) for g in self.grasps],
+        }
 
     def save(self, path: str | Path) -> None:
         # Non-finite log values (a grasp a hard expert rejected) are written as the strings "-inf"/"inf".

@@ -3,6 +3,7 @@ knows is read from the default-constructed C++ settings struct (the single sourc
 keyword arguments, the command line and the experiment's protocol refer to these fields in turn. Only
 the table clearance is the front end's own.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -55,8 +56,16 @@ class FeatureSettings:
         """Deprecated (one release): the table clearance is a synthesis option, SynthesisOptions.table_clearance."""
         return SynthesisOptions.table_clearance
 
-    def surface(self, points: np.ndarray, *, remove_plane: bool, seed: int = 0, viewpoints=None, plane=None,
-                table_clearance: float | None = None):
+    def surface(
+        self,
+        points: np.ndarray,
+        *,
+        remove_plane: bool,
+        seed: int = 0,
+        viewpoints=None,
+        plane=None,
+        table_clearance: float | None = None,
+    ):
         """(SurfaceCloud, SceneResult) of raw points: clean-up, then features. With a known support
         plane [a, b, c, d], the points within table_clearance of it or below it are dropped first (the
         table of a scene)."""

@@ -4,6 +4,7 @@ reference, and recording demonstrations in pybullet.
 Also the module path ``graspmix.sim`` of earlier versions: every name it had is here (the camera names
 are in ``graspmix.sim.acquisition``, and in the deprecated alias ``graspmix.acquisition``).
 """
+
 from ..io import GRASPS_FORMAT, data_path, default_hand_path, resolve_object, test_objects
 from ..model.grasps import grasp_by_rank, load_grasps
 from . import acquisition
@@ -27,7 +28,29 @@ from .pybullet_reference import execute_pybullet
 
 DATA = data_path()  # deprecated: use graspmix.io.data_path()
 
-__all__ = ["DATA", "GRASPS_FORMAT", "SimObject", "SimResult", "SimSettings", "AcquisitionSettings", "Scene", "acquisition", "default_hand_path",
-           "execute", "execute_file", "execute_pybullet", "grasp_arrays", "grasp_by_rank", "load_grasps", "load_hand",
-           "load_object", "make_settings", "record_demonstration", "resolve_object", "rest_pose", "result_dict",
-           "test_objects", "top_grasp"]
+__all__ = [
+    "DATA",
+    "GRASPS_FORMAT",
+    "SimObject",
+    "SimResult",
+    "SimSettings",
+    "AcquisitionSettings",
+    "Scene",
+    "acquisition",
+    "default_hand_path",
+    "execute",
+    "execute_file",
+    "execute_pybullet",
+    "grasp_arrays",
+    "grasp_by_rank",
+    "load_grasps",
+    "load_hand",
+    "load_object",
+    "make_settings",
+    "record_demonstration",
+    "resolve_object",
+    "rest_pose",
+    "result_dict",
+    "test_objects",
+    "top_grasp",
+]

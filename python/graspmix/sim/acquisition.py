@@ -10,6 +10,7 @@ with sigma_p = 1 pixel and sigma_d = 1 mm, and are back-projected into the world
 The lateral shift reads the depth of the nearest pixel to the shifted position (a real sensor
 does not blend depths across an edge, so no interpolation).
 """
+
 from __future__ import annotations
 
 import dataclasses
@@ -79,8 +80,14 @@ class Camera:
         return p.computeProjectionMatrixFOV(self.fov_deg, self.width / self.height, self.near, self.far)
 
 
-def ring_cameras(n: int = 4, distance: float = 0.5, eye_height: float = 0.35, target=(0.0, 0.0, 0.05),
-                 start_deg: float = 45.0, **camera) -> list[Camera]:
+def ring_cameras(
+    n: int = 4,
+    distance: float = 0.5,
+    eye_height: float = 0.35,
+    target=(0.0, 0.0, 0.05),
+    start_deg: float = 45.0,
+    **camera,
+) -> list[Camera]:
     """n cameras evenly spaced on a circle of radius `distance` around the target at height `eye_height`,
     all looking at the target (the paper uses 4). Other keywords go to every Camera."""
     cams = []
@@ -94,7 +101,11 @@ def ring_cameras(n: int = 4, distance: float = 0.5, eye_height: float = 0.35, ta
 @dataclass
 class AcquisitionSettings:
     cameras: list[Camera] = field(default_factory=ring_cameras)
-    object_position: tuple[float, float, float] = (0.0, 0.0, 0.0)  # x, y of the object; z is set so it rests on the plane
+    object_position: tuple[float, float, float] = (
+        0.0,
+        0.0,
+        0.0,
+    )  # x, y of the object; z is set so it rests on the plane
     object_orientation: tuple[float, float, float, float] = (0.0, 0.0, 0.0, 1.0)
     object_scale: float = 1.0
     pixel_noise_std: float = 1.0  # sigma_p, pixels
@@ -162,15 +173,21 @@ class Scene:
             self.plane = p.loadURDF("plane.urdf", physicsClientId=self.client)
             s = self.settings
             try:
-                self.body = p.loadURDF(str(self.object_path), s.object_position, s.object_orientation,
-                                       globalScaling=s.object_scale, physicsClientId=self.client)
+                self.body = p.loadURDF(
+                    str(self.object_path),
+                    s.object_position,
+                    s.object_orientation,
+                    globalScaling=s.object_scale,
+                    physicsClientId=self.client,
+                )
             except p.error as e:
                 raise ValueError(f"{object_path}: pybullet cannot load it ({e})") from None
             # Rest the object on the plane: lift it so its lowest point touches z = 0.
             lo, _ = p.getAABB(self.body, -1, physicsClientId=self.client)
             pos, orn = p.getBasePositionAndOrientation(self.body, physicsClientId=self.client)
-            p.resetBasePositionAndOrientation(self.body, (pos[0], pos[1], pos[2] - lo[2]), orn,
-                                              physicsClientId=self.client)
+            p.resetBasePositionAndOrientation(
+                self.body, (pos[0], pos[1], pos[2] - lo[2]), orn, physicsClientId=self.client
+            )
         except Exception:
             p.disconnect(self.client)
             raise
@@ -185,9 +202,14 @@ class Scene:
         """Metric depth (inf where nothing was hit) and the segmentation mask (body id per pixel)."""
         import pybullet as p
 
-        _, _, _, buf, seg = p.getCameraImage(cam.width, cam.height, cam.view_matrix().T.ravel().tolist(),
-                                             cam.projection(), renderer=p.ER_TINY_RENDERER,
-                                             physicsClientId=self.client)
+        _, _, _, buf, seg = p.getCameraImage(
+            cam.width,
+            cam.height,
+            cam.view_matrix().T.ravel().tolist(),
+            cam.projection(),
+            renderer=p.ER_TINY_RENDERER,
+            physicsClientId=self.client,
+        )
         buf = np.asarray(buf, dtype=float).reshape(cam.height, cam.width)
         seg = np.asarray(seg).reshape(cam.height, cam.width)
         depth = _depth_from_buffer(buf, cam.near, cam.far)
@@ -208,9 +230,13 @@ class Scene:
         self.close()
 
 
-def acquire(object_path: str | Path, noise: bool = False, seed: int = 0,
-            settings: AcquisitionSettings | None = None,
-            postprocess: Callable[[Acquisition], Acquisition] | None = None) -> Acquisition:
+def acquire(
+    object_path: str | Path,
+    noise: bool = False,
+    seed: int = 0,
+    settings: AcquisitionSettings | None = None,
+    postprocess: Callable[[Acquisition], Acquisition] | None = None,
+) -> Acquisition:
     """Renders every camera, applies the noise model if asked (seeded), back-projects and stitches.
 
     With settings.keep == "object", only pixels whose (noise-free) ray hits the object are kept, as
@@ -241,9 +267,18 @@ def acquire(object_path: str | Path, noise: bool = False, seed: int = 0,
     points = np.vstack(pts)
     if len(points) == 0:
         raise ValueError(f"{object_path}: no camera sees the object (check camera and object placement)")
-    acq = Acquisition(points=points, viewpoints=np.vstack(views), camera_index=np.concatenate(idx),
-                      depth_images=images, object_pose=pose, cameras=list(settings.cameras), noise=noise, seed=seed,
-                      object_masks=masks, keep=settings.keep)
+    acq = Acquisition(
+        points=points,
+        viewpoints=np.vstack(views),
+        camera_index=np.concatenate(idx),
+        depth_images=images,
+        object_pose=pose,
+        cameras=list(settings.cameras),
+        noise=noise,
+        seed=seed,
+        object_masks=masks,
+        keep=settings.keep,
+    )
     if postprocess is not None:
         acq = postprocess(acq)
         if not isinstance(acq, Acquisition) or len(acq.points) == 0:
@@ -272,8 +307,12 @@ def check_acquisition_settings(s: AcquisitionSettings) -> None:
         check_float(cam.far, f"cameras[{i}].far", gt=near)
 
 
-def clean_up(voxel_size: float = FeatureSettings.voxel_size, remove_outliers: bool = True, remove_plane: bool | None = None,
-             seed: int = 0) -> Callable[[Acquisition], Acquisition]:
+def clean_up(
+    voxel_size: float = FeatureSettings.voxel_size,
+    remove_outliers: bool = True,
+    remove_plane: bool | None = None,
+    seed: int = 0,
+) -> Callable[[Acquisition], Acquisition]:
     """The clean-up of the object representation (graspmix.prepare_cloud) as an acquire() postprocess:
     voxel grid, statistical outlier removal and, for a scene acquisition, RANSAC removal of the support
     plane (remove_plane=None: only when settings.keep == "scene" left the plane in; the plane found is
@@ -283,11 +322,16 @@ def clean_up(voxel_size: float = FeatureSettings.voxel_size, remove_outliers: bo
 
     def run(acq: Acquisition) -> Acquisition:
         plane_too = remove_plane if remove_plane is not None else acq.keep == "scene"
-        scene = _core.prepare_cloud(acq.points, voxel_size=voxel_size, remove_outliers=remove_outliers,
-                                    remove_plane=plane_too, seed=seed)
+        scene = _core.prepare_cloud(
+            acq.points, voxel_size=voxel_size, remove_outliers=remove_outliers, remove_plane=plane_too, seed=seed
+        )
         rows = np.asarray(scene.indices)
-        return dataclasses.replace(acq, points=np.asarray(scene.points), viewpoints=acq.viewpoints[rows],
-                                   camera_index=acq.camera_index[rows],
-                                   plane=np.asarray(scene.plane) if scene.plane_found else acq.plane)
+        return dataclasses.replace(
+            acq,
+            points=np.asarray(scene.points),
+            viewpoints=acq.viewpoints[rows],
+            camera_index=acq.camera_index[rows],
+            plane=np.asarray(scene.plane) if scene.plane_found else acq.plane,
+        )
 
     return run

@@ -8,6 +8,7 @@ in pybullet with the same URDFs: the independent reference the agreement test co
 The object stands where the acquisition put it (``rest_pose``), so grasps synthesised on an acquired
 cloud are executed in the cloud's frame; every execution starts from that same pose.
 """
+
 from __future__ import annotations
 
 import functools
@@ -26,6 +27,7 @@ from .acquisition import AcquisitionSettings, Scene
 SimSettings = _core.SimSettings
 SimResult = _core.SimResult
 SimObject = _core.SimObject
+
 
 @functools.lru_cache(maxsize=16)
 def _hand(path: str) -> _core.Hand:
@@ -93,8 +95,10 @@ def check_settings(s: SimSettings) -> None:
         check_float(getattr(s, name), f"SimSettings.{name}", 0.0, MAX_SIM_TIME)
     speed = check_float(s.lift_speed, "SimSettings.lift_speed", gt=0.0)
     if abs(s.lift_height) / speed > MAX_SIM_TIME:
-        raise ValueError(f"SimSettings.lift_height / lift_speed = {abs(s.lift_height) / speed:g} s: the lift would "
-                         f"take longer than {MAX_SIM_TIME:g} s simulated")
+        raise ValueError(
+            f"SimSettings.lift_height / lift_speed = {abs(s.lift_height) / speed:g} s: the lift would "
+            f"take longer than {MAX_SIM_TIME:g} s simulated"
+        )
 
 
 def _settings_names() -> list[str]:
@@ -118,10 +122,13 @@ def rest_pose(obj, settings: AcquisitionSettings | None = None) -> np.ndarray:
     orientation, lifted to rest on the plane z = 0 (pybullet's bounding box)."""
     s = settings or AcquisitionSettings()
     path = str(resolve_object(obj.source if isinstance(obj, SimObject) else obj))
-    return np.array(_object_pose_cached(path, tuple(map(float, s.object_position)), tuple(map(float, s.object_orientation))))
+    return np.array(
+        _object_pose_cached(path, tuple(map(float, s.object_position)), tuple(map(float, s.object_orientation)))
+    )
 
 
 # ---- grasps.json ------------------------------------------------------------------------------
+
 
 def _doc_hand_file(doc_hand: str | None, grasps_path) -> Path | None:
     """The grasps file's hand URDF if it exists (as given, or relative to the grasps file)."""
@@ -160,8 +167,18 @@ def grasp_arrays(hand: _core.Hand, grasp: Mapping) -> tuple[np.ndarray, np.ndarr
     return wrist, pre, fin
 
 
-def execute(obj, grasp: Mapping | None = None, *, hand=None, T_world_wrist=None, pregrasp_joints=None,
-            grasp_joints=None, object_pose=None, settings: SimSettings | None = None, **overrides) -> SimResult:
+def execute(
+    obj,
+    grasp: Mapping | None = None,
+    *,
+    hand=None,
+    T_world_wrist=None,
+    pregrasp_joints=None,
+    grasp_joints=None,
+    object_pose=None,
+    settings: SimSettings | None = None,
+    **overrides,
+) -> SimResult:
     """Executes one grasp in Bullet (C++) and returns a SimResult (success, reason, lift_height,
     contact_count, steps, simulated_time, wall_time).
 
@@ -182,7 +199,9 @@ def execute(obj, grasp: Mapping | None = None, *, hand=None, T_world_wrist=None,
     return _core.sim_execute(h, o, pose, wrist, pre, fin, settings)
 
 
-def execute_file(obj, grasps_path, rank: int = 1, hand=None, settings: SimSettings | None = None, **overrides) -> SimResult:
+def execute_file(
+    obj, grasps_path, rank: int = 1, hand=None, settings: SimSettings | None = None, **overrides
+) -> SimResult:
     """Executes the grasp of the given rank from a grasps.json. hand: a Hand or URDF; None: the file's
     hand if it can be found (as given or relative to the grasps file), else the bundled WSG 50; either way
     the file's hand must be the one used (ValueError otherwise)."""
@@ -195,8 +214,7 @@ def execute_file(obj, grasps_path, rank: int = 1, hand=None, settings: SimSettin
     return execute(obj, grasp_by_rank(doc, rank), hand=h, settings=settings, **overrides)
 
 
-def top_grasp(center, opening: float, closing: float, yaw: float = 0.0, tip_height: float = 0.01,
-              hand=None) -> dict:
+def top_grasp(center, opening: float, closing: float, yaw: float = 0.0, tip_height: float = 0.01, hand=None) -> dict:
     """A WSG 50-style top grasp (palm z pointing down) over `center` (x, y), fingertips `tip_height` above
     the plane, pre-grasp finger distance `opening`, grasp `closing` (each finger's distance from the
     centre, m), fingers moving along the direction at angle `yaw` about world z. For tests and examples."""
@@ -212,6 +230,13 @@ def top_grasp(center, opening: float, closing: float, yaw: float = 0.0, tip_heig
 
 
 def result_dict(r: SimResult) -> dict[str, Any]:
-    return {"success": r.success, "reason": r.reason, "lift_height": r.lift_height, "contact_count": r.contact_count,
-            "start_penetration": r.start_penetration, "steps": r.steps, "simulated_time": r.simulated_time,
-            "wall_time": r.wall_time}
+    return {
+        "success": r.success,
+        "reason": r.reason,
+        "lift_height": r.lift_height,
+        "contact_count": r.contact_count,
+        "start_penetration": r.start_penetration,
+        "steps": r.steps,
+        "simulated_time": r.simulated_time,
+        "wall_time": r.wall_time,
+    }

@@ -1,5 +1,6 @@
 """The grasp-execution protocol of graspmix's Bullet simulation, run in pybullet (DIRECT) with the same
 URDFs: the independent reference the agreement test compares the C++ simulation against."""
+
 from __future__ import annotations
 
 import math
@@ -65,9 +66,19 @@ def _load_world(p, kw: dict, s: SimSettings, h, o, pose, wrist) -> tuple[int, in
         dyn = p.getDynamicsInfo(body, -1, **kw)
         com = _core.pose_multiply(pose[None], np.r_[dyn[3], dyn[4]][None])[0]
         p.resetBasePositionAndOrientation(body, com[:3], com[3:], **kw)
-        friction = s.object_friction if s.object_friction >= 0 else (o.lateral_friction if o.lateral_friction >= 0 else 0.5)
-        p.changeDynamics(body, -1, lateralFriction=friction, restitution=0.0, spinningFriction=0.0, rollingFriction=0.0,
-                         activationState=p.ACTIVATION_STATE_DISABLE_SLEEPING, **kw)
+        friction = (
+            s.object_friction if s.object_friction >= 0 else (o.lateral_friction if o.lateral_friction >= 0 else 0.5)
+        )
+        p.changeDynamics(
+            body,
+            -1,
+            lateralFriction=friction,
+            restitution=0.0,
+            spinningFriction=0.0,
+            rollingFriction=0.0,
+            activationState=p.ACTIVATION_STATE_DISABLE_SLEEPING,
+            **kw,
+        )
         if s.object_mass >= 0:
             p.changeDynamics(body, -1, mass=s.object_mass, **kw)
         hid = p.loadURDF(str(_lifted_urdf(h, wrist, Path(tmp))), wrist[:3], wrist[3:], useFixedBase=True, **kw)
@@ -78,8 +89,9 @@ def _hand_drives(p, kw: dict, s: SimSettings, h, hid: int, pre, fin) -> tuple[di
     """Sets the hand's joints to the pre-grasp; (joint ids by name, [(joint, target, speed)] of the closing)."""
     joints = {p.getJointInfo(hid, j, **kw)[1].decode(): j for j in range(p.getNumJoints(hid, **kw))}
     for j in joints.values():
-        p.changeDynamics(hid, j, lateralFriction=s.hand_friction, restitution=0.0, spinningFriction=0.0,
-                         rollingFriction=0.0, **kw)
+        p.changeDynamics(
+            hid, j, lateralFriction=s.hand_friction, restitution=0.0, spinningFriction=0.0, rollingFriction=0.0, **kw
+        )
         p.setJointMotorControl2(hid, j, p.VELOCITY_CONTROL, force=0.0, **kw)
     start = h.all_joint_values(pre)
     goal = h.all_joint_values(fin)
@@ -113,8 +125,12 @@ def _run_protocol(p, kw: dict, s: SimSettings, plane: int, body: int, hid: int, 
     out = {"steps": 0}
 
     def finish(reason, n=0):
-        out.update(success=reason == "success", reason=reason, contact_count=n,
-                   lift_height=p.getBasePositionAndOrientation(body, **kw)[0][2] - z0)
+        out.update(
+            success=reason == "success",
+            reason=reason,
+            contact_count=n,
+            lift_height=p.getBasePositionAndOrientation(body, **kw)[0][2] - z0,
+        )
         return out
 
     z0 = p.getBasePositionAndOrientation(body, **kw)[0][2]
@@ -152,8 +168,9 @@ def _run_protocol(p, kw: dict, s: SimSettings, plane: int, body: int, hid: int, 
     return finish("success" if n > 0 and rise >= s.success_fraction * s.lift_height else "not held", n)
 
 
-def execute_pybullet(obj, grasp: Mapping, *, hand=None, object_pose=None, settings: SimSettings | None = None,
-                     **overrides) -> dict:
+def execute_pybullet(
+    obj, grasp: Mapping, *, hand=None, object_pose=None, settings: SimSettings | None = None, **overrides
+) -> dict:
     """The same protocol as execute, in pybullet (DIRECT) with the same URDFs: the reference for the
     agreement test. Returns {success, reason, lift_height, contact_count, start_penetration, steps}."""
     import pybullet as p

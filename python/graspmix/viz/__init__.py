@@ -1,5 +1,6 @@
 """Pictures of graspmix results (matplotlib on the Agg backend: files, no display): surface features,
 grasps on a cloud, depth images of an acquisition, and the experiment's figures."""
+
 from .depth import plot_depth_images
 from .experiment import plot_runtime, plot_success
 from .plots import plot_grasps, plot_surface_features, pyplot

@@ -1,4 +1,5 @@
 """A picture of a simulated acquisition's depth images."""
+
 from __future__ import annotations
 
 from pathlib import Path

@@ -1,4 +1,5 @@
 """The experiment's figures: success rates per condition and method, and the paper's Fig. runtime."""
+
 from __future__ import annotations
 
 from pathlib import Path
@@ -63,8 +64,9 @@ def plot_runtime(medians: dict, path: str | Path, title: str = "") -> None:
     bottom = np.zeros(len(methods))
     for s in STAGES:
         v = np.array([medians[m][s] for m in methods])
-        ax.bar([METHOD_LABELS[m] for m in methods], v, 0.55, bottom=bottom, color=STAGE_COLOURS[s],
-               label=STAGE_LABELS[s])
+        ax.bar(
+            [METHOD_LABELS[m] for m in methods], v, 0.55, bottom=bottom, color=STAGE_COLOURS[s], label=STAGE_LABELS[s]
+        )
         bottom += v
     for i, b in enumerate(bottom):
         ax.text(i, b, f"{b * 1e3:.0f} ms", ha="center", va="bottom", fontsize=8)

@@ -8,9 +8,9 @@
 
 #include <gtest/gtest.h>
 
+#include "graspmix/core/se3.hpp"
 #include "graspmix/grasp/collision.hpp"
 #include "graspmix/robot/hand.hpp"
-#include "graspmix/core/se3.hpp"
 
 using graspmix::CollisionExpert;
 using graspmix::CollisionSettings;

@@ -8,8 +8,8 @@
 #include <gtest/gtest.h>
 
 #include "graspmix/core/se3.hpp"
-#include "graspmix/grasp/synthesis.hpp"
 #include "graspmix/density/pose_mixture.hpp"
+#include "graspmix/grasp/synthesis.hpp"
 
 using namespace graspmix;
 namespace fs = std::filesystem;
@@ -87,8 +87,8 @@ Fixture make_fixture() {
     s.n_components = 2;
     return std::make_shared<PoseMixture>(s);
   });
-  f.synth = std::make_unique<GraspSynthesizer>(f.hand, std::move(models),
-                                               ConfigModel(pre, grasp, f.hand->joint_limits()));
+  f.synth =
+      std::make_unique<GraspSynthesizer>(f.hand, std::move(models), ConfigModel(pre, grasp, f.hand->joint_limits()));
   CollisionSettings collision;
   collision.beta = 1000.0;  // the value these tests were written with (the default is now 2000)
   f.collision = std::make_unique<CollisionExpert>(f.hand, f.box.points, Eigen::Vector4d(0, 0, 1, 0), collision);
@@ -177,9 +177,9 @@ TEST(Synthesis, BadInputThrows) {
   const Fixture f = make_fixture();
   EXPECT_THROW(f.synth->synthesize(PoseArray(0, 7), RowMatrixXd(0, 2), *f.collision, {}, small_settings(0)),
                std::invalid_argument);
-  EXPECT_THROW(f.synth->synthesize(f.box.frames, RowMatrixXd::Zero(f.box.frames.rows(), 3), *f.collision, {},
-                                   small_settings(0)),
-               std::invalid_argument);
+  EXPECT_THROW(
+      f.synth->synthesize(f.box.frames, RowMatrixXd::Zero(f.box.frames.rows(), 3), *f.collision, {}, small_settings(0)),
+      std::invalid_argument);
   Eigen::VectorXd two(2);
   two << 0.0, 0.0;
   EXPECT_THROW(GraspSynthesizer(f.hand, f.synth->contact_models(), ConfigModel(two, two, RowMatrixXd::Zero(2, 2))),

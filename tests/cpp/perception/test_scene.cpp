@@ -80,7 +80,8 @@ TEST(Scene, SameSeedSameResultAndStepsSwitchOff) {
   const SceneResult d = prepare_cloud(sc.points, off);
   int inside = 0;
   for (Eigen::Index i = 0; i < sc.points.rows(); ++i)
-    inside += sc.points(i, 2) >= 0.71 && sc.points(i, 2) <= 0.9 && sc.points.row(i).head<2>().cwiseAbs().maxCoeff() <= 1;
+    inside +=
+        sc.points(i, 2) >= 0.71 && sc.points(i, 2) <= 0.9 && sc.points.row(i).head<2>().cwiseAbs().maxCoeff() <= 1;
   EXPECT_EQ(d.points.rows(), inside);
   EXPECT_GT(inside, sc.n_object / 2);
 }

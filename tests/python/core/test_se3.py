@@ -1,9 +1,9 @@
 """SE(3) helpers against scipy's Rotation and homogeneous matrices."""
+
+import graspmix
 import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
-
-import graspmix
 
 
 def random_poses(rng, n):
@@ -51,7 +51,12 @@ def test_compose_and_inverse_match_matrices(rng):
         (lambda: graspmix.pose_inverse(np.zeros((3, 6))), "expected shape (N, 7)"),
         (lambda: graspmix.pose_inverse(np.zeros((2, 7))), "row 0"),
         (lambda: graspmix.quat_exp(np.full((1, 3), np.nan)), "NaN"),
-        (lambda: graspmix.pose_multiply(np.tile([0, 0, 0, 0, 0, 0, 1.0], (2, 1)), np.tile([0, 0, 0, 0, 0, 0, 1.0], (3, 1))), "differ"),
+        (
+            lambda: graspmix.pose_multiply(
+                np.tile([0, 0, 0, 0, 0, 0, 1.0], (2, 1)), np.tile([0, 0, 0, 0, 0, 0, 1.0], (3, 1))
+            ),
+            "differ",
+        ),
         (lambda: graspmix.quat_log("abc"), "array of numbers"),
     ],
 )

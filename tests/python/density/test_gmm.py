@@ -1,12 +1,12 @@
 """GaussianMixture against scikit-learn and scipy on the same data."""
+
 import pickle
 
+import graspmix
 import numpy as np
 import pytest
 from scipy.stats import multivariate_normal
 from sklearn.mixture import GaussianMixture as SkGaussianMixture
-
-import graspmix
 
 
 def blobs(rng, n, d=4, k=3):
@@ -32,8 +32,9 @@ def mixture_logpdf(x, w, mu, cov):
 def test_fit_matches_scikit_learn(rng, K):
     X = blobs(rng, 2000, d=4, k=K)
     ours = graspmix.GaussianMixture(n_components=K, n_init=3, seed=0, tol=1e-6, max_iter=500).fit(X)
-    ref = SkGaussianMixture(n_components=K, covariance_type="full", n_init=3, random_state=0, tol=1e-6,
-                            max_iter=500).fit(X)
+    ref = SkGaussianMixture(
+        n_components=K, covariance_type="full", n_init=3, random_state=0, tol=1e-6, max_iter=500
+    ).fit(X)
     assert ours.converged_
     assert ours.score(X) == pytest.approx(ref.score(X), abs=1e-4)
     # Same optimum: match the components up to order.

@@ -1,13 +1,13 @@
 """PoseMixture and PoseKDE against independent numpy/scipy computations of the same densities."""
+
 import pickle
 
+import graspmix
 import numpy as np
 import pytest
-from scipy.special import ive, logsumexp
 from scipy.spatial.transform import Rotation
+from scipy.special import ive, logsumexp
 from scipy.stats import multivariate_normal
-
-import graspmix
 
 
 def contact_like_data(rng, n=400):
@@ -45,7 +45,9 @@ def test_pose_mixture_density_is_the_conditioned_gaussian_in_log_coordinates(rng
         a = np.linalg.norm(u[3:])
         expected.append(logsumexp(terms) - logsumexp(norms) - 2 * np.log(np.sin(a) / a))
     np.testing.assert_allclose(pm.log_density(q_poses, q_feats), expected, atol=1e-8)
-    np.testing.assert_allclose(pm.feature_log_density(q_feats), joint.marginal([6, 7]).score_samples(q_feats), atol=1e-10)
+    np.testing.assert_allclose(
+        pm.feature_log_density(q_feats), joint.marginal([6, 7]).score_samples(q_feats), atol=1e-10
+    )
 
 
 def test_pose_kde_density_matches_brute_force(rng):
@@ -69,8 +71,9 @@ def test_pose_kde_density_matches_brute_force(rng):
     np.testing.assert_allclose(kde.log_density(q_poses, q_feats), expected, atol=1e-8)
 
 
-@pytest.mark.parametrize("make", [lambda: graspmix.PoseMixture(n_components=2, seed=1),
-                                  lambda: graspmix.PoseKDE(feature_bandwidth=0.002)])
+@pytest.mark.parametrize(
+    "make", [lambda: graspmix.PoseMixture(n_components=2, seed=1), lambda: graspmix.PoseKDE(feature_bandwidth=0.002)]
+)
 def test_conditioning_on_features_selects_the_demonstrated_poses(rng, make):
     poses, feats, w = contact_like_data(rng)
     d = make().fit(poses, feats, w)
@@ -84,7 +87,9 @@ def test_conditioning_on_features_selects_the_demonstrated_poses(rng, make):
     flipped[:, 3:] *= -1
     np.testing.assert_allclose(d.log_density(poses, feats), d.log_density(flipped, feats), atol=1e-9)
     # Same seed, same samples; features for every row or one for all.
-    np.testing.assert_array_equal(d.sample(5, features=feats[0], seed=3), d.sample(5, features=np.tile(feats[0], (5, 1)), seed=3))
+    np.testing.assert_array_equal(
+        d.sample(5, features=feats[0], seed=3), d.sample(5, features=np.tile(feats[0], (5, 1)), seed=3)
+    )
 
 
 def test_pose_mixture_without_features_and_pickle(rng):

@@ -1,5 +1,6 @@
 """The paper's experiment: statistics against scipy, seeds, the frame shared by acquisition and execution,
 resuming, 1 vs 2 jobs vs Ray, the report from a CSV, the smoke preset end to end, and bad input."""
+
 import json
 import math
 import os
@@ -9,17 +10,16 @@ import sys
 import textwrap
 import time
 
+import graspmix
 import numpy as np
 import pytest
+from graspmix import cli, sim
+from graspmix import experiment as ex
+from graspmix.experiment.stats import mean_ci, paired_ttest
 from scipy import stats as sps
 
-import graspmix
-from graspmix import cli, experiment as ex, sim
-from graspmix.experiment import report
-from graspmix.experiment.stats import mean_ci, paired_ttest
-
-
 # ---- statistics --------------------------------------------------------------------------------
+
 
 def test_mean_ci_matches_scipy_t_interval():
     x = np.array([0.55, 0.61, 0.48, 0.70, 0.58, 0.66, 0.52, 0.60, 0.63, 0.57])
@@ -75,24 +75,37 @@ def test_paired_ttest_degenerate_and_bad_input():
 
 # ---- seeds and the protocol --------------------------------------------------------------------
 
+
 def test_seeds_are_stable_across_processes_and_distinct():
     # Python's hash() is salted per process; the derived seeds must not be.
     code = "from graspmix import experiment as ex; print(ex.derive_seed(0, 'synthesis', 'objects/mug.urdf', 3, 'B'))"
-    outs = {subprocess.run([sys.executable, "-c", code], env={**os.environ, "PYTHONHASHSEED": str(h)},
-                           capture_output=True, text=True, check=True).stdout.strip() for h in (1, 2)}
+    outs = {
+        subprocess.run(
+            [sys.executable, "-c", code],
+            env={**os.environ, "PYTHONHASHSEED": str(h)},
+            capture_output=True,
+            text=True,
+            check=True,
+        ).stdout.strip()
+        for h in (1, 2)
+    }
     assert outs == {str(ex.derive_seed(0, "synthesis", "objects/mug.urdf", 3, "B"))}
     p = ex.Protocol(objects=["objects/mug.urdf", "cube_small.urdf"], trials=3)
     acq = {p.acquisition_seed(o, t) for o in p.objects for t in range(3)}
     syn = {p.synthesis_seed(o, t, c) for o in p.objects for t in range(3) for c in "ABCD"}
     assert len(acq) == 6 and len(syn) == 24
-    assert all(0 <= s < 2 ** 31 for s in acq | syn)
+    assert all(0 <= s < 2**31 for s in acq | syn)
 
 
 def test_protocol_units_share_clouds():
     p = ex.Protocol(objects=["objects/mug.urdf"], trials=2)
     units = p.units()
-    assert units == [("objects/mug.urdf", 0, False), ("objects/mug.urdf", 0, True),
-                     ("objects/mug.urdf", 1, False), ("objects/mug.urdf", 1, True)]
+    assert units == [
+        ("objects/mug.urdf", 0, False),
+        ("objects/mug.urdf", 0, True),
+        ("objects/mug.urdf", 1, False),
+        ("objects/mug.urdf", 1, True),
+    ]
     # Noise-free conditions A and C share a unit (one cloud), both methods each.
     assert [(a[2], a[3]) for a in p.attempts(units[0])] == [("A", "gmm"), ("A", "kde"), ("C", "gmm"), ("C", "kde")]
     assert len(p.all_attempts()) == 2 * 4 * 2
@@ -115,6 +128,7 @@ def test_protocol_rejects_bad_values():
 
 # ---- the frame: acquisition, synthesis and execution agree ---------------------------------------
 
+
 def test_grasp_synthesised_on_an_acquired_cloud_executes_in_the_same_frame():
     """The cloud lies on the object as the simulation places it, and a top grasp synthesised on the cloud
     lifts the object: acquisition, synthesis and execution share the world frame."""
@@ -130,8 +144,9 @@ def test_grasp_synthesised_on_an_acquired_cloud_executes_in_the_same_frame():
     assert np.all(acq.points.min(0)[:2] >= lo[:2] - 0.003) and np.all(acq.points.max(0) <= hi + 0.003)
     assert np.all(acq.points.max(0)[:2] >= hi[:2] - 0.01) and np.all(acq.points.min(0)[:2] <= lo[:2] + 0.01)
     model = graspmix.GraspModel.load(graspmix.default_model_path("gmm"))
-    g = model.synthesize(acq.points, seed=1, remove_plane=False, plane=[0, 0, 1, 0], viewpoints=acq.viewpoints,
-                         approach_axis=(0, 0, -1))
+    g = model.synthesize(
+        acq.points, seed=1, remove_plane=False, plane=[0, 0, 1, 0], viewpoints=acq.viewpoints, approach_axis=(0, 0, -1)
+    )
     best = g.best()
     assert Rotation.from_quat(best["T_world_wrist"][3:]).apply([0, 0, 1])[2] < -0.9  # palm down: a top grasp
     # Executed as the experiment executes grasps (closing until the fingers stop on the object).
@@ -143,6 +158,7 @@ def test_grasp_synthesised_on_an_acquired_cloud_executes_in_the_same_frame():
 
 
 # ---- runs: a small protocol --------------------------------------------------------------------
+
 
 def small_protocol(**kw):
     """2 small objects x 2 trials x conditions B, C x both methods = 16 attempts in 8 units (seconds)."""
@@ -184,20 +200,27 @@ def test_small_run_rows(reference_run):
     by = {(r["object"], r["trial"], r["condition"], r["method"]): r for r in rows}
     for (o, t, c, m), r in by.items():
         other = by[(o, t, c, "kde" if m == "gmm" else "gmm")]
-        assert (r["n_points"], r["acquisition_seed"], r["synthesis_seed"]) == \
-               (other["n_points"], other["acquisition_seed"], other["synthesis_seed"])
+        assert (r["n_points"], r["acquisition_seed"], r["synthesis_seed"]) == (
+            other["n_points"],
+            other["acquisition_seed"],
+            other["synthesis_seed"],
+        )
     assert (reference_run / "summary.json").is_file() and (reference_run / "report.md").is_file()
 
 
 def test_one_and_two_jobs_give_identical_rows(reference_run, tmp_path):
     ex.run(small_protocol(), tmp_path / "two", jobs=2, progress=False, report=False)
-    assert comparable(ex.read_rows(tmp_path / "two" / ex.CSV_NAME)) == comparable(ex.read_rows(reference_run / ex.CSV_NAME))
+    assert comparable(ex.read_rows(tmp_path / "two" / ex.CSV_NAME)) == comparable(
+        ex.read_rows(reference_run / ex.CSV_NAME)
+    )
 
 
 def test_ray_executor_gives_identical_rows(reference_run, tmp_path):
     pytest.importorskip("ray", reason="ray is not installed (pip install ray): the cluster executor is untested here")
     ex.run(small_protocol(), tmp_path / "ray", jobs=2, executor="ray", progress=False, report=False)
-    assert comparable(ex.read_rows(tmp_path / "ray" / ex.CSV_NAME)) == comparable(ex.read_rows(reference_run / ex.CSV_NAME))
+    assert comparable(ex.read_rows(tmp_path / "ray" / ex.CSV_NAME)) == comparable(
+        ex.read_rows(reference_run / ex.CSV_NAME)
+    )
 
 
 def test_resume_after_a_stop_and_a_torn_line(reference_run, tmp_path):
@@ -253,8 +276,24 @@ def test_resume_after_the_process_is_killed(reference_run, tmp_path):
 def test_ctrl_c_stops_a_parallel_run_promptly(tmp_path):
     """SIGINT (Ctrl-C) ends a 2-job run at once: workers are ended, the finished rows kept, exit status 130."""
     out = tmp_path / "run"
-    proc = subprocess.Popen([sys.executable, "-m", "graspmix.cli", "experiment", "--preset", "smoke", "--out", str(out),
-                             "--jobs", "2", "--quiet"], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    proc = subprocess.Popen(
+        [
+            sys.executable,
+            "-m",
+            "graspmix.cli",
+            "experiment",
+            "--preset",
+            "smoke",
+            "--out",
+            str(out),
+            "--jobs",
+            "2",
+            "--quiet",
+        ],
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
     csv_path = out / ex.CSV_NAME
     deadline = time.monotonic() + 120
     while time.monotonic() < deadline and proc.poll() is None:
@@ -268,7 +307,9 @@ def test_ctrl_c_stops_a_parallel_run_promptly(tmp_path):
     assert proc.returncode == 130
     assert "the same command resumes" in err
     rows = ex.read_rows(csv_path)
-    assert 1 <= len(rows) < 48 and len({(r["object"], r["trial"], r["condition"], r["method"]) for r in rows}) == len(rows)
+    assert 1 <= len(rows) < 48 and len({(r["object"], r["trial"], r["condition"], r["method"]) for r in rows}) == len(
+        rows
+    )
 
 
 def test_folder_of_another_protocol_is_refused_before_any_work(reference_run, tmp_path):
@@ -289,6 +330,7 @@ def test_folder_of_another_protocol_is_refused_before_any_work(reference_run, tm
 
 # ---- the report from a CSV ---------------------------------------------------------------------
 
+
 def test_report_from_a_written_csv(tmp_path):
     """A CSV with known outcomes: the summary's rates, intervals and t-tests are those computed here with
     scipy, and the report files are written."""
@@ -298,17 +340,38 @@ def test_report_from_a_written_csv(tmp_path):
     rng = np.random.default_rng(7)
     succ = {}
     rows = []
-    for (o, t, c, m) in p.all_attempts():
+    for o, t, c, m in p.all_attempts():
         s = int(rng.random() < (0.8 if m == "gmm" else 0.5))
         succ[(o, t, c, m)] = s
-        rows.append({"object": o, "trial": t, "condition": c, "method": m, "noise": int(c == "D"),
-                     "optimise": int(c == "A"), "acquisition_seed": 1, "synthesis_seed": 2, "n_points": 100,
-                     "success": s, "reason": "success" if s else "not held", "lift_height": 0.2 * s,
-                     "contact_count": 2, "log_likelihood": -1.0, "grasp": "{}", "evaluations": 10, "rejected": 0,
-                     "error": "", "t_acquisition": 0.1, "t_features": 0.01,
-                     "t_query": 0.01 if m == "gmm" else 0.05, "t_sampling": 0.02 if m == "gmm" else 0.04,
-                     "t_optimisation": (0.03 if m == "gmm" else 0.09) if c == "A" else 0.0,
-                     "t_synthesis": 0.1, "t_execution": 0.02})
+        rows.append(
+            {
+                "object": o,
+                "trial": t,
+                "condition": c,
+                "method": m,
+                "noise": int(c == "D"),
+                "optimise": int(c == "A"),
+                "acquisition_seed": 1,
+                "synthesis_seed": 2,
+                "n_points": 100,
+                "success": s,
+                "reason": "success" if s else "not held",
+                "lift_height": 0.2 * s,
+                "contact_count": 2,
+                "log_likelihood": -1.0,
+                "grasp": "{}",
+                "evaluations": 10,
+                "rejected": 0,
+                "error": "",
+                "t_acquisition": 0.1,
+                "t_features": 0.01,
+                "t_query": 0.01 if m == "gmm" else 0.05,
+                "t_sampling": 0.02 if m == "gmm" else 0.04,
+                "t_optimisation": (0.03 if m == "gmm" else 0.09) if c == "A" else 0.0,
+                "t_synthesis": 0.1,
+                "t_execution": 0.02,
+            }
+        )
     ex.AttemptLog(out / ex.CSV_NAME).append(rows)
     assert cli.main(["report", str(out)]) == 0
     summary = json.loads((out / "summary.json").read_text())
@@ -337,6 +400,7 @@ def test_report_from_a_written_csv(tmp_path):
 
 
 # ---- the command line --------------------------------------------------------------------------
+
 
 def test_cli_smoke_preset_end_to_end(tmp_path, capsys):
     """The smoke preset (3 objects, 2 trials, A-D, GMM and KDE: 48 executions) with 2 jobs, then the
@@ -376,7 +440,9 @@ def test_cli_bad_input_fails_before_any_work(tmp_path, capsys):
     objs = tmp_path / "objects.txt"
     objs.write_text("# two objects\nobjects/mug.urdf\nrandom_urdfs/999/does_not_exist.urdf\n")
     assert "does_not_exist.urdf" in cli_error(capsys, ["experiment", "--out", str(out), "--objects", str(objs)])
-    assert "no such objects file" in cli_error(capsys, ["experiment", "--out", str(out), "--objects", str(tmp_path / "none.txt")])
+    assert "no such objects file" in cli_error(
+        capsys, ["experiment", "--out", str(out), "--objects", str(tmp_path / "none.txt")]
+    )
     assert "unknown value 'E'" in cli_error(capsys, ["experiment", "--out", str(out), "--conditions", "A,E"])
     assert "unknown value 'svm'" in cli_error(capsys, ["experiment", "--out", str(out), "--methods", "gmm,svm"])
     assert "--jobs" in cli_error(capsys, ["experiment", "--out", str(out), "--jobs", "0"])
@@ -397,14 +463,18 @@ def test_cli_bad_input_fails_before_any_work(tmp_path, capsys):
 def test_cli_benchmark(tmp_path, capsys):
     objs = tmp_path / "objects.txt"
     objs.write_text("random_urdfs/057/057.urdf\nrandom_urdfs/032/032.urdf\n")
-    assert cli.main(["benchmark", "--objects", str(objs), "--samples", "40", "--out", str(tmp_path / "b"), "--quiet"]) == 0
+    assert (
+        cli.main(["benchmark", "--objects", str(objs), "--samples", "40", "--out", str(tmp_path / "b"), "--quiet"]) == 0
+    )
     text = capsys.readouterr().out
     assert "KDE/GMM" in text and "query density estimation" in text
     res = json.loads((tmp_path / "b" / "benchmark.json").read_text())
     assert len(res["per_object_s"]["gmm"]["total"]) == 2
     for m in ("gmm", "kde"):
         assert res["median_s"][m]["total"] == pytest.approx(np.median(res["per_object_s"][m]["total"]))
-    assert res["ratio_kde_over_gmm"]["total"] == pytest.approx(res["median_s"]["kde"]["total"] / res["median_s"]["gmm"]["total"])
+    assert res["ratio_kde_over_gmm"]["total"] == pytest.approx(
+        res["median_s"]["kde"]["total"] / res["median_s"]["gmm"]["total"]
+    )
     assert (tmp_path / "b" / "benchmark.png").stat().st_size > 1000
 
 

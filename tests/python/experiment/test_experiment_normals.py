@@ -1,10 +1,10 @@
 """The experiment's own inputs: per-point camera positions survive the clean-up (voxel grid included), so
 every surface normal of an acquired convex object points out of it (before the fix, half of them pointed
 in: every voxel centroid took the last camera)."""
-import numpy as np
-import pytest
 
 import graspmix
+import numpy as np
+import pytest
 from graspmix.experiment import Protocol
 from graspmix.experiment.attempt import crop_above_plane
 from graspmix.model import FeatureSettings
@@ -17,8 +17,9 @@ def experiment_surface(obj, noise):
     p = Protocol(objects=[obj], trials=1)
     acq = acquire(obj, noise=noise, seed=3, postprocess=crop_above_plane(p.min_height))
     assert len(np.unique(acq.camera_index)) >= 3  # the object is seen from several cameras
-    surface, _ = FeatureSettings().surface(acq.points, remove_plane=False, viewpoints=acq.viewpoints,
-                                           plane=SUPPORT_PLANE, table_clearance=p.min_height)
+    surface, _ = FeatureSettings().surface(
+        acq.points, remove_plane=False, viewpoints=acq.viewpoints, plane=SUPPORT_PLANE, table_clearance=p.min_height
+    )
     return surface
 
 

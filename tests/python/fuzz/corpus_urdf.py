@@ -353,10 +353,10 @@ def _build() -> None:
     # -- simulation settings ------------------------------------------------------------------------------
     for k, (flag, value, mention) in enumerate(
         [
-            ("--hold-time", "1e7", "hold_time"),
-            ("--hold-time", "nan", "hold_time"),
-            ("--grip-force", "inf", "grip_force"),
-            ("--grip-force", "0", "grip_force"),
+            ("--hold-time", "1e7", "hold-time"),
+            ("--hold-time", "nan", "hold-time"),
+            ("--grip-force", "inf", "grip-force"),
+            ("--grip-force", "0", "grip-force"),
             ("--lift-height", "1e9", "lift_height"),
         ]
     ):

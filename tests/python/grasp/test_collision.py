@@ -1,11 +1,11 @@
 """The collision expert W(h) against analytic depths and an independent numpy implementation."""
+
 from pathlib import Path
 
+import graspmix
 import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
-
-import graspmix
 
 WSG50 = graspmix.data_path("hands", "wsg50.urdf")
 IDENTITY = np.array([0, 0, 0, 0, 0, 0, 1.0])
@@ -27,14 +27,14 @@ def numpy_box_depths(hand, T_world_wrist, q, cloud, radius=0.0):
     """Per link: max over points of max(0, r - sd) with sd the exact box signed distance (numpy)."""
     poses = hand.fk(T_world_wrist, q)
     out = np.zeros(hand.n_links)
-    for l, link in enumerate(hand.link_names):
+    for li, link in enumerate(hand.link_names):
         for shape in hand.collision_shapes(link):
             assert shape["type"] == "box"
-            T = graspmix.pose_multiply(poses[l], shape["origin"])
+            T = graspmix.pose_multiply(poses[li], shape["origin"])
             local = Rotation.from_quat(T[3:]).inv().apply(cloud - T[:3])
             qd = np.abs(local) - 0.5 * np.asarray(shape["size"])
             sd = np.linalg.norm(np.maximum(qd, 0), axis=1) + np.minimum(qd.max(axis=1), 0)
-            out[l] = max(out[l], np.max(np.maximum(0.0, radius - sd)))
+            out[li] = max(out[li], np.max(np.maximum(0.0, radius - sd)))
     return out
 
 
@@ -107,24 +107,43 @@ def test_support_plane_blocks_a_hand_below_the_table(wsg):
 def test_mesh_links_use_their_convex_hull(tmp_path):
     # A cube mesh (OBJ, scaled to 2 x 4 x 6 cm) must give the depths of the equivalent box.
     verts = [[(i & 1) - 0.5, ((i >> 1) & 1) - 0.5, ((i >> 2) & 1) - 0.5] for i in range(8)]
-    faces = [(0, 2, 1), (1, 2, 3), (4, 5, 6), (5, 7, 6), (0, 1, 4), (1, 5, 4),
-             (2, 6, 3), (3, 6, 7), (0, 4, 2), (2, 4, 6), (1, 3, 5), (3, 7, 5)]
-    (tmp_path / "cube.obj").write_text("".join(f"v {x} {y} {z}\n" for x, y, z in verts) +
-                                       "".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in faces))
+    faces = [
+        (0, 2, 1),
+        (1, 2, 3),
+        (4, 5, 6),
+        (5, 7, 6),
+        (0, 1, 4),
+        (1, 5, 4),
+        (2, 6, 3),
+        (3, 6, 7),
+        (0, 4, 2),
+        (2, 4, 6),
+        (1, 3, 5),
+        (3, 7, 5),
+    ]
+    (tmp_path / "cube.obj").write_text(
+        "".join(f"v {x} {y} {z}\n" for x, y, z in verts) + "".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in faces)
+    )
     (tmp_path / "m.urdf").write_text(
         '<robot name="m"><link name="cube"><collision><origin xyz="0.01 0 0"/><geometry>'
-        '<mesh filename="cube.obj" scale="0.02 0.04 0.06"/></geometry></collision></link></robot>')
+        '<mesh filename="cube.obj" scale="0.02 0.04 0.06"/></geometry></collision></link></robot>'
+    )
     (tmp_path / "b.urdf").write_text(
         '<robot name="b"><link name="cube"><collision><origin xyz="0.01 0 0"/><geometry>'
-        '<box size="0.02 0.04 0.06"/></geometry></collision></link></robot>')
+        '<box size="0.02 0.04 0.06"/></geometry></collision></link></robot>'
+    )
     mesh_hand = graspmix.Hand.from_urdf(tmp_path / "m.urdf")
     box_hand = graspmix.Hand.from_urdf(tmp_path / "b.urdf")
     cloud = box_surface([0.0, -0.05, -0.05], [0.1, 0.05, 0.05], step=0.0025)
     rng = np.random.default_rng(2)
     wrists = np.c_[rng.uniform(-0.03, 0.03, (100, 3)), Rotation.random(100, random_state=rng).as_quat()]
     for plane in (None, [0, 0, 1, 0.04]):
-        a = graspmix.CollisionExpert(mesh_hand, cloud, plane=plane, contact_tolerance=EXACT).evaluate_batch(wrists, np.zeros((100, 0)))
-        b = graspmix.CollisionExpert(box_hand, cloud, plane=plane, contact_tolerance=EXACT).evaluate_batch(wrists, np.zeros((100, 0)))
+        a = graspmix.CollisionExpert(mesh_hand, cloud, plane=plane, contact_tolerance=EXACT).evaluate_batch(
+            wrists, np.zeros((100, 0))
+        )
+        b = graspmix.CollisionExpert(box_hand, cloud, plane=plane, contact_tolerance=EXACT).evaluate_batch(
+            wrists, np.zeros((100, 0))
+        )
         np.testing.assert_allclose(a.cloud_depth, b.cloud_depth, atol=1e-12)
         np.testing.assert_allclose(a.plane_depth, b.plane_depth, atol=1e-9)
         assert 0 < a.collision_free.sum() < 100
@@ -158,11 +177,11 @@ def test_plane_depth_of_pybullet_panda_meshes_matches_their_lowest_vertex():
         q = rng.uniform(lim[:, 0], lim[:, 1])
         r = expert.evaluate(T, q)
         poses = hand.fk(T, q)
-        for l, link in enumerate(hand.link_names):
+        for li, link in enumerate(hand.link_names):
             lowest = np.inf
             for shape in hand.collision_shapes(link):
-                S = graspmix.pose_multiply(poses[l], shape["origin"])
+                S = graspmix.pose_multiply(poses[li], shape["origin"])
                 lowest = min(lowest, (Rotation.from_quat(S[3:]).apply(shape["vertices"]) + S[:3])[:, 2].min())
             expected = max(0.0, 0.3 - lowest) if np.isfinite(lowest) else 0.0
-            assert r.plane_depth[l] == pytest.approx(expected, abs=1e-9), link
+            assert r.plane_depth[li] == pytest.approx(expected, abs=1e-9), link
         assert r.cloud_depth.sum() == 0.0

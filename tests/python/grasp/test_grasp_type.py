@@ -1,19 +1,23 @@
 """Grasp: the one definition of a grasps.json entry; it round-trips the old dictionaries exactly and
 still reads like one."""
+
 import json
 
+import graspmix
 import numpy as np
 import pytest
-
-import graspmix
 from graspmix.model import Grasp, GraspSet, grasp_by_rank, load_grasps
 
 # An entry as GraspSet wrote it before Grasp existed (and as grasps.json holds it).
-OLD_ENTRY = {"rank": 1, "T_world_wrist": [0.01, -0.02, 0.2, 1.0, 0.0, 0.0, 0.0],
-             "pregrasp_joints": {"finger_left_joint": 0.05}, "grasp_joints": {"finger_left_joint": 0.03},
-             "log_likelihood": -12.5, "optimised": True,
-             "experts": {"collision": 0.0, "config": -1.5, "pregrasp_clear": 0.0, "contact/palm": -3.0,
-                         "kinematic": 0.0}}
+OLD_ENTRY = {
+    "rank": 1,
+    "T_world_wrist": [0.01, -0.02, 0.2, 1.0, 0.0, 0.0, 0.0],
+    "pregrasp_joints": {"finger_left_joint": 0.05},
+    "grasp_joints": {"finger_left_joint": 0.03},
+    "log_likelihood": -12.5,
+    "optimised": True,
+    "experts": {"collision": 0.0, "config": -1.5, "pregrasp_clear": 0.0, "contact/palm": -3.0, "kinematic": 0.0},
+}
 
 
 def test_round_trip_is_the_old_layout():
@@ -26,7 +30,9 @@ def test_round_trip_is_the_old_layout():
     newer = dict(OLD_ENTRY, object="mug", tcp=[0, 0, 0.1])
     assert Grasp.from_dict(newer).to_dict() == newer
     # Only what execution needs, in the layout of the experiment's CSV column.
-    assert g.to_dict(execution_only=True) == {k: OLD_ENTRY[k] for k in ("T_world_wrist", "pregrasp_joints", "grasp_joints")}
+    assert g.to_dict(execution_only=True) == {
+        k: OLD_ENTRY[k] for k in ("T_world_wrist", "pregrasp_joints", "grasp_joints")
+    }
 
 
 def test_reads_like_the_old_dictionary():

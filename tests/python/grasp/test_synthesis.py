@@ -4,16 +4,16 @@ Independent checks: edges and faces of the box come from its known geometry, fin
 distances and "object between the fingers" from the WSG 50's finger boxes in numpy, not from the
 library's collision code.
 """
+
 import json
 import subprocess
 import sys
 
+import graspmix
 import numpy as np
 import pytest
-from scipy.spatial.transform import Rotation
-
-import graspmix
 from graspmix.sim.acquisition import acquire
+from scipy.spatial.transform import Rotation
 
 BOX_HALF = np.array([0.03, 0.05, 0.07])  # data/objects/box.urdf, resting on z = 0
 FINGER_LO, FINGER_HI = np.array([-0.023, -0.015, 0.008]), np.array([0.0, 0.015, 0.081])  # data/hands/wsg50.urdf
@@ -48,8 +48,12 @@ def finger_distances(hand, grasp, points):
     palm = links[hand.link_index("palm")]
     local = Rotation.from_quat(palm[3:]).inv().apply(points - palm[:3])
     opening = grasp["grasp_joints"]["finger_left_joint"]
-    between = ((np.abs(local[:, 0]) < opening) & (np.abs(local[:, 1]) < 0.015)
-               & (local[:, 2] > 0.0725 + FINGER_LO[2]) & (local[:, 2] < 0.0725 + FINGER_HI[2]))
+    between = (
+        (np.abs(local[:, 0]) < opening)
+        & (np.abs(local[:, 1]) < 0.015)
+        & (local[:, 2] > 0.0725 + FINGER_LO[2])
+        & (local[:, 2] < 0.0725 + FINGER_HI[2])
+    )
     return np.array(out), int(between.sum())
 
 
@@ -89,8 +93,13 @@ def test_best_grasp_on_the_demonstration_box_reproduces_the_demonstration(demo, 
     assert min(r.magnitude() for r in angles) < np.radians(15)
 
 
-NOVEL = ["cube_small.urdf", "duck_vhacd.urdf", "random_urdfs/012/012.urdf", "random_urdfs/031/031.urdf",
-         "random_urdfs/120/120.urdf"]
+NOVEL = [
+    "cube_small.urdf",
+    "duck_vhacd.urdf",
+    "random_urdfs/012/012.urdf",
+    "random_urdfs/031/031.urdf",
+    "random_urdfs/120/120.urdf",
+]
 
 
 @pytest.fixture(scope="module")
@@ -130,8 +139,9 @@ def test_save_and_load_give_the_same_model(model, tmp_path, novel_clouds):
     again = graspmix.GraspModel.load(path)
     cloud = novel_clouds["cube_small.urdf"]
     kw = dict(remove_plane=False, plane=[0, 0, 1, 0], seed=1, n_samples=40, n_optimise=3)
-    assert [g["T_world_wrist"] for g in model.synthesize(cloud, **kw)] == \
-           [g["T_world_wrist"] for g in again.synthesize(cloud, **kw)]
+    assert [g["T_world_wrist"] for g in model.synthesize(cloud, **kw)] == [
+        g["T_world_wrist"] for g in again.synthesize(cloud, **kw)
+    ]
 
 
 def test_user_experts_see_batches_and_hard_ones_reject(gmm):
@@ -141,8 +151,9 @@ def test_user_experts_see_batches_and_hard_ones_reject(gmm):
         batches.append(len(wrists))
         return wrists[:, 2] > 0.05  # hard: the wrist above 5 cm
 
-    grasps = gmm.synthesize(graspmix.data_path("mug.pcd"), seed=0,
-                            experts=[graspmix.expert("high", high_enough, kind="hard")])
+    grasps = gmm.synthesize(
+        graspmix.data_path("mug.pcd"), seed=0, experts=[graspmix.expert("high", high_enough, kind="hard")]
+    )
     assert max(batches) > 1, "the user expert must be called on batches"
     finite = [g for g in grasps if np.isfinite(g["log_likelihood"])]
     assert finite and all(g["T_world_wrist"][2] > 0.05 and g["experts"]["high"] == 0.0 for g in finite)
@@ -165,7 +176,6 @@ def test_errors_are_clear(gmm, tmp_path, demo):
     with pytest.raises(ValueError):  # a handful of points: too few for features
         gmm.synthesize(np.random.default_rng(0).normal(size=(5, 3)) * 0.01, remove_plane=False)
     # A model for one hand used with another: the PR2 gripper has none of the WSG 50's links.
-    import pybullet_data
 
     path = tmp_path / "model.json"
     gmm.save(path)
@@ -183,9 +193,25 @@ def test_errors_are_clear(gmm, tmp_path, demo):
 
 def test_cli_synthesize_runs_with_defaults_and_fails_cleanly(tmp_path):
     out = tmp_path / "grasps.json"
-    r = subprocess.run([sys.executable, "-m", "graspmix.cli", "synthesize", "--cloud", str(graspmix.data_path("mug.pcd")),
-                        "--out", str(out), "--samples", "50", "--png", str(tmp_path / "g.png")],
-                       capture_output=True, text=True, cwd=tmp_path)
+    r = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "graspmix.cli",
+            "synthesize",
+            "--cloud",
+            str(graspmix.data_path("mug.pcd")),
+            "--out",
+            str(out),
+            "--samples",
+            "50",
+            "--png",
+            str(tmp_path / "g.png"),
+        ],
+        capture_output=True,
+        text=True,
+        cwd=tmp_path,
+    )
     assert r.returncode == 0, r.stderr
     data = json.loads(out.read_text())
     assert data["format"] == "graspmix.grasps/1" and data["method"] == "gmm" and len(data["grasps"]) == 50
@@ -193,8 +219,12 @@ def test_cli_synthesize_runs_with_defaults_and_fails_cleanly(tmp_path):
     assert (tmp_path / "g.png").stat().st_size > 10_000
     bad = tmp_path / "bad.pcd"
     bad.write_text("VERSION .7\nFIELDS x y z\n")
-    r = subprocess.run([sys.executable, "-m", "graspmix.cli", "synthesize", "--cloud", str(bad)],
-                       capture_output=True, text=True, cwd=tmp_path)
+    r = subprocess.run(
+        [sys.executable, "-m", "graspmix.cli", "synthesize", "--cloud", str(bad)],
+        capture_output=True,
+        text=True,
+        cwd=tmp_path,
+    )
     assert r.returncode == 2
     assert len(r.stderr.strip().splitlines()) == 1 and "bad.pcd" in r.stderr
 
@@ -236,8 +266,24 @@ def test_demo_and_learn_commands_record_and_learn_the_box_grasp(tmp_path):
     from graspmix import cli
 
     demo, cloud, model = tmp_path / "demo.json", tmp_path / "box.pcd", tmp_path / "model.json"
-    assert cli.main(["demo", "--wrist", "0,0,0.2185,1,0,0,0", "--pregrasp", "finger_left_joint=0.05",
-                     "--close", "finger_left_joint=0.0", "--out", str(demo), "--cloud-out", str(cloud)]) == 0
+    assert (
+        cli.main(
+            [
+                "demo",
+                "--wrist",
+                "0,0,0.2185,1,0,0,0",
+                "--pregrasp",
+                "finger_left_joint=0.05",
+                "--close",
+                "finger_left_joint=0.0",
+                "--out",
+                str(demo),
+                "--cloud-out",
+                str(cloud),
+            ]
+        )
+        == 0
+    )
     d = graspmix.Demonstration.load(demo)
     assert d.grasp_joints["finger_left_joint"] == pytest.approx(BOX_HALF[0], abs=0.002)
     # The recorded cloud is the box's surface, in the world frame the wrist pose is given in.
@@ -248,5 +294,19 @@ def test_demo_and_learn_commands_record_and_learn_the_box_grasp(tmp_path):
     learnt = graspmix.GraspModel.load(model)
     assert learnt.method == "kde" and learnt.contact_links == ["palm", "finger_left", "finger_right"]
     # The hand must touch the object: closing in the air is an error, one line from the CLI.
-    assert cli.main(["demo", "--wrist", "0.5,0,0.2185,1,0,0,0", "--pregrasp", "finger_left_joint=0.05",
-                     "--close", "finger_left_joint=0.0", "--out", str(tmp_path / "air.json")]) == 2
+    assert (
+        cli.main(
+            [
+                "demo",
+                "--wrist",
+                "0.5,0,0.2185,1,0,0,0",
+                "--pregrasp",
+                "finger_left_joint=0.05",
+                "--close",
+                "finger_left_joint=0.0",
+                "--out",
+                str(tmp_path / "air.json"),
+            ]
+        )
+        == 2
+    )

@@ -1,12 +1,12 @@
 """graspmix.io: the bundled data found from the package, one format check per document kind, paths
 written into files, object lists, arrays."""
+
 import json
 from pathlib import Path
 
+import graspmix
 import numpy as np
 import pytest
-
-import graspmix
 from graspmix import io
 
 

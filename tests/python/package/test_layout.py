@@ -1,13 +1,13 @@
 """The package's shape: subpackages import only from lower layers, no module imports another's private
 names, no import cycle, and every module path of earlier versions still gives its names. Read from the
 source with ast (nothing imported for the structural checks)."""
+
 import ast
 import importlib
 from pathlib import Path
 
-import pytest
-
 import graspmix
+import pytest
 
 ROOT = Path(graspmix.__file__).resolve().parent
 # Lower number = lower layer. A subpackage imports from itself, from lower layers and from the C++ core;
@@ -17,27 +17,115 @@ LAYERS = {"io": 0, "model": 1, "sim": 2, "viz": 2, "experiment": 3, "cli": 4}
 FACADE = {"graspmix", "graspmix.acquisition", "graspmix.demo", "graspmix.plots", "graspmix.report", "graspmix.stats"}
 # Module paths of earlier versions and the names each had (read from the last flat layout).
 OLD_NAMES = {
-    "graspmix.acquisition": ["Acquisition", "AcquisitionSettings", "Camera", "Scene", "acquire", "apply_noise",
-                             "back_project", "clean_up", "plot_depth_images", "pybullet_data_path", "resolve_object",
-                             "ring_cameras"],
+    "graspmix.acquisition": [
+        "Acquisition",
+        "AcquisitionSettings",
+        "Camera",
+        "Scene",
+        "acquire",
+        "apply_noise",
+        "back_project",
+        "clean_up",
+        "plot_depth_images",
+        "pybullet_data_path",
+        "resolve_object",
+        "ring_cameras",
+    ],
     "graspmix.cli": ["CliError", "DATA", "build_parser", "main"],
     "graspmix.demo": ["AcquisitionSettings", "Demonstration", "Scene", "acquire", "record_demonstration"],
-    "graspmix.experiment": ["AttemptLog", "CLOSING", "COLUMNS", "CONDITIONS", "CSV_NAME", "Condition", "KEY_COLUMNS",
-                            "METHODS", "PRESETS", "PROTOCOL_FORMAT", "PROTOCOL_NAME", "Progress", "Protocol",
-                            "RESULT_COLUMNS", "SMOKE_OBJECTS", "STAGES", "STAGE_LABELS", "TIME_COLUMNS", "benchmark",
-                            "crop_above_plane", "derive_seed", "format_benchmark", "git_commit", "load_protocol",
-                            "prepare_folder", "read_objects_file", "read_rows", "run", "run_unit"],
-    "graspmix.model": ["DEMO_FORMAT", "Demonstration", "FeatureSettings", "GRASPS_FORMAT", "GraspModel", "GraspSet",
-                       "METHODS", "MODEL_FORMAT", "PACKAGE_PREFIX", "data_path", "default_model_path", "expert", "learn"],
+    "graspmix.experiment": [
+        "AttemptLog",
+        "CLOSING",
+        "COLUMNS",
+        "CONDITIONS",
+        "CSV_NAME",
+        "Condition",
+        "KEY_COLUMNS",
+        "METHODS",
+        "PRESETS",
+        "PROTOCOL_FORMAT",
+        "PROTOCOL_NAME",
+        "Progress",
+        "Protocol",
+        "RESULT_COLUMNS",
+        "SMOKE_OBJECTS",
+        "STAGES",
+        "STAGE_LABELS",
+        "TIME_COLUMNS",
+        "benchmark",
+        "crop_above_plane",
+        "derive_seed",
+        "format_benchmark",
+        "git_commit",
+        "load_protocol",
+        "prepare_folder",
+        "read_objects_file",
+        "read_rows",
+        "run",
+        "run_unit",
+    ],
+    "graspmix.model": [
+        "DEMO_FORMAT",
+        "Demonstration",
+        "FeatureSettings",
+        "GRASPS_FORMAT",
+        "GraspModel",
+        "GraspSet",
+        "METHODS",
+        "MODEL_FORMAT",
+        "PACKAGE_PREFIX",
+        "data_path",
+        "default_model_path",
+        "expert",
+        "learn",
+    ],
     "graspmix.plots": ["plot_grasps", "plot_surface_features"],
-    "graspmix.report": ["COLOURS", "CONDITIONS", "CSV_NAME", "METHODS", "METHOD_LABELS", "REASONS", "STAGES",
-                        "STAGE_COLOURS", "STAGE_LABELS", "SUMMARY_FORMAT", "build_report", "findings_table",
-                        "load_protocol", "mean_ci", "outcomes_table", "paired_ttest", "plot_runtime", "plot_success",
-                        "read_rows", "runtime_table", "summarize"],
-    "graspmix.sim": ["AcquisitionSettings", "DATA", "GRASPS_FORMAT", "Scene", "SimObject", "SimResult", "SimSettings",
-                     "default_hand_path", "execute", "execute_file", "execute_pybullet", "grasp_by_rank", "load_grasps",
-                     "load_hand", "load_object", "make_settings", "resolve_object", "rest_pose", "result_dict",
-                     "test_objects", "top_grasp"],
+    "graspmix.report": [
+        "COLOURS",
+        "CONDITIONS",
+        "CSV_NAME",
+        "METHODS",
+        "METHOD_LABELS",
+        "REASONS",
+        "STAGES",
+        "STAGE_COLOURS",
+        "STAGE_LABELS",
+        "SUMMARY_FORMAT",
+        "build_report",
+        "findings_table",
+        "load_protocol",
+        "mean_ci",
+        "outcomes_table",
+        "paired_ttest",
+        "plot_runtime",
+        "plot_success",
+        "read_rows",
+        "runtime_table",
+        "summarize",
+    ],
+    "graspmix.sim": [
+        "AcquisitionSettings",
+        "DATA",
+        "GRASPS_FORMAT",
+        "Scene",
+        "SimObject",
+        "SimResult",
+        "SimSettings",
+        "default_hand_path",
+        "execute",
+        "execute_file",
+        "execute_pybullet",
+        "grasp_by_rank",
+        "load_grasps",
+        "load_hand",
+        "load_object",
+        "make_settings",
+        "resolve_object",
+        "rest_pose",
+        "result_dict",
+        "test_objects",
+        "top_grasp",
+    ],
     "graspmix.stats": ["MeanCI", "PairedTTest", "mean_ci", "paired_ttest"],
 }
 
@@ -108,8 +196,12 @@ def test_no_import_runs_from_a_lower_layer_to_a_higher_one():
 
 
 def test_no_module_imports_a_private_name_of_another():
-    bad = [f"{name}:{line} imports {n} from {target}" for name in MODULES for target, n, line in _imports(name)
-           if target.startswith("graspmix") and n is not None and n.startswith("_") and n != "_core"]
+    bad = [
+        f"{name}:{line} imports {n} from {target}"
+        for name in MODULES
+        for target, n, line in _imports(name)
+        if target.startswith("graspmix") and n is not None and n.startswith("_") and n != "_core"
+    ]
     assert not bad, "\n".join(bad)
 
 
@@ -128,7 +220,7 @@ def test_no_import_cycle():
         stack.append(n)
         for m in sorted(graph[n]):
             if state.get(m) == "open":
-                raise AssertionError("import cycle: " + " -> ".join(stack[stack.index(m):] + [m]))
+                raise AssertionError("import cycle: " + " -> ".join(stack[stack.index(m) :] + [m]))
             if m not in state:
                 visit(m)
         stack.pop()
@@ -164,9 +256,15 @@ def test_deprecated_aliases_say_so_and_do_not_warn(recwarn):
 
 
 def test_files_and_functions_stay_short():
-    long_files = [f"{n}: {len(p.read_text().splitlines())} lines" for n, (p, _) in MODULES.items()
-                  if len(p.read_text().splitlines()) > 500]
-    long_functions = [f"{n}.{f.name}: {f.end_lineno - f.lineno + 1} lines" for n, (p, _) in MODULES.items()
-                      for f in ast.walk(ast.parse(p.read_text()))
-                      if isinstance(f, ast.FunctionDef) and f.end_lineno - f.lineno + 1 > 80]
+    long_files = [
+        f"{n}: {len(p.read_text().splitlines())} lines"
+        for n, (p, _) in MODULES.items()
+        if len(p.read_text().splitlines()) > 500
+    ]
+    long_functions = [
+        f"{n}.{f.name}: {f.end_lineno - f.lineno + 1} lines"
+        for n, (p, _) in MODULES.items()
+        for f in ast.walk(ast.parse(p.read_text()))
+        if isinstance(f, ast.FunctionDef) and f.end_lineno - f.lineno + 1 > 80
+    ]
     assert not long_files and not long_functions, long_files + long_functions

@@ -1,21 +1,31 @@
 """Settings structs at the Python boundary: each is one class whose defaults are the C++ struct's, and every
 keyword API (the old calls) builds the same struct, so its defaults come from there and nowhere else."""
+
 import copy
 import pickle
-from pathlib import Path
-
-import numpy as np
-import pytest
 
 import graspmix
+import numpy as np
+import pytest
 from graspmix import _core
 
 WSG50 = graspmix.data_path("hands", "wsg50.urdf")
 
 SETTINGS = [
-    "GmmSettings", "KdeSettings", "SceneSettings", "SurfaceFeatureSettings", "HandLoadSettings", "CollisionSettings",
-    "ContactSettings", "ConfigModelSettings", "KinematicFeasibilitySettings", "AxisAlignmentSettings",
-    "QuerySettings", "AnnealingSettings", "SynthesisSettings", "SimSettings",
+    "GmmSettings",
+    "KdeSettings",
+    "SceneSettings",
+    "SurfaceFeatureSettings",
+    "HandLoadSettings",
+    "CollisionSettings",
+    "ContactSettings",
+    "ConfigModelSettings",
+    "KinematicFeasibilitySettings",
+    "AxisAlignmentSettings",
+    "QuerySettings",
+    "AnnealingSettings",
+    "SynthesisSettings",
+    "SimSettings",
 ]
 
 
@@ -97,18 +107,21 @@ def test_settings_and_keywords_combine_and_keywords_win(wsg, cube):
         _core.CollisionExpert(wsg, cube, settings=_core.GmmSettings())
 
 
-@pytest.mark.parametrize("call", [
-    lambda w, c: _core.CollisionExpert(w, c, betta=1.0),
-    lambda w, c: _core.GaussianMixture(n_component=2),
-    lambda w, c: _core.PoseMixture(seeds=1),
-    lambda w, c: _core.PoseKDE(bandwidth=0.1),
-    lambda w, c: _core.prepare_cloud(c, voxel=0.01),
-    lambda w, c: _core.compute_surface_features(c, radious=0.01),
-    lambda w, c: _core.KinematicFeasibilityExpert(w, margin=0.01),
-    lambda w, c: _core.AxisAlignmentExpert([0, 0, -1], kappa=3.0),
-    lambda w, c: _core.Hand.from_urdf(WSG50, meshes=False),
-    lambda w, c: _core.ConfigModel([0.05], [0.02], w.joint_limits, alfa=1.0),
-])
+@pytest.mark.parametrize(
+    "call",
+    [
+        lambda w, c: _core.CollisionExpert(w, c, betta=1.0),
+        lambda w, c: _core.GaussianMixture(n_component=2),
+        lambda w, c: _core.PoseMixture(seeds=1),
+        lambda w, c: _core.PoseKDE(bandwidth=0.1),
+        lambda w, c: _core.prepare_cloud(c, voxel=0.01),
+        lambda w, c: _core.compute_surface_features(c, radious=0.01),
+        lambda w, c: _core.KinematicFeasibilityExpert(w, margin=0.01),
+        lambda w, c: _core.AxisAlignmentExpert([0, 0, -1], kappa=3.0),
+        lambda w, c: _core.Hand.from_urdf(WSG50, meshes=False),
+        lambda w, c: _core.ConfigModel([0.05], [0.02], w.joint_limits, alfa=1.0),
+    ],
+)
 def test_unknown_keyword_is_a_value_error_naming_it(wsg, cube, call):
     with pytest.raises(ValueError, match="unknown setting '.*' \\(valid: "):
         call(wsg, cube)
@@ -130,8 +143,9 @@ def test_old_keyword_calls_give_the_numbers_of_settings_calls(wsg, cube):
     cropped = _core.prepare_cloud(cube, crop_min=[-1, -1, 0.1], voxel_size=0, remove_outliers=False, remove_plane=False)
     assert np.all(cropped.points[:, 2] >= 0.1) and len(cropped.points) < len(cube)
     f_kw = _core.compute_surface_features(scene_kw.points, 0.012, orientation="centroid", n_threads=1)
-    f_s = _core.compute_surface_features(scene_kw.points,
-                                         settings=_core.SurfaceFeatureSettings(radius=0.012, orientation="centroid"))
+    f_s = _core.compute_surface_features(
+        scene_kw.points, settings=_core.SurfaceFeatureSettings(radius=0.012, orientation="centroid")
+    )
     np.testing.assert_array_equal(f_kw.frames, f_s.frames)
     np.testing.assert_array_equal(f_kw.curvatures, f_s.curvatures)
 
@@ -143,8 +157,9 @@ def test_old_keyword_calls_give_the_numbers_of_settings_calls(wsg, cube):
     wrists = np.tile([0, 0, 0, 0, 0, 0, 1.0], (5, 1))
     wrists[:, 2] = np.linspace(-0.1, 0.1, 5)
     e_kw = _core.CollisionExpert(wsg, cube, plane=[0, 0, 1, 0], beta=500.0, plane_margin=0.01)
-    e_s = _core.CollisionExpert(wsg, cube, plane=[0, 0, 1, 0],
-                                settings=_core.CollisionSettings(beta=500.0, plane_margin=0.01))
+    e_s = _core.CollisionExpert(
+        wsg, cube, plane=[0, 0, 1, 0], settings=_core.CollisionSettings(beta=500.0, plane_margin=0.01)
+    )
     np.testing.assert_array_equal(e_kw.log_w(wrists, [0.03]), e_s.log_w(wrists, [0.03]))
 
     ax_kw = _core.AxisAlignmentExpert([0, 0, -1], concentration=3.0)
@@ -170,8 +185,9 @@ def test_results_are_classes_that_still_read_like_the_old_dicts():
     cloud = _core.load_cloud(str(graspmix.data_path("mug.pcd"))).points
     surface, _ = model.features.surface(cloud, remove_plane=True)
     collision = _core.CollisionExpert(model.hand, surface.points)
-    res = model.synthesizer.synthesize(surface.frames, surface.curvatures, collision, None,
-                                       _core.SynthesisSettings(n_samples=20, n_optimise=1), seed=4)
+    res = model.synthesizer.synthesize(
+        surface.frames, surface.curvatures, collision, None, _core.SynthesisSettings(n_samples=20, n_optimise=1), seed=4
+    )
     g = res.grasps[0]
     assert isinstance(g, _core.Grasp)
     for key in g.keys():

@@ -1,12 +1,12 @@
 """The committed type stub python/graspmix/_core.pyi (scripts/make_stubs.sh) declares everything the built module
 has: every public class and function, and every field of every settings class. A stale stub fails here."""
+
 import ast
 import inspect
 from pathlib import Path
 
-import pytest
-
 import graspmix
+import pytest
 from graspmix import _core
 
 STUB = Path(graspmix.__file__).resolve().parent / "_core.pyi"
@@ -83,6 +83,10 @@ def test_every_settings_field_is_declared():
     classes, _, _ = _top_level(_stub_tree())
     settings = [n for n in dir(_core) if inspect.isclass(getattr(_core, n)) and hasattr(getattr(_core, n), "_fields")]
     assert len(settings) >= 14
-    missing = [f"{n}.{f}" for n in settings for f in getattr(_core, n)._fields
-               if n not in classes or f not in _members(classes[n])]
+    missing = [
+        f"{n}.{f}"
+        for n in settings
+        for f in getattr(_core, n)._fields
+        if n not in classes or f not in _members(classes[n])
+    ]
     assert not missing, f"settings fields not in {STUB.name} (run scripts/make_stubs.sh): {missing}"

@@ -1,11 +1,11 @@
 """load_cloud / save_cloud: round trips in every encoding, files written independently of PCL (by
 numpy), and broken files that must give a ValueError naming the file and the problem."""
+
 import struct
 
+import graspmix
 import numpy as np
 import pytest
-
-import graspmix
 
 
 @pytest.fixture
@@ -14,8 +14,10 @@ def points():
     return rng.uniform(-0.5, 0.5, size=(300, 3))
 
 
-@pytest.mark.parametrize("name,encoding", [("a.pcd", "ascii"), ("b.pcd", "binary"), ("c.pcd", "binary_compressed"),
-                                           ("d.ply", "ascii"), ("e.ply", "binary")])
+@pytest.mark.parametrize(
+    "name,encoding",
+    [("a.pcd", "ascii"), ("b.pcd", "binary"), ("c.pcd", "binary_compressed"), ("d.ply", "ascii"), ("e.ply", "binary")],
+)
 def test_round_trip(tmp_path, points, name, encoding):
     normals = points / np.linalg.norm(points, axis=1, keepdims=True)
     vp = np.array([0.1, 0.2, 0.3, 0.0, 0.0, np.sin(0.3), np.cos(0.3)])
@@ -41,9 +43,11 @@ def test_round_trip_without_normals(tmp_path, points):
 
 def _pcd_header(fields, size, typ, width, height, data, viewpoint="0 0 0 1 0 0 0"):
     n = len(fields)
-    return (f"# .PCD v0.7\nVERSION 0.7\nFIELDS {' '.join(fields)}\nSIZE {' '.join(map(str, size))}\n"
-            f"TYPE {' '.join(typ)}\nCOUNT {' '.join(['1'] * n)}\nWIDTH {width}\nHEIGHT {height}\n"
-            f"VIEWPOINT {viewpoint}\nPOINTS {width * height}\nDATA {data}\n").encode()
+    return (
+        f"# .PCD v0.7\nVERSION 0.7\nFIELDS {' '.join(fields)}\nSIZE {' '.join(map(str, size))}\n"
+        f"TYPE {' '.join(typ)}\nCOUNT {' '.join(['1'] * n)}\nWIDTH {width}\nHEIGHT {height}\n"
+        f"VIEWPOINT {viewpoint}\nPOINTS {width * height}\nDATA {data}\n"
+    ).encode()
 
 
 def test_organised_binary_pcd_with_nans_rgb_intensity_and_viewpoint(tmp_path):
@@ -56,8 +60,18 @@ def test_organised_binary_pcd_with_nans_rgb_intensity_and_viewpoint(tmp_path):
     rec["rgb"] = 0x00FF8800
     rec["intensity"] = np.arange(12)
     path = tmp_path / "org.pcd"
-    path.write_bytes(_pcd_header(["x", "y", "z", "rgb", "intensity"], [4] * 5, ["F", "F", "F", "U", "F"], 4, 3,
-                                 "binary", viewpoint="0.5 0 1 0 0 0 1") + rec.tobytes())
+    path.write_bytes(
+        _pcd_header(
+            ["x", "y", "z", "rgb", "intensity"],
+            [4] * 5,
+            ["F", "F", "F", "U", "F"],
+            4,
+            3,
+            "binary",
+            viewpoint="0.5 0 1 0 0 0 1",
+        )
+        + rec.tobytes()
+    )
     c = graspmix.load_cloud(path)
     assert (c.width, c.height, c.n_invalid) == (4, 3, 3)
     assert c.fields == ["x", "y", "z", "rgb", "intensity"]
@@ -71,8 +85,10 @@ def test_double_precision_ply_with_normals_written_by_numpy(tmp_path, fmt, endia
     rng = np.random.default_rng(3)
     P = rng.normal(size=(50, 3))
     N = P / np.linalg.norm(P, axis=1, keepdims=True)
-    head = (f"ply\nformat {fmt} 1.0\nelement vertex 50\nproperty double x\nproperty double y\nproperty double z\n"
-            "property float nx\nproperty float ny\nproperty float nz\nend_header\n").encode()
+    head = (
+        f"ply\nformat {fmt} 1.0\nelement vertex 50\nproperty double x\nproperty double y\nproperty double z\n"
+        "property float nx\nproperty float ny\nproperty float nz\nend_header\n"
+    ).encode()
     if endian:
         rec = np.zeros(50, dtype=[(k, endian + "f8") for k in "xyz"] + [(k, endian + "f4") for k in ("nx", "ny", "nz")])
         rec["x"], rec["y"], rec["z"] = P.T
@@ -125,7 +141,9 @@ def test_truncated_files(tmp_path, points):
 
 def test_wrong_header_empty_and_all_nan(tmp_path):
     p = tmp_path / "wrong.pcd"
-    p.write_bytes(b"VERSION 0.7\nFIELDS x y z\nSIZE 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA ascii\n1 2 3\n")
+    p.write_bytes(
+        b"VERSION 0.7\nFIELDS x y z\nSIZE 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA ascii\n1 2 3\n"
+    )
     _expect_error(p, "header")
     p = tmp_path / "garbage.pcd"
     p.write_bytes(b"hello world\n")
@@ -137,8 +155,9 @@ def test_wrong_header_empty_and_all_nan(tmp_path):
     p.write_bytes(b"")
     _expect_error(p, "empty")
     p = tmp_path / "nan.pcd"
-    p.write_bytes(_pcd_header(["x", "y", "z"], [4] * 3, ["F"] * 3, 2, 1, "binary") +
-                  struct.pack("<6f", *([float("nan")] * 6)))
+    p.write_bytes(
+        _pcd_header(["x", "y", "z"], [4] * 3, ["F"] * 3, 2, 1, "binary") + struct.pack("<6f", *([float("nan")] * 6))
+    )
     _expect_error(p, "NaN", "all 2 points")
     p = tmp_path / "noxyz.pcd"
     p.write_bytes(_pcd_header(["a", "b", "c"], [4] * 3, ["F"] * 3, 1, 1, "ascii") + b"1 2 3\n")
@@ -173,8 +192,9 @@ def test_double_and_integer_pcd_fields(tmp_path):
     rec["x"], rec["y"], rec["z"] = P.T
     rec["label"] = 7
     path = tmp_path / "double.pcd"
-    path.write_bytes(_pcd_header(["x", "y", "z", "label"], [8, 8, 8, 1], ["F", "F", "F", "U"], 20, 1, "binary") +
-                     rec.tobytes())
+    path.write_bytes(
+        _pcd_header(["x", "y", "z", "label"], [8, 8, 8, 1], ["F", "F", "F", "U"], 20, 1, "binary") + rec.tobytes()
+    )
     c = graspmix.load_cloud(path)
     np.testing.assert_array_equal(c.points, P)
     assert c.fields == ["x", "y", "z", "label"]

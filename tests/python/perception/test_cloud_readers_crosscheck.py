@@ -3,10 +3,9 @@ binary_compressed), plyfile writes PLY (ascii, binary little and big endian). Ra
 without normals and extra fields, float32 and float64 coordinates, some NaN points; the loaded numbers must
 be the written ones exactly (NaN rows dropped and counted)."""
 
+import graspmix
 import numpy as np
 import pytest
-
-import graspmix
 
 pypcd4 = pytest.importorskip("pypcd4")
 plyfile = pytest.importorskip("plyfile")

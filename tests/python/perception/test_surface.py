@@ -1,15 +1,15 @@
 """compute_surface_features and prepare_cloud against analytic answers and an independent numpy/scipy
 re-implementation of the definitions (PCA normals; PCL's pc1, pc2 = eigenvalues of the covariance of
 the neighbours' normals projected on the tangent plane, divided by the neighbour count)."""
+
 import subprocess
 import sys
 
+import graspmix
 import numpy as np
 import pytest
 from scipy.spatial import cKDTree
 from scipy.spatial.transform import Rotation
-
-import graspmix
 
 
 def sphere(n, R, seed=0, c=(0.0, 0.0, 0.0)):
@@ -158,16 +158,34 @@ def test_cli_features(tmp_path):
     P = sphere(6000, 0.035, seed=10)
     graspmix.save_cloud(tmp_path / "ball.pcd", P)
     out = tmp_path / "f.npz"
-    res = subprocess.run([sys.executable, "-m", "graspmix.cli", "features", "--cloud", str(tmp_path / "ball.pcd"),
-                          "--radius", "0.01", "--out", str(out), "--plot", str(tmp_path / "f.png")],
-                         capture_output=True, text=True)
+    res = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "graspmix.cli",
+            "features",
+            "--cloud",
+            str(tmp_path / "ball.pcd"),
+            "--radius",
+            "0.01",
+            "--out",
+            str(out),
+            "--plot",
+            str(tmp_path / "f.png"),
+        ],
+        capture_output=True,
+        text=True,
+    )
     assert res.returncode == 0, res.stderr
     f = np.load(out)
     assert f["frames"].shape == (6000, 7) and f["curvatures"].shape == (6000, 2)
     assert np.median(f["curvatures"][:, 0]) == pytest.approx((0.01 / 0.07) ** 2, rel=0.2)
     assert (tmp_path / "f.png").stat().st_size > 10000
-    bad = subprocess.run([sys.executable, "-m", "graspmix.cli", "features", "--cloud", str(tmp_path / "nope.pcd")],
-                         capture_output=True, text=True)
+    bad = subprocess.run(
+        [sys.executable, "-m", "graspmix.cli", "features", "--cloud", str(tmp_path / "nope.pcd")],
+        capture_output=True,
+        text=True,
+    )
     assert bad.returncode == 2
     assert bad.stderr.strip().count("\n") == 0 and "nope.pcd: no such file" in bad.stderr
 
@@ -178,11 +196,31 @@ def test_propagation_orients_the_inside_of_a_cup_outward():
     rng = np.random.default_rng(11)
     Ro, Ri, h, t, n = 0.04, 0.025, 0.1, 0.015, 30000
     parts = [  # (area, sampler of (rho, z), true normal from the angle a)
-        (2 * np.pi * Ro * h, lambda m: (np.full(m, Ro), rng.uniform(0, h, m)), lambda a: np.c_[np.cos(a), np.sin(a), 0 * a]),
-        (2 * np.pi * Ri * (h - t), lambda m: (np.full(m, Ri), rng.uniform(t, h, m)), lambda a: -np.c_[np.cos(a), np.sin(a), 0 * a]),
-        (np.pi * Ro**2, lambda m: (Ro * np.sqrt(rng.uniform(size=m)), np.zeros(m)), lambda a: np.c_[0 * a, 0 * a, -1 + 0 * a]),
-        (np.pi * Ri**2, lambda m: (Ri * np.sqrt(rng.uniform(size=m)), np.full(m, t)), lambda a: np.c_[0 * a, 0 * a, 1 + 0 * a]),
-        (np.pi * (Ro**2 - Ri**2), lambda m: (np.sqrt(rng.uniform(Ri**2, Ro**2, m)), np.full(m, h)), lambda a: np.c_[0 * a, 0 * a, 1 + 0 * a]),
+        (
+            2 * np.pi * Ro * h,
+            lambda m: (np.full(m, Ro), rng.uniform(0, h, m)),
+            lambda a: np.c_[np.cos(a), np.sin(a), 0 * a],
+        ),
+        (
+            2 * np.pi * Ri * (h - t),
+            lambda m: (np.full(m, Ri), rng.uniform(t, h, m)),
+            lambda a: -np.c_[np.cos(a), np.sin(a), 0 * a],
+        ),
+        (
+            np.pi * Ro**2,
+            lambda m: (Ro * np.sqrt(rng.uniform(size=m)), np.zeros(m)),
+            lambda a: np.c_[0 * a, 0 * a, -1 + 0 * a],
+        ),
+        (
+            np.pi * Ri**2,
+            lambda m: (Ri * np.sqrt(rng.uniform(size=m)), np.full(m, t)),
+            lambda a: np.c_[0 * a, 0 * a, 1 + 0 * a],
+        ),
+        (
+            np.pi * (Ro**2 - Ri**2),
+            lambda m: (np.sqrt(rng.uniform(Ri**2, Ro**2, m)), np.full(m, h)),
+            lambda a: np.c_[0 * a, 0 * a, 1 + 0 * a],
+        ),
     ]
     area = np.array([p[0] for p in parts])
     counts = rng.multinomial(n, area / area.sum())

@@ -1,13 +1,13 @@
 """Hand.from_urdf and fk against pybullet's own link frames, and the errors a user meets."""
+
 from pathlib import Path
 
+import graspmix
 import numpy as np
 import pybullet as pb
 import pybullet_data
 import pytest
 from scipy.spatial.transform import Rotation
-
-import graspmix
 
 DATA = Path(pybullet_data.getDataPath())
 WSG50 = graspmix.data_path("hands", "wsg50.urdf")
@@ -171,8 +171,9 @@ def test_joint_mappings():
     q = random_configuration(hand, np.random.default_rng(0))
     as_dict = hand.joints_dict(q)
     assert list(as_dict) == sorted(hand.joint_names) or set(as_dict) == set(hand.joint_names)
-    np.testing.assert_allclose(hand.fk(random_pose(np.random.default_rng(1)), as_dict),
-                               hand.fk(random_pose(np.random.default_rng(1)), q))
+    np.testing.assert_allclose(
+        hand.fk(random_pose(np.random.default_rng(1)), as_dict), hand.fk(random_pose(np.random.default_rng(1)), q)
+    )
     np.testing.assert_allclose(hand.joints_array(as_dict), q)
     assert "panda_finger_joint2" not in hand.joint_names  # a mimic joint
     # Batches accept a list of mappings and broadcast one configuration.

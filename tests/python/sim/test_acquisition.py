@@ -1,18 +1,18 @@
 """Acquisition: clean clouds lie on the object's surface, the noise model has the spread of
 eq:noise_model, seeds reproduce clouds, the CLI writes a readable PCD, errors are clear."""
+
 import dataclasses
 import math
 import xml.etree.ElementTree as ET
 
+import graspmix
 import numpy as np
 import pytest
+from graspmix import cli, sim
+from graspmix.sim import acquisition as acq_mod
 from scipy.spatial import cKDTree
 from scipy.spatial.transform import Rotation
 from scipy.stats import norm
-
-import graspmix
-from graspmix.sim import acquisition as acq_mod
-from graspmix import cli, sim
 
 OBJECTS = ["cube_small.urdf", "random_urdfs/033/033.urdf", "random_urdfs/122/122.urdf", "objects/mug.urdf"]
 
@@ -47,7 +47,9 @@ def test_clean_cloud_lies_on_the_mesh(obj, surfaces):
     a = acq_mod.acquire(obj, noise=False)
     assert len(a.points) > 1000
     d, _ = surfaces[obj].query(a.points)
-    print(f"{obj}: {len(a.points)} points, distance to the mesh max {d.max() * 1e3:.3f} mm, median {np.median(d) * 1e3:.3f} mm")
+    print(
+        f"{obj}: {len(a.points)} points, distance to the mesh max {d.max() * 1e3:.3f} mm, median {np.median(d) * 1e3:.3f} mm"
+    )
     assert d.max() < 1e-3
     # Every camera sees the object, and the points' viewpoints are their cameras.
     assert set(a.camera_index) == {0, 1, 2, 3}
@@ -92,8 +94,10 @@ def test_noisy_cloud_residuals(surfaces):
     dn, _ = surfaces["cube_small.urdf"].query(noisy.points)
     # Depth noise of 1 mm along rays that meet the faces at 45-70 degrees, plus shifted pixels (which
     # mostly land on the same face): median distances of a fraction of a millimetre to a few.
-    print(f"cube: clean median {np.median(dc) * 1e3:.3f} mm, noisy median {np.median(dn) * 1e3:.3f} mm, "
-          f"noisy 95% {np.percentile(dn, 95) * 1e3:.2f} mm")
+    print(
+        f"cube: clean median {np.median(dc) * 1e3:.3f} mm, noisy median {np.median(dn) * 1e3:.3f} mm, "
+        f"noisy 95% {np.percentile(dn, 95) * 1e3:.2f} mm"
+    )
     assert 0.3e-3 < np.median(dn) < 1.5e-3
     assert np.percentile(dn, 95) < 5e-3
     assert np.median(dn) > 10 * np.median(dc)
@@ -106,8 +110,10 @@ def test_seeds_reproduce_clouds():
     np.testing.assert_array_equal(a.points, b.points)
     assert a.points.shape != c.points.shape or not np.array_equal(a.points, c.points)
     # Without noise the seed does not matter.
-    np.testing.assert_array_equal(acq_mod.acquire("random_urdfs/033/033.urdf", seed=1).points,
-                                  acq_mod.acquire("random_urdfs/033/033.urdf", seed=2).points)
+    np.testing.assert_array_equal(
+        acq_mod.acquire("random_urdfs/033/033.urdf", seed=1).points,
+        acq_mod.acquire("random_urdfs/033/033.urdf", seed=2).points,
+    )
 
 
 def test_postprocess_hook_and_keep_scene():
@@ -116,7 +122,9 @@ def test_postprocess_hook_and_keep_scene():
     def crop_above(a, height=0.01):
         seen["n"] = len(a.points)
         keep = a.points[:, 2] > height
-        return dataclasses.replace(a, points=a.points[keep], viewpoints=a.viewpoints[keep], camera_index=a.camera_index[keep])
+        return dataclasses.replace(
+            a, points=a.points[keep], viewpoints=a.viewpoints[keep], camera_index=a.camera_index[keep]
+        )
 
     a = acq_mod.acquire("cube_small.urdf", postprocess=crop_above)
     assert seen["n"] > len(a.points) > 0 and a.points[:, 2].min() > 0.01
@@ -135,8 +143,23 @@ def test_errors():
 
 def test_cli_acquire(tmp_path, capsys):
     out, pic = tmp_path / "cloud.pcd", tmp_path / "depth.png"
-    assert cli.main(["acquire", "--object", "random_urdfs/012/012.urdf", "--noise", "--seed", "3", "--out", str(out),
-                     "--picture", str(pic)]) == 0
+    assert (
+        cli.main(
+            [
+                "acquire",
+                "--object",
+                "random_urdfs/012/012.urdf",
+                "--noise",
+                "--seed",
+                "3",
+                "--out",
+                str(out),
+                "--picture",
+                str(pic),
+            ]
+        )
+        == 0
+    )
     assert "points" in capsys.readouterr().out
     pts = graspmix.load_cloud(str(out)).points
     ref = acq_mod.acquire("random_urdfs/012/012.urdf", noise=True, seed=3).points
@@ -149,8 +172,9 @@ def test_cli_acquire(tmp_path, capsys):
 
 def test_clean_up_removes_the_table_of_a_scene_and_keeps_viewpoints_aligned():
     raw = acq_mod.acquire("random_urdfs/012/012.urdf", settings=acq_mod.AcquisitionSettings(keep="scene"))
-    clean = acq_mod.acquire("random_urdfs/012/012.urdf", settings=acq_mod.AcquisitionSettings(keep="scene"),
-                            postprocess=acq_mod.clean_up())
+    clean = acq_mod.acquire(
+        "random_urdfs/012/012.urdf", settings=acq_mod.AcquisitionSettings(keep="scene"), postprocess=acq_mod.clean_up()
+    )
     assert (raw.points[:, 2] < 0.002).mean() > 0.3  # the table dominates the raw scene
     assert clean.plane is not None and abs(abs(clean.plane[2]) - 1) < 1e-3 and abs(clean.plane[3]) < 2e-3
     assert (clean.points[:, 2] < 0.002).mean() < 0.02

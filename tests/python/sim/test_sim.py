@@ -1,19 +1,25 @@
 """Grasp execution in Bullet (C++): hand-made grasps with known outcomes, agreement with the same
 protocol run in pybullet, determinism, errors and the CLI."""
+
 import json
 import math
 
+import graspmix
 import numpy as np
 import pytest
-
-import graspmix
 from graspmix import cli, sim
 
 # Objects of several kinds: a 5 cm cube, small and large random_urdfs (convex decompositions of six
 # parts each), tall ones, and the mug.
-AGREEMENT_OBJECTS = ["cube_small.urdf", "random_urdfs/033/033.urdf", "random_urdfs/001/001.urdf",
-                     "random_urdfs/140/140.urdf", "random_urdfs/485/485.urdf", "random_urdfs/122/122.urdf",
-                     "objects/mug.urdf"]
+AGREEMENT_OBJECTS = [
+    "cube_small.urdf",
+    "random_urdfs/033/033.urdf",
+    "random_urdfs/001/001.urdf",
+    "random_urdfs/140/140.urdf",
+    "random_urdfs/485/485.urdf",
+    "random_urdfs/122/122.urdf",
+    "objects/mug.urdf",
+]
 
 
 PR2 = graspmix.io.pybullet_data_path() / "pr2_gripper.urdf"
@@ -38,25 +44,55 @@ def agreement_grasps():
         lo, hi = object_box(obj)
         c = (lo[:2] + hi[:2]) / 2
         tip = max(0.01, hi[2] - 0.06)  # the palm clears the top of tall objects
-        for k in range(3):
-            out.append((obj, "good", sim.top_grasp(c + rng.normal(0, 0.004, 2), 0.055, 0.0, yaw=rng.uniform(0, math.pi), tip_height=tip)))
-        out.append((obj, "marginal", sim.top_grasp(c + rng.uniform(-0.03, 0.03, 2), 0.055, 0.0, yaw=rng.uniform(0, math.pi), tip_height=tip)))
-        out.append((obj, "fingertips", sim.top_grasp(c, 0.055, 0.0, yaw=rng.uniform(0, math.pi), tip_height=hi[2] - 0.01)))
+        for _ in range(3):
+            out.append(
+                (
+                    obj,
+                    "good",
+                    sim.top_grasp(c + rng.normal(0, 0.004, 2), 0.055, 0.0, yaw=rng.uniform(0, math.pi), tip_height=tip),
+                )
+            )
+        out.append(
+            (
+                obj,
+                "marginal",
+                sim.top_grasp(c + rng.uniform(-0.03, 0.03, 2), 0.055, 0.0, yaw=rng.uniform(0, math.pi), tip_height=tip),
+            )
+        )
+        out.append(
+            (obj, "fingertips", sim.top_grasp(c, 0.055, 0.0, yaw=rng.uniform(0, math.pi), tip_height=hi[2] - 0.01))
+        )
         out.append((obj, "too wide", sim.top_grasp(c, 0.055, 0.05, yaw=rng.uniform(0, math.pi), tip_height=tip)))
-        out.append((obj, "off the object", sim.top_grasp(c + [0.0, (hi[1] - lo[1]) / 2 + 0.05], 0.04, 0.0, tip_height=0.01)))
+        out.append(
+            (obj, "off the object", sim.top_grasp(c + [0.0, (hi[1] - lo[1]) / 2 + 0.05], 0.04, 0.0, tip_height=0.01))
+        )
         out.append((obj, "in collision", sim.top_grasp(c, 0.004, 0.0, tip_height=tip)))
         out.append((obj, "weak", sim.top_grasp(c, 0.055, 0.0, yaw=rng.uniform(0, math.pi), tip_height=tip)))
     # Another hand: the PR2 gripper (two revolute fingers with STL meshes and fixed tips), pole pointing down.
     from scipy.spatial.transform import Rotation
 
-    for obj, z, yaw, closed in [("cube_small.urdf", 0.335, 0.0, 0.0), ("cube_small.urdf", 0.335, 1.5, 0.3),
-                                ("cube_small.urdf", 0.345, 0.0, 0.3), ("cube_small.urdf", 0.345, 1.5, 0.15),
-                                ("random_urdfs/033/033.urdf", 0.335, 0.5, 0.15), ("random_urdfs/033/033.urdf", 0.335, 0.5, 0.3),
-                                ("random_urdfs/033/033.urdf", 0.335, 0.0, 0.3), ("random_urdfs/033/033.urdf", 0.345, 1.5, 0.0)]:
+    for obj, z, yaw, closed in [
+        ("cube_small.urdf", 0.335, 0.0, 0.0),
+        ("cube_small.urdf", 0.335, 1.5, 0.3),
+        ("cube_small.urdf", 0.345, 0.0, 0.3),
+        ("cube_small.urdf", 0.345, 1.5, 0.15),
+        ("random_urdfs/033/033.urdf", 0.335, 0.5, 0.15),
+        ("random_urdfs/033/033.urdf", 0.335, 0.5, 0.3),
+        ("random_urdfs/033/033.urdf", 0.335, 0.0, 0.3),
+        ("random_urdfs/033/033.urdf", 0.345, 1.5, 0.0),
+    ]:
         q = (Rotation.from_euler("z", yaw) * Rotation.from_euler("y", math.pi / 2)).as_quat()
-        out.append((obj, "pr2 gripper", {"T_world_wrist": [0.0, 0.0, z, *q],
-                                         "pregrasp_joints": {"left_gripper_joint": 0.5, "right_gripper_joint": 0.5},
-                                         "grasp_joints": {"left_gripper_joint": closed, "right_gripper_joint": closed}}))
+        out.append(
+            (
+                obj,
+                "pr2 gripper",
+                {
+                    "T_world_wrist": [0.0, 0.0, z, *q],
+                    "pregrasp_joints": {"left_gripper_joint": 0.5, "right_gripper_joint": 0.5},
+                    "grasp_joints": {"left_gripper_joint": closed, "right_gripper_joint": closed},
+                },
+            )
+        )
     return out
 
 
@@ -75,11 +111,15 @@ def test_agreement_with_pybullet():
         same_reason += ours.reason == ref["reason"]
         kinds.setdefault(ours.reason, 0)
         kinds[ours.reason] += 1
-        rows.append(f"{obj:28s} {kind:15s} bullet-cpp {ours.reason:18s} {ours.lift_height:6.3f} m | "
-                    f"pybullet {ref['reason']:18s} {ref['lift_height']:6.3f} m{'' if agree else '  DISAGREE'}")
+        rows.append(
+            f"{obj:28s} {kind:15s} bullet-cpp {ours.reason:18s} {ours.lift_height:6.3f} m | "
+            f"pybullet {ref['reason']:18s} {ref['lift_height']:6.3f} m{'' if agree else '  DISAGREE'}"
+        )
     print("\n".join(rows))
-    print(f"agreement with pybullet: {same}/{len(grasps)} = {same / len(grasps):.1%} on success, "
-          f"{same_reason / len(grasps):.1%} on the reason; outcomes {kinds}")
+    print(
+        f"agreement with pybullet: {same}/{len(grasps)} = {same / len(grasps):.1%} on success, "
+        f"{same_reason / len(grasps):.1%} on the reason; outcomes {kinds}"
+    )
     # The set must hold both outcomes in numbers, or agreement would mean little.
     assert kinds.get("success", 0) >= 10 and len(grasps) - kinds.get("success", 0) >= 10
     assert same / len(grasps) >= 0.9
@@ -149,8 +189,13 @@ def test_errors(tmp_path):
 
 
 def write_grasps(path, grasps, hand="wsg50.urdf"):
-    doc = {"format": "graspmix.grasps/1", "hand": hand, "method": "manual", "cloud": "",
-           "grasps": [dict(g, rank=i + 1) for i, g in enumerate(grasps)]}
+    doc = {
+        "format": "graspmix.grasps/1",
+        "hand": hand,
+        "method": "manual",
+        "cloud": "",
+        "grasps": [dict(g, rank=i + 1) for i, g in enumerate(grasps)],
+    }
     path.write_text(json.dumps(doc))
 
 

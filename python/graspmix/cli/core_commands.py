@@ -216,9 +216,11 @@ def add_parsers(sub) -> None:
         "--viewpoint", type=float_in(), nargs=3, metavar=("X", "Y", "Z"), help="camera position for the normals"
     )
     s.add_argument("--file-normals", action="store_true", help="use the file's normals instead of estimating them")
-    # 10 restates compute_surface_features' default (C++ SurfaceSettings::min_neighbours); printed below.
     s.add_argument(
-        "--min-neighbours", type=int_in(0), default=10, help="drop points with fewer neighbours within radius"
+        "--min-neighbours",
+        type=int_in(0),
+        default=_core.SurfaceFeatureSettings().min_neighbours,
+        help="drop points with fewer neighbours within radius",
     )
     s.add_argument("--voxel-size", type=float_in(0.0), default=0.0, help="voxel-grid down-sampling first (m; 0 = off)")
     s.add_argument("--remove-outliers", action="store_true", help="statistical outlier removal first")

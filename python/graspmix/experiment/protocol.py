@@ -8,10 +8,13 @@ import hashlib
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from .. import _core
 from ..io import PROTOCOL_FORMAT, read_document, resolve_object, sha256_file, test_objects
 from ..io.checks import MAX_ITERATIONS, MAX_SAMPLES, check_float, check_int, check_seed, quote
 from ..model import default_model_path
 from ..model.settings import METHODS, SynthesisOptions
+
+_ANNEALING = _core.AnnealingSettings()  # the C++ defaults, the single source
 
 PROTOCOL_NAME = "protocol.json"
 
@@ -61,8 +64,8 @@ class Protocol:
     methods: list[str] = field(default_factory=lambda: list(METHODS))
     n_samples: int = SynthesisOptions.n_samples  # grasps sampled and ranked per attempt
     n_optimise: int = SynthesisOptions.n_optimise  # the best this many are annealed (conditions with optimisation)
-    annealing_iterations: int = 100  # the paper's 100 (= C++ AnnealingSettings::iterations)
-    initial_temperature: float = 1.0  # the paper's 1.0, linear decay (= C++ AnnealingSettings)
+    annealing_iterations: int = _ANNEALING.iterations  # the paper's 100
+    initial_temperature: float = _ANNEALING.initial_temperature  # the paper's 1.0, linear decay
     query_samples: int = SynthesisOptions.query_samples  # N_Q samples per link for the query densities
     # m: points at most this high above the support plane z = 0 are the table: the acquisition's clean-up
     # drops them and the synthesis is given the same table clearance.

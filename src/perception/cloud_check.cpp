@@ -13,15 +13,6 @@ namespace graspmix::cloud_check {
 
 namespace {
 
-[[noreturn]] void fail(const std::string& path, const std::string& what) {
-  throw std::invalid_argument(path + ": " + what);
-}
-
-std::string str(std::uint64_t v) { return std::to_string(v); }
-
-/// A header longer than this is not a header (real ones are a few hundred bytes); it also bounds the
-/// search for the DATA line in a file that has none.
-constexpr std::uint64_t kMaxHeaderBytes = 1u << 20;
 /// LZF's longest back reference is 3 bytes long and copies 264, so no LZF stream expands more.
 constexpr std::uint64_t kLzfMaxExpansion = 88;
 

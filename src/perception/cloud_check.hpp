@@ -7,11 +7,23 @@
 // its header and every allocation is bounded by the file's size. A failure throws std::invalid_argument
 // naming the file and, for text, the line.
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
 
 namespace graspmix::cloud_check {
+
+/// A header longer than this is not a header (real ones are a few hundred bytes); it also bounds the
+/// search for the end of a header in a file that has none.
+inline constexpr std::uint64_t kMaxHeaderBytes = 1u << 20;
+
+/// The error of a bad file: its path, then what is wrong.
+[[noreturn]] inline void fail(const std::string& path, const std::string& what) {
+  throw std::invalid_argument(path + ": " + what);
+}
+
+inline std::string str(std::uint64_t v) { return std::to_string(v); }
 
 /// What a checked PCD header says (only what the loader needs afterwards).
 struct PcdHeader {

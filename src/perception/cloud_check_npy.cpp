@@ -9,10 +9,6 @@ namespace graspmix::cloud_check {
 
 namespace {
 
-[[noreturn]] void fail(const std::string& path, const std::string& what) {
-  throw std::invalid_argument(path + ": " + what);
-}
-
 /// The text after `'key':` in the header dictionary (spaces skipped); throws when the key is missing.
 std::string_view value_of(const std::string& path, std::string_view dict, const char* key) {
   for (const char q : {'\'', '"'}) {

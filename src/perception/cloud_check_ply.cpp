@@ -10,14 +10,6 @@ namespace graspmix::cloud_check {
 
 namespace {
 
-[[noreturn]] void fail(const std::string& path, const std::string& what) {
-  throw std::invalid_argument(path + ": " + what);
-}
-
-std::string str(std::uint64_t v) { return std::to_string(v); }
-
-constexpr std::uint64_t kMaxHeaderBytes = 1u << 20;
-
 struct Scalar {
   Kind kind = Kind::kFloat;
   int size = 4;

@@ -8,6 +8,8 @@ import json
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from graspmix.experiment import log
+
 DATA = Path(__file__).resolve().parents[3] / "data"  # the source tree's bundled data
 
 
@@ -120,33 +122,7 @@ def protocol_doc() -> dict:
     }
 
 
-COLUMNS = [
-    "object",
-    "trial",
-    "condition",
-    "method",
-    "noise",
-    "optimise",
-    "acquisition_seed",
-    "synthesis_seed",
-    "n_points",
-    "success",
-    "reason",
-    "lift_height",
-    "contact_count",
-    "log_likelihood",
-    "grasp",
-    "evaluations",
-    "rejected",
-    "error",
-    "t_acquisition",
-    "t_features",
-    "t_query",
-    "t_sampling",
-    "t_optimisation",
-    "t_synthesis",
-    "t_execution",
-]
+COLUMNS = log.COLUMNS  # the experiment's CSV columns, as the runner writes them
 
 
 def attempts_csv(edit=None) -> str:

@@ -1,5 +1,5 @@
 // The grasp layer: the collision expert, contact models, the hand configuration model, constraint experts
-// and the grasp synthesiser.
+// (the synthesiser is bound by bind_grasp_synthesis.cpp).
 #include <pybind11/functional.h>
 
 #include "common.hpp"
@@ -14,25 +14,8 @@ namespace graspmix::py_bind {
 
 namespace {
 
-using ExpertList = std::vector<std::shared_ptr<const Expert>>;
-
-ExpertList to_experts(const py::object& obj) {
-  ExpertList out;
-  if (obj.is_none()) return out;
-  for (const py::handle& e : obj) {
-    try {
-      out.push_back(e.cast<std::shared_ptr<Expert>>());
-    } catch (const py::cast_error&) {
-      throw py::value_error("experts: every item must be a graspmix expert (got " +
-                            std::string(py::str(py::type::of(e))) + ")");
-    }
-  }
-  return out;
-}
-
-}  // namespace
-
-void bind_grasp(py::module_& m) {
+/// The collision expert W and its settings and results.
+void bind_collision(py::module_& m) {
   SettingsClass<CollisionSettings>(m, "CollisionSettings", "The collision expert W(h) (eq:opt_criterion_std_col).")
       .field("beta", &CollisionSettings::beta,
              "1/m: log W = -beta * total depth (2000: 0.5 mm of penetration costs one nat)")
@@ -145,7 +128,10 @@ void bind_grasp(py::module_& m) {
       .def_property_readonly("beta", [](const CollisionExpert& e) { return e.settings().beta; })
       .def_property_readonly("point_radius", [](const CollisionExpert& e) { return e.settings().point_radius; })
       .def_property_readonly("plane_margin", [](const CollisionExpert& e) { return e.settings().plane_margin; });
+}
 
+/// Contact models M_i (and the demonstration's contact data) and the configuration model C.
+void bind_models(py::module_& m) {
   SettingsClass<ContactSettings>(m, "ContactSettings", "How contact points are taken from a demonstration.")
       .field("max_distance", &ContactSettings::max_distance,
              "m: object points farther than this from a link's geometry are not its contacts")
@@ -250,7 +236,10 @@ void bind_grasp(py::module_& m) {
       .def_property_readonly("kernels", &ConfigModel::kernels)
       .def_property_readonly("sigma", &ConfigModel::sigma)
       .def_property_readonly("settings", [](const ConfigModel& c) { return ConfigModelSettings(c.settings()); });
+}
 
+/// The constraint experts E_k: the base class, the kinematic and approach experts, Python functions.
+void bind_experts(py::module_& m) {
   py::class_<Expert, std::shared_ptr<Expert>>(m, "Expert", "A task-constraint expert E_k (log values per grasp).")
       .def_property_readonly("name", &Expert::name)
       .def(
@@ -336,168 +325,15 @@ void bind_grasp(py::module_& m) {
              return std::make_shared<FunctionExpert>(name, f);
            }),
            py::arg("name"), py::arg("fn"));
+}
 
-  SettingsClass<QuerySettings>(m, "QuerySettings", "Contact query densities Q_i (eq:query_density_approx).")
-      .field("n_samples", &QuerySettings::n_samples, "N_Q: samples per link to fit each query density from")
-      .field("n_components", &QuerySettings::n_components, "K_Q: components of each query mixture (GMM models)")
-      .field("max_iter", &QuerySettings::max_iter, "EM iterations of the query mixtures")
-      .field("reg_covar", &QuerySettings::reg_covar, "added to the query mixtures' covariance diagonals")
-      .field("kde", &QuerySettings::kde, "KdeSettings of KDE query densities (features unused)")
-      .field("frame_jitter", &QuerySettings::frame_jitter,
-             "rotate each sampled surface frame about its normal by up to pi exp(-jitter_sharpness ((k1 - k2) / k1)^2)")
-      .field("jitter_sharpness", &QuerySettings::jitter_sharpness, "s of Kopicki's rule above")
-      .done()
-      .def_property(
-          "kde_bandwidths",
-          [](const QuerySettings& s) { return py::make_tuple(s.kde.position_bandwidth, s.kde.orientation_bandwidth); },
-          [](QuerySettings& s, const py::tuple& t) {
-            if (t.size() != 2) throw py::value_error("kde_bandwidths: expected (position m, orientation rad)");
-            s.kde.position_bandwidth = t[0].cast<double>();
-            s.kde.orientation_bandwidth = t[1].cast<double>();
-          },
-          "(position m, orientation rad) of KDE query kernels: kde.position_bandwidth, kde.orientation_bandwidth "
-          "(kept for one release; use kde).");
+}  // namespace
 
-  SettingsClass<AnnealingSettings>(m, "AnnealingSettings", "Simulated annealing of the best candidates.")
-      .field("iterations", &AnnealingSettings::iterations, "the paper's 100")
-      .field("initial_temperature", &AnnealingSettings::initial_temperature, "the paper's 1.0, falling linearly to 0")
-      .field("position_step", &AnnealingSettings::position_step,
-             "m: std of wrist translation proposals at temperature 1")
-      .field("rotation_step", &AnnealingSettings::rotation_step,
-             "rad: std of wrist rotation proposals at temperature 1")
-      .field("joint_step", &AnnealingSettings::joint_step,
-             "std of joint proposals at temperature 1, in units of the config model's kernel std")
-      .done();
-
-  SettingsClass<SynthesisSettings>(m, "SynthesisSettings", "Grasp synthesis: sampling, ranking and optimisation.")
-      .field("n_samples", &SynthesisSettings::n_samples, "grasps sampled and ranked")
-      .field("n_optimise", &SynthesisSettings::n_optimise, "the best this many are optimised")
-      .field("optimise", &SynthesisSettings::optimise, "anneal the best n_optimise")
-      .field("clear_pregrasp", &SynthesisSettings::clear_pregrasp,
-             "an extra collision expert on the pre-grasp configuration (log W of the opened hand)")
-      .field("max_sampling_rounds", &SynthesisSettings::max_sampling_rounds,
-             "batches of n_samples drawn at most until n_samples grasps pass every hard expert")
-      .field("query", &SynthesisSettings::query, "QuerySettings")
-      .field("annealing", &SynthesisSettings::annealing, "AnnealingSettings")
-      .seed("seed", &SynthesisSettings::seed, "seeds everything random in synthesis (None: 0)")
-      .done();
-
-  const std::vector<std::string> grasp_keys = {"T_world_wrist", "joints",     "pregrasp",     "log_likelihood",
-                                               "log_collision", "log_config", "log_pregrasp", "log_contact",
-                                               "log_experts",   "optimised"};
-  auto grasp =
-      py::class_<Grasp>(m, "Grasp", "One synthesised grasp and its log-likelihood terms.")
-          .def_readonly("T_world_wrist", &Grasp::T_world_wrist, "(7,) [x, y, z, qx, qy, qz, qw]")
-          .def_readonly("joints", &Grasp::joints, "grasp configuration h_c (Hand.joint_names order)")
-          .def_readonly("pregrasp", &Grasp::pregrasp, "the configuration to approach with")
-          .def_readonly("log_likelihood", &Grasp::log_likelihood, "log L (eq:opt_criterion_extended)")
-          .def_readonly("log_collision", &Grasp::log_collision, "log W")
-          .def_readonly("log_config", &Grasp::log_config, "log C")
-          .def_readonly("log_pregrasp", &Grasp::log_pregrasp, "log W of the pre-grasp configuration (clear_pregrasp)")
-          .def_readonly("log_contact", &Grasp::log_contact, "log Q_i per query link (SynthesisResult.contact_links)")
-          .def_readonly("log_experts", &Grasp::log_experts, "log E_k per expert (SynthesisResult.expert_names)")
-          .def_readonly("optimised", &Grasp::optimised)
-          .def("__repr__", [](const Grasp& g) {
-            return "<Grasp log_likelihood=" + std::to_string(g.log_likelihood) + (g.optimised ? ", optimised>" : ">");
-          });
-  dict_compatible(grasp, grasp_keys);
-
-  auto timing =
-      py::class_<SynthesisTiming>(m, "SynthesisTiming", "Seconds spent in each stage of synthesis.")
-          .def_readonly("query", &SynthesisTiming::query, "s: query density estimation")
-          .def_readonly("sampling", &SynthesisTiming::sampling, "s: sampling and ranking")
-          .def_readonly("optimisation", &SynthesisTiming::optimisation, "s: annealing the best candidates")
-          .def_readonly("total", &SynthesisTiming::total, "s")
-          .def("__repr__", [](const SynthesisTiming& t) {
-            return "SynthesisTiming(query=" + std::to_string(t.query) + ", sampling=" + std::to_string(t.sampling) +
-                   ", optimisation=" + std::to_string(t.optimisation) + ", total=" + std::to_string(t.total) + ")";
-          });
-  dict_compatible(timing, {"query", "sampling", "optimisation", "total"});
-
-  py::class_<SynthesisResult>(m, "SynthesisResult", "Grasps best first, with diagnostics.")
-      .def_readonly("grasps", &SynthesisResult::grasps, "list of Grasp, best first")
-      .def_readonly("contact_links", &SynthesisResult::contact_links)
-      .def_readonly("expert_names", &SynthesisResult::expert_names)
-      .def_readonly("evaluations", &SynthesisResult::evaluations, "grasps scored in all")
-      .def_readonly("rejected", &SynthesisResult::rejected, "samples a hard constraint rejected")
-      .def_readonly("timing", &SynthesisResult::timing, "SynthesisTiming (dict(result.timing) still works)");
-
-  auto evaluation = py::class_<Evaluation>(m, "Evaluation", "log L and its terms for a batch of grasps.")
-                        .def_readonly("total", &Evaluation::total, "(N,) log L")
-                        .def_readonly("log_collision", &Evaluation::log_collision, "(N,)")
-                        .def_readonly("log_config", &Evaluation::log_config, "(N,)")
-                        .def_readonly("log_pregrasp", &Evaluation::log_pregrasp, "(N,)")
-                        .def_readonly("log_contact", &Evaluation::log_contact, "(N, query links)")
-                        .def_readonly("log_experts", &Evaluation::log_experts, "(N, experts)");
-  dict_compatible(evaluation, {"total", "log_collision", "log_config", "log_pregrasp", "log_contact", "log_experts"});
-
-  py::class_<QueryDensity>(m, "QueryDensity", "Q_i: one link's query density on an object.")
-      .def_readonly("link", &QueryDensity::link)
-      .def_readonly("link_name", &QueryDensity::link_name)
-      .def_property_readonly("density",
-                             [](const QueryDensity& q) { return std::const_pointer_cast<PoseDensity>(q.density); });
-
-  py::class_<GraspSynthesizer, std::shared_ptr<GraspSynthesizer>>(
-      m, "GraspSynthesizer", "Query densities, sampling, ranking and annealing for one learnt model.")
-      .def(py::init([](const HandPtr& hand, std::vector<ContactModel> models, ConfigModel config) {
-             return std::make_shared<GraspSynthesizer>(hand, std::move(models), std::move(config));
-           }),
-           py::arg("hand"), py::arg("contact_models"), py::arg("config_model"))
-      .def_property_readonly("method", &GraspSynthesizer::method)
-      .def_property_readonly("contact_models", &GraspSynthesizer::contact_models)
-      .def_property_readonly("config_model", &GraspSynthesizer::config_model)
-      .def(
-          "synthesize",
-          [](const GraspSynthesizer& g, const py::object& frames, const py::object& features,
-             const CollisionExpert& collision, const py::object& experts, const py::object& settings,
-             const py::kwargs& kw) {
-            const SynthesisSettings s = settings_from<SynthesisSettings>(settings, kw, "synthesize");
-            const PoseArray v = to_poses(frames, "frames");
-            const RowMatrixXd r = to_matrix(features, "features");
-            const ExpertList e = to_experts(experts);
-            py::gil_scoped_release release;
-            return g.synthesize(v, r, collision, e, s);
-          },
-          py::arg("frames"), py::arg("features"), py::arg("collision"), py::arg("experts") = py::none(),
-          py::arg("settings") = py::none(),
-          ("Query densities, sampling, ranking and annealing on an object's frames (N, 7) and features (N, n).\n" +
-           settings_doc<SynthesisSettings>())
-              .c_str())
-      .def(
-          "query_densities",
-          [](const GraspSynthesizer& g, const py::object& frames, const py::object& features,
-             const py::object& settings, const py::object& seed, const py::kwargs& kw) {
-            const QuerySettings s = settings_from<QuerySettings>(settings, kw, "query_densities");
-            std::mt19937_64 rng(to_seed(seed));
-            const PoseArray v = to_poses(frames, "frames");
-            const RowMatrixXd r = to_matrix(features, "features");
-            py::gil_scoped_release release;
-            return g.query_densities(v, r, s, rng);
-          },
-          py::arg("frames"), py::arg("features"), py::arg("settings") = py::none(), py::arg("seed") = py::none(),
-          ("The query densities Q_i on an object.\n" + settings_doc<QuerySettings>()).c_str())
-      .def(
-          "sample_grasps",
-          [](const GraspSynthesizer& g, const std::vector<QueryDensity>& q, int n, const py::object& seed) {
-            std::mt19937_64 rng(to_seed(seed));
-            PoseArray w;
-            RowMatrixXd j;
-            g.sample_grasps(q, n, rng, w, j);
-            return py::make_tuple(w, j);
-          },
-          py::arg("query"), py::arg("n"), py::arg("seed") = py::none(), "(wrists (n, 7), joints (n, D)).")
-      .def(
-          "evaluate",
-          [](const GraspSynthesizer& g, const std::vector<QueryDensity>& q, const CollisionExpert& collision,
-             const py::object& experts, const py::object& wrists, const py::object& joints, const py::object& clear) {
-            const bool clear_pregrasp = clear.is_none() ? SynthesisSettings{}.clear_pregrasp : clear.cast<bool>();
-            return g.evaluate(q, collision, to_experts(experts), to_poses(wrists, "wrists"),
-                              to_configurations(g.hand(), joints, "joints"), clear_pregrasp);
-          },
-          py::arg("query"), py::arg("collision"), py::arg("experts"), py::arg("wrists"), py::arg("joints"),
-          py::arg("clear_pregrasp") = py::none(),
-          "log L and its terms (an Evaluation) for a batch of grasps; clear_pregrasp=None: SynthesisSettings' "
-          "default.");
+void bind_grasp(py::module_& m) {
+  bind_collision(m);
+  bind_models(m);
+  bind_experts(m);
+  bind_synthesis(m);
 }
 
 }  // namespace graspmix::py_bind

@@ -21,90 +21,22 @@
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
-#include "core/uniform_grid.hpp"
 #include "graspmix/core/frame_jitter.hpp"
+#include "surface_normals.hpp"
 
 namespace graspmix {
 
 namespace {
 
+using namespace surface_detail;
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-
-[[noreturn]] void bad(const std::string& m) { throw std::invalid_argument("compute_surface_features: " + m); }
 
 /// The deterministic tangent reference of a normal: world z projected on the tangent plane, or
 /// world x where the normal is within acos(0.9) ~ 26 degrees of +-z (there z projects badly).
 Eigen::Vector3d tangent_reference(const Eigen::Vector3d& n) {
   const Eigen::Vector3d a = std::abs(n.z()) < 0.9 ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d::UnitX();
   return (a - a.dot(n) * n).normalized();
-}
-
-/// The radius search of every stage: a grid of cells one radius wide (see core/uniform_grid.hpp: its
-/// canonical order makes neighbour lists, every sum over them and hence the results the same for any
-/// permutation of the input; and on surfaces it is several times faster than a sorted kd-tree search).
-using RadiusGrid = detail::UniformGrid;
-
-/// Hoppe-style orientation: each connected part of the k-NN graph is seeded at its point farthest
-/// from the cloud's centroid (there the surface is convex and the outward normal points away from
-/// the centroid) and oriented along a minimum spanning tree. The edge cost prefers neighbours with
-/// parallel normals that lie in each other's tangent planes, so the tree follows the surface and
-/// does not jump across thin walls, where neighbours sit along the normal.
-void orient_by_propagation(const RadiusGrid& grid, const std::vector<std::vector<int>>& knn,
-                           std::vector<Eigen::Vector3d>& n, const std::vector<char>& valid) {
-  const int N = grid.size();
-  std::vector<std::vector<int>> adj(static_cast<std::size_t>(N));
-  for (int i = 0; i < N; ++i)
-    for (const int j : knn[static_cast<std::size_t>(i)]) {
-      if (!valid[static_cast<std::size_t>(i)] || !valid[static_cast<std::size_t>(j)]) continue;
-      adj[static_cast<std::size_t>(i)].push_back(j);
-      adj[static_cast<std::size_t>(j)].push_back(i);
-    }
-  auto cost = [&](int i, int j) {
-    const Eigen::Vector3d& ni = n[static_cast<std::size_t>(i)];
-    const Eigen::Vector3d& nj = n[static_cast<std::size_t>(j)];
-    const Eigen::Vector3d d = grid.point(j) - grid.point(i);
-    const double len = d.norm();
-    double c = 1.0 - std::abs(ni.dot(nj));
-    if (len > 0) c += 0.5 * (std::abs(ni.dot(d)) + std::abs(nj.dot(d))) / len;
-    return c;
-  };
-  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-  int n_valid = 0;
-  for (int i = 0; i < N; ++i)
-    if (valid[static_cast<std::size_t>(i)]) {
-      centroid += grid.point(i);
-      ++n_valid;
-    }
-  centroid /= std::max(n_valid, 1);
-  std::vector<int> seeds;
-  for (int i = 0; i < N; ++i)
-    if (valid[static_cast<std::size_t>(i)]) seeds.push_back(i);
-  std::vector<double> dist(static_cast<std::size_t>(N), 0.0);
-  for (const int i : seeds) dist[static_cast<std::size_t>(i)] = (grid.point(i) - centroid).squaredNorm();
-  // Farthest first; equal distances keep the canonical order (stable sort).
-  std::stable_sort(seeds.begin(), seeds.end(),
-                   [&](int a, int b) { return dist[static_cast<std::size_t>(a)] > dist[static_cast<std::size_t>(b)]; });
-  std::vector<char> done(static_cast<std::size_t>(N), 0);
-  using Item = std::tuple<double, int, int>;  // cost, node, parent
-  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap;
-  for (const int seed : seeds) {
-    if (done[static_cast<std::size_t>(seed)]) continue;
-    if (n[static_cast<std::size_t>(seed)].dot(grid.point(seed) - centroid) < 0)
-      n[static_cast<std::size_t>(seed)] *= -1.0;
-    done[static_cast<std::size_t>(seed)] = 1;
-    for (const int j : adj[static_cast<std::size_t>(seed)]) heap.emplace(cost(seed, j), j, seed);
-    while (!heap.empty()) {
-      const auto [c, i, parent] = heap.top();
-      heap.pop();
-      if (done[static_cast<std::size_t>(i)]) continue;
-      done[static_cast<std::size_t>(i)] = 1;
-      if (n[static_cast<std::size_t>(i)].dot(n[static_cast<std::size_t>(parent)]) < 0)
-        n[static_cast<std::size_t>(i)] *= -1.0;
-      for (const int j : adj[static_cast<std::size_t>(i)])
-        if (!done[static_cast<std::size_t>(j)]) heap.emplace(cost(i, j), j, i);
-    }
-  }
 }
 
 /// The inputs of compute_surface_features checked, and the orientation rule that applies (Auto resolved).
@@ -166,147 +98,6 @@ RadiusGrid radius_grid(const Vec3Array& points, double radius) {
   }
   const std::int64_t n = RadiusGrid::kMaxCells;
   return RadiusGrid(points, lo, radius, {n, n, n}, RadiusGrid::Layout::Sparse);
-}
-
-/// Normals (unoriented) in canonical order, which points have one, and (for propagation) each
-/// point's k nearest neighbours.
-struct Normals {
-  std::vector<Eigen::Vector3d> n;
-  std::vector<char> valid;
-  std::vector<char> degenerate;  ///< no normal because the neighbourhood's points coincide or lie on a line
-  std::vector<std::vector<int>> knn;
-};
-
-/// PCL NormalEstimation's definition: the smallest eigenvector of the neighbourhood's covariance,
-/// in double about the query point; zero where it is undetermined, including a neighbourhood whose
-/// points coincide or lie on one line (there every direction across the line would do: PCL returns
-/// an arbitrary one).
-Eigen::Vector3d pca_normal(const RadiusGrid& grid, int i, const std::vector<int>& nn, char& degenerate) {
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
-  for (const int j : nn) {
-    const Eigen::Vector3d d = grid.point(j) - grid.point(i);
-    mean += d;
-    C.noalias() += d * d.transpose();
-  }
-  const double inv = 1.0 / static_cast<double>(nn.size());
-  mean *= inv;
-  C = C * inv - mean * mean.transpose();
-  // Coincident or collinear points: the covariance has rank < 2, i.e. the sum of its principal 2 x 2
-  // minors (lambda0 lambda1 + lambda0 lambda2 + lambda1 lambda2) vanishes against trace^2. Read from C
-  // itself: computeDirect's eigenvalues are not accurate enough near repeated zeros.
-  const double minors = C(0, 0) * C(1, 1) - C(0, 1) * C(0, 1) + C(0, 0) * C(2, 2) - C(0, 2) * C(0, 2) +
-                        C(1, 1) * C(2, 2) - C(1, 2) * C(1, 2);
-  const double trace = C.trace();
-  degenerate = !(minors > 1e-10 * trace * trace);
-  if (degenerate) return Eigen::Vector3d::Zero();
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
-  es.computeDirect(C);
-  const Eigen::Vector3d v = es.eigenvectors().col(0);
-  if (!v.allFinite() || v.norm() < 0.5) return Eigen::Vector3d::Zero();
-  return v.normalized();
-}
-
-/// Watches the neighbourhood sizes of a parallel stage against max_neighbours: the first one over the
-/// cap stops the stage (the remaining iterations skip), and throw_if_hit() then refuses the cloud. The
-/// message names no point, so it is the same for any thread count.
-class NeighbourCap {
- public:
-  explicit NeighbourCap(const FeatureSettings& s) : s_(s) {}
-  /// True (and remembered) if nn is over the cap.
-  bool over(std::size_t n) {
-    if (s_.max_neighbours == 0 || n <= static_cast<std::size_t>(s_.max_neighbours)) return false;
-    hit_.store(true, std::memory_order_relaxed);
-    return true;
-  }
-  bool hit() const { return hit_.load(std::memory_order_relaxed); }
-  void throw_if_hit() const {
-    if (!hit()) return;
-    bad("a neighbourhood holds more than max_neighbours = " + std::to_string(s_.max_neighbours) +
-        " points within radius " + std::to_string(s_.radius) +
-        " m: the cloud is far denser than the radius needs (time grows with every neighbour); voxel-downsample it "
-        "first (e.g. a leaf of radius / 3), or raise max_neighbours (0: no cap)");
-  }
-
- private:
-  const FeatureSettings& s_;
-  std::atomic<bool> hit_{false};
-};
-
-/// The k nearest of the neighbours nn (squared distances d2) of i, itself excluded, nearest first.
-void nearest(int i, const std::vector<int>& nn, const std::vector<double>& d2, int k,
-             std::vector<std::pair<double, int>>& near, std::vector<int>& out) {
-  near.clear();
-  for (std::size_t a = 0; a < nn.size(); ++a)
-    if (nn[a] != i) near.emplace_back(d2[a], nn[a]);
-  const std::size_t kk = std::min<std::size_t>(static_cast<std::size_t>(k), near.size());
-  std::partial_sort(near.begin(), near.begin() + static_cast<std::ptrdiff_t>(kk), near.end());
-  for (std::size_t a = 0; a < kk; ++a) out.push_back(near[a].second);
-}
-
-/// The caller's normals or estimated ones, and the k-NN graph when the orientation propagates.
-Normals estimate_normals(const RadiusGrid& grid, const FeatureSettings& s, const Vec3Array& normals_in, bool propagate,
-                         int n_threads) {
-  const int M = grid.size();
-  const bool given = normals_in.rows() > 0;
-  const double r2 = s.radius * s.radius;
-  Normals out;
-  out.n.assign(static_cast<std::size_t>(M), Eigen::Vector3d::Zero());
-  out.valid.assign(static_cast<std::size_t>(M), 1);
-  out.degenerate.assign(static_cast<std::size_t>(M), 0);
-  out.knn.resize(propagate ? static_cast<std::size_t>(M) : 0);
-  NeighbourCap cap(s);
-#pragma omp parallel num_threads(n_threads)
-  {
-    std::vector<int> nn;
-    std::vector<double> d2;
-    std::vector<std::pair<double, int>> near;
-#pragma omp for schedule(dynamic, 256)
-    for (int i = 0; i < M; ++i) {
-      if (cap.hit()) continue;
-      if (given) {
-        out.n[static_cast<std::size_t>(i)] = normals_in.row(grid.row(i)).transpose().normalized();
-        if (!propagate) continue;
-      }
-      grid.neighbours(i, r2, nn, d2);
-      if (cap.over(nn.size())) continue;
-      if (!given) {
-        if (nn.size() < 3) {
-          out.valid[static_cast<std::size_t>(i)] = 0;
-          continue;
-        }
-        const Eigen::Vector3d v = pca_normal(grid, i, nn, out.degenerate[static_cast<std::size_t>(i)]);
-        if (v.isZero(0.0)) {
-          out.valid[static_cast<std::size_t>(i)] = 0;
-          continue;
-        }
-        out.n[static_cast<std::size_t>(i)] = v;
-      }
-      if (propagate) nearest(i, nn, d2, s.orientation_neighbours, near, out.knn[static_cast<std::size_t>(i)]);
-    }
-  }
-  cap.throw_if_hit();
-  return out;
-}
-
-/// Outward orientation by the rule: before the curvatures, whose projected normals need consistent signs.
-void orient_normals(NormalOrientation rule, const RadiusGrid& grid, const Vec3Array& viewpoints, Normals& normals) {
-  const int M = grid.size();
-  std::vector<Eigen::Vector3d>& n = normals.n;
-  if (rule == NormalOrientation::Viewpoint) {
-    for (int i = 0; i < M; ++i) {
-      const Eigen::Vector3d v = viewpoints.row(viewpoints.rows() == 1 ? 0 : grid.row(i)).transpose();
-      if (n[static_cast<std::size_t>(i)].dot(v - grid.point(i)) < 0) n[static_cast<std::size_t>(i)] *= -1.0;
-    }
-  } else if (rule == NormalOrientation::Centroid) {
-    Eigen::Vector3d c = Eigen::Vector3d::Zero();
-    for (int i = 0; i < M; ++i) c += grid.point(i);
-    c /= M;
-    for (int i = 0; i < M; ++i)
-      if (n[static_cast<std::size_t>(i)].dot(grid.point(i) - c) < 0) n[static_cast<std::size_t>(i)] *= -1.0;
-  } else if (rule == NormalOrientation::Propagate) {
-    orient_by_propagation(grid, normals.knn, n, normals.valid);
-  }
 }
 
 /// Principal curvatures in canonical order: neighbour counts, [pcx pcy pcz pc1 pc2] and which are finite.

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include <pcl/common/common.h>
 #include <pcl/filters/crop_box.h>
 #include <pcl/filters/statistical_outlier_removal.h>
 #include <pcl/filters/voxel_grid.h>
@@ -116,12 +117,10 @@ Cloud::Ptr crop(const Cloud::Ptr& cloud, const SceneSettings& s, Rows& rows) {
 /// PCL's voxel grid indexes voxels with 32-bit integers and, when they would overflow, warns on stderr and
 /// returns the cloud unfiltered: refuse such a cloud (usually a stray point far away) instead.
 void check_voxel_count(const Cloud& cloud, double voxel) {
-  Eigen::Array3d lo = Eigen::Array3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-  for (const auto& p : cloud) {
-    const Eigen::Array3d q(p.x, p.y, p.z);
-    lo = lo.min(q);
-    hi = hi.max(q);
-  }
+  pcl::PointXYZ min_p, max_p;
+  pcl::getMinMax3D(cloud, min_p, max_p);
+  const Eigen::Array3d lo = min_p.getVector3fMap().cast<double>().array();
+  const Eigen::Array3d hi = max_p.getVector3fMap().cast<double>().array();
   const Eigen::Array3d cells = ((hi - lo) / voxel).floor() + 1.0;
   const double n = cells.prod();
   if (n > static_cast<double>(std::numeric_limits<std::int32_t>::max())) {

@@ -71,8 +71,7 @@ class FeatureSettings:
         table of a scene)."""
         viewpoints = checked_viewpoints(viewpoints, len(points))
         if plane is not None:
-            clearance = SynthesisOptions.table_clearance if table_clearance is None else table_clearance
-            points, viewpoints = self.cut_plane(points, plane, viewpoints, clearance)
+            points, viewpoints = self.cut_plane(points, plane, viewpoints, table_clearance)
         scene = _core.prepare_cloud(points, voxel_size=self.voxel_size, remove_plane=remove_plane, seed=seed)
         if len(scene.points) == 0:
             raise ValueError("the cloud is empty after clean-up")

@@ -15,36 +15,16 @@
 #include <pcl/kdtree/kdtree_flann.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
-#include <pcl/sample_consensus/ransac.h>
-#include <pcl/sample_consensus/sac_model_plane.h>
 
 #include "graspmix/core/plane.hpp"
+#include "ransac_plane.hpp"
 
 namespace graspmix {
 
 namespace {
 
-using Cloud = pcl::PointCloud<pcl::PointXYZ>;
+using detail::Cloud;
 
-/// PCL's SAC classes seed their generators with 12345 (or the clock); these reseed them from the
-/// caller's seed so that RANSAC is both deterministic and under the caller's control.
-class SeededPlaneModel : public pcl::SampleConsensusModelPlane<pcl::PointXYZ> {
- public:
-  SeededPlaneModel(const Cloud::ConstPtr& cloud, unsigned seed) : pcl::SampleConsensusModelPlane<pcl::PointXYZ>(cloud) {
-    rng_alg_.seed(seed);
-  }
-};
-
-class SeededRansac : public pcl::RandomSampleConsensus<pcl::PointXYZ> {
- public:
-  SeededRansac(const pcl::SampleConsensusModel<pcl::PointXYZ>::Ptr& model, double threshold, unsigned seed)
-      : pcl::RandomSampleConsensus<pcl::PointXYZ>(model, threshold) {
-    rng_->base().seed(seed);
-    threads_ = -1;  // PCL's parallel RANSAC races on the best model: results would depend on timing
-  }
-};
-
-unsigned fold_seed(std::uint64_t s) { return static_cast<unsigned>((s ^ (s >> 32)) & 0xffffffffu); }
 
 /// Input rows that follow the points through every step: `origin` is a point's own input row (-1 once
 /// voxel-averaged), `source` the input row whose per-point data it carries (SceneResult::sources).
@@ -166,30 +146,13 @@ Cloud::Ptr remove_outliers(const Cloud::Ptr& cloud, const SceneSettings& s, Rows
   return subset(*cloud, kept, rows);
 }
 
-/// The dominant plane by seeded RANSAC, refitted by least squares on its inliers and normalised, with
-/// the inliers of the refined plane; false if RANSAC finds no model.
-bool fit_plane(const Cloud::Ptr& cloud, const SceneSettings& s, Eigen::VectorXf& coeffs, pcl::Indices& inliers) {
-  SeededPlaneModel::Ptr model(new SeededPlaneModel(cloud, fold_seed(s.seed)));
-  SeededRansac ransac(model, s.plane_distance, fold_seed(s.seed) ^ 0x9e3779b9u);
-  ransac.setMaxIterations(s.plane_max_iterations);
-  if (!ransac.computeModel()) return false;
-  ransac.getInliers(inliers);
-  ransac.getModelCoefficients(coeffs);
-  Eigen::VectorXf refined = coeffs;
-  model->optimizeModelCoefficients(inliers, coeffs, refined);
-  if (refined.allFinite() && refined.head<3>().norm() > 0) coeffs = refined;
-  coeffs /= coeffs.head<3>().norm();
-  model->selectWithinDistance(coeffs, s.plane_distance, inliers);
-  return true;
-}
-
 /// The support plane found and removed (with what lies below it if asked), oriented towards the
 /// object: the side most of the points off the plane are on (PlaneSide::Majority). Records the plane
 /// in r; the cloud unchanged if there is no plane with enough inliers.
 Cloud::Ptr remove_support_plane(const Cloud::Ptr& cloud, const SceneSettings& s, Rows& rows, SceneResult& r) {
   Eigen::VectorXf coeffs;
   pcl::Indices inliers;
-  if (!fit_plane(cloud, s, coeffs, inliers)) return cloud;
+  if (!detail::fit_plane(cloud, s.plane_distance, s.plane_max_iterations, s.seed, coeffs, inliers)) return cloud;
   if (static_cast<double>(inliers.size()) < s.plane_min_fraction * static_cast<double>(cloud->size())) return cloud;
   std::vector<char> is_inlier(cloud->size(), 0);
   for (const auto i : inliers) is_inlier[static_cast<std::size_t>(i)] = 1;

@@ -1,0 +1,116 @@
+#pragma once
+// The scene model: a depth camera's cloud split into the support plane and the objects on it.
+//
+// Steps: voxel grid (prepare_cloud's, so per-point data follow through `sources`); the support plane,
+// given or searched for (rule below); points within table_clearance of it or behind it dropped;
+// statistical outlier removal on the object points only (after the cut: cheaper, and the table's
+// points cannot make an object's edge look like an outlier); Euclidean clusters of what is left.
+//
+// Which side of a plane is "up": the side the cameras are on, decided by the viewpoints, never by
+// where most points lie (far-field noise can outnumber an object). Per-point viewpoints (N, 3): the mean
+// signed height of the viewpoints of the points on the plane (every camera that sees a surface is on its
+// side); one viewpoint: its side; no viewpoint: the camera is taken at the cloud frame's origin (the PCD
+// convention: a cloud without VIEWPOINT is in its sensor's frame).
+//
+// The support plane rule (when no plane is given). RANSAC finds up to plane_candidates planes, the
+// inliers of each removed before the next. A candidate is the support when all of these hold:
+//  1. it holds at least plane_min_fraction of the voxelised points;
+//  2. the cameras are off it (the mean camera height above it is at least plane_distance);
+//  3. at most plane_max_behind_fraction of all points lie more than plane_behind_distance behind it
+//     (on the far side from the cameras): a face of an object has the rest of that object behind it,
+//     a table has only noise there;
+//  4. its inliers extend beyond the objects' footprint: along each of 8 directions in the plane, the
+//     farthest inlier is at least plane_margin beyond the farthest object point (object points: those
+//     more than table_clearance above it), so a table reaches past what stands on it.
+// Among the accepted candidates the support is the lowest: the one farthest from the cameras.
+// An object-only cloud (no extended surface under it) therefore yields no plane, and then every
+// point is an object point.
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "graspmix/core/types.hpp"
+#include "graspmix/perception/scene.hpp"
+
+namespace graspmix {
+
+struct SegmentationSettings {
+  /// Voxel-grid leaf size (m), 0 = off; the same as the clean-up's (features must see the same density).
+  double voxel_size = SceneSettings{}.voxel_size;
+  double plane_distance = SceneSettings{}.plane_distance;              ///< RANSAC inlier threshold (m)
+  int plane_max_iterations = SceneSettings{}.plane_max_iterations;     ///< RANSAC iterations per candidate
+  std::uint64_t seed = 0;                                              ///< seeds RANSAC
+  int plane_candidates = 3;            ///< planes tried, each on the points the previous ones left
+  double plane_min_fraction = 0.05;    ///< rule 1: fraction of the voxelised points a candidate holds
+  double plane_behind_distance = 0.01; ///< rule 3: m behind the plane for a point to count as behind it
+  double plane_max_behind_fraction = 0.05;  ///< rule 3: fraction of all points allowed behind it (faces: > 0.1)
+  double plane_margin = 0.01;          ///< rule 4: m the inliers must reach beyond the objects' footprint
+  /// m: points at most this far above the support plane (or behind it) are the table and are dropped.
+  /// The default of SynthesisOptions.table_clearance (Python) too.
+  double table_clearance = 0.005;
+  bool remove_outliers = SceneSettings{}.remove_outliers;             ///< on the object points only
+  int outlier_neighbours = SceneSettings{}.outlier_neighbours;        ///< k of the mean-distance statistic
+  double outlier_std_ratio = SceneSettings{}.outlier_std_ratio;       ///< mean + ratio * std cut
+  /// m: two object points closer than this are in one object (pcl::EuclideanClusterExtraction). Voxel
+  /// centroids of one surface lie about one voxel (3 mm) apart, up to 2 voxels diagonally or on steep
+  /// faces; packed objects stand about 1 cm apart. 6 mm joins the first and keeps the second apart.
+  double cluster_tolerance = 0.006;
+  int min_cluster_size = 20;   ///< clusters with fewer points are noise, dropped (and counted)
+  int max_cluster_size = 0;    ///< clusters with more points are dropped; 0 = no limit
+};
+
+/// One object: a Euclidean cluster above the support plane.
+struct SceneObject {
+  int index = 0;            ///< its label in Segmentation::labels and its place in Segmentation::objects
+  Eigen::VectorXi rows;     ///< its rows of Segmentation::points
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  Eigen::Vector3d obb_center = Eigen::Vector3d::Zero();  ///< oriented bounding box (principal axes)
+  /// columns: the box's axes in the cloud's frame, by decreasing variance of the points, right-handed
+  Eigen::Matrix3d obb_rotation = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d obb_extents = Eigen::Vector3d::Zero();  ///< full side lengths along those axes (m)
+  std::size_t n_points = 0;
+};
+
+/// What the support plane rule saw of one RANSAC candidate (in the order found).
+struct PlaneCandidate {
+  Eigen::Vector4d plane = Eigen::Vector4d::Zero();  ///< oriented towards the cameras, (a, b, c) unit
+  std::size_t n_inliers = 0;
+  double inlier_fraction = 0.0;  ///< rule 1
+  double camera_height = 0.0;    ///< rule 2: mean height of the cameras above it (m)
+  double behind_fraction = 0.0;  ///< rule 3
+  double margin = 0.0;           ///< rule 4: least reach of the inliers beyond the footprint (m)
+  bool accepted = false;
+  std::string reason;            ///< why it was refused (empty when accepted)
+};
+
+struct Segmentation {
+  /// a x + b y + c z + d = 0, (a, b, c) unit towards the cameras; zero when there is no plane
+  Eigen::Vector4d plane = Eigen::Vector4d::Zero();
+  bool plane_found = false;  ///< found by the rule
+  bool plane_given = false;  ///< given by the caller (then plane_found is false)
+  Vec3Array points;          ///< the objects' points (voxelised), grouped by object
+  Eigen::VectorXi labels;    ///< per point, its object's index
+  Eigen::VectorXi sources;   ///< per point, the input row whose per-point data it carries (SceneResult)
+  /// Ordered by decreasing point count, ties by centroid x, then y, then z: index 0 is the largest.
+  std::vector<SceneObject> objects;
+  std::vector<PlaneCandidate> candidates;  ///< the rule's figures (empty with a given plane)
+  std::size_t n_input = 0, n_after_voxel = 0;
+  std::size_t n_plane = 0;          ///< dropped as the table (within table_clearance of it, or behind it)
+  std::size_t n_outliers = 0;       ///< dropped by the outlier removal
+  std::size_t n_small_clusters = 0; ///< points of clusters under min_cluster_size (or over the maximum)
+  std::size_t n_output = 0;
+  double seconds = 0.0;  ///< wall time of the whole segmentation
+};
+
+/// The support plane and the objects of `points` (N, 3) seen from `viewpoints` (0 x 3: none, 1 x 3 or
+/// N x 3), with `plane` the known support when given. Throws std::invalid_argument (the message names
+/// the cause) on empty or non-finite points, viewpoints of the wrong shape or non-finite, bad settings,
+/// a degenerate plane, and when no object point is left ("no object above the support plane").
+Segmentation segment_scene(const Vec3Array& points, const Vec3Array& viewpoints, const SegmentationSettings& settings = {},
+                           const std::optional<Eigen::Vector4d>& plane = std::nullopt);
+
+}  // namespace graspmix

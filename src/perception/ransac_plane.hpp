@@ -1,0 +1,19 @@
+#pragma once
+// Seeded RANSAC plane fitting, private to perception: prepare_cloud and segment_scene share it.
+#include <cstdint>
+
+#include <Eigen/Core>
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+
+namespace graspmix::detail {
+
+using Cloud = pcl::PointCloud<pcl::PointXYZ>;
+
+/// The dominant plane of `cloud` by RANSAC seeded with `seed` (inlier threshold `distance`, at most
+/// `iterations`), refitted by least squares on its inliers and normalised ((a, b, c) unit), with the
+/// inliers of the refined plane. False if RANSAC finds no model.
+bool fit_plane(const Cloud::ConstPtr& cloud, double distance, int iterations, std::uint64_t seed,
+               Eigen::VectorXf& coeffs, pcl::Indices& inliers);
+
+}  // namespace graspmix::detail

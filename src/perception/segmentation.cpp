@@ -1,0 +1,369 @@
+#include "graspmix/perception/segmentation.hpp"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+#include <pcl/filters/statistical_outlier_removal.h>
+#include <pcl/search/kdtree.h>
+#include <pcl/segmentation/extract_clusters.h>
+
+#include "ransac_plane.hpp"
+
+namespace graspmix {
+
+namespace {
+
+using detail::Cloud;
+
+[[noreturn]] void bad(const std::string& m) { throw std::invalid_argument("segment_scene: " + m); }
+
+bool finite_ge(double v, double lo) { return std::isfinite(v) && v >= lo; }
+
+void check_settings(const SegmentationSettings& s) {
+  if (!finite_ge(s.voxel_size, 0)) bad("voxel_size must be a finite size >= 0 (m; 0 switches it off)");
+  if (!(finite_ge(s.plane_distance, 0) && s.plane_distance > 0)) bad("plane_distance must be > 0 (m)");
+  if (s.plane_max_iterations < 1) bad("plane_max_iterations must be >= 1");
+  if (s.plane_candidates < 1) bad("plane_candidates must be >= 1");
+  if (!(finite_ge(s.plane_min_fraction, 0) && s.plane_min_fraction <= 1)) bad("plane_min_fraction must be in [0, 1]");
+  if (!finite_ge(s.plane_behind_distance, 0)) bad("plane_behind_distance must be a finite distance >= 0 (m)");
+  if (!(finite_ge(s.plane_max_behind_fraction, 0) && s.plane_max_behind_fraction <= 1)) {
+    bad("plane_max_behind_fraction must be in [0, 1]");
+  }
+  if (!finite_ge(s.plane_margin, 0)) bad("plane_margin must be a finite distance >= 0 (m)");
+  if (!finite_ge(s.table_clearance, 0)) bad("table_clearance must be a finite distance >= 0 (m)");
+  if (s.remove_outliers && (s.outlier_neighbours < 1 || !(finite_ge(s.outlier_std_ratio, 0) && s.outlier_std_ratio > 0))) {
+    bad("outlier_neighbours must be >= 1 and outlier_std_ratio > 0");
+  }
+  if (!(finite_ge(s.cluster_tolerance, 0) && s.cluster_tolerance > 0)) bad("cluster_tolerance must be > 0 (m)");
+  if (s.min_cluster_size < 1) bad("min_cluster_size must be >= 1");
+  if (s.max_cluster_size < 0 || (s.max_cluster_size > 0 && s.max_cluster_size < s.min_cluster_size)) {
+    bad("max_cluster_size must be 0 (no limit) or >= min_cluster_size");
+  }
+}
+
+void check_inputs(const Vec3Array& points, const Vec3Array& viewpoints) {
+  if (points.rows() == 0) bad("points: the cloud is empty");
+  if (!points.allFinite()) bad("points: contains NaN or infinite values");
+  const auto n = viewpoints.rows();
+  if (n != 0 && n != 1 && n != points.rows()) {
+    bad("viewpoints: expected 0, 1 or " + std::to_string(points.rows()) + " rows (one per point), got " +
+        std::to_string(n));
+  }
+  if (!viewpoints.allFinite()) bad("viewpoints: contains NaN or infinite values");
+}
+
+/// The cameras as the voxelised points see them: one per point (input viewpoints indexed by sources), or
+/// one for all (the given one, or the origin when none is given).
+struct Cameras {
+  Vec3Array per_point;
+  Eigen::Vector3d single = Eigen::Vector3d::Zero();
+  bool given = false;
+
+  /// Mean height above `plane` of the cameras that saw `rows` (all cameras when rows is empty).
+  double height(const Eigen::Vector4d& plane, const std::vector<int>& rows) const {
+    const Eigen::Vector3d n = plane.head<3>();
+    if (per_point.rows() == 0) return n.dot(single) + plane[3];
+    double sum = 0;
+    if (rows.empty()) return (per_point * n).array().mean() + plane[3];
+    for (const int r : rows) sum += per_point.row(r).dot(n);
+    return sum / static_cast<double>(rows.size()) + plane[3];
+  }
+};
+
+pcl::PointXYZ to_pcl(const Vec3Array& P, int r) {
+  return {static_cast<float>(P(r, 0)), static_cast<float>(P(r, 1)), static_cast<float>(P(r, 2))};
+}
+
+Eigen::VectorXd heights(const Vec3Array& P, const Eigen::Vector4d& plane) {
+  return (P * plane.head<3>()).array() + plane[3];
+}
+
+/// Rule 4's figure: along 8 directions in the plane, the least reach of the inliers beyond the objects
+/// (the clusters found above the plane); +inf when there is no object.
+double footprint_margin(const Vec3Array& P, const std::vector<int>& inliers, const Eigen::Vector4d& plane,
+                        const std::vector<std::vector<int>>& objects) {
+  if (objects.empty()) return std::numeric_limits<double>::infinity();
+  const Eigen::Vector3d n = plane.head<3>();
+  const Eigen::Vector3d u = n.unitOrthogonal(), v = n.cross(u);
+  Eigen::Matrix<double, 3, 8> dirs;
+  for (int k = 0; k < 8; ++k) dirs.col(k) = std::cos(k * M_PI / 4) * u + std::sin(k * M_PI / 4) * v;
+  Eigen::Matrix<double, 1, 8> reach_in = Eigen::Matrix<double, 1, 8>::Constant(-std::numeric_limits<double>::infinity());
+  Eigen::Matrix<double, 1, 8> reach_obj = reach_in;
+  for (const int r : inliers) reach_in = reach_in.cwiseMax(P.row(r) * dirs);
+  for (const auto& g : objects)
+    for (const int r : g) reach_obj = reach_obj.cwiseMax(P.row(r) * dirs);
+  return (reach_in - reach_obj).minCoeff();
+}
+
+/// A RANSAC candidate oriented towards the cameras and judged by rules 1-3 (segmentation.hpp).
+PlaneCandidate judge(const Vec3Array& P, const Cameras& cams, const Eigen::VectorXf& coeffs,
+                     const std::vector<int>& inliers, const SegmentationSettings& s) {
+  PlaneCandidate c;
+  c.plane = coeffs.cast<double>().head<4>();
+  c.n_inliers = inliers.size();
+  c.inlier_fraction = static_cast<double>(inliers.size()) / static_cast<double>(P.rows());
+  c.camera_height = cams.height(c.plane, inliers);
+  if (c.camera_height < 0) {
+    c.plane = -c.plane;
+    c.camera_height = -c.camera_height;
+  }
+  const Eigen::VectorXd h = heights(P, c.plane);
+  c.behind_fraction = static_cast<double>((h.array() < -s.plane_behind_distance).count()) / static_cast<double>(P.rows());
+  c.margin = std::numeric_limits<double>::quiet_NaN();  // rule 4 is judged on the objects (segment_scene)
+  if (c.inlier_fraction < s.plane_min_fraction) {
+    c.reason = "holds too few points (rule 1)";
+  } else if (c.camera_height < s.plane_distance) {
+    c.reason = "passes through the cameras (rule 2)";
+  } else if (c.behind_fraction > s.plane_max_behind_fraction) {
+    c.reason = "has points behind it (rule 3)";
+  }
+  c.accepted = c.reason.empty();
+  return c;
+}
+
+/// RANSAC candidates found one after another (each on the points the previous ones left), judged by rules
+/// 1-3 into out.candidates; returns the inliers of each.
+std::vector<std::vector<int>> find_candidates(const Vec3Array& P, const Cameras& cams, const SegmentationSettings& s,
+                                              Segmentation& out) {
+  std::vector<std::vector<int>> found;
+  Cloud::Ptr cloud(new Cloud);
+  std::vector<int> remaining(static_cast<std::size_t>(P.rows()));
+  std::iota(remaining.begin(), remaining.end(), 0);
+  const double min_inliers = std::max(3.0, s.plane_min_fraction * static_cast<double>(P.rows()));
+  for (int k = 0; k < s.plane_candidates && static_cast<double>(remaining.size()) >= min_inliers; ++k) {
+    cloud->clear();
+    for (const int r : remaining) cloud->push_back(to_pcl(P, r));
+    Eigen::VectorXf coeffs;
+    pcl::Indices local;
+    const auto seed = s.seed + static_cast<std::uint64_t>(k);
+    if (!detail::fit_plane(cloud, s.plane_distance, s.plane_max_iterations, seed, coeffs, local)) break;
+    std::vector<int> inliers;
+    inliers.reserve(local.size());
+    std::vector<char> is_inlier(remaining.size(), 0);
+    for (const auto i : local) {
+      inliers.push_back(remaining[static_cast<std::size_t>(i)]);
+      is_inlier[static_cast<std::size_t>(i)] = 1;
+    }
+    out.candidates.push_back(judge(P, cams, coeffs, inliers, s));
+    found.push_back(std::move(inliers));
+    if (out.candidates.back().inlier_fraction < s.plane_min_fraction) break;  // every later one is smaller still
+    // The next search leaves out a band twice as wide, so the noise tails of this surface cannot come back
+    // as a parallel plane of their own a few millimetres away.
+    const Eigen::Vector4d& plane = out.candidates.back().plane;
+    std::vector<int> left;
+    left.reserve(remaining.size() - found.back().size());
+    for (std::size_t i = 0; i < remaining.size(); ++i) {
+      const int r = remaining[i];
+      if (!is_inlier[i] && std::abs(P.row(r).dot(plane.head<3>()) + plane[3]) > 2 * s.plane_distance) left.push_back(r);
+    }
+    remaining.swap(left);
+  }
+  return found;
+}
+
+/// A caller's plane normalised and turned towards the cameras (kept as given without viewpoints).
+Eigen::Vector4d orient_given(const Eigen::Vector4d& given, const Vec3Array& P, const Cameras& cams,
+                             const SegmentationSettings& s) {
+  if (!given.allFinite() || given.head<3>().norm() < 1e-12) bad("plane: [a, b, c, d] must be finite with (a, b, c) != 0");
+  Eigen::Vector4d plane = given / given.head<3>().norm();
+  if (!cams.given) return plane;
+  std::vector<int> on_plane;
+  const Eigen::VectorXd h = heights(P, plane);
+  for (Eigen::Index r = 0; r < P.rows(); ++r)
+    if (std::abs(h[r]) <= s.table_clearance) on_plane.push_back(static_cast<int>(r));
+  return cams.height(plane, on_plane) < 0 ? Eigen::Vector4d(-plane) : plane;
+}
+
+/// The objects above a plane (or of the whole cloud without one) as groups of rows of P, with what each
+/// step dropped.
+struct Extraction {
+  std::vector<std::vector<int>> groups;
+  std::size_t n_plane = 0, n_outliers = 0, n_small = 0;
+};
+
+/// Rows above the clearance (all without a plane), outliers removed, then Euclidean clusters; the clusters
+/// smaller than min_cluster_size (or larger than a set maximum) are dropped.
+Extraction extract(const Vec3Array& P, const Eigen::Vector4d* plane, const SegmentationSettings& s) {
+  Extraction e;
+  std::vector<int> rows;
+  const Eigen::VectorXd h = plane ? heights(P, *plane) : Eigen::VectorXd();
+  for (Eigen::Index r = 0; r < P.rows(); ++r)
+    if (!plane || h[r] > s.table_clearance) rows.push_back(static_cast<int>(r));
+  e.n_plane = static_cast<std::size_t>(P.rows()) - rows.size();
+  Cloud::Ptr cloud(new Cloud);
+  for (const int r : rows) cloud->push_back(to_pcl(P, r));
+  if (s.remove_outliers && rows.size() > static_cast<std::size_t>(s.outlier_neighbours)) {
+    pcl::StatisticalOutlierRemoval<pcl::PointXYZ> sor;
+    sor.setMeanK(s.outlier_neighbours);
+    sor.setStddevMulThresh(s.outlier_std_ratio);
+    sor.setInputCloud(cloud);
+    pcl::Indices kept;
+    sor.filter(kept);
+    std::vector<int> kept_rows;
+    Cloud::Ptr kept_cloud(new Cloud);
+    for (const auto i : kept) {
+      kept_rows.push_back(rows[static_cast<std::size_t>(i)]);
+      kept_cloud->push_back((*cloud)[static_cast<std::size_t>(i)]);
+    }
+    e.n_outliers = rows.size() - kept_rows.size();
+    rows.swap(kept_rows);
+    cloud = kept_cloud;
+  }
+  if (rows.empty()) return e;
+  pcl::search::KdTree<pcl::PointXYZ>::Ptr tree(new pcl::search::KdTree<pcl::PointXYZ>);
+  pcl::EuclideanClusterExtraction<pcl::PointXYZ> ec;
+  ec.setClusterTolerance(s.cluster_tolerance);
+  ec.setMinClusterSize(1);  // every cluster comes back, so the dropped ones can be counted
+  ec.setMaxClusterSize(std::numeric_limits<int>::max());
+  ec.setSearchMethod(tree);
+  ec.setInputCloud(cloud);
+  std::vector<pcl::PointIndices> found;
+  ec.extract(found);
+  for (const auto& f : found) {
+    const auto n = static_cast<int>(f.indices.size());
+    if (n < s.min_cluster_size || (s.max_cluster_size > 0 && n > s.max_cluster_size)) {
+      e.n_small += f.indices.size();
+      continue;
+    }
+    std::vector<int> g;
+    for (const auto i : f.indices) g.push_back(rows[static_cast<std::size_t>(i)]);
+    std::sort(g.begin(), g.end());
+    e.groups.push_back(std::move(g));
+  }
+  return e;
+}
+
+/// Centroid and oriented bounding box (principal axes of the points' covariance) of `rows` of P.
+SceneObject describe(const Vec3Array& P, const std::vector<int>& rows) {
+  SceneObject o;
+  o.n_points = rows.size();
+  Vec3Array Q(static_cast<Eigen::Index>(rows.size()), 3);
+  for (std::size_t i = 0; i < rows.size(); ++i) Q.row(static_cast<Eigen::Index>(i)) = P.row(rows[i]);
+  o.centroid = Q.colwise().mean().transpose();
+  const Vec3Array C = Q.rowwise() - o.centroid.transpose();
+  const Eigen::Matrix3d cov = C.transpose() * C / static_cast<double>(rows.size());
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+  Eigen::Matrix3d R = eig.eigenvectors().rowwise().reverse();  // decreasing variance
+  for (int k = 0; k < 2; ++k) {  // a deterministic sign: the largest component of each axis positive
+    Eigen::Index big = 0;
+    R.col(k).cwiseAbs().maxCoeff(&big);
+    if (R(big, k) < 0) R.col(k) = -R.col(k);
+  }
+  R.col(2) = R.col(0).cross(R.col(1));
+  const Vec3Array L = C * R;
+  const Eigen::Vector3d lo = L.colwise().minCoeff().transpose(), hi = L.colwise().maxCoeff().transpose();
+  o.obb_rotation = R;
+  o.obb_extents = hi - lo;
+  o.obb_center = o.centroid + R * (0.5 * (lo + hi));
+  return o;
+}
+
+/// The objects of an extraction described and ordered as documented (segmentation.hpp) into `out`.
+void finish(const Vec3Array& P, const Eigen::VectorXi& src, const Extraction& e, Segmentation& out) {
+  out.n_plane = e.n_plane;
+  out.n_outliers = e.n_outliers;
+  out.n_small_clusters = e.n_small;
+  if (e.groups.empty()) {
+    bad(out.plane_found || out.plane_given ? "no object above the support plane (every point is within table_clearance "
+                                             "of it, behind it, or in a cluster under min_cluster_size)"
+                                           : "no object in the cloud (every cluster is under min_cluster_size)");
+  }
+  std::vector<SceneObject> described;
+  for (const auto& g : e.groups) described.push_back(describe(P, g));
+  std::vector<std::size_t> order(e.groups.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    const SceneObject &x = described[a], &y = described[b];
+    if (x.n_points != y.n_points) return x.n_points > y.n_points;
+    return std::lexicographical_compare(x.centroid.data(), x.centroid.data() + 3, y.centroid.data(), y.centroid.data() + 3);
+  });
+  std::size_t n = 0;
+  for (const auto& g : e.groups) n += g.size();
+  out.points.resize(static_cast<Eigen::Index>(n), 3);
+  out.labels.resize(static_cast<Eigen::Index>(n));
+  out.sources.resize(static_cast<Eigen::Index>(n));
+  Eigen::Index row = 0;
+  for (const auto i : order) {
+    SceneObject o = described[i];
+    o.index = static_cast<int>(out.objects.size());
+    o.rows.resize(static_cast<Eigen::Index>(e.groups[i].size()));
+    for (std::size_t j = 0; j < e.groups[i].size(); ++j, ++row) {
+      out.points.row(row) = P.row(e.groups[i][j]);
+      out.labels[row] = o.index;
+      out.sources[row] = src[e.groups[i][j]];
+      o.rows[static_cast<Eigen::Index>(j)] = static_cast<int>(row);
+    }
+    out.objects.push_back(std::move(o));
+  }
+  out.n_output = n;
+}
+
+/// The support plane by the rule: the candidates that pass rules 1-3, lowest (farthest from the cameras)
+/// first, until one passes rule 4 on the objects above it; no plane when none does.
+Extraction find_support(const Vec3Array& P, const Cameras& cams, const SegmentationSettings& s, Segmentation& out) {
+  const std::vector<std::vector<int>> inliers = find_candidates(P, cams, s, out);
+  std::vector<std::size_t> order;
+  for (std::size_t i = 0; i < out.candidates.size(); ++i)
+    if (out.candidates[i].accepted) order.push_back(i);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return out.candidates[a].camera_height > out.candidates[b].camera_height;
+  });
+  for (const auto i : order) {
+    PlaneCandidate& c = out.candidates[i];
+    Extraction e = extract(P, &c.plane, s);
+    c.margin = footprint_margin(P, inliers[i], c.plane, e.groups);
+    if (c.margin >= s.plane_margin) {
+      out.plane = c.plane;
+      out.plane_found = true;
+      return e;
+    }
+    c.accepted = false;
+    c.reason = "does not reach beyond the objects (rule 4)";
+  }
+  return extract(P, nullptr, s);
+}
+
+}  // namespace
+
+Segmentation segment_scene(const Vec3Array& points, const Vec3Array& viewpoints, const SegmentationSettings& s,
+                           const std::optional<Eigen::Vector4d>& plane) {
+  const auto t0 = std::chrono::steady_clock::now();
+  check_settings(s);
+  check_inputs(points, viewpoints);
+  Segmentation out;
+  out.n_input = static_cast<std::size_t>(points.rows());
+  SceneSettings voxel;  // prepare_cloud's voxel grid only: the sources follow every centroid
+  voxel.voxel_size = s.voxel_size;
+  voxel.remove_outliers = false;
+  voxel.remove_plane = false;
+  const SceneResult down = prepare_cloud(points, voxel);
+  const Vec3Array& P = down.points;
+  out.n_after_voxel = static_cast<std::size_t>(P.rows());
+  Cameras cams;
+  cams.given = viewpoints.rows() > 0;
+  if (viewpoints.rows() == 1) cams.single = viewpoints.row(0).transpose();
+  if (viewpoints.rows() > 1) {
+    cams.per_point.resize(P.rows(), 3);
+    for (Eigen::Index i = 0; i < P.rows(); ++i) cams.per_point.row(i) = viewpoints.row(down.sources[i]);
+  }
+  if (plane) {
+    out.plane = orient_given(*plane, P, cams, s);
+    out.plane_given = true;
+    finish(P, down.sources, extract(P, &out.plane, s), out);
+  } else {
+    finish(P, down.sources, find_support(P, cams, s, out), out);
+  }
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+}  // namespace graspmix

@@ -1,0 +1,291 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+
+#include "graspmix/perception/segmentation.hpp"
+
+using namespace graspmix;
+
+namespace {
+
+struct Box {
+  Eigen::Vector3d lo, hi;
+  bool contains(const Eigen::Vector3d& p, double tol) const {
+    return (p.array() >= lo.array() - tol).all() && (p.array() <= hi.array() + tol).all();
+  }
+};
+
+/// A pinhole depth camera (45 degree vertical field of view) ray-casting a square table at z = 0 (half
+/// side `table`, none when 0) and axis-aligned boxes, with the acquisition's noise model: depth read at
+/// a pixel shifted by N(0, pixel_std) and back-projected through the true pixel, plus N(0, depth_std).
+struct Render {
+  Vec3Array points;
+  std::vector<int> hit;  ///< per point: -1 the table, else the box index
+};
+
+Render render(const Eigen::Vector3d& eye, const Eigen::Vector3d& target, const std::vector<Box>& boxes, double table,
+              double pixel_std = 0, double depth_std = 0, std::uint64_t seed = 0, int w = 320, int h = 240) {
+  const Eigen::Vector3d fwd = (target - eye).normalized();
+  const Eigen::Vector3d right = fwd.cross(Eigen::Vector3d::UnitZ()).normalized(), up = right.cross(fwd);
+  const double ty = std::tan(M_PI / 8), tx = ty * w / h;
+  auto ray = [&](double u, double v) {
+    return Eigen::Vector3d(fwd + (2 * (u + 0.5) / w - 1) * tx * right + (1 - 2 * (v + 0.5) / h) * ty * up);
+  };
+  auto cast = [&](const Eigen::Vector3d& d, int& id) {
+    double best = std::numeric_limits<double>::infinity();
+    id = -2;
+    if (table > 0 && d.z() * eye.z() < 0) {
+      const double t = -eye.z() / d.z();
+      const Eigen::Vector3d p = eye + t * d;
+      if (std::abs(p.x()) <= table && std::abs(p.y()) <= table) best = t, id = -1;
+    }
+    for (std::size_t b = 0; b < boxes.size(); ++b) {
+      double t0 = 0, t1 = std::numeric_limits<double>::infinity();
+      for (int k = 0; k < 3; ++k) {
+        const double a = (boxes[b].lo[k] - eye[k]) / d[k], c = (boxes[b].hi[k] - eye[k]) / d[k];
+        t0 = std::max(t0, std::min(a, c));
+        t1 = std::min(t1, std::max(a, c));
+      }
+      if (t0 <= t1 && t0 < best) best = t0, id = static_cast<int>(b);
+    }
+    return best;
+  };
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> px(0.0, pixel_std > 0 ? pixel_std : 1.0), dz(0.0, depth_std > 0 ? depth_std : 1.0);
+  Render r;
+  std::vector<Eigen::Vector3d> pts;
+  for (int v = 0; v < h; ++v) {
+    for (int u = 0; u < w; ++u) {
+      const double su = pixel_std > 0 ? std::clamp(std::round(u + px(rng)), 0.0, w - 1.0) : u;
+      const double sv = pixel_std > 0 ? std::clamp(std::round(v + px(rng)), 0.0, h - 1.0) : v;
+      int id = -2;
+      double depth = cast(ray(su, sv), id);
+      if (id == -2) continue;
+      if (depth_std > 0) depth += dz(rng);
+      pts.push_back(eye + depth * ray(u, v));
+      r.hit.push_back(id);
+    }
+  }
+  r.points.resize(static_cast<Eigen::Index>(pts.size()), 3);
+  for (std::size_t i = 0; i < pts.size(); ++i) r.points.row(static_cast<Eigen::Index>(i)) = pts[i].transpose();
+  return r;
+}
+
+Render concat(const std::vector<Render>& parts, Vec3Array& viewpoints, const std::vector<Eigen::Vector3d>& eyes) {
+  Render all;
+  Eigen::Index n = 0;
+  for (const auto& p : parts) n += p.points.rows();
+  all.points.resize(n, 3);
+  viewpoints.resize(n, 3);
+  Eigen::Index row = 0;
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    all.points.middleRows(row, parts[k].points.rows()) = parts[k].points;
+    viewpoints.middleRows(row, parts[k].points.rows()).rowwise() = eyes[k].transpose();
+    all.hit.insert(all.hit.end(), parts[k].hit.begin(), parts[k].hit.end());
+    row += parts[k].points.rows();
+  }
+  return all;
+}
+
+Box box_at(double x, double y, double sx, double sy, double sz) {
+  return {Eigen::Vector3d(x - sx / 2, y - sy / 2, 0), Eigen::Vector3d(x + sx / 2, y + sy / 2, sz)};
+}
+
+const std::vector<Box> kThreeBoxes = {box_at(0.0, 0.0, 0.06, 0.05, 0.10), box_at(-0.02, 0.085, 0.05, 0.05, 0.06),
+                                      box_at(0.03, -0.075, 0.04, 0.04, 0.04)};
+const Eigen::Vector3d kEye(0.5, 0.1, 0.45), kTarget(0, 0, 0.03);
+
+Vec3Array one(const Eigen::Vector3d& v) { return v.transpose(); }
+
+/// The support rule's figures, printed when an expectation on the plane fails.
+std::string figures(const Segmentation& s) {
+  std::string out;
+  for (const auto& c : s.candidates) {
+    out += "[" + std::to_string(c.plane[0]) + " " + std::to_string(c.plane[1]) + " " + std::to_string(c.plane[2]) + " " +
+           std::to_string(c.plane[3]) + "] inliers " + std::to_string(c.inlier_fraction) + " camera " +
+           std::to_string(c.camera_height) + " behind " + std::to_string(c.behind_fraction) + " margin " +
+           std::to_string(c.margin) + " " + c.reason + "\n";
+  }
+  return out;
+}
+
+/// Every object's points lie in exactly one box, a different box for every object, and each box is found.
+void expect_objects_are_the_boxes(const Segmentation& s, const std::vector<Box>& boxes) {
+  ASSERT_EQ(s.objects.size(), boxes.size());
+  std::vector<int> seen(boxes.size(), 0);
+  for (const auto& o : s.objects) {
+    int which = -1;
+    for (std::size_t b = 0; b < boxes.size(); ++b)
+      if (boxes[b].contains(o.centroid, 0.0)) which = static_cast<int>(b);
+    ASSERT_GE(which, 0) << "centroid of object " << o.index << " in no box";
+    ++seen[static_cast<std::size_t>(which)];
+    // Lateral noise puts a few flying pixels (a neighbour's depth) at the silhouette, still attached.
+    int inside = 0;
+    for (Eigen::Index j = 0; j < o.rows.size(); ++j) {
+      const Eigen::Vector3d p = s.points.row(o.rows[j]).transpose();
+      inside += boxes[static_cast<std::size_t>(which)].contains(p, 0.006);
+      EXPECT_EQ(s.labels[o.rows[j]], o.index);
+    }
+    EXPECT_GT(inside, 0.95 * static_cast<double>(o.rows.size())) << "object " << o.index;
+  }
+  for (const int n : seen) EXPECT_EQ(n, 1);
+}
+
+}  // namespace
+
+TEST(Segmentation, TableAndThreeBoxesFromOneNoisyCamera) {
+  const Render r = render(kEye, kTarget, kThreeBoxes, 1.0, 1.0, 0.001, 3);
+  const Segmentation s = segment_scene(r.points, one(kEye));
+  ASSERT_TRUE(s.plane_found) << figures(s);
+  EXPECT_FALSE(s.plane_given);
+  EXPECT_GT(s.plane[2], 0.999) << "normal up, towards the camera";
+  EXPECT_NEAR(s.plane[3], 0.0, 0.002);
+  expect_objects_are_the_boxes(s, kThreeBoxes);
+  for (std::size_t i = 1; i < s.objects.size(); ++i) EXPECT_GE(s.objects[i - 1].n_points, s.objects[i].n_points);
+  for (Eigen::Index i = 0; i < s.points.rows(); ++i) {  // sources name an input point of the same voxel
+    EXPECT_LT((r.points.row(s.sources[i]) - s.points.row(i)).norm(), 0.003 * std::sqrt(3.0) + 1e-9);
+  }
+  EXPECT_EQ(s.n_input, static_cast<std::size_t>(r.points.rows()));
+  EXPECT_EQ(s.n_after_voxel, s.n_plane + s.n_outliers + s.n_small_clusters + s.n_output);
+}
+
+TEST(Segmentation, OrientationFollowsTheCameraNotThePoints) {
+  // The same scene seen from below (a glass table): the boxes hang under it, the camera is under it.
+  std::vector<Box> hanging;
+  for (const auto& b : kThreeBoxes) hanging.push_back({Eigen::Vector3d(b.lo.x(), b.lo.y(), -b.hi.z()),
+                                                       Eigen::Vector3d(b.hi.x(), b.hi.y(), 0)});
+  const Eigen::Vector3d eye(0.5, 0.1, -0.45);
+  const Render r = render(eye, Eigen::Vector3d(0, 0, -0.03), hanging, 1.0, 0.0, 0.001, 4);
+  const Segmentation s = segment_scene(r.points, one(eye));
+  ASSERT_TRUE(s.plane_found) << figures(s);
+  EXPECT_LT(s.plane[2], -0.999);
+  expect_objects_are_the_boxes(s, hanging);
+}
+
+TEST(Segmentation, WithoutViewpointsTheCameraIsAtTheOrigin) {
+  // The cloud in the camera's frame: the scene shifted so that the camera is at the origin.
+  const Render r = render(kEye, kTarget, kThreeBoxes, 1.0);
+  const Vec3Array in_camera = r.points.rowwise() - kEye.transpose();
+  const Segmentation s = segment_scene(in_camera, Vec3Array(0, 3));
+  ASSERT_TRUE(s.plane_found) << figures(s);
+  EXPECT_GT(s.plane[2], 0.999);
+  EXPECT_NEAR(s.plane[3], kEye.z(), 0.002);  // z = -0.45 in the camera's frame, the camera on the + side
+  EXPECT_EQ(s.objects.size(), kThreeBoxes.size());
+}
+
+TEST(Segmentation, ObjectOnlyCloudsHaveNoPlane) {
+  const Box tall = box_at(0, 0, 0.06, 0.05, 0.10), flat = box_at(0, 0, 0.12, 0.08, 0.025),
+            on_side = box_at(0, 0, 0.12, 0.025, 0.08);
+  std::vector<Eigen::Vector3d> ring;
+  for (int k = 0; k < 4; ++k) ring.emplace_back(0.5 * std::cos(M_PI / 4 + k * M_PI / 2), 0.5 * std::sin(M_PI / 4 + k * M_PI / 2), 0.35);
+  for (const Box& b : {tall, flat, on_side}) {
+    const Render single = render(kEye, kTarget, {b}, 0.0, 1.0, 0.001, 5);
+    const Segmentation s1 = segment_scene(single.points, one(kEye));
+    EXPECT_FALSE(s1.plane_found) << "a face of a " << b.hi.transpose() - b.lo.transpose() << " box, one camera";
+    ASSERT_EQ(s1.objects.size(), 1u);
+    EXPECT_EQ(s1.n_plane, 0u);
+    std::vector<Render> views;
+    for (const auto& e : ring) views.push_back(render(e, kTarget, {b}, 0.0, 1.0, 0.001, 6));
+    Vec3Array vps;
+    const Render all = concat(views, vps, ring);
+    const Segmentation s4 = segment_scene(all.points, vps);
+    EXPECT_FALSE(s4.plane_found) << "a face of a " << b.hi.transpose() - b.lo.transpose() << " box, four cameras";
+    EXPECT_EQ(s4.objects.size(), 1u);
+  }
+}
+
+TEST(Segmentation, PerPointViewpointsFromFourCamerasFindTheTable) {
+  std::vector<Eigen::Vector3d> ring;
+  for (int k = 0; k < 4; ++k) ring.emplace_back(0.5 * std::cos(k * M_PI / 2), 0.5 * std::sin(k * M_PI / 2), 0.35);
+  std::vector<Render> views;
+  for (const auto& e : ring) views.push_back(render(e, kTarget, kThreeBoxes, 0.4, 1.0, 0.001, 7, 160, 120));
+  Vec3Array vps;
+  const Render all = concat(views, vps, ring);
+  const Segmentation s = segment_scene(all.points, vps);
+  ASSERT_TRUE(s.plane_found) << figures(s);
+  EXPECT_GT(s.plane[2], 0.999);
+  expect_objects_are_the_boxes(s, kThreeBoxes);
+}
+
+TEST(Segmentation, GivenPlaneIsTurnedTowardsTheCamerasOrKeptWithoutThem) {
+  const Render r = render(kEye, kTarget, kThreeBoxes, 1.0);
+  const Eigen::Vector4d down(0, 0, -2, 0);  // z = 0, written with the normal down and not unit
+  const Segmentation s = segment_scene(r.points, one(kEye), {}, down);
+  EXPECT_TRUE(s.plane_given);
+  EXPECT_FALSE(s.plane_found);
+  EXPECT_TRUE(s.candidates.empty());
+  EXPECT_TRUE(s.plane.isApprox(Eigen::Vector4d(0, 0, 1, 0)));
+  expect_objects_are_the_boxes(s, kThreeBoxes);
+  for (Eigen::Index i = 0; i < s.points.rows(); ++i) EXPECT_GT(s.points(i, 2), SegmentationSettings{}.table_clearance);
+  // No viewpoint: the caller's side is kept, so the boxes are behind it and nothing is left.
+  EXPECT_THROW(segment_scene(r.points, Vec3Array(0, 3), {}, down), std::invalid_argument);
+  const Segmentation up = segment_scene(r.points, Vec3Array(0, 3), {}, Eigen::Vector4d(0, 0, 1, 0));
+  EXPECT_EQ(up.objects.size(), kThreeBoxes.size());
+}
+
+TEST(Segmentation, SameSeedSameResult) {
+  const Render r = render(kEye, kTarget, kThreeBoxes, 1.0, 1.0, 0.001, 8);
+  const Segmentation a = segment_scene(r.points, one(kEye)), b = segment_scene(r.points, one(kEye));
+  EXPECT_EQ(a.plane, b.plane);
+  EXPECT_EQ(a.labels, b.labels);
+  EXPECT_EQ(a.sources, b.sources);
+}
+
+TEST(Segmentation, ObbOfABoxIsTheBox) {
+  std::vector<Eigen::Vector3d> ring;
+  for (int k = 0; k < 4; ++k) ring.emplace_back(0.5 * std::cos(M_PI / 4 + k * M_PI / 2), 0.5 * std::sin(M_PI / 4 + k * M_PI / 2), 0.35);
+  const Box b = box_at(0.01, 0.02, 0.12, 0.06, 0.03);
+  std::vector<Render> views;
+  for (const auto& e : ring) views.push_back(render(e, kTarget, {b}, 0.0));
+  Vec3Array vps;
+  const Render all = concat(views, vps, ring);
+  SegmentationSettings st;
+  st.voxel_size = 0;
+  const Segmentation s = segment_scene(all.points, vps, st);
+  ASSERT_EQ(s.objects.size(), 1u);
+  const SceneObject& o = s.objects[0];
+  EXPECT_NEAR(std::abs(o.obb_rotation(0, 0)), 1.0, 1e-3);  // longest axis along x
+  EXPECT_NEAR(o.obb_rotation.determinant(), 1.0, 1e-9);
+  EXPECT_NEAR(o.obb_extents[0], 0.12, 0.003);
+  EXPECT_NEAR(o.obb_extents[1], 0.06, 0.003);
+  EXPECT_NEAR(o.obb_extents[2], 0.03, 0.003);
+  EXPECT_TRUE(o.obb_center.isApprox(Eigen::Vector3d(0.01, 0.02, 0.015), 0.003 / 0.02));
+}
+
+TEST(Segmentation, BadInputsNameTheCause) {
+  const Render r = render(kEye, kTarget, kThreeBoxes, 1.0);
+  auto message = [&](const Vec3Array& p, const Vec3Array& v, const SegmentationSettings& st,
+                     std::optional<Eigen::Vector4d> plane = std::nullopt) {
+    try {
+      segment_scene(p, v, st, plane);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message(Vec3Array(0, 3), Vec3Array(0, 3), {}).find("empty"), std::string::npos);
+  Vec3Array nan = r.points;
+  nan(3, 1) = std::nan("");
+  EXPECT_NE(message(nan, Vec3Array(0, 3), {}).find("NaN"), std::string::npos);
+  EXPECT_NE(message(r.points, Vec3Array(2, 3), {}).find("viewpoints"), std::string::npos);
+  EXPECT_NE(message(r.points, Vec3Array::Constant(1, 3, INFINITY), {}).find("viewpoints"), std::string::npos);
+  SegmentationSettings st;
+  st.cluster_tolerance = 0;
+  EXPECT_NE(message(r.points, one(kEye), st).find("cluster_tolerance"), std::string::npos);
+  st = {};
+  st.max_cluster_size = 5;
+  EXPECT_NE(message(r.points, one(kEye), st).find("max_cluster_size"), std::string::npos);
+  const Render table = render(kEye, kTarget, {}, 1.0, 1.0, 0.001, 9);
+  EXPECT_NE(message(table.points, one(kEye), {}).find("no object above the support plane"), std::string::npos);
+  EXPECT_NE(message(table.points, one(kEye), {}, Eigen::Vector4d(0, 0, 1, 0)).find("no object above"), std::string::npos);
+  EXPECT_NE(message(r.points, one(kEye), {}, Eigen::Vector4d(0, 0, 0, 1)).find("plane"), std::string::npos);
+}

@@ -1,9 +1,11 @@
 // Object representation: cloud files, scene clean-up and surface features (O(v, r)).
 #include <limits>
+#include <optional>
 
 #include "common.hpp"
 #include "graspmix/perception/cloud_io.hpp"
 #include "graspmix/perception/scene.hpp"
+#include "graspmix/perception/segmentation.hpp"
 #include "graspmix/perception/surface.hpp"
 #include "settings.hpp"
 
@@ -140,6 +142,95 @@ void bind_perception(py::module_& m) {
        "as a keyword), voxel grid, statistical outlier removal, and removal of the dominant plane by seeded "
        "RANSAC (it must hold plane_min_fraction of the points) together with the points below it.\n" +
        settings_doc<SceneSettings>())
+          .c_str());
+
+  // ---- scene segmentation ------------------------------------------------------------------------
+  SettingsClass<SegmentationSettings>(m, "SegmentationSettings",
+                                      "The scene model (segment_scene): support plane rule, table cut, outliers, clusters.")
+      .field("voxel_size", &SegmentationSettings::voxel_size, "m: voxel-grid leaf size, 0 = off (SceneSettings')")
+      .field("plane_distance", &SegmentationSettings::plane_distance, "m: RANSAC inlier threshold")
+      .field("plane_max_iterations", &SegmentationSettings::plane_max_iterations, "RANSAC iterations per candidate")
+      .seed("seed", &SegmentationSettings::seed, "seeds RANSAC (None: 0)")
+      .field("plane_candidates", &SegmentationSettings::plane_candidates,
+             "planes tried, each on the points the previous ones left")
+      .field("plane_min_fraction", &SegmentationSettings::plane_min_fraction,
+             "rule 1: fraction of the voxelised points a candidate holds")
+      .field("plane_behind_distance", &SegmentationSettings::plane_behind_distance,
+             "m, rule 3: how far behind the plane a point counts as behind it")
+      .field("plane_max_behind_fraction", &SegmentationSettings::plane_max_behind_fraction,
+             "rule 3: fraction of all points allowed behind the plane")
+      .field("plane_margin", &SegmentationSettings::plane_margin,
+             "m, rule 4: how far the plane's inliers must reach beyond the objects' footprint")
+      .field("table_clearance", &SegmentationSettings::table_clearance,
+             "m: points at most this far above the support plane (or behind it) are the table")
+      .field("remove_outliers", &SegmentationSettings::remove_outliers,
+             "statistical outlier removal on the object points")
+      .field("outlier_neighbours", &SegmentationSettings::outlier_neighbours, "k of the mean-distance statistic")
+      .field("outlier_std_ratio", &SegmentationSettings::outlier_std_ratio,
+             "drop points whose mean k-distance exceeds mean + ratio * std")
+      .field("cluster_tolerance", &SegmentationSettings::cluster_tolerance,
+             "m: object points closer than this are one object (Euclidean clusters)")
+      .field("min_cluster_size", &SegmentationSettings::min_cluster_size, "smaller clusters are noise, dropped")
+      .field("max_cluster_size", &SegmentationSettings::max_cluster_size, "larger clusters are dropped; 0 = no limit")
+      .done();
+
+  py::class_<SceneObject>(m, "SceneObject", "One object of a segmented scene: a Euclidean cluster above the plane.")
+      .def_readonly("index", &SceneObject::index, "its label and its place in Segmentation.objects")
+      .def_readonly("rows", &SceneObject::rows, "(n) its rows of Segmentation.points")
+      .def_readonly("centroid", &SceneObject::centroid, "(3,) m")
+      .def_readonly("obb_center", &SceneObject::obb_center, "(3,) m: centre of the oriented bounding box")
+      .def_readonly("obb_rotation", &SceneObject::obb_rotation,
+                    "(3, 3): columns the box's axes by decreasing variance, right-handed")
+      .def_readonly("obb_extents", &SceneObject::obb_extents, "(3,) m: side lengths along those axes")
+      .def_readonly("n_points", &SceneObject::n_points);
+
+  py::class_<PlaneCandidate>(m, "PlaneCandidate", "What the support plane rule saw of one RANSAC plane.")
+      .def_readonly("plane", &PlaneCandidate::plane, "[a, b, c, d], (a, b, c) unit towards the cameras")
+      .def_readonly("n_inliers", &PlaneCandidate::n_inliers)
+      .def_readonly("inlier_fraction", &PlaneCandidate::inlier_fraction, "rule 1")
+      .def_readonly("camera_height", &PlaneCandidate::camera_height, "m, rule 2: mean camera height above it")
+      .def_readonly("behind_fraction", &PlaneCandidate::behind_fraction, "rule 3")
+      .def_readonly("margin", &PlaneCandidate::margin, "m, rule 4 (NaN when not judged, inf with no object)")
+      .def_readonly("accepted", &PlaneCandidate::accepted)
+      .def_readonly("reason", &PlaneCandidate::reason, "why it was refused (empty when accepted)");
+
+  py::class_<Segmentation>(m, "Segmentation", "The support plane and the objects of a scene cloud (segment_scene).")
+      .def_property_readonly(
+          "plane",
+          [](const Segmentation& r) { return r.plane_found || r.plane_given ? py::cast(r.plane) : py::none(); },
+          "[a, b, c, d], (a, b, c) unit towards the cameras; None without a plane")
+      .def_readonly("plane_found", &Segmentation::plane_found)
+      .def_readonly("plane_given", &Segmentation::plane_given)
+      .def_readonly("points", &Segmentation::points, "(M, 3) the objects' points (voxelised), grouped by object")
+      .def_readonly("labels", &Segmentation::labels, "(M) object index of every point")
+      .def_readonly("sources", &Segmentation::sources, "(M) input row whose per-point data every point carries")
+      .def_readonly("objects", &Segmentation::objects, "by decreasing point count, ties by centroid x, y, z")
+      .def_readonly("candidates", &Segmentation::candidates, "the support rule's figures, in the order found")
+      .def_readonly("n_input", &Segmentation::n_input)
+      .def_readonly("n_after_voxel", &Segmentation::n_after_voxel)
+      .def_readonly("n_plane", &Segmentation::n_plane, "dropped as the table")
+      .def_readonly("n_outliers", &Segmentation::n_outliers)
+      .def_readonly("n_small_clusters", &Segmentation::n_small_clusters, "points of clusters dropped as noise")
+      .def_readonly("n_output", &Segmentation::n_output)
+      .def_readonly("seconds", &Segmentation::seconds);
+  m.def(
+      "segment_scene",
+      [](const py::object& points, const py::object& viewpoints, const py::object& plane, const py::object& settings,
+         py::kwargs kw) {
+        const Vec3Array P(to_matrix(points, "segment_scene: points", 3));
+        const Vec3Array V = to_points3(viewpoints, "segment_scene: viewpoints");
+        std::optional<Eigen::Vector4d> known;
+        if (!plane.is_none()) known = Eigen::Vector4d(to_vector(plane, "segment_scene: plane", 4));
+        const SegmentationSettings s = settings_from<SegmentationSettings>(settings, kw, "segment_scene");
+        py::gil_scoped_release release;
+        return segment_scene(P, V, s, known);
+      },
+      py::arg("points"), py::arg("viewpoints") = py::none(), py::arg("plane") = py::none(), py::kw_only(),
+      py::arg("settings") = py::none(),
+      ("The support plane and the objects of a scene cloud (N, 3) seen from viewpoints (None: a camera at the "
+       "origin; (3,) or (N, 3)); plane [a, b, c, d] gives a known support. The rule that accepts a plane is in "
+       "include/graspmix/perception/segmentation.hpp.\n" +
+       settings_doc<SegmentationSettings>())
           .c_str());
 
   // ---- surface features --------------------------------------------------------------------------

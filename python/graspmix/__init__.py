@@ -4,6 +4,7 @@ The C++ core lives in ``graspmix._core``; this package re-exports it and adds th
 layers, each importing only from the ones before it:
 
     io/          file formats and paths (the bundled data, JSON documents, object lists)
+    perception/  the scene model: support plane, objects, targets, camera-frame clouds
     model/       demonstrations, learning, GraspModel and synthesis, Grasp/GraspSet, experts, settings
     sim/         simulated cameras, grasp execution in Bullet, recording demonstrations
     viz/         pictures
@@ -20,6 +21,7 @@ from . import (
     acquisition,  # noqa: E402  (deprecated alias of graspmix.sim.acquisition)
     io,
     model,
+    perception,
     sim,
     viz,
 )
@@ -63,6 +65,7 @@ from ._core import (
     save_cloud,
 )
 from .io import data_path
+from .perception import Scene, segment_scene
 from .model import Demonstration, FeatureSettings, Grasp, GraspModel, GraspSet, default_model_path, expert, learn
 
 __version__ = io.package_version()

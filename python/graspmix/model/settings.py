@@ -1,7 +1,6 @@
 """The settings of learning and synthesis as the Python front end takes them. Every value that C++ also
 knows is read from the default-constructed C++ settings struct (the single source, docs/design.md);
-keyword arguments, the command line and the experiment's protocol refer to these fields in turn. Only
-the table clearance is the front end's own.
+keyword arguments, the command line and the experiment's protocol refer to these fields in turn.
 """
 
 from __future__ import annotations
@@ -14,6 +13,7 @@ from .. import _core
 
 # The C++ defaults, read once from the default-constructed structs.
 _SCENE = _core.SceneSettings()
+_SEGMENTATION = _core.SegmentationSettings()
 _SURFACE = _core.SurfaceFeatureSettings()
 _POSE_MIXTURE = _core.PoseMixture().settings
 _KDE = _core.KdeSettings()
@@ -129,6 +129,6 @@ class SynthesisOptions:
     contact_tolerance: float = _COLLISION.contact_tolerance  # m: depths up to this are touching
     collision_inside_weight: float = _COLLISION.inside_weight
     # m: with a known support plane (synthesize(plane=...)), every point at most this far above it (or
-    # below it) is dropped as the table before anything else: the one default of the front end's own.
-    # (Not the RANSAC inlier threshold SceneSettings.plane_distance, used when the plane is searched for.)
-    table_clearance: float = 0.005
+    # below it) is dropped as the table before anything else (SegmentationSettings.table_clearance; not the
+    # RANSAC inlier threshold SceneSettings.plane_distance, used when the plane is searched for).
+    table_clearance: float = _SEGMENTATION.table_clearance

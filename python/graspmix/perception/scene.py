@@ -1,0 +1,242 @@
+"""Scene: a segmented scene cloud (graspmix._core.segment_scene) with numpy arrays, target selection and
+a JSON form; camera_to_world for clouds given in a camera's frame."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .. import _core
+from ..io import as_points, quote
+
+# m: a "point:x,y,z" target farther than this from every object's points names no object (a click or a
+# typed point lands on the surface the camera saw, within a few voxels of it).
+POINT_TARGET_MAX_DISTANCE = 0.05
+# A camera pose's quaternion is a unit one when its norm is within this of 1 (poses typed with 4 decimals
+# pass); it is then normalised.
+UNIT_QUATERNION_TOLERANCE = 1e-3
+TARGET_KINDS = ("all", "largest", "nearest")
+
+
+@dataclass(frozen=True)
+class Target:
+    """What to grasp: kind "all" | "largest" | "nearest" | "index" (with index) | "point" (with point)."""
+
+    kind: str
+    index: int | None = None
+    point: tuple[float, float, float] | None = None
+
+    def __str__(self) -> str:
+        if self.kind == "index":
+            return str(self.index)
+        if self.kind == "point":
+            return "point:" + ",".join(f"{v:g}" for v in self.point)
+        return self.kind
+
+
+def parse_target(text) -> Target:
+    """A Target from "all", "largest", "nearest", an object index ("2") or "point:x,y,z" (metres, the
+    cloud's frame); ValueError naming the text otherwise. A Target or an int passes through."""
+    if isinstance(text, Target):
+        return text
+    if isinstance(text, (int, np.integer)) and not isinstance(text, bool):
+        if text < 0:
+            raise ValueError(f"target: an object index is >= 0, got {text}")
+        return Target("index", index=int(text))
+    if not isinstance(text, str):
+        raise ValueError(f"target must be a string or an object index, got {type(text).__name__}")
+    t = text.strip()
+    if t in TARGET_KINDS:
+        return Target(t)
+    if t.isdigit():
+        return Target("index", index=int(t))
+    if t.startswith("point:"):
+        try:
+            xyz = tuple(float(v) for v in t[len("point:") :].split(","))
+        except ValueError:
+            xyz = ()
+        if len(xyz) != 3 or not all(math.isfinite(v) for v in xyz):
+            raise ValueError(f"target: expected point:x,y,z with three finite numbers (m), got {quote(text)}")
+        return Target("point", point=xyz)
+    raise ValueError(f"target: expected all, largest, nearest, an object index or point:x,y,z, got {quote(text)}")
+
+
+@dataclass(frozen=True)
+class SceneObject:
+    """One object: a Euclidean cluster above the support plane."""
+
+    index: int
+    points: np.ndarray  # (n, 3) its points (voxelised), m
+    rows: np.ndarray  # (n,) its rows of Scene.points
+    centroid: np.ndarray  # (3,)
+    obb_center: np.ndarray  # (3,) oriented bounding box
+    obb_rotation: np.ndarray  # (3, 3) columns: the box's axes, by decreasing variance
+    obb_extents: np.ndarray  # (3,) side lengths along them
+    n_points: int
+
+    def to_dict(self) -> dict:
+        return {
+            "index": self.index,
+            "n_points": self.n_points,
+            "centroid": self.centroid.tolist(),
+            "obb_center": self.obb_center.tolist(),
+            "obb_rotation": self.obb_rotation.tolist(),
+            "obb_extents": self.obb_extents.tolist(),
+        }
+
+
+def _finite_or_none(v: float):
+    return float(v) if math.isfinite(v) else None
+
+
+class Scene:
+    """The support plane and the objects of a scene cloud (made by segment_scene)."""
+
+    def __init__(self, result, viewpoints: np.ndarray | None):
+        self.result = result  # the C++ Segmentation, for its every count
+        self.plane = None if result.plane is None else np.asarray(result.plane, dtype=float)
+        self.plane_found = bool(result.plane_found)
+        self.plane_given = bool(result.plane_given)
+        self.points = np.asarray(result.points)
+        self.labels = np.asarray(result.labels)
+        self.sources = np.asarray(result.sources)
+        self._given_viewpoints = viewpoints
+        self.viewpoints = None  # (M, 3) the camera that saw each kept point, or None without viewpoints
+        if viewpoints is not None:
+            vp = np.asarray(viewpoints, dtype=float)
+            per_point = vp.ndim == 2 and len(vp) > 1
+            self.viewpoints = vp[self.sources] if per_point else np.tile(vp.reshape(3), (len(self.points), 1))
+        self.objects = [
+            SceneObject(
+                index=o.index,
+                points=self.points[np.asarray(o.rows)],
+                rows=np.asarray(o.rows),
+                centroid=np.asarray(o.centroid),
+                obb_center=np.asarray(o.obb_center),
+                obb_rotation=np.asarray(o.obb_rotation),
+                obb_extents=np.asarray(o.obb_extents),
+                n_points=int(o.n_points),
+            )
+            for o in result.objects
+        ]
+        self.timing = {"segmentation": float(result.seconds)}
+
+    def __len__(self) -> int:
+        return len(self.objects)
+
+    def __repr__(self) -> str:
+        plane = "given" if self.plane_given else ("found" if self.plane_found else "none")
+        return f"<Scene {len(self.objects)} objects, {len(self.points)} points, plane {plane}>"
+
+    def select(self, target="all", camera=None) -> list[int]:
+        """Object indices for a target (parse_target's forms): "all" every object; an index; "point:x,y,z"
+        the object with a point nearest to it (ValueError beyond POINT_TARGET_MAX_DISTANCE); "largest" the
+        object with the most points (what the grasp sampler works on; an OBB volume is inflated by the
+        flying pixels at silhouettes and by the hidden side of a one-view object); "nearest" the object with
+        the point nearest to a camera: `camera` (3,) if given, else the viewpoints given, else the origin."""
+        t = parse_target(target)
+        if t.kind == "all":
+            return [o.index for o in self.objects]
+        if t.kind == "index":
+            if t.index >= len(self.objects):
+                raise ValueError(f"target: no object {t.index} (the scene has {len(self.objects)}: 0..{len(self.objects) - 1})")
+            return [t.index]
+        if t.kind == "largest":
+            return [max(self.objects, key=lambda o: (o.n_points, -o.index)).index]
+        if t.kind == "point":
+            p = np.asarray(t.point)
+            d = np.array([np.min(np.linalg.norm(o.points - p, axis=1)) for o in self.objects])
+            best = int(np.argmin(d))
+            if d[best] > POINT_TARGET_MAX_DISTANCE:
+                raise ValueError(
+                    f"target: the point {t} is {d[best]:.3f} m from the nearest object (more than "
+                    f"{POINT_TARGET_MAX_DISTANCE} m): it names no object"
+                )
+            return [self.objects[best].index]
+        cams = self._cameras(camera)
+        d = [min(np.min(np.linalg.norm(o.points - c, axis=1)) for c in cams) for o in self.objects]
+        return [self.objects[int(np.argmin(d))].index]
+
+    def _cameras(self, camera) -> np.ndarray:
+        if camera is not None:
+            c = np.asarray(camera, dtype=float)
+            if c.shape != (3,) or not np.all(np.isfinite(c)):
+                raise ValueError(f"camera: expected a finite (3,) position, got shape {c.shape}")
+            return c[None]
+        if self._given_viewpoints is None:
+            return np.zeros((1, 3))
+        return np.unique(np.asarray(self._given_viewpoints, dtype=float).reshape(-1, 3), axis=0)
+
+    def to_dict(self) -> dict:
+        """A JSON-ready summary: the plane (with the rule's figures), the objects, the counts, the time."""
+        r = self.result
+        return {
+            "plane": None if self.plane is None else self.plane.tolist(),
+            "plane_found": self.plane_found,
+            "plane_given": self.plane_given,
+            "candidates": [
+                {
+                    "plane": list(map(float, c.plane)),
+                    "n_inliers": c.n_inliers,
+                    "inlier_fraction": c.inlier_fraction,
+                    "camera_height": c.camera_height,
+                    "behind_fraction": c.behind_fraction,
+                    "margin": _finite_or_none(c.margin),
+                    "accepted": c.accepted,
+                    "reason": c.reason,
+                }
+                for c in r.candidates
+            ],
+            "objects": [o.to_dict() for o in self.objects],
+            "counts": {
+                "input": r.n_input,
+                "after_voxel": r.n_after_voxel,
+                "plane": r.n_plane,
+                "outliers": r.n_outliers,
+                "small_clusters": r.n_small_clusters,
+                "output": r.n_output,
+            },
+            "timing_s": dict(self.timing),
+        }
+
+
+def segment_scene(points, viewpoints=None, plane=None, **settings) -> Scene:
+    """The support plane and the objects of a scene cloud (N, 3), seen from viewpoints (None: a camera at
+    the origin, the PCD convention; (3,) one camera; (N, 3) one per point); plane [a, b, c, d] gives a known
+    support, turned towards the cameras. Keywords: SegmentationSettings' fields (or settings=). ValueError
+    on bad input, and when no object stands above the plane."""
+    pts = as_points(points)
+    vp = None
+    if viewpoints is not None:
+        vp = np.asarray(viewpoints, dtype=float)
+        if vp.shape not in ((3,), (1, 3), (len(pts), 3)):
+            raise ValueError(f"viewpoints: expected shape (3,) or ({len(pts)}, 3) for {len(pts)} points, got {vp.shape}")
+    return Scene(_core.segment_scene(pts, vp, plane, **settings), vp)
+
+
+def _rotation(q: np.ndarray) -> np.ndarray:
+    x, y, z, w = q
+    return np.array(
+        [
+            [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+            [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+            [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
+        ]
+    )
+
+
+def camera_to_world(points, pose) -> tuple[np.ndarray, np.ndarray]:
+    """(world points (N, 3), camera position (3,)) of points given in a camera's frame, with the camera's
+    pose T_world_camera = [x, y, z, qx, qy, qz, qw]; ValueError when the quaternion is not a unit one
+    (norm off 1 by more than UNIT_QUATERNION_TOLERANCE)."""
+    pts = as_points(points)
+    p = np.asarray(pose, dtype=float)
+    if p.shape != (7,) or not np.all(np.isfinite(p)):
+        raise ValueError(f"camera pose: expected 7 finite numbers x, y, z, qx, qy, qz, qw, got shape {p.shape}")
+    norm = float(np.linalg.norm(p[3:]))
+    if abs(norm - 1.0) > UNIT_QUATERNION_TOLERANCE:
+        raise ValueError(f"camera pose: [qx, qy, qz, qw] = {p[3:].tolist()} is not a unit quaternion (norm {norm:.6g})")
+    R = _rotation(p[3:] / norm)
+    return pts @ R.T + p[:3], p[:3].copy()

@@ -1,0 +1,192 @@
+"""The scene model against the renderer's ground truth: the support plane and its side on clouds rendered
+with pybullet (one and four cameras, with and without noise), no plane on object-only clouds, clusters
+against pybullet's segmentation mask, every target mode, the camera-frame input, bad inputs."""
+
+import graspmix
+import numpy as np
+import pybullet as p
+import pytest
+from graspmix import _core
+from graspmix.model.settings import SynthesisOptions
+from graspmix.perception import POINT_TARGET_MAX_DISTANCE, camera_to_world, parse_target, segment_scene
+from graspmix.sim.acquisition import AcquisitionSettings, Camera, acquire, back_project, ring_cameras
+from graspmix.sim.acquisition import Scene as BulletScene
+
+EYE = (0.5, 0.1, 0.45)
+FLAT_BOX = """<?xml version="1.0"?>
+<robot name="flat"><link name="base">
+  <visual><geometry><box size="{x} {y} {z}"/></geometry></visual>
+  <collision><geometry><box size="{x} {y} {z}"/></geometry></collision>
+  <inertial><mass value="0.2"/><inertia ixx="1e-4" iyy="1e-4" izz="1e-4" ixy="0" ixz="0" iyz="0"/></inertial>
+</link></robot>"""
+
+
+def _up(plane):
+    return plane is not None and plane[2] > 0.999 and abs(plane[3]) < 0.003
+
+
+@pytest.mark.parametrize("noise", [False, True])
+@pytest.mark.parametrize("n_cameras", [1, 4])
+def test_rendered_table_is_found_and_faces_the_cameras(noise, n_cameras):
+    cams = [Camera(eye=EYE)] if n_cameras == 1 else ring_cameras(4)
+    acq = acquire("objects/mug.urdf", noise=noise, seed=2, settings=AcquisitionSettings(cameras=cams, keep="scene"))
+    scene = segment_scene(acq.points, acq.viewpoints)
+    assert scene.plane_found and not scene.plane_given
+    assert _up(scene.plane), scene.to_dict()["candidates"]
+    assert np.all(scene.points @ scene.plane[:3] + scene.plane[3] > _core.SegmentationSettings().table_clearance)
+    # the mug (at the origin) is the largest object, and no table point is left in it
+    mug = scene.objects[scene.select("largest")[0]]
+    assert np.linalg.norm(mug.centroid[:2] - acq.object_pose[:2]) < 0.03
+    assert mug.obb_extents.max() < 0.16
+
+
+def test_the_cameras_decide_the_side_not_the_points():
+    # The same cloud turned upside down (z -> -z with the camera): the plane must turn with it.
+    acq = acquire("objects/mug.urdf", noise=True, seed=3, settings=AcquisitionSettings(cameras=[Camera(eye=EYE)], keep="scene"))
+    flip = np.diag([1.0, -1.0, -1.0])
+    scene = segment_scene(acq.points @ flip, np.asarray(EYE) @ flip)
+    assert scene.plane_found and scene.plane[2] < -0.999
+
+
+def _flat_box(tmp_path, size):
+    path = tmp_path / "flat.urdf"
+    path.write_text(FLAT_BOX.format(x=size[0], y=size[1], z=size[2]))
+    return path
+
+
+@pytest.mark.parametrize("shape", ["mug", "box", "flat", "on_side"])
+@pytest.mark.parametrize("n_cameras", [1, 4])
+def test_object_only_clouds_have_no_plane(tmp_path, shape, n_cameras):
+    obj = {
+        "mug": "objects/mug.urdf",
+        "box": _flat_box(tmp_path, (0.06, 0.05, 0.1)),
+        "flat": _flat_box(tmp_path, (0.12, 0.08, 0.025)),
+        "on_side": _flat_box(tmp_path, (0.12, 0.025, 0.08)),
+    }[shape]
+    cams = [Camera(eye=EYE)] if n_cameras == 1 else ring_cameras(4)
+    acq = acquire(obj, noise=True, seed=4, settings=AcquisitionSettings(cameras=cams, keep="object"))
+    scene = segment_scene(acq.points, acq.viewpoints)
+    assert not scene.plane_found, scene.to_dict()["candidates"]
+    assert scene.plane is None
+    assert scene.result.n_plane == 0
+
+
+# Three objects on plane.urdf: (urdf, position, scale); sizes clearly apart so "largest" has one answer.
+OBJECTS = [("cube.urdf", (0.0, 0.0), 0.08), ("cube.urdf", (-0.03, 0.13), 0.05), ("sphere_small.urdf", (0.08, -0.1), 1.0)]
+
+
+@pytest.fixture(scope="module")
+def rendered():
+    """A pybullet scene of three objects seen by one camera: the cloud, its viewpoint, and per point the
+    body id from pybullet's segmentation mask (the ground truth); the bodies' ids and positions."""
+    with BulletScene("cube_small.urdf", AcquisitionSettings()) as world:
+        p.removeBody(world.body, physicsClientId=world.client)
+        bodies = []
+        for urdf, (x, y), scale in OBJECTS:
+            b = p.loadURDF(urdf, (x, y, 1.0), globalScaling=scale, physicsClientId=world.client)
+            lo, _ = p.getAABB(b, -1, physicsClientId=world.client)
+            p.resetBasePositionAndOrientation(b, (x, y, 1.0 - lo[2]), (0, 0, 0, 1), physicsClientId=world.client)
+            bodies.append(b)
+        cam = Camera(eye=EYE, width=320, height=240)
+        depth, seg = world.render_depth(cam)
+        points, flat = back_project(depth, cam)
+        ids = seg.ravel()[flat]
+        centres = [np.array(p.getBasePositionAndOrientation(b, physicsClientId=world.client)[0]) for b in bodies]
+    return points, np.asarray(EYE), ids, bodies, centres
+
+
+def _body_of(scene, ids):
+    """Per object, the body id most of its points come from, and that fraction."""
+    out = []
+    for o in scene.objects:
+        truth = ids[scene.sources[o.rows]]
+        values, counts = np.unique(truth, return_counts=True)
+        out.append((int(values[np.argmax(counts)]), counts.max() / len(truth)))
+    return out
+
+
+def test_clusters_are_the_rendered_objects(rendered):
+    points, eye, ids, bodies, _ = rendered
+    scene = segment_scene(points, eye)
+    assert _up(scene.plane)
+    found = _body_of(scene, ids)
+    assert sorted(b for b, _ in found) == sorted(bodies)
+    assert all(purity > 0.98 for _, purity in found)
+    assert np.array_equal(scene.labels, np.repeat(np.arange(len(scene.objects)), [o.n_points for o in scene.objects]))
+
+
+def test_every_target_picks_the_intended_object(rendered):
+    points, eye, ids, bodies, centres = rendered
+    scene = segment_scene(points, eye)
+    body = dict(enumerate(b for b, _ in _body_of(scene, ids)))
+    assert scene.select("all") == list(range(3))
+    assert body[scene.select("largest")[0]] == bodies[0]  # the 8 cm cube
+    for k, c in enumerate(centres):
+        assert body[scene.select(f"point:{c[0]},{c[1]},{c[2]}")[0]] == bodies[k]
+    # nearest to the camera: the body with the pixel nearest to it, from the mask alone
+    dist = {b: np.min(np.linalg.norm(points[ids == b] - eye, axis=1)) for b in bodies}
+    assert body[scene.select("nearest")[0]] == min(dist, key=dist.get)
+    far_camera = np.array([-0.5, -0.1, 0.45])  # seen from the other side, another object is nearest
+    dist = {b: np.min(np.linalg.norm(points[ids == b] - far_camera, axis=1)) for b in bodies}
+    assert body[scene.select("nearest", camera=far_camera)[0]] == min(dist, key=dist.get)
+    assert scene.select(2) == [2] and scene.select("1") == [1]
+    with pytest.raises(ValueError, match="names no object"):
+        scene.select(f"point:0.5,0.5,{POINT_TARGET_MAX_DISTANCE}")
+    with pytest.raises(ValueError, match="no object 3"):
+        scene.select(3)
+
+
+def test_parse_target_forms_and_errors():
+    assert str(parse_target("point:0.1,-2,3e-2")) == "point:0.1,-2,0.03"
+    assert parse_target(" largest ").kind == "largest" and parse_target("7").index == 7
+    for bad in ["point:1,2", "point:1,2,nan", "biggest", "-1", ""]:
+        with pytest.raises(ValueError, match="target"):
+            parse_target(bad)
+
+
+def test_camera_frame_cloud_gives_the_same_scene(rendered):
+    points, eye, _, _, _ = rendered
+    # T_world_camera: a rotation of 120 degrees about (1, 1, 1) / sqrt(3) (x -> y -> z -> x), at the eye
+    q = np.array([0.5, 0.5, 0.5, 0.5])
+    R = np.array([[0, 0, 1], [1, 0, 0], [0, 1, 0]], dtype=float)
+    in_camera = (points - eye) @ R  # R^T (p - eye) per row
+    world, camera = camera_to_world(in_camera, np.concatenate([eye, q]))
+    np.testing.assert_allclose(world, points, atol=1e-12)
+    np.testing.assert_allclose(camera, eye)
+    a, b = segment_scene(points, eye), segment_scene(in_camera)  # no viewpoint: the camera at the origin
+    assert len(a.objects) == len(b.objects) == 3
+    np.testing.assert_allclose(b.plane[:3], R.T @ a.plane[:3], atol=1e-3)
+    with pytest.raises(ValueError, match="not a unit quaternion"):
+        camera_to_world(in_camera, [0, 0, 0, 0, 0, 0, 2])
+
+
+def test_known_plane_and_bad_inputs(rendered):
+    points, eye, _, _, _ = rendered
+    given = segment_scene(points, eye, plane=[0, 0, -3, 0])
+    assert given.plane_given and not given.plane_found
+    np.testing.assert_allclose(given.plane, [0, 0, 1, 0])
+    assert len(given.objects) == 3 and given.viewpoints.shape == (len(given.points), 3)
+    table = points[points[:, 2] < 0.002]
+    with pytest.raises(ValueError, match="no object above the support plane"):
+        segment_scene(table, eye, plane=[0, 0, 1, 0])
+    with pytest.raises(ValueError, match="viewpoints"):
+        segment_scene(points, np.zeros((5, 3)))
+    with pytest.raises(ValueError, match="viewpoints"):
+        segment_scene(points, [0, 0])
+    with pytest.raises(ValueError, match="NaN"):
+        segment_scene(np.full((10, 3), np.nan))
+    with pytest.raises(ValueError, match="cluster_tolerance"):
+        segment_scene(points, eye, cluster_tolerance=-1)
+    with pytest.raises(ValueError, match="unknown setting"):
+        segment_scene(points, eye, tolerance=1)
+
+
+def test_defaults_come_from_cpp_and_the_dict_is_json(rendered):
+    import json
+
+    assert SynthesisOptions.table_clearance == _core.SegmentationSettings().table_clearance
+    assert _core.SegmentationSettings().voxel_size == _core.SceneSettings().voxel_size
+    points, eye, _, _, _ = rendered
+    d = json.loads(json.dumps(segment_scene(points, eye).to_dict(), allow_nan=False))
+    assert d["plane_found"] and len(d["objects"]) == 3 and d["candidates"][0]["accepted"]
+    assert graspmix.segment_scene is segment_scene

@@ -102,7 +102,6 @@ class Scene:
         self.points = np.asarray(result.points)
         self.labels = np.asarray(result.labels)
         self.sources = np.asarray(result.sources)
-        self._given_viewpoints = viewpoints
         self.viewpoints = None  # (M, 3) the camera that saw each kept point, or None without viewpoints
         if viewpoints is not None:
             vp = np.asarray(viewpoints, dtype=float)
@@ -135,7 +134,8 @@ class Scene:
         the object with a point nearest to it (ValueError beyond POINT_TARGET_MAX_DISTANCE); "largest" the
         object with the most points (what the grasp sampler works on; an OBB volume is inflated by the
         flying pixels at silhouettes and by the hidden side of a one-view object); "nearest" the object with
-        the point nearest to a camera: `camera` (3,) if given, else the viewpoints given, else the origin."""
+        the point nearest to a camera: `camera` (3,) if given, else the camera that saw each point (the
+        viewpoints given), else the origin."""
         t = parse_target(target)
         if t.kind == "all":
             return [o.index for o in self.objects]
@@ -155,19 +155,17 @@ class Scene:
                     f"{POINT_TARGET_MAX_DISTANCE} m): it names no object"
                 )
             return [self.objects[best].index]
-        cams = self._cameras(camera)
-        d = [min(np.min(np.linalg.norm(o.points - c, axis=1)) for c in cams) for o in self.objects]
-        return [self.objects[int(np.argmin(d))].index]
+        d = self._camera_distance(camera)
+        return [self.objects[int(np.argmin([d[o.rows].min() for o in self.objects]))].index]
 
-    def _cameras(self, camera) -> np.ndarray:
+    def _camera_distance(self, camera) -> np.ndarray:
+        """(M,) per kept point, its distance to `camera`, else to the camera that saw it, else to the origin."""
         if camera is not None:
             c = np.asarray(camera, dtype=float)
             if c.shape != (3,) or not np.all(np.isfinite(c)):
                 raise ValueError(f"camera: expected a finite (3,) position, got shape {c.shape}")
-            return c[None]
-        if self._given_viewpoints is None:
-            return np.zeros((1, 3))
-        return np.unique(np.asarray(self._given_viewpoints, dtype=float).reshape(-1, 3), axis=0)
+            return np.linalg.norm(self.points - c, axis=1)
+        return np.linalg.norm(self.points - (0.0 if self.viewpoints is None else self.viewpoints), axis=1)
 
     def to_dict(self) -> dict:
         """A JSON-ready summary: the plane (with the rule's figures), the objects, the counts, the time."""

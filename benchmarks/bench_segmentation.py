@@ -25,7 +25,9 @@ def main() -> None:
     p.add_argument("--no-noise", action="store_true")
     args = p.parse_args()
     cam = Camera(eye=(0.5, 0.1, 0.45), width=args.width, height=args.height)
-    acq = acquire(args.object, noise=not args.no_noise, seed=0, settings=AcquisitionSettings(cameras=[cam], keep="scene"))
+    acq = acquire(
+        args.object, noise=not args.no_noise, seed=0, settings=AcquisitionSettings(cameras=[cam], keep="scene")
+    )
     pts, vp = acq.points, acq.viewpoints
     seg, seg_select, prep = [], [], []
     for _ in range(args.repeats):
@@ -36,11 +38,15 @@ def main() -> None:
         seg.append(scene.result.seconds)
         prep.append(graspmix.prepare_cloud(pts).seconds)
     ms = lambda v: 1e3 * statistics.median(v)  # noqa: E731
-    print(f"cloud: {len(pts)} points ({args.width}x{args.height}, noise {not args.no_noise}), {len(scene.objects)} objects, plane {np.round(scene.plane, 4)}")
+    print(
+        f"cloud: {len(pts)} points ({args.width}x{args.height}, noise {not args.no_noise}), {len(scene.objects)} objects, plane {np.round(scene.plane, 4)}"
+    )
     print(f"prepare_cloud (voxel, outliers, RANSAC plane)  median {ms(prep):8.1f} ms")
     print(f"segment_scene (C++ seconds)                    median {ms(seg):8.1f} ms")
     print(f"segment_scene + Scene + select('nearest')      median {ms(seg_select):8.1f} ms")
-    print(f"difference (segment_scene + selection - prepare_cloud): {ms(seg_select) - ms(prep):+.1f} ms (target < +10 ms)")
+    print(
+        f"difference (segment_scene + selection - prepare_cloud): {ms(seg_select) - ms(prep):+.1f} ms (target < +10 ms)"
+    )
 
 
 if __name__ == "__main__":

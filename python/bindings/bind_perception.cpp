@@ -145,8 +145,8 @@ void bind_perception(py::module_& m) {
           .c_str());
 
   // ---- scene segmentation ------------------------------------------------------------------------
-  SettingsClass<SegmentationSettings>(m, "SegmentationSettings",
-                                      "The scene model (segment_scene): support plane rule, table cut, outliers, clusters.")
+  SettingsClass<SegmentationSettings>(
+      m, "SegmentationSettings", "The scene model (segment_scene): support plane rule, table cut, outliers, clusters.")
       .field("voxel_size", &SegmentationSettings::voxel_size, "m: voxel-grid leaf size, 0 = off (SceneSettings')")
       .field("plane_distance", &SegmentationSettings::plane_distance, "m: RANSAC inlier threshold")
       .field("plane_max_iterations", &SegmentationSettings::plane_max_iterations, "RANSAC iterations per candidate")

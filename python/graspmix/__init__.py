@@ -65,8 +65,8 @@ from ._core import (
     save_cloud,
 )
 from .io import data_path
-from .perception import Scene, segment_scene
 from .model import Demonstration, FeatureSettings, Grasp, GraspModel, GraspSet, default_model_path, expert, learn
+from .perception import Scene, segment_scene
 
 __version__ = io.package_version()
 

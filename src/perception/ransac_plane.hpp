@@ -2,9 +2,9 @@
 // Seeded RANSAC plane fitting, private to perception: prepare_cloud and segment_scene share it.
 #include <cstdint>
 
-#include <Eigen/Core>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
+#include <Eigen/Core>
 
 namespace graspmix::detail {
 

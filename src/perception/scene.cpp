@@ -25,7 +25,6 @@ namespace {
 
 using detail::Cloud;
 
-
 /// Input rows that follow the points through every step: `origin` is a point's own input row (-1 once
 /// voxel-averaged), `source` the input row whose per-point data it carries (SceneResult::sources).
 struct Rows {

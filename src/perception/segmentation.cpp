@@ -10,11 +10,11 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/Eigenvalues>
-#include <Eigen/Geometry>
 #include <pcl/filters/statistical_outlier_removal.h>
 #include <pcl/search/kdtree.h>
 #include <pcl/segmentation/extract_clusters.h>
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 
 #include "ransac_plane.hpp"
 
@@ -40,7 +40,8 @@ void check_settings(const SegmentationSettings& s) {
   }
   if (!finite_ge(s.plane_margin, 0)) bad("plane_margin must be a finite distance >= 0 (m)");
   if (!finite_ge(s.table_clearance, 0)) bad("table_clearance must be a finite distance >= 0 (m)");
-  if (s.remove_outliers && (s.outlier_neighbours < 1 || !(finite_ge(s.outlier_std_ratio, 0) && s.outlier_std_ratio > 0))) {
+  if (s.remove_outliers &&
+      (s.outlier_neighbours < 1 || !(finite_ge(s.outlier_std_ratio, 0) && s.outlier_std_ratio > 0))) {
     bad("outlier_neighbours must be >= 1 and outlier_std_ratio > 0");
   }
   if (!(finite_ge(s.cluster_tolerance, 0) && s.cluster_tolerance > 0)) bad("cluster_tolerance must be > 0 (m)");
@@ -96,7 +97,8 @@ double footprint_margin(const Vec3Array& P, const std::vector<int>& inliers, con
   const Eigen::Vector3d u = n.unitOrthogonal(), v = n.cross(u);
   Eigen::Matrix<double, 3, 8> dirs;
   for (int k = 0; k < 8; ++k) dirs.col(k) = std::cos(k * M_PI / 4) * u + std::sin(k * M_PI / 4) * v;
-  Eigen::Matrix<double, 1, 8> reach_in = Eigen::Matrix<double, 1, 8>::Constant(-std::numeric_limits<double>::infinity());
+  Eigen::Matrix<double, 1, 8> reach_in =
+      Eigen::Matrix<double, 1, 8>::Constant(-std::numeric_limits<double>::infinity());
   Eigen::Matrix<double, 1, 8> reach_obj = reach_in;
   for (const int r : inliers) reach_in = reach_in.cwiseMax(P.row(r) * dirs);
   for (const auto& g : objects)
@@ -117,7 +119,8 @@ PlaneCandidate judge(const Vec3Array& P, const Cameras& cams, const Eigen::Vecto
     c.camera_height = -c.camera_height;
   }
   const Eigen::VectorXd h = heights(P, c.plane);
-  c.behind_fraction = static_cast<double>((h.array() < -s.plane_behind_distance).count()) / static_cast<double>(P.rows());
+  c.behind_fraction =
+      static_cast<double>((h.array() < -s.plane_behind_distance).count()) / static_cast<double>(P.rows());
   c.margin = std::numeric_limits<double>::quiet_NaN();  // rule 4 is judged on the objects (segment_scene)
   if (c.inlier_fraction < s.plane_min_fraction) {
     c.reason = "holds too few points (rule 1)";
@@ -173,7 +176,8 @@ std::vector<std::vector<int>> find_candidates(const Vec3Array& P, const Cameras&
 /// A caller's plane normalised and turned towards the cameras (kept as given without viewpoints).
 Eigen::Vector4d orient_given(const Eigen::Vector4d& given, const Vec3Array& P, const Cameras& cams,
                              const SegmentationSettings& s) {
-  if (!given.allFinite() || given.head<3>().norm() < 1e-12) bad("plane: [a, b, c, d] must be finite with (a, b, c) != 0");
+  if (!given.allFinite() || given.head<3>().norm() < 1e-12)
+    bad("plane: [a, b, c, d] must be finite with (a, b, c) != 0");
   Eigen::Vector4d plane = given / given.head<3>().norm();
   if (!cams.given) return plane;
   std::vector<int> on_plane;
@@ -284,7 +288,8 @@ void finish(const Vec3Array& P, const Eigen::VectorXi& src, const Extraction& e,
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     const SceneObject &x = described[a], &y = described[b];
     if (x.n_points != y.n_points) return x.n_points > y.n_points;
-    return std::lexicographical_compare(x.centroid.data(), x.centroid.data() + 3, y.centroid.data(), y.centroid.data() + 3);
+    return std::lexicographical_compare(x.centroid.data(), x.centroid.data() + 3, y.centroid.data(),
+                                        y.centroid.data() + 3);
   });
   std::size_t n = 0;
   for (const auto& g : e.groups) n += g.size();

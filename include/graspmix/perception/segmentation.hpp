@@ -41,32 +41,32 @@ namespace graspmix {
 struct SegmentationSettings {
   /// Voxel-grid leaf size (m), 0 = off; the same as the clean-up's (features must see the same density).
   double voxel_size = SceneSettings{}.voxel_size;
-  double plane_distance = SceneSettings{}.plane_distance;              ///< RANSAC inlier threshold (m)
-  int plane_max_iterations = SceneSettings{}.plane_max_iterations;     ///< RANSAC iterations per candidate
-  std::uint64_t seed = 0;                                              ///< seeds RANSAC
-  int plane_candidates = 3;            ///< planes tried, each on the points the previous ones left
-  double plane_min_fraction = 0.05;    ///< rule 1: fraction of the voxelised points a candidate holds
-  double plane_behind_distance = 0.01; ///< rule 3: m behind the plane for a point to count as behind it
+  double plane_distance = SceneSettings{}.plane_distance;           ///< RANSAC inlier threshold (m)
+  int plane_max_iterations = SceneSettings{}.plane_max_iterations;  ///< RANSAC iterations per candidate
+  std::uint64_t seed = 0;                                           ///< seeds RANSAC
+  int plane_candidates = 3;                 ///< planes tried, each on the points the previous ones left
+  double plane_min_fraction = 0.05;         ///< rule 1: fraction of the voxelised points a candidate holds
+  double plane_behind_distance = 0.01;      ///< rule 3: m behind the plane for a point to count as behind it
   double plane_max_behind_fraction = 0.05;  ///< rule 3: fraction of all points allowed behind it (faces: > 0.1)
-  double plane_margin = 0.01;          ///< rule 4: m the inliers must reach beyond the objects' footprint
+  double plane_margin = 0.01;               ///< rule 4: m the inliers must reach beyond the objects' footprint
   /// m: points at most this far above the support plane (or behind it) are the table and are dropped.
   /// The default of SynthesisOptions.table_clearance (Python) too.
   double table_clearance = 0.005;
-  bool remove_outliers = SceneSettings{}.remove_outliers;             ///< on the object points only
-  int outlier_neighbours = SceneSettings{}.outlier_neighbours;        ///< k of the mean-distance statistic
-  double outlier_std_ratio = SceneSettings{}.outlier_std_ratio;       ///< mean + ratio * std cut
+  bool remove_outliers = SceneSettings{}.remove_outliers;        ///< on the object points only
+  int outlier_neighbours = SceneSettings{}.outlier_neighbours;   ///< k of the mean-distance statistic
+  double outlier_std_ratio = SceneSettings{}.outlier_std_ratio;  ///< mean + ratio * std cut
   /// m: two object points closer than this are in one object (pcl::EuclideanClusterExtraction). Voxel
   /// centroids of one surface lie about one voxel (3 mm) apart, up to 2 voxels diagonally or on steep
   /// faces; packed objects stand about 1 cm apart. 6 mm joins the first and keeps the second apart.
   double cluster_tolerance = 0.006;
-  int min_cluster_size = 20;   ///< clusters with fewer points are noise, dropped (and counted)
-  int max_cluster_size = 0;    ///< clusters with more points are dropped; 0 = no limit
+  int min_cluster_size = 20;  ///< clusters with fewer points are noise, dropped (and counted)
+  int max_cluster_size = 0;   ///< clusters with more points are dropped; 0 = no limit
 };
 
 /// One object: a Euclidean cluster above the support plane.
 struct SceneObject {
-  int index = 0;            ///< its label in Segmentation::labels and its place in Segmentation::objects
-  Eigen::VectorXi rows;     ///< its rows of Segmentation::points
+  int index = 0;         ///< its label in Segmentation::labels and its place in Segmentation::objects
+  Eigen::VectorXi rows;  ///< its rows of Segmentation::points
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   Eigen::Vector3d obb_center = Eigen::Vector3d::Zero();  ///< oriented bounding box (principal axes)
   /// columns: the box's axes in the cloud's frame, by decreasing variance of the points, right-handed
@@ -84,7 +84,7 @@ struct PlaneCandidate {
   double behind_fraction = 0.0;  ///< rule 3
   double margin = 0.0;           ///< rule 4: least reach of the inliers beyond the footprint (m)
   bool accepted = false;
-  std::string reason;            ///< why it was refused (empty when accepted)
+  std::string reason;  ///< why it was refused (empty when accepted)
 };
 
 struct Segmentation {
@@ -99,9 +99,9 @@ struct Segmentation {
   std::vector<SceneObject> objects;
   std::vector<PlaneCandidate> candidates;  ///< the rule's figures (empty with a given plane)
   std::size_t n_input = 0, n_after_voxel = 0;
-  std::size_t n_plane = 0;          ///< dropped as the table (within table_clearance of it, or behind it)
-  std::size_t n_outliers = 0;       ///< dropped by the outlier removal
-  std::size_t n_small_clusters = 0; ///< points of clusters under min_cluster_size (or over the maximum)
+  std::size_t n_plane = 0;           ///< dropped as the table (within table_clearance of it, or behind it)
+  std::size_t n_outliers = 0;        ///< dropped by the outlier removal
+  std::size_t n_small_clusters = 0;  ///< points of clusters under min_cluster_size (or over the maximum)
   std::size_t n_output = 0;
   double seconds = 0.0;  ///< wall time of the whole segmentation
 };
@@ -110,7 +110,8 @@ struct Segmentation {
 /// N x 3), with `plane` the known support when given. Throws std::invalid_argument (the message names
 /// the cause) on empty or non-finite points, viewpoints of the wrong shape or non-finite, bad settings,
 /// a degenerate plane, and when no object point is left ("no object above the support plane").
-Segmentation segment_scene(const Vec3Array& points, const Vec3Array& viewpoints, const SegmentationSettings& settings = {},
+Segmentation segment_scene(const Vec3Array& points, const Vec3Array& viewpoints,
+                           const SegmentationSettings& settings = {},
                            const std::optional<Eigen::Vector4d>& plane = std::nullopt);
 
 }  // namespace graspmix

@@ -20,7 +20,9 @@ def _plane_lines(scene) -> list[str]:
         head = "plane: found"
     else:
         head = "plane: none (no candidate passed the support rule: every point is an object point)"
-    lines = [head + ("" if scene.plane is None else f" [{', '.join(f'{v:.4f}' for v in scene.plane)}] (towards the cameras)")]
+    lines = [
+        head + ("" if scene.plane is None else f" [{', '.join(f'{v:.4f}' for v in scene.plane)}] (towards the cameras)")
+    ]
     for c in d["candidates"]:
         margin = "-" if c["margin"] is None or np.isnan(c["margin"]) else f"{c['margin']:.3f} m"
         verdict = "support" if c["accepted"] else c["reason"]

@@ -141,7 +141,9 @@ class Scene:
             return [o.index for o in self.objects]
         if t.kind == "index":
             if t.index >= len(self.objects):
-                raise ValueError(f"target: no object {t.index} (the scene has {len(self.objects)}: 0..{len(self.objects) - 1})")
+                raise ValueError(
+                    f"target: no object {t.index} (the scene has {len(self.objects)}: 0..{len(self.objects) - 1})"
+                )
             return [t.index]
         if t.kind == "largest":
             return [max(self.objects, key=lambda o: (o.n_points, -o.index)).index]
@@ -210,7 +212,9 @@ def segment_scene(points, viewpoints=None, plane=None, **settings) -> Scene:
     if viewpoints is not None:
         vp = np.asarray(viewpoints, dtype=float)
         if vp.shape not in ((3,), (1, 3), (len(pts), 3)):
-            raise ValueError(f"viewpoints: expected shape (3,) or ({len(pts)}, 3) for {len(pts)} points, got {vp.shape}")
+            raise ValueError(
+                f"viewpoints: expected shape (3,) or ({len(pts)}, 3) for {len(pts)} points, got {vp.shape}"
+            )
     return Scene(_core.segment_scene(pts, vp, plane, **settings), vp)
 
 

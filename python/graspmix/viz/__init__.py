@@ -6,4 +6,12 @@ from .experiment import plot_runtime, plot_success
 from .plots import plot_grasps, plot_surface_features, pyplot
 from .scene import plot_scene
 
-__all__ = ["plot_depth_images", "plot_grasps", "plot_runtime", "plot_scene", "plot_success", "plot_surface_features", "pyplot"]
+__all__ = [
+    "plot_depth_images",
+    "plot_grasps",
+    "plot_runtime",
+    "plot_scene",
+    "plot_success",
+    "plot_surface_features",
+    "pyplot",
+]

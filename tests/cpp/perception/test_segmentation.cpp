@@ -110,8 +110,8 @@ Vec3Array one(const Eigen::Vector3d& v) { return v.transpose(); }
 std::string figures(const Segmentation& s) {
   std::string out;
   for (const auto& c : s.candidates) {
-    out += "[" + std::to_string(c.plane[0]) + " " + std::to_string(c.plane[1]) + " " + std::to_string(c.plane[2]) + " " +
-           std::to_string(c.plane[3]) + "] inliers " + std::to_string(c.inlier_fraction) + " camera " +
+    out += "[" + std::to_string(c.plane[0]) + " " + std::to_string(c.plane[1]) + " " + std::to_string(c.plane[2]) +
+           " " + std::to_string(c.plane[3]) + "] inliers " + std::to_string(c.inlier_fraction) + " camera " +
            std::to_string(c.camera_height) + " behind " + std::to_string(c.behind_fraction) + " margin " +
            std::to_string(c.margin) + " " + c.reason + "\n";
   }
@@ -161,8 +161,8 @@ TEST(Segmentation, TableAndThreeBoxesFromOneNoisyCamera) {
 TEST(Segmentation, OrientationFollowsTheCameraNotThePoints) {
   // The same scene seen from below (a glass table): the boxes hang under it, the camera is under it.
   std::vector<Box> hanging;
-  for (const auto& b : kThreeBoxes) hanging.push_back({Eigen::Vector3d(b.lo.x(), b.lo.y(), -b.hi.z()),
-                                                       Eigen::Vector3d(b.hi.x(), b.hi.y(), 0)});
+  for (const auto& b : kThreeBoxes)
+    hanging.push_back({Eigen::Vector3d(b.lo.x(), b.lo.y(), -b.hi.z()), Eigen::Vector3d(b.hi.x(), b.hi.y(), 0)});
   const Eigen::Vector3d eye(0.5, 0.1, -0.45);
   const Render r = render(eye, Eigen::Vector3d(0, 0, -0.03), hanging, 1.0, 0.0, 0.001, 4);
   const Segmentation s = segment_scene(r.points, one(eye));
@@ -186,7 +186,8 @@ TEST(Segmentation, ObjectOnlyCloudsHaveNoPlane) {
   const Box tall = box_at(0, 0, 0.06, 0.05, 0.10), flat = box_at(0, 0, 0.12, 0.08, 0.025),
             on_side = box_at(0, 0, 0.12, 0.025, 0.08);
   std::vector<Eigen::Vector3d> ring;
-  for (int k = 0; k < 4; ++k) ring.emplace_back(0.5 * std::cos(M_PI / 4 + k * M_PI / 2), 0.5 * std::sin(M_PI / 4 + k * M_PI / 2), 0.35);
+  for (int k = 0; k < 4; ++k)
+    ring.emplace_back(0.5 * std::cos(M_PI / 4 + k * M_PI / 2), 0.5 * std::sin(M_PI / 4 + k * M_PI / 2), 0.35);
   for (const Box& b : {tall, flat, on_side}) {
     const Render single = render(kEye, kTarget, {b}, 0.0, 1.0, 0.001, 5);
     const Segmentation s1 = segment_scene(single.points, one(kEye));
@@ -242,7 +243,8 @@ TEST(Segmentation, SameSeedSameResult) {
 
 TEST(Segmentation, ObbOfABoxIsTheBox) {
   std::vector<Eigen::Vector3d> ring;
-  for (int k = 0; k < 4; ++k) ring.emplace_back(0.5 * std::cos(M_PI / 4 + k * M_PI / 2), 0.5 * std::sin(M_PI / 4 + k * M_PI / 2), 0.35);
+  for (int k = 0; k < 4; ++k)
+    ring.emplace_back(0.5 * std::cos(M_PI / 4 + k * M_PI / 2), 0.5 * std::sin(M_PI / 4 + k * M_PI / 2), 0.35);
   const Box b = box_at(0.01, 0.02, 0.12, 0.06, 0.03);
   std::vector<Render> views;
   for (const auto& e : ring) views.push_back(render(e, kTarget, {b}, 0.0));
@@ -286,6 +288,7 @@ TEST(Segmentation, BadInputsNameTheCause) {
   EXPECT_NE(message(r.points, one(kEye), st).find("max_cluster_size"), std::string::npos);
   const Render table = render(kEye, kTarget, {}, 1.0, 1.0, 0.001, 9);
   EXPECT_NE(message(table.points, one(kEye), {}).find("no object above the support plane"), std::string::npos);
-  EXPECT_NE(message(table.points, one(kEye), {}, Eigen::Vector4d(0, 0, 1, 0)).find("no object above"), std::string::npos);
+  EXPECT_NE(message(table.points, one(kEye), {}, Eigen::Vector4d(0, 0, 1, 0)).find("no object above"),
+            std::string::npos);
   EXPECT_NE(message(r.points, one(kEye), {}, Eigen::Vector4d(0, 0, 0, 1)).find("plane"), std::string::npos);
 }

@@ -42,7 +42,9 @@ def test_rendered_table_is_found_and_faces_the_cameras(noise, n_cameras):
 
 def test_the_cameras_decide_the_side_not_the_points():
     # The same cloud turned upside down (z -> -z with the camera): the plane must turn with it.
-    acq = acquire("objects/mug.urdf", noise=True, seed=3, settings=AcquisitionSettings(cameras=[Camera(eye=EYE)], keep="scene"))
+    acq = acquire(
+        "objects/mug.urdf", noise=True, seed=3, settings=AcquisitionSettings(cameras=[Camera(eye=EYE)], keep="scene")
+    )
     flip = np.diag([1.0, -1.0, -1.0])
     scene = segment_scene(acq.points @ flip, np.asarray(EYE) @ flip)
     assert scene.plane_found and scene.plane[2] < -0.999
@@ -72,7 +74,11 @@ def test_object_only_clouds_have_no_plane(tmp_path, shape, n_cameras):
 
 
 # Three objects on plane.urdf: (urdf, position, scale); sizes clearly apart so "largest" has one answer.
-OBJECTS = [("cube.urdf", (0.0, 0.0), 0.08), ("cube.urdf", (-0.03, 0.13), 0.05), ("sphere_small.urdf", (0.08, -0.1), 1.0)]
+OBJECTS = [
+    ("cube.urdf", (0.0, 0.0), 0.08),
+    ("cube.urdf", (-0.03, 0.13), 0.05),
+    ("sphere_small.urdf", (0.08, -0.1), 1.0),
+]
 
 
 @pytest.fixture(scope="module")

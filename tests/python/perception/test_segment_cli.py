@@ -44,8 +44,12 @@ def test_segment_reads_the_pcd_viewpoint_and_draws(clouds, capsys):
 
 def test_camera_pose_gives_world_results(clouds, capsys):
     d, pose = clouds
-    world = _json(capsys, ["segment", "--cloud", str(d / "world.npy"), "--viewpoint", ",".join(map(str, EYE)), "--json"])
-    cam = _json(capsys, ["segment", "--cloud", str(d / "camera.npy"), "--camera-pose", ",".join(map(str, pose)), "--json"])
+    world = _json(
+        capsys, ["segment", "--cloud", str(d / "world.npy"), "--viewpoint", ",".join(map(str, EYE)), "--json"]
+    )
+    cam = _json(
+        capsys, ["segment", "--cloud", str(d / "camera.npy"), "--camera-pose", ",".join(map(str, pose)), "--json"]
+    )
     assert len(cam["objects"]) == len(world["objects"])
     np.testing.assert_allclose(cam["plane"], world["plane"], atol=2e-3)
     np.testing.assert_allclose(cam["objects"][0]["centroid"], world["objects"][0]["centroid"], atol=3e-3)

@@ -10,14 +10,13 @@
 
 #include <pcl/common/common.h>
 #include <pcl/filters/crop_box.h>
-#include <pcl/filters/statistical_outlier_removal.h>
 #include <pcl/filters/voxel_grid.h>
 #include <pcl/kdtree/kdtree_flann.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
+#include "cloud_filters.hpp"
 #include "graspmix/core/plane.hpp"
-#include "ransac_plane.hpp"
 
 namespace graspmix {
 
@@ -136,13 +135,7 @@ Cloud::Ptr voxel_down(const Cloud::Ptr& cloud, const SceneSettings& s, Rows& row
 }
 
 Cloud::Ptr remove_outliers(const Cloud::Ptr& cloud, const SceneSettings& s, Rows& rows) {
-  pcl::StatisticalOutlierRemoval<pcl::PointXYZ> sor;
-  sor.setMeanK(s.outlier_neighbours);
-  sor.setStddevMulThresh(s.outlier_std_ratio);
-  sor.setInputCloud(cloud);
-  pcl::Indices kept;
-  sor.filter(kept);
-  return subset(*cloud, kept, rows);
+  return subset(*cloud, detail::statistical_inliers(cloud, s.outlier_neighbours, s.outlier_std_ratio), rows);
 }
 
 /// The support plane found and removed (with what lies below it if asked), oriented towards the

@@ -10,13 +10,12 @@
 #include <string>
 #include <vector>
 
-#include <pcl/filters/statistical_outlier_removal.h>
 #include <pcl/search/kdtree.h>
 #include <pcl/segmentation/extract_clusters.h>
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
-#include "ransac_plane.hpp"
+#include "cloud_filters.hpp"
 
 namespace graspmix {
 
@@ -206,12 +205,7 @@ Extraction extract(const Vec3Array& P, const Eigen::Vector4d* plane, const Segme
   Cloud::Ptr cloud(new Cloud);
   for (const int r : rows) cloud->push_back(to_pcl(P, r));
   if (s.remove_outliers && rows.size() > static_cast<std::size_t>(s.outlier_neighbours)) {
-    pcl::StatisticalOutlierRemoval<pcl::PointXYZ> sor;
-    sor.setMeanK(s.outlier_neighbours);
-    sor.setStddevMulThresh(s.outlier_std_ratio);
-    sor.setInputCloud(cloud);
-    pcl::Indices kept;
-    sor.filter(kept);
+    const pcl::Indices kept = detail::statistical_inliers(cloud, s.outlier_neighbours, s.outlier_std_ratio);
     std::vector<int> kept_rows;
     Cloud::Ptr kept_cloud(new Cloud);
     for (const auto i : kept) {

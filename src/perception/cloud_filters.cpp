@@ -1,4 +1,6 @@
-#include "ransac_plane.hpp"
+#include "cloud_filters.hpp"
+
+#include <pcl/filters/statistical_outlier_removal.h>
 
 #include <pcl/sample_consensus/ransac.h>
 #include <pcl/sample_consensus/sac_model_plane.h>
@@ -43,6 +45,16 @@ bool fit_plane(const Cloud::ConstPtr& cloud, double distance, int iterations, st
   coeffs /= coeffs.head<3>().norm();
   model->selectWithinDistance(coeffs, distance, inliers);
   return true;
+}
+
+pcl::Indices statistical_inliers(const Cloud::ConstPtr& cloud, int k, double std_ratio) {
+  pcl::StatisticalOutlierRemoval<pcl::PointXYZ> sor;
+  sor.setMeanK(k);
+  sor.setStddevMulThresh(std_ratio);
+  sor.setInputCloud(cloud);
+  pcl::Indices kept;
+  sor.filter(kept);
+  return kept;
 }
 
 }  // namespace graspmix::detail

@@ -27,6 +27,7 @@ from .formats import (
     DEMO_FORMAT,
     FORMATS,
     GMM_FORMAT,
+    SCENE_FORMAT,
     GRASPS_FORMAT,
     MODEL_FORMAT,
     PROTOCOL_FORMAT,

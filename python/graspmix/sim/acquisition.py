@@ -126,6 +126,7 @@ class Acquisition:
     object_masks: list[np.ndarray] = field(default_factory=list)  # per camera: pixels whose ray hits the object
     keep: str = "object"  # what the acquisition kept (AcquisitionSettings.keep)
     plane: np.ndarray | None = None  # [a, b, c, d] of the support plane when a clean-up found it
+    labels: np.ndarray | None = None  # (N,) of a scene: -1 the table, else the object's index (acquire_scene)
 
 
 def _depth_from_buffer(buffer: np.ndarray, near: float, far: float) -> np.ndarray:

@@ -28,6 +28,21 @@ SimSettings = _core.SimSettings
 SimResult = _core.SimResult
 SimObject = _core.SimObject
 
+# How an executed grasp closes. "full": the fingers close, force-limited, until they stop on the object or
+# reach their closed limit, as a parallel gripper's grasp command does (the simulation's motor target is
+# pushed past the grasp joints far enough to be clamped to the closed limit). "learnt": the simulation's
+# default, a target 0.5 x (grasp - pregrasp) past the synthesised grasp joints; with a configuration
+# model learnt from one 6 cm box, the fingers then stop about 4.4 cm apart and cannot hold anything
+# narrower, whatever the method.
+CLOSING = {"full": {"close_overshoot": 1000.0}, "learnt": {}}
+
+
+def closing_overrides(closing: str) -> dict:
+    """The SimSettings overrides of a closing rule (CLOSING); ValueError for an unknown one."""
+    if not isinstance(closing, str) or closing not in CLOSING:
+        raise ValueError(f"closing must be one of {', '.join(CLOSING)}, got {quote(closing)}")
+    return dict(CLOSING[closing])
+
 
 @functools.lru_cache(maxsize=16)
 def _hand(path: str) -> _core.Hand:

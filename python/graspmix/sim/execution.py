@@ -214,18 +214,24 @@ def execute(
     return _core.sim_execute(h, o, pose, wrist, pre, fin, settings)
 
 
-def execute_file(
-    obj, grasps_path, rank: int = 1, hand=None, settings: SimSettings | None = None, **overrides
-) -> SimResult:
-    """Executes the grasp of the given rank from a grasps.json. hand: a Hand or URDF; None: the file's
-    hand if it can be found (as given or relative to the grasps file), else the bundled WSG 50; either way
-    the file's hand must be the one used (ValueError otherwise)."""
-    rank = check_int(rank, "rank", 1)
+def grasps_and_hand(grasps_path, hand=None) -> tuple[dict, _core.Hand]:
+    """A grasps.json and its hand: the given Hand or URDF; None: the file's hand if it can be found (as given
+    or relative to the grasps file), else the bundled WSG 50; either way the file's hand must be the one
+    used (ValueError otherwise)."""
     doc = load_grasps(grasps_path)
     if hand is None:
         hand = _doc_hand_file(doc.get("hand"), grasps_path)
     h = load_hand(hand)
     _check_hand_matches(h, doc.get("hand"), grasps_path)
+    return doc, h
+
+
+def execute_file(
+    obj, grasps_path, rank: int = 1, hand=None, settings: SimSettings | None = None, **overrides
+) -> SimResult:
+    """Executes the grasp of the given rank from a grasps.json (its hand: see grasps_and_hand)."""
+    rank = check_int(rank, "rank", 1)
+    doc, h = grasps_and_hand(grasps_path, hand)
     return execute(obj, grasp_by_rank(doc, rank), hand=h, settings=settings, **overrides)
 
 

@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AnnealingSettings', 'AxisAlignmentExpert', 'AxisAlignmentSettings', 'CloudData', 'CollisionBatchResult', 'CollisionExpert', 'CollisionResult', 'CollisionSettings', 'ConfigModel', 'ConfigModelSettings', 'ContactData', 'ContactModel', 'ContactSettings', 'Evaluation', 'Expert', 'FunctionExpert', 'GaussianMixture', 'GmmSettings', 'Grasp', 'GraspSynthesizer', 'Hand', 'HandLoadSettings', 'KdeSettings', 'KinematicFeasibilityExpert', 'KinematicFeasibilitySettings', 'PoseDensity', 'PoseKDE', 'PoseMixture', 'QueryDensity', 'QuerySettings', 'SceneResult', 'SceneSettings', 'SimObject', 'SimResult', 'SimSettings', 'SurfaceCloud', 'SurfaceFeatureSettings', 'SynthesisResult', 'SynthesisSettings', 'SynthesisTiming', 'build_info', 'compute_surface_features', 'contact_data', 'learn_contact_models', 'load_cloud', 'load_mesh', 'log_vmf_s3_normaliser', 'orient_plane', 'pose_inverse', 'pose_multiply', 'prepare_cloud', 'quat_exp', 'quat_log', 'save_cloud', 'sim_execute']
+__all__: list[str] = ['AnnealingSettings', 'AxisAlignmentExpert', 'AxisAlignmentSettings', 'CloudData', 'CollisionBatchResult', 'CollisionExpert', 'CollisionResult', 'CollisionSettings', 'ConfigModel', 'ConfigModelSettings', 'ContactData', 'ContactModel', 'ContactSettings', 'Evaluation', 'Expert', 'FunctionExpert', 'GaussianMixture', 'GmmSettings', 'Grasp', 'GraspSynthesizer', 'Hand', 'HandLoadSettings', 'KdeSettings', 'KinematicFeasibilityExpert', 'KinematicFeasibilitySettings', 'PoseDensity', 'PoseKDE', 'PoseMixture', 'QueryDensity', 'QuerySettings', 'SceneResult', 'SceneSettings', 'SceneSimResult', 'SettleResult', 'SimObject', 'SimResult', 'SimSettings', 'SurfaceCloud', 'SurfaceFeatureSettings', 'SynthesisResult', 'SynthesisSettings', 'SynthesisTiming', 'build_info', 'compute_surface_features', 'contact_data', 'learn_contact_models', 'load_cloud', 'load_mesh', 'log_vmf_s3_normaliser', 'orient_plane', 'pose_inverse', 'pose_multiply', 'prepare_cloud', 'quat_exp', 'quat_log', 'save_cloud', 'sim_execute', 'sim_execute_scene', 'sim_settle_scene']
 class GmmSettings:
     """
     How a GaussianMixture (or PoseMixture) is fitted by EM.
@@ -2378,6 +2378,57 @@ class SimResult:
         """
         s
         """
+class SceneSimResult:
+    """
+    The outcome of one grasp in a scene of several objects.
+    """
+    @property
+    def lifted(self) -> list[int]:
+        """
+        indices of the objects that rose and are held by the hand
+        """
+    @property
+    def moved(self) -> list[float]:
+        """
+        m each object's link origin moved
+        """
+    @property
+    def object_poses(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        """
+        (N, 7) every object's final link pose
+        """
+    @property
+    def result(self) -> SimResult:
+        """
+        SimResult: outcome of the grasp; lift_height and object_pose of the object that rose most
+        """
+    @property
+    def rise(self) -> list[float]:
+        """
+        m each object's centre of mass rose
+        """
+class SettleResult:
+    """
+    A scene simulated without a hand until its objects rest.
+    """
+    @property
+    def at_rest(self) -> bool:
+        """
+        every object came to rest in time
+        """
+    @property
+    def object_poses(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        """
+        (N, 7) every object's final link pose
+        """
+    @property
+    def simulated_time(self) -> float:
+        """
+        s
+        """
+    @property
+    def steps(self) -> int:
+        ...
 def build_info() -> dict[str, str]:
     """
     Versions of graspmix and of every library it was built against.
@@ -2495,4 +2546,12 @@ def sim_execute(hand: Hand, object: SimObject, T_world_object: typing.Any, T_wor
       start_penetration = 0.002: m: a start penetrating deeper than this is 'start in collision'
       contact_distance = 0.001: m: contact points closer than this count as touching
       success_fraction = 0.5: the object must rise by this fraction of lift_height
+    """
+def sim_execute_scene(hand: Hand, objects: typing.Any, object_poses: typing.Any, T_world_wrist: typing.Any, pregrasp: typing.Any, grasp: typing.Any, settings: typing.Any = None, **kwargs) -> SceneSimResult:
+    """
+    Executes one grasp among several objects (link poses (N, 7)); see graspmix.sim.scenes.execute_in_scene.
+    """
+def sim_settle_scene(objects: typing.Any, object_poses: typing.Any, settings: typing.Any = None, seconds: typing.SupportsFloat | typing.SupportsIndex = 2.0, walls: typing.Any = None) -> SettleResult:
+    """
+    Simulates the objects without a hand until they rest (at most `seconds`); walls: [xmin, ymin, xmax, ymax, height] of a box standing around them, or None.
     """

@@ -129,7 +129,7 @@ class Acquisition:
     labels: np.ndarray | None = None  # (N,) of a scene: -1 the table, else the object's index (acquire_scene)
 
 
-def _depth_from_buffer(buffer: np.ndarray, near: float, far: float) -> np.ndarray:
+def depth_from_buffer(buffer: np.ndarray, near: float, far: float) -> np.ndarray:
     """OpenGL depth buffer values in [0, 1] to metric depth along the optical axis."""
     return far * near / (far - (far - near) * buffer)
 
@@ -213,7 +213,7 @@ class Scene:
         )
         buf = np.asarray(buf, dtype=float).reshape(cam.height, cam.width)
         seg = np.asarray(seg).reshape(cam.height, cam.width)
-        depth = _depth_from_buffer(buf, cam.near, cam.far)
+        depth = depth_from_buffer(buf, cam.near, cam.far)
         depth[(buf >= 1.0) | (seg < 0)] = np.inf
         return depth, seg
 

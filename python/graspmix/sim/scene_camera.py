@@ -14,7 +14,15 @@ import numpy as np
 
 from ..io import pybullet_data_path, resolve_object
 from ..io.checks import check_int, check_seed, quote
-from .acquisition import Acquisition, AcquisitionSettings, Camera, apply_noise, back_project, ring_cameras
+from .acquisition import (
+    Acquisition,
+    AcquisitionSettings,
+    Camera,
+    apply_noise,
+    back_project,
+    depth_from_buffer,
+    ring_cameras,
+)
 from .scenes import SceneSpec
 
 SCENE_CAMERA = Camera(eye=(0.0, -0.55, 0.55), target=(0.0, 0.0, 0.0), width=640, height=480)
@@ -58,8 +66,6 @@ class _Renderer:
         object's index)."""
         import pybullet as p
 
-        from .acquisition import _depth_from_buffer
-
         _, _, _, buf, seg = p.getCameraImage(
             cam.width,
             cam.height,
@@ -70,7 +76,7 @@ class _Renderer:
         )
         buf = np.asarray(buf, dtype=float).reshape(cam.height, cam.width)
         seg = np.asarray(seg).reshape(cam.height, cam.width)
-        depth = _depth_from_buffer(buf, cam.near, cam.far)
+        depth = depth_from_buffer(buf, cam.near, cam.far)
         depth[(buf >= 1.0) | (seg < 0)] = np.inf
         labels = np.full(seg.shape, -2)
         labels[seg == self.plane] = -1

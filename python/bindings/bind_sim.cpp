@@ -24,8 +24,7 @@ std::vector<std::shared_ptr<SimObject>> scene_objects(const py::object& objects)
 std::vector<Eigen::Isometry3d> scene_poses(const py::object& poses, size_t n) {
   const RowMatrixXd m = to_matrix(poses, "object_poses", 7, true);
   if (static_cast<size_t>(m.rows()) != n) {
-    throw py::value_error("object_poses: " + std::to_string(m.rows()) + " poses for " + std::to_string(n) +
-                          " objects");
+    throw py::value_error("object_poses: " + std::to_string(m.rows()) + " poses for " + std::to_string(n) + " objects");
   }
   std::vector<Eigen::Isometry3d> out;
   for (Eigen::Index i = 0; i < m.rows(); ++i) out.push_back(pose_from_vector(m.row(i).transpose()));

@@ -28,10 +28,10 @@ void add_walls(World& w, const SettleWalls& walls, double friction) {
   const double t = 0.005, h = walls.height / 2;
   const Eigen::Vector2d c = (walls.min + walls.max) / 2, half = (walls.max - walls.min) / 2;
   for (int side : {-1, 1}) {
-    add_static_box(w, Eigen::Vector3d(c.x() + side * (half.x() + t), c.y(), h),
-                   Eigen::Vector3d(t, half.y() + 2 * t, h), friction);
-    add_static_box(w, Eigen::Vector3d(c.x(), c.y() + side * (half.y() + t), h),
-                   Eigen::Vector3d(half.x() + 2 * t, t, h), friction);
+    add_static_box(w, Eigen::Vector3d(c.x() + side * (half.x() + t), c.y(), h), Eigen::Vector3d(t, half.y() + 2 * t, h),
+                   friction);
+    add_static_box(w, Eigen::Vector3d(c.x(), c.y() + side * (half.y() + t), h), Eigen::Vector3d(half.x() + 2 * t, t, h),
+                   friction);
   }
 }
 

@@ -99,8 +99,7 @@ void check_scene(const std::vector<const SimObject*>& objects, const std::vector
   for (size_t i = 0; i < objects.size(); ++i) {
     if (!objects[i]) throw std::invalid_argument(std::string(what) + ": object " + std::to_string(i) + " is null");
     if (!T_world_objects[i].matrix().allFinite()) {
-      throw std::invalid_argument(std::string(what) + ": the pose of object " + std::to_string(i) +
-                                  " is not finite");
+      throw std::invalid_argument(std::string(what) + ": the pose of object " + std::to_string(i) + " is not finite");
     }
   }
 }

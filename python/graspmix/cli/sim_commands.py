@@ -77,16 +77,27 @@ def cmd_execute(args: argparse.Namespace) -> int:
     spec = _scene_of(args)
     doc, h = sim.execution.grasps_and_hand(args.grasps, args.hand)
     settings = sim.make_settings(None, **overrides)
-    ex = scenes.execute_in_scene(spec, sim.grasp_by_rank(doc, args.rank), hand=h, closing=args.closing,
-                                 settings=settings)
+    ex = scenes.execute_in_scene(
+        spec, sim.grasp_by_rank(doc, args.rank), hand=h, closing=args.closing, settings=settings
+    )
     if args.out_scene:
         ex.remaining.save(args.out_scene)
     r = ex.result
     names = [o.urdf for o in spec.objects]
     if args.json:
-        print(json.dumps(dict(sim.result_dict(r), lifted=ex.lifted, lifted_objects=[names[i] for i in ex.lifted],
-                              moved=[float(m) for m in ex.moved], objects=names, rank=args.rank,
-                              closing=args.closing)))
+        print(
+            json.dumps(
+                dict(
+                    sim.result_dict(r),
+                    lifted=ex.lifted,
+                    lifted_objects=[names[i] for i in ex.lifted],
+                    moved=[float(m) for m in ex.moved],
+                    objects=names,
+                    rank=args.rank,
+                    closing=args.closing,
+                )
+            )
+        )
         return 0
     print(
         f"grasp {args.rank} ({args.closing} closing): {'SUCCESS' if r.success else 'FAILURE'} ({r.reason}); "
@@ -112,7 +123,9 @@ def add_parsers(sub) -> None:
     s = sub.add_parser("acquire", help="a point cloud of an object or a scene as simulated depth cameras see it")
     _add_scene_source(s, "at its rest pose at the origin")
     s.add_argument(
-        "--views", type=int_in(1, 64), default=1,
+        "--views",
+        type=int_in(1, 64),
+        default=1,
         help="1: one fixed camera above the table at 45 degrees, 640x480 (default); n > 1: the paper's ring of n",
     )
     s.add_argument("--noise", action="store_true", help="apply the depth noise model (sigma_p = 1 px, sigma_d = 1 mm)")
@@ -143,7 +156,9 @@ def add_parsers(sub) -> None:
     _add_scene_source(s, "")
     s.add_argument("--object-pose", help="x,y,z,qx,qy,qz,qw of --object (default: its rest pose, as acquire puts it)")
     s.add_argument(
-        "--closing", choices=["full", "learnt"], default="full",
+        "--closing",
+        choices=["full", "learnt"],
+        default="full",
         help="full: the fingers close until they stop, force-limited (default); learnt: just past the grasp joints",
     )
     s.add_argument("--out-scene", type=output_file, help="write the scene that remains (lifted objects removed)")

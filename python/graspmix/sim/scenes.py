@@ -125,9 +125,7 @@ def settle(spec: SceneSpec, settings: SimSettings | None = None, seconds: float 
     objs = _sim_objects(spec)
     r = _core.sim_settle_scene(objs, spec.poses, make_settings(settings), seconds, walls)
     poses = _canonical(np.asarray(r.object_poses))
-    return SceneSpec(
-        [SceneObject(o.urdf, p, o.scale) for o, p in zip(spec.objects, poses)], spec.seed, spec.mode
-    )
+    return SceneSpec([SceneObject(o.urdf, p, o.scale) for o, p in zip(spec.objects, poses)], spec.seed, spec.mode)
 
 
 def _canonical(poses: np.ndarray) -> np.ndarray:
@@ -237,9 +235,7 @@ def make_scene(objects: list[str], mode: str, seed: int, workspace=WORKSPACE, se
     if walls is not None:
         spec = settle(spec, settings, walls=walls)
     spec = settle(spec, settings)
-    inside = [
-        o for o in spec.objects if x0 <= o.pose[0] <= x1 and y0 <= o.pose[1] <= y1 and o.pose[2] > -0.01
-    ]
+    inside = [o for o in spec.objects if x0 <= o.pose[0] <= x1 and y0 <= o.pose[1] <= y1 and o.pose[2] > -0.01]
     if len(inside) < len(spec.objects):
         spec = settle(SceneSpec(inside, seed, mode), settings)
     return spec

@@ -7,7 +7,6 @@ import json
 
 import numpy as np
 import pytest
-
 from graspmix.cli.main import main
 from graspmix.sim import execution, scenes
 from graspmix.sim.scene_camera import SCENE_CAMERA, acquire_scene
@@ -52,9 +51,7 @@ def test_grasp_straddling_two_touching_boxes_lifts_two(tmp_path):
         'ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial><collision><geometry><box size="0.02 0.04 0.04"/>'
         "</geometry></collision></link></robot>"
     )
-    spec = scenes.SceneSpec(
-        [scenes.SceneObject(str(p), [x, 0, 0.02, 0, 0, 0, 1]) for x in (-0.01, 0.01)]
-    )
+    spec = scenes.SceneSpec([scenes.SceneObject(str(p), [x, 0, 0.02, 0, 0, 0, 1]) for x in (-0.01, 0.01)])
     ex = scenes.execute_in_scene(spec, execution.top_grasp((0, 0), 0.035, 0.018))
     assert ex.outcome == "two objects lifted" and not ex.result.success
     assert ex.lifted == [0, 1] and ex.remaining.objects == []
@@ -146,8 +143,9 @@ def test_cli_scene_acquire_execute(tmp_path, box, capsys):
     assert out["lifted"] == [1] and out["success"]
     assert len(scenes.SceneSpec.load(tmp_path / "r.json").objects) == 1
     assert main(["scene", "--objects", "0", "--mode", "pile", "--out", str(tmp_path / "x.json")]) == 2
-    (tmp_path / "bad.json").write_text(json.dumps({"format": "graspmix.scene/1", "objects": [
-        {"urdf": "nope.urdf", "pose": [0, 0, 0, 0, 0, 0, 1]}]}))
+    (tmp_path / "bad.json").write_text(
+        json.dumps({"format": "graspmix.scene/1", "objects": [{"urdf": "nope.urdf", "pose": [0, 0, 0, 0, 0, 0, 1]}]})
+    )
     assert main(["execute", "--scene", str(tmp_path / "bad.json"), "--grasps", str(tmp_path / "g.json")]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 2 and "nope.urdf" in err[-1]

@@ -160,6 +160,26 @@ def back_project(depth: np.ndarray, cam: Camera) -> tuple[np.ndarray, np.ndarray
     return world[:, :3], np.flatnonzero(ok)
 
 
+def render_depth(client: int, cam: Camera) -> tuple[np.ndarray, np.ndarray]:
+    """What camera `cam` sees of pybullet world `client`: metric depth (inf where nothing was hit) and the
+    segmentation mask (body id per pixel, < 0 for nothing)."""
+    import pybullet as p
+
+    _, _, _, buf, seg = p.getCameraImage(
+        cam.width,
+        cam.height,
+        cam.view_matrix().T.ravel().tolist(),
+        cam.projection(),
+        renderer=p.ER_TINY_RENDERER,
+        physicsClientId=client,
+    )
+    buf = np.asarray(buf, dtype=float).reshape(cam.height, cam.width)
+    seg = np.asarray(seg).reshape(cam.height, cam.width)
+    depth = depth_from_buffer(buf, cam.near, cam.far)
+    depth[(buf >= 1.0) | (seg < 0)] = np.inf
+    return depth, seg
+
+
 class Scene:
     """A pybullet DIRECT world with a support plane at z = 0 and one object resting on it."""
 
@@ -201,21 +221,7 @@ class Scene:
 
     def render_depth(self, cam: Camera) -> tuple[np.ndarray, np.ndarray]:
         """Metric depth (inf where nothing was hit) and the segmentation mask (body id per pixel)."""
-        import pybullet as p
-
-        _, _, _, buf, seg = p.getCameraImage(
-            cam.width,
-            cam.height,
-            cam.view_matrix().T.ravel().tolist(),
-            cam.projection(),
-            renderer=p.ER_TINY_RENDERER,
-            physicsClientId=self.client,
-        )
-        buf = np.asarray(buf, dtype=float).reshape(cam.height, cam.width)
-        seg = np.asarray(seg).reshape(cam.height, cam.width)
-        depth = depth_from_buffer(buf, cam.near, cam.far)
-        depth[(buf >= 1.0) | (seg < 0)] = np.inf
-        return depth, seg
+        return render_depth(self.client, cam)
 
     def close(self):
         import pybullet as p

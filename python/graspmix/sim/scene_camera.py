@@ -20,7 +20,7 @@ from .acquisition import (
     Camera,
     apply_noise,
     back_project,
-    depth_from_buffer,
+    render_depth,
     ring_cameras,
 )
 from .scenes import SceneSpec
@@ -64,20 +64,7 @@ class _Renderer:
     def render(self, cam: Camera) -> tuple[np.ndarray, np.ndarray]:
         """Metric depth (inf where nothing was hit) and the label per pixel (-1 table, -2 nothing, else the
         object's index)."""
-        import pybullet as p
-
-        _, _, _, buf, seg = p.getCameraImage(
-            cam.width,
-            cam.height,
-            cam.view_matrix().T.ravel().tolist(),
-            cam.projection(),
-            renderer=p.ER_TINY_RENDERER,
-            physicsClientId=self.client,
-        )
-        buf = np.asarray(buf, dtype=float).reshape(cam.height, cam.width)
-        seg = np.asarray(seg).reshape(cam.height, cam.width)
-        depth = depth_from_buffer(buf, cam.near, cam.far)
-        depth[(buf >= 1.0) | (seg < 0)] = np.inf
+        depth, seg = render_depth(self.client, cam)
         labels = np.full(seg.shape, -2)
         labels[seg == self.plane] = -1
         for i, body in enumerate(self.bodies):

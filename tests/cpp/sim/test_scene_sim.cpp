@@ -11,13 +11,13 @@
 #include "graspmix/robot/hand.hpp"
 #include "graspmix/sim/scene_sim.hpp"
 #include "graspmix/sim/sim.hpp"
+#include "sim_test_support.hpp"
 
 namespace fs = std::filesystem;
 using namespace graspmix;
+using namespace graspmix::sim_test;
 
 namespace {
-
-const fs::path kRepo = GRASPMIX_SOURCE_DIR;
 
 /// A box URDF of the given size (m) and 100 g, written once per test into a temporary folder.
 SimObject box(const std::string& name, double sx, double sy, double sz) {
@@ -31,18 +31,6 @@ SimObject box(const std::string& name, double sx, double sy, double sz) {
                       << sx << " " << sy << " " << sz << "\"/></geometry></collision></link></robot>";
   return SimObject::from_urdf(path.string());
 }
-
-Hand wsg50() { return Hand::from_urdf((kRepo / "data" / "hands" / "wsg50.urdf").string()); }
-
-/// A top grasp of the WSG 50 (fingers closing along world x): fingertips `tip_z` above the plane at (x, y).
-Eigen::Isometry3d top_wrist(double x, double y, double tip_z) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()).toRotationMatrix();
-  T.translation() = Eigen::Vector3d(x, y, tip_z + 0.0725 + 0.081);
-  return T;
-}
-
-Eigen::VectorXd q(double v) { return Eigen::VectorXd::Constant(1, v); }
 
 }  // namespace
 

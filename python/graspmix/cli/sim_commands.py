@@ -23,6 +23,7 @@ def _scene_of(args: argparse.Namespace):
         if pose is not None:
             raise CliError("--object-pose goes with --object, not --scene (the scene file holds the poses)")
         return scenes.SceneSpec.load(args.scene)
+    execution.load_object(args.object)  # the URDF checked whole before pybullet reads it
     pose = execution.rest_pose(args.object) if pose is None else parse_floats(pose, 7, "--object-pose")
     return scenes.SceneSpec([scenes.SceneObject(args.object, pose)]).check()
 

@@ -23,6 +23,7 @@ from .acquisition import (
     render_depth,
     ring_cameras,
 )
+from .execution import load_object
 from .scenes import SceneSpec
 
 SCENE_CAMERA = Camera(eye=(0.0, -0.55, 0.55), target=(0.0, 0.0, 0.0), width=640, height=480)
@@ -46,6 +47,10 @@ class _Renderer:
             self.plane = p.loadURDF("plane.urdf", physicsClientId=self.client)
             self.bodies = []
             for i, o in enumerate(spec.objects):
+                try:
+                    load_object(o.urdf)  # the URDF checked whole (and bounded) before pybullet reads it
+                except ValueError as e:
+                    raise ValueError(f"scene object {i} ({quote(o.urdf)}): {e}") from None
                 try:
                     body = p.loadURDF(
                         str(resolve_object(o.urdf)),

@@ -3,10 +3,108 @@
 
 #include "common.hpp"
 #include "graspmix/core/se3.hpp"
+#include "graspmix/sim/scene_sim.hpp"
 #include "graspmix/sim/sim.hpp"
 #include "settings.hpp"
 
 namespace graspmix::py_bind {
+
+namespace {
+
+/// The objects of a scene (a sequence of SimObject) and their link poses (N, 7), checked.
+std::vector<std::shared_ptr<SimObject>> scene_objects(const py::object& objects) {
+  std::vector<std::shared_ptr<SimObject>> out;
+  for (const py::handle& o : objects) {
+    if (!py::isinstance<SimObject>(o)) throw py::value_error("objects: expected a sequence of SimObject");
+    out.push_back(o.cast<std::shared_ptr<SimObject>>());
+  }
+  return out;
+}
+
+std::vector<Eigen::Isometry3d> scene_poses(const py::object& poses, size_t n) {
+  const RowMatrixXd m = to_matrix(poses, "object_poses", 7, true);
+  if (static_cast<size_t>(m.rows()) != n) {
+    throw py::value_error("object_poses: " + std::to_string(m.rows()) + " poses for " + std::to_string(n) + " objects");
+  }
+  std::vector<Eigen::Isometry3d> out;
+  for (Eigen::Index i = 0; i < m.rows(); ++i) out.push_back(pose_from_vector(m.row(i).transpose()));
+  return out;
+}
+
+RowMatrixXd poses_matrix(const std::vector<Eigen::Isometry3d>& poses) {
+  RowMatrixXd m(static_cast<Eigen::Index>(poses.size()), 7);
+  for (size_t i = 0; i < poses.size(); ++i) m.row(static_cast<Eigen::Index>(i)) = pose_to_vector(poses[i]).transpose();
+  return m;
+}
+
+std::vector<const SimObject*> raw(const std::vector<std::shared_ptr<SimObject>>& objects) {
+  std::vector<const SimObject*> out;
+  for (const auto& o : objects) out.push_back(o.get());
+  return out;
+}
+
+void bind_scene_sim(py::module_& m) {
+  py::class_<SceneSimResult>(m, "SceneSimResult", "The outcome of one grasp in a scene of several objects.")
+      .def_readonly("result", &SceneSimResult::result,
+                    "SimResult: outcome of the grasp; lift_height and object_pose of the object that rose most")
+      .def_readonly("lifted", &SceneSimResult::lifted, "indices of the objects that rose and are held by the hand")
+      .def_property_readonly(
+          "object_poses", [](const SceneSimResult& r) { return poses_matrix(r.T_world_objects); },
+          "(N, 7) every object's final link pose")
+      .def_readonly("rise", &SceneSimResult::rise, "m each object's centre of mass rose")
+      .def_readonly("moved", &SceneSimResult::moved, "m each object's link origin moved");
+
+  py::class_<SettleResult>(m, "SettleResult", "A scene simulated without a hand until its objects rest.")
+      .def_property_readonly(
+          "object_poses", [](const SettleResult& r) { return poses_matrix(r.T_world_objects); },
+          "(N, 7) every object's final link pose")
+      .def_readonly("at_rest", &SettleResult::at_rest, "every object came to rest in time")
+      .def_readonly("steps", &SettleResult::steps)
+      .def_readonly("simulated_time", &SettleResult::simulated_time, "s");
+
+  m.def(
+      "sim_execute_scene",
+      [](const std::shared_ptr<Hand>& hand, const py::object& objects, const py::object& object_poses,
+         const py::object& T_world_wrist, const py::object& pregrasp, const py::object& grasp,
+         const py::object& settings_obj, const py::kwargs& kw) {
+        const SimSettings settings = settings_from<SimSettings>(settings_obj, kw, "sim_execute_scene");
+        if (!hand) throw py::value_error("hand: expected a Hand, got None");
+        const auto objs = scene_objects(objects);
+        const std::vector<Eigen::Isometry3d> poses = scene_poses(object_poses, objs.size());
+        const Eigen::Isometry3d Tw = pose_from_vector(to_vector(T_world_wrist, "T_world_wrist", 7));
+        const Eigen::VectorXd qp = to_vector(pregrasp, "pregrasp_joints");
+        const Eigen::VectorXd qg = to_vector(grasp, "grasp_joints");
+        py::gil_scoped_release release;
+        return execute_scene(*hand, raw(objs), poses, Tw, qp, qg, settings);
+      },
+      py::arg("hand"), py::arg("objects"), py::arg("object_poses"), py::arg("T_world_wrist"), py::arg("pregrasp"),
+      py::arg("grasp"), py::arg("settings") = py::none(),
+      "Executes one grasp among several objects (link poses (N, 7)); see graspmix.sim.scenes.execute_in_scene.");
+
+  m.def(
+      "sim_settle_scene",
+      [](const py::object& objects, const py::object& object_poses, const py::object& settings_obj, double seconds,
+         const py::object& walls) {
+        const SimSettings settings = settings_from<SimSettings>(settings_obj, py::kwargs(), "sim_settle_scene");
+        const auto objs = scene_objects(objects);
+        const std::vector<Eigen::Isometry3d> poses = scene_poses(object_poses, objs.size());
+        SettleWalls w;
+        if (!walls.is_none()) {
+          const Eigen::VectorXd v = to_vector(walls, "walls", 5);
+          w.min = v.head<2>();
+          w.max = v.segment<2>(2);
+          w.height = v[4];
+        }
+        py::gil_scoped_release release;
+        return settle_scene(raw(objs), poses, settings, seconds, walls.is_none() ? nullptr : &w);
+      },
+      py::arg("objects"), py::arg("object_poses"), py::arg("settings") = py::none(), py::arg("seconds") = 2.0,
+      py::arg("walls") = py::none(),
+      "Simulates the objects without a hand until they rest (at most `seconds`); walls: [xmin, ymin, xmax, ymax, "
+      "height] of a box standing around them, or None.");
+}
+
+}  // namespace
 
 void bind_sim(py::module_& m) {
   SettingsClass<SimSettings>(m, "SimSettings", "Settings of a grasp execution in Bullet (units: m, s, N, kg).")
@@ -108,6 +206,7 @@ void bind_sim(py::module_& m) {
       ("Executes one grasp in Bullet (arrays in hand.joint_names order); see graspmix.sim.execute.\n" +
        settings_doc<SimSettings>())
           .c_str());
+  bind_scene_sim(m);
 }
 
 }  // namespace graspmix::py_bind

@@ -176,3 +176,49 @@ void sync_transforms(btMultiBody* mb) {
 }
 
 }  // namespace graspmix::sim_detail
+
+namespace graspmix::sim_detail {
+
+void add_static_box(World& w, const Eigen::Vector3d& center, const Eigen::Vector3d& half, double friction) {
+  auto* shape = w.own_shape(std::make_unique<btBoxShape>(bt(half)));
+  shape->setMargin(kCollisionMargin);
+  auto box = std::make_unique<btCollisionObject>();
+  box->setCollisionShape(shape);
+  box->setWorldTransform(btTransform(btQuaternion::getIdentity(), bt(center)));
+  box->setFriction(friction);
+  box->setRestitution(0.0);
+  w.world->addCollisionObject(box.get(), btBroadphaseProxy::StaticFilter,
+                              btBroadphaseProxy::AllFilter ^ btBroadphaseProxy::StaticFilter);
+  w.objects.push_back(std::move(box));
+}
+
+const btCollisionObject* add_support(World& w, double friction) {
+  add_static_box(w, Eigen::Vector3d(0, 0, -5), Eigen::Vector3d(100, 100, 5), friction);
+  return w.objects.back().get();
+}
+
+btMultiBody* add_object(World& w, const SimObject& object, const Eigen::Isometry3d& T_world_object,
+                        const SimSettings& s) {
+  const LinkInfo& olink = object.model().links().front();
+  const double omass = s.object_mass >= 0 ? s.object_mass : object.mass();
+  if (!(omass > 0)) throw std::invalid_argument("SimSettings.object_mass must be positive");
+  const double ofriction =
+      s.object_friction >= 0 ? s.object_friction : (object.lateral_friction() >= 0 ? object.lateral_friction() : 0.5);
+  btCompoundShape* oshape = link_shape(w, olink, olink.T_link_inertial);
+  // pybullet scales the inertia computed from the shape by <contact><inertia_scaling> (random_urdfs use 3).
+  w.bodies.push_back(
+      std::make_unique<btMultiBody>(0, omass, shape_inertia(oshape, omass) * object.inertia_scaling(), false, false));
+  btMultiBody* body = w.bodies.back().get();
+  body->setBaseWorldTransform(bt(T_world_object * olink.T_link_inertial));
+  body->finalizeMultiDof();
+  w.world->addMultiBody(body);
+  add_collider(w, body, -1, oshape, ofriction);
+  sync_transforms(body);
+  return body;
+}
+
+Eigen::Isometry3d object_pose(const btMultiBody* body, const SimObject& object) {
+  return eig(body->getBaseWorldTransform()) * object.model().links().front().T_link_inertial.inverse();
+}
+
+}  // namespace graspmix::sim_detail

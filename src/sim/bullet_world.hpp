@@ -11,6 +11,7 @@
 #include <btBulletDynamicsCommon.h>
 
 #include "graspmix/robot/hand.hpp"
+#include "graspmix/sim/scene_sim.hpp"
 #include "graspmix/sim/sim.hpp"
 
 namespace graspmix::sim_detail {
@@ -57,5 +58,22 @@ btCompoundShape* link_shape(World& w, const LinkInfo& link, const Eigen::Isometr
 btVector3 shape_inertia(btCollisionShape* shape, double mass);
 btMultiBodyLinkCollider* add_collider(World& w, btMultiBody* mb, int link, btCollisionShape* shape, double friction);
 void sync_transforms(btMultiBody* mb);
+
+/// Every setting finite and in range, every phase bounded (sim.cpp); std::invalid_argument names the setting.
+void check_settings(const SimSettings& s);
+/// At least one object, as many poses, none null or non-finite; `what` names the caller in the message.
+void check_scene(const std::vector<const SimObject*>& objects, const std::vector<Eigen::Isometry3d>& T_world_objects,
+                 const char* what);
+
+/// pybullet_data's plane.urdf: a 200 x 200 x 10 m static box with its top at z = 0.
+const btCollisionObject* add_support(World& w, double friction);
+/// A static box (walls of a settling), centre `center`, half extents `half`.
+void add_static_box(World& w, const Eigen::Vector3d& center, const Eigen::Vector3d& half, double friction);
+/// The object as a multibody with no links, like pybullet's import of a one-link URDF, its link frame at
+/// T_world_object (mass and friction from the settings, else the URDF).
+btMultiBody* add_object(World& w, const SimObject& object, const Eigen::Isometry3d& T_world_object,
+                        const SimSettings& s);
+/// The object's link frame from its body's (centre-of-mass) frame.
+Eigen::Isometry3d object_pose(const btMultiBody* body, const SimObject& object);
 
 }  // namespace graspmix::sim_detail

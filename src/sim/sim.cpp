@@ -41,6 +41,10 @@ double lift_time(const SimSettings& s) { return s.lift_height / s.lift_speed + 0
 /// before anything casts it to int).
 double phase_steps(double seconds, double dt) { return std::ceil(seconds / dt - 1e-9); }
 
+}  // namespace
+
+namespace sim_detail {
+
 /// Every setting finite and in its range, and every phase within kMaxPhaseTime and kMaxPhaseSteps, so
 /// that its step count fits an int and a run ends in bounded time (an overflowing count would skip a
 /// phase and report its outcome anyway).
@@ -85,47 +89,77 @@ void check_settings(const SimSettings& s) {
   }
 }
 
-/// One grasp execution: the world (support, object, hand with its motors) and the protocol run in it.
+void check_scene(const std::vector<const SimObject*>& objects, const std::vector<Eigen::Isometry3d>& T_world_objects,
+                 const char* what) {
+  if (objects.empty()) throw std::invalid_argument(std::string(what) + ": the scene has no object");
+  if (objects.size() != T_world_objects.size()) {
+    throw std::invalid_argument(std::string(what) + ": " + std::to_string(objects.size()) + " objects but " +
+                                std::to_string(T_world_objects.size()) + " poses");
+  }
+  for (size_t i = 0; i < objects.size(); ++i) {
+    if (!objects[i]) throw std::invalid_argument(std::string(what) + ": object " + std::to_string(i) + " is null");
+    if (!T_world_objects[i].matrix().allFinite()) {
+      throw std::invalid_argument(std::string(what) + ": the pose of object " + std::to_string(i) + " is not finite");
+    }
+  }
+}
+
+}  // namespace sim_detail
+
+namespace {
+
+using namespace sim_detail;
+
+/// One grasp execution: the world (support, objects, hand with its motors) and the protocol run in it.
 /// Bodies, colliders and constraints are added in a fixed order, which Bullet's results depend on.
 class Execution {
  public:
-  Execution(const Hand& hand, const SimObject& object, const SimSettings& s)
-      : hand_(hand), object_(object), s_(s), w_(s), dt_(s.time_step) {}
+  Execution(const Hand& hand, const std::vector<const SimObject*>& objects, const SimSettings& s)
+      : hand_(hand), objects_(objects), s_(s), w_(s), dt_(s.time_step) {}
 
-  /// Adds the support, the object and the hand at its pre-grasp configuration, then the hand's motors.
-  void build(const Eigen::Isometry3d& T_world_object, const Eigen::Isometry3d& T_world_wrist,
+  /// Adds the support, the objects and the hand at its pre-grasp configuration, then the hand's motors.
+  void build(const std::vector<Eigen::Isometry3d>& T_world_objects, const Eigen::Isometry3d& T_world_wrist,
              const Eigen::Ref<const Eigen::VectorXd>& pregrasp, const Eigen::Ref<const Eigen::VectorXd>& grasp) {
-    add_support();
-    add_object(T_world_object);
+    plane_ = add_support(w_, s_.support_friction);
+    for (size_t i = 0; i < objects_.size(); ++i) {
+      bodies_.push_back(add_object(w_, *objects_[i], T_world_objects[i], s_));
+      start_.push_back(T_world_objects[i].translation());
+    }
     const Eigen::VectorXd q_start = hand_.all_joint_values(pregrasp);
     const Eigen::VectorXd q_grasp = hand_.all_joint_values(grasp);
     add_hand(T_world_wrist, q_start);
     add_drives(q_start, q_grasp);
   }
 
-  /// The paper's protocol: 1. start in collision? 2. close, 3. lift, 4. hold.
-  SimResult run(std::chrono::steady_clock::time_point t0) {
-    SimResult r;
+  /// The paper's protocol: 1. start in collision? 2. close, 3. lift, 4. hold; then which objects rose in
+  /// the hand.
+  SceneSimResult run(std::chrono::steady_clock::time_point t0) {
+    SceneSimResult out;
+    SimResult& r = out.result;
+    std::vector<int> per_object(bodies_.size(), 0);
     w_.world->performDiscreteCollisionDetection();
     double deepest = 0.0;
-    scan_contacts(s_.contact_distance, &deepest);
+    scan_contacts(s_.contact_distance, &deepest, per_object);
     r.start_penetration = std::max(0.0, deepest);
-    if (deepest > s_.start_penetration) return finish(r, SimOutcome::StartInCollision, t0);
+    std::vector<double> z0;
+    for (const btMultiBody* b : bodies_) z0.push_back(b->getBasePos().z());
+    if (deepest > s_.start_penetration) return finish(out, z0, SimOutcome::StartInCollision, t0);
 
-    const double z0 = object_body_->getBasePos().z();
     steps(r, s_.close_time);
-    r.contact_count = scan_contacts(s_.contact_distance, nullptr);
-    if (r.contact_count == 0) {
-      r.lift_height = object_body_->getBasePos().z() - z0;
-      return finish(r, SimOutcome::NoContact, t0);
-    }
+    r.contact_count = scan_contacts(s_.contact_distance, nullptr, per_object);
+    if (r.contact_count == 0) return finish(out, z0, SimOutcome::NoContact, t0);
     lift_target_ = s_.lift_height;
     steps(r, lift_time(s_));
     steps(r, s_.hold_time);
-    r.contact_count = scan_contacts(s_.contact_distance, nullptr);
-    r.lift_height = object_body_->getBasePos().z() - z0;
-    const bool held = r.contact_count > 0 && r.lift_height >= s_.success_fraction * s_.lift_height;
-    return finish(r, held ? SimOutcome::Success : SimOutcome::NotHeld, t0);
+    r.contact_count = scan_contacts(s_.contact_distance, nullptr, per_object);
+    for (size_t i = 0; i < bodies_.size(); ++i) {
+      const double rise = bodies_[i]->getBasePos().z() - z0[i];
+      if (per_object[i] > 0 && rise >= s_.success_fraction * s_.lift_height) out.lifted.push_back(static_cast<int>(i));
+    }
+    const SimOutcome o = out.lifted.empty()       ? SimOutcome::NotHeld
+                         : out.lifted.size() == 1 ? SimOutcome::Success
+                                                  : SimOutcome::TwoObjectsLifted;
+    return finish(out, z0, o, t0);
   }
 
  private:
@@ -135,41 +169,6 @@ class Execution {
     double speed;
     btMultiBodyJointMotor* motor;
   };
-
-  /// pybullet_data's plane.urdf: a 200 x 200 x 10 m box with its top at z = 0.
-  void add_support() {
-    auto* plane_shape = w_.own_shape(std::make_unique<btBoxShape>(btVector3(100, 100, 5)));
-    plane_shape->setMargin(kCollisionMargin);
-    auto plane = std::make_unique<btCollisionObject>();
-    plane->setCollisionShape(plane_shape);
-    plane->setWorldTransform(btTransform(btQuaternion::getIdentity(), btVector3(0, 0, -5)));
-    plane->setFriction(s_.support_friction);
-    plane->setRestitution(0.0);
-    w_.world->addCollisionObject(plane.get(), btBroadphaseProxy::StaticFilter,
-                                 btBroadphaseProxy::AllFilter ^ btBroadphaseProxy::StaticFilter);
-    w_.objects.push_back(std::move(plane));
-    plane_ = w_.objects.back().get();
-  }
-
-  /// A multibody with no links, like pybullet's import of a one-link URDF.
-  void add_object(const Eigen::Isometry3d& T_world_object) {
-    const LinkInfo& olink = object_.model().links().front();
-    const double omass = s_.object_mass >= 0 ? s_.object_mass : object_.mass();
-    if (!(omass > 0)) throw std::invalid_argument("SimSettings.object_mass must be positive");
-    const double ofriction = s_.object_friction >= 0
-                                 ? s_.object_friction
-                                 : (object_.lateral_friction() >= 0 ? object_.lateral_friction() : 0.5);
-    btCompoundShape* oshape = link_shape(w_, olink, olink.T_link_inertial);
-    // pybullet scales the inertia computed from the shape by <contact><inertia_scaling> (random_urdfs use 3).
-    w_.bodies.push_back(std::make_unique<btMultiBody>(
-        0, omass, shape_inertia(oshape, omass) * object_.inertia_scaling(), false, false));
-    object_body_ = w_.bodies.back().get();
-    object_body_->setBaseWorldTransform(bt(T_world_object * olink.T_link_inertial));
-    object_body_->finalizeMultiDof();
-    w_.world->addMultiBody(object_body_);
-    add_collider(w_, object_body_, -1, oshape, ofriction);
-    sync_transforms(object_body_);
-  }
 
   /// Fixed base at the wrist, link 0 = the root link on the lift joint (world +z), then the tree.
   void add_hand(const Eigen::Isometry3d& T_world_wrist, const Eigen::VectorXd& q_start) {
@@ -264,8 +263,10 @@ class Execution {
     return raw;
   }
 
-  /// Hand-object contact points closer than `below`; deepest penetration of the hand into anything.
-  int scan_contacts(double below, double* deepest) const {
+  /// Hand-object contact points closer than `below` (in all, and per object in `per_object`); deepest
+  /// penetration of the hand into anything.
+  int scan_contacts(double below, double* deepest, std::vector<int>& per_object) const {
+    std::fill(per_object.begin(), per_object.end(), 0);
     int count = 0;
     btDispatcher* d = w_.world->getDispatcher();
     for (int k = 0; k < d->getNumManifolds(); ++k) {
@@ -276,12 +277,16 @@ class Execution {
       if (a_hand == b_hand) continue;  // not a hand-something pair
       const btCollisionObject* other = a_hand ? man->getBody1() : man->getBody0();
       const auto* oc = a_hand ? b : a;
-      const bool with_object = oc && oc->m_multiBody == object_body_;
+      const auto it = oc ? std::find(bodies_.begin(), bodies_.end(), oc->m_multiBody) : bodies_.end();
+      const bool with_object = it != bodies_.end();
       if (!with_object && other != plane_) continue;
       for (int p = 0; p < man->getNumContacts(); ++p) {
         const double dist = man->getContactPoint(p).getDistance();
         if (deepest) *deepest = std::max(*deepest, -dist);
-        if (with_object && dist < below) ++count;
+        if (with_object && dist < below) {
+          ++count;
+          ++per_object[static_cast<size_t>(it - bodies_.begin())];
+        }
       }
     }
     return count;
@@ -301,30 +306,43 @@ class Execution {
     }
   }
 
-  SimResult finish(SimResult& r, SimOutcome o, std::chrono::steady_clock::time_point t0) const {
+  /// The outcome, every object's final pose, rise and displacement; lift_height and the final pose of the
+  /// result are those of the object that rose most (the first of equals).
+  SceneSimResult finish(SceneSimResult& out, const std::vector<double>& z0, SimOutcome o,
+                        std::chrono::steady_clock::time_point t0) const {
+    SimResult& r = out.result;
     r.outcome = o;
     r.success = o == SimOutcome::Success;
     r.reason = to_string(o);
-    r.T_world_object_final =
-        eig(object_body_->getBaseWorldTransform()) * object_.model().links().front().T_link_inertial.inverse();
-    // A blown-up simulation would otherwise be reported as "not held".
-    if (!r.T_world_object_final.matrix().allFinite()) {
-      throw std::invalid_argument(
-          "execute: the simulation diverged (the object's pose is no longer finite); check the forces, gains and "
-          "time_step of SimSettings and the masses in the URDFs");
+    size_t top = 0;
+    for (size_t i = 0; i < bodies_.size(); ++i) {
+      out.T_world_objects.push_back(object_pose(bodies_[i], *objects_[i]));
+      // A blown-up simulation would otherwise be reported as "not held".
+      if (!out.T_world_objects.back().matrix().allFinite()) {
+        throw std::invalid_argument(
+            "execute: the simulation diverged (an object's pose is no longer finite); check the forces, gains and "
+            "time_step of SimSettings and the masses in the URDFs");
+      }
+      out.rise.push_back(bodies_[i]->getBasePos().z() - z0[i]);
+      out.moved.push_back((out.T_world_objects.back().translation() - start_[i]).norm());
+      if (out.rise[i] > out.rise[top]) top = i;
     }
+    // The start check ends before anything moves: no rise is measured.
+    r.lift_height = o == SimOutcome::StartInCollision ? 0.0 : out.rise[top];
+    r.T_world_object_final = out.T_world_objects[top];
     r.simulated_time = r.steps * dt_;
     r.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    return r;
+    return out;
   }
 
   const Hand& hand_;
-  const SimObject& object_;
+  const std::vector<const SimObject*>& objects_;
   const SimSettings& s_;
   World w_;
   const double dt_;
   const btCollisionObject* plane_ = nullptr;
-  btMultiBody* object_body_ = nullptr;
+  std::vector<btMultiBody*> bodies_;
+  std::vector<Eigen::Vector3d> start_;  ///< link origins at the start
   btMultiBody* hand_body_ = nullptr;
   std::vector<btCompoundShape*> shapes_;
   std::vector<double> masses_;
@@ -345,8 +363,25 @@ const char* to_string(SimOutcome outcome) {
       return "no contact";
     case SimOutcome::NotHeld:
       return "not held";
+    case SimOutcome::TwoObjectsLifted:
+      return "two objects lifted";
   }
   return "?";
+}
+
+SceneSimResult execute_scene(const Hand& hand, const std::vector<const SimObject*>& objects,
+                             const std::vector<Eigen::Isometry3d>& T_world_objects,
+                             const Eigen::Isometry3d& T_world_wrist, const Eigen::Ref<const Eigen::VectorXd>& pregrasp,
+                             const Eigen::Ref<const Eigen::VectorXd>& grasp, const SimSettings& s) {
+  const auto t0 = std::chrono::steady_clock::now();
+  check_settings(s);
+  check_scene(objects, T_world_objects, "execute_scene");
+  hand.check_configuration(pregrasp, "pregrasp_joints");
+  hand.check_configuration(grasp, "grasp_joints");
+  if (!T_world_wrist.matrix().allFinite()) throw std::invalid_argument("T_world_wrist must be finite");
+  Execution run(hand, objects, s);
+  run.build(T_world_objects, T_world_wrist, pregrasp, grasp);
+  return run.run(t0);
 }
 
 SimResult execute(const Hand& hand, const SimObject& object, const Eigen::Isometry3d& T_world_object,
@@ -358,9 +393,10 @@ SimResult execute(const Hand& hand, const SimObject& object, const Eigen::Isomet
   hand.check_configuration(grasp, "grasp_joints");
   if (!T_world_wrist.matrix().allFinite()) throw std::invalid_argument("T_world_wrist must be finite");
   if (!T_world_object.matrix().allFinite()) throw std::invalid_argument("T_world_object must be finite");
-  Execution run(hand, object, s);
-  run.build(T_world_object, T_world_wrist, pregrasp, grasp);
-  return run.run(t0);
+  const std::vector<const SimObject*> objects{&object};
+  Execution run(hand, objects, s);
+  run.build({T_world_object}, T_world_wrist, pregrasp, grasp);
+  return run.run(t0).result;
 }
 
 }  // namespace graspmix

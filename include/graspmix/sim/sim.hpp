@@ -90,9 +90,10 @@ class SimObject {
   double inertia_scaling_ = 1.0;
 };
 
-enum class SimOutcome { Success, StartInCollision, NoContact, NotHeld };
+/// TwoObjectsLifted happens only in a scene (scene_sim.hpp): more than one object rose in the hand.
+enum class SimOutcome { Success, StartInCollision, NoContact, NotHeld, TwoObjectsLifted };
 
-/// "success", "start in collision", "no contact", "not held".
+/// "success", "start in collision", "no contact", "not held", "two objects lifted".
 const char* to_string(SimOutcome outcome);
 
 struct SimResult {

@@ -1,79 +1,47 @@
-"""graspmix_cli segment: the support plane and the objects of a scene cloud."""
+"""scene: a scene of several objects on the table, built in the simulation (pile or packed, after VGN)."""
 
 from __future__ import annotations
 
-import json
+import argparse
+import time
 
-import numpy as np
-
-from ..io import load_points
-from ..perception import segment_scene
-from .common import float_in, given, input_path, int_in, output_file, seed
-from .views import add_view_arguments, view_inputs
+from ..io import data_path
+from .common import input_path, int_in, output_file, seed
 
 
-def _plane_lines(scene) -> list[str]:
-    d = scene.to_dict()
-    if scene.plane_given:
-        head = "plane: given"
-    elif scene.plane_found:
-        head = "plane: found"
-    else:
-        head = "plane: none (no candidate passed the support rule: every point is an object point)"
-    lines = [
-        head + ("" if scene.plane is None else f" [{', '.join(f'{v:.4f}' for v in scene.plane)}] (towards the cameras)")
-    ]
-    for c in d["candidates"]:
-        margin = "-" if c["margin"] is None or np.isnan(c["margin"]) else f"{c['margin']:.3f} m"
-        verdict = "support" if c["accepted"] else c["reason"]
-        lines.append(
-            f"  candidate [{', '.join(f'{v:.3f}' for v in c['plane'])}]: {c['inlier_fraction']:.1%} of the points, "
-            f"cameras {c['camera_height']:.3f} m above, {c['behind_fraction']:.1%} behind, reach {margin}: {verdict}"
-        )
-    return lines
+def cmd_scene(args: argparse.Namespace) -> int:
+    from ..sim import scene_camera, scenes
 
-
-def cmd_segment(args) -> int:
-    points, viewpoints, plane = view_inputs(args, load_points(args.cloud))
-    settings = given(args, "cluster_tolerance", "min_cluster_size", "table_clearance", "voxel_size", "seed")
-    scene = segment_scene(points, viewpoints, plane, **settings)
-    if args.png:
-        from ..viz import plot_scene
-
-        plot_scene(scene, args.png, cloud=points)
-    if args.json:
-        print(json.dumps(scene.to_dict(), allow_nan=False))
-        return 0
-    for line in _plane_lines(scene):
-        print(line)
-    print(f"objects: {len(scene.objects)}")
-    for o in scene.objects:
-        c, e = o.centroid, o.obb_extents
-        print(
-            f"  {o.index}: {o.n_points} points, centroid [{c[0]:.3f}, {c[1]:.3f}, {c[2]:.3f}] m, "
-            f"box {e[0] * 100:.1f} x {e[1] * 100:.1f} x {e[2] * 100:.1f} cm"
-        )
-    r = scene.result
+    objects = scenes.choose_objects(args.object_list or data_path("objects", "test60.txt"), args.objects, args.seed)
+    t0 = time.perf_counter()
+    spec = scenes.make_scene(objects, args.mode, args.seed)
+    dt = time.perf_counter() - t0
+    spec.save(args.out)
     print(
-        f"points: {r.n_input} in, {r.n_after_voxel} after the voxel grid, {r.n_plane} table, {r.n_outliers} outliers, "
-        f"{r.n_small_clusters} in clusters too small (noise), {r.n_output} on objects"
+        f"{args.mode} scene of {len(spec.objects)} of {len(objects)} objects (seed {args.seed}; the others were "
+        f"left out or fell off the workspace) built in {dt:.2f} s; wrote {args.out}"
+        if len(spec.objects) < len(objects)
+        else f"{args.mode} scene of {len(spec.objects)} objects (seed {args.seed}) built in {dt:.2f} s; wrote {args.out}"
     )
-    print(f"time: {scene.timing['segmentation'] * 1e3:.1f} ms")
+    for i, o in enumerate(spec.objects):
+        print(f"  {i}: {o.urdf} at {', '.join(f'{v:.3f}' for v in o.pose[:3])}")
     if args.png:
-        print(f"picture: {args.png}")
+        from ..viz import plot_depth_images
+
+        png = args.out.rsplit(".", 1)[0] + ".png"
+        plot_depth_images(scene_camera.acquire_scene(spec), png)
+        print(f"wrote {png}")
     return 0
 
 
 def add_parsers(sub) -> None:
-    s = sub.add_parser("segment", help="the support plane and the objects of a scene cloud (.pcd/.ply/.npy)")
-    s.add_argument("--cloud", type=input_path, required=True, help="the scene cloud (.pcd, .ply, or .npy (N, 3))")
-    add_view_arguments(s)
-    s.add_argument("--png", type=output_file, help="write a picture of the objects over the plane")
-    s.add_argument("--json", action="store_true", help="print the segmentation as JSON instead")
-    tuning = s.add_argument_group("settings (default: SegmentationSettings')")
-    tuning.add_argument("--cluster-tolerance", type=float_in(gt=0.0), help="m: points closer are one object")
-    tuning.add_argument("--min-cluster-size", type=int_in(1), help="smaller clusters are noise")
-    tuning.add_argument("--table-clearance", type=float_in(0.0), help="m above the plane that is still the table")
-    tuning.add_argument("--voxel-size", type=float_in(0.0), help="m: voxel-grid leaf (0 = off)")
-    tuning.add_argument("--seed", type=seed, help="seed of the RANSAC plane search")
-    s.set_defaults(func=cmd_segment)
+    s = sub.add_parser("scene", help="build a scene of several objects on the table (pile or packed) in Bullet")
+    s.add_argument("--objects", type=int_in(1, 100), required=True, help="how many objects to draw")
+    s.add_argument("--mode", choices=["pile", "packed"], required=True, help="dropped in a pile, or placed upright")
+    s.add_argument("--seed", type=seed, default=0, help="seed of the draw and the placement")
+    s.add_argument(
+        "--object-list", type=input_path, help="object list (one URDF a line; default: data/objects/test60.txt)"
+    )
+    s.add_argument("--out", type=output_file, required=True, help="output scene file (.json)")
+    s.add_argument("--png", action="store_true", help="also draw the scene as the default camera sees it (.png)")
+    s.set_defaults(func=cmd_scene)

@@ -6,26 +6,57 @@ import argparse
 import json
 import time
 
+import numpy as np
+
 from .. import _core
 from ..io.checks import MAX_SIM_TIME
 from ..model.settings import FeatureSettings
-from .common import float_in, input_path, int_in, output_file, seed
+from .common import CliError, float_in, input_path, int_in, output_file, parse_floats, seed
+
+
+def _scene_of(args: argparse.Namespace):
+    """The scene of --scene, or --object alone at --object-pose (default: its rest pose at the origin)."""
+    from ..sim import execution, scenes
+
+    pose = getattr(args, "object_pose", None)
+    if args.scene:
+        if pose is not None:
+            raise CliError("--object-pose goes with --object, not --scene (the scene file holds the poses)")
+        return scenes.SceneSpec.load(args.scene)
+    execution.load_object(args.object)  # the URDF checked whole before pybullet reads it
+    pose = execution.rest_pose(args.object) if pose is None else parse_floats(pose, 7, "--object-pose")
+    return scenes.SceneSpec([scenes.SceneObject(args.object, pose)]).check()
+
+
+def _camera_pose(cam) -> list[float]:
+    """The camera's position and orientation (OpenGL camera frame: looking along -z) for a PCD VIEWPOINT."""
+    from scipy.spatial.transform import Rotation
+
+    R = np.linalg.inv(cam.view_matrix())[:3, :3]
+    return [*map(float, cam.eye), *map(float, Rotation.from_matrix(R).as_quat())]
 
 
 def cmd_acquire(args: argparse.Namespace) -> int:
-    from ..sim import acquisition
+    from ..sim import acquisition, scene_camera
 
-    settings = acquisition.AcquisitionSettings(keep=args.keep)
+    spec = _scene_of(args)
     post = acquisition.clean_up(voxel_size=args.voxel_size, seed=args.seed) if args.clean else None
     t0 = time.perf_counter()
-    acq = acquisition.acquire(args.object, noise=args.noise, seed=args.seed, settings=settings, postprocess=post)
+    acq = scene_camera.acquire_scene(spec, views=args.views, noise=args.noise, seed=args.seed, keep=args.keep)
+    if post is not None:
+        acq = post(acq)
     dt = time.perf_counter() - t0
-    _core.save_cloud(args.out, acq.points)
+    # One camera: its pose is the cloud's VIEWPOINT (what synthesize orients normals and finds the table by).
+    viewpoint = _camera_pose(acq.cameras[0]) if len(acq.cameras) == 1 else None
+    _core.save_cloud(args.out, acq.points, viewpoint=viewpoint)
+    what = args.scene or args.object
     print(
-        f"acquired {len(acq.points)} points of {args.object} from {len(acq.cameras)} cameras "
+        f"acquired {len(acq.points)} points of {what} ({len(spec.objects)} object(s), "
+        f"{'table and objects' if args.keep == 'scene' else 'objects only'}) from {len(acq.cameras)} camera(s) "
         f"(noise {'on' if args.noise else 'off'}, seed {args.seed}"
         + (", cleaned up" + (", support plane removed" if acq.plane is not None else "") if args.clean else "")
         + f") in {dt * 1e3:.0f} ms; wrote {args.out}"
+        + (f" (viewpoint {', '.join(f'{v:.3f}' for v in viewpoint[:3])})" if viewpoint else "")
     )
     if args.picture:
         from ..viz import plot_depth_images
@@ -37,39 +68,74 @@ def cmd_acquire(args: argparse.Namespace) -> int:
 
 def cmd_execute(args: argparse.Namespace) -> int:
     from .. import sim
+    from ..sim import scenes
 
     overrides = {
         k: v
         for k, v in (("grip_force", args.grip_force), ("lift_height", args.lift_height), ("hold_time", args.hold_time))
         if v is not None
     }
-    r = sim.execute_file(args.object, args.grasps, rank=args.rank, hand=args.hand, **overrides)
+    spec = _scene_of(args)
+    doc, h = sim.execution.grasps_and_hand(args.grasps, args.hand)
+    settings = sim.make_settings(None, **overrides)
+    ex = scenes.execute_in_scene(
+        spec, sim.grasp_by_rank(doc, args.rank), hand=h, closing=args.closing, settings=settings
+    )
+    if args.out_scene:
+        ex.remaining.save(args.out_scene)
+    r = ex.result
+    names = [o.urdf for o in spec.objects]
     if args.json:
-        print(json.dumps(dict(sim.result_dict(r), object=args.object, rank=args.rank)))
-    else:
         print(
-            f"grasp {args.rank} on {args.object}: {'SUCCESS' if r.success else 'FAILURE'} ({r.reason}); "
-            f"object lifted {r.lift_height * 100:.1f} cm, {r.contact_count} contacts; "
-            f"{r.steps} steps = {r.simulated_time:.2f} s simulated in {r.wall_time * 1e3:.0f} ms"
+            json.dumps(
+                dict(
+                    sim.result_dict(r),
+                    lifted=ex.lifted,
+                    lifted_objects=[names[i] for i in ex.lifted],
+                    moved=[float(m) for m in ex.moved],
+                    objects=names,
+                    rank=args.rank,
+                    closing=args.closing,
+                )
+            )
         )
+        return 0
+    print(
+        f"grasp {args.rank} ({args.closing} closing): {'SUCCESS' if r.success else 'FAILURE'} ({r.reason}); "
+        + (f"lifted {', '.join(f'{i}: {names[i]}' for i in ex.lifted)}" if ex.lifted else "nothing lifted")
+        + f" ({r.lift_height * 100:.1f} cm), {r.contact_count} contacts; "
+        f"{r.steps} steps = {r.simulated_time:.2f} s simulated in {r.wall_time * 1e3:.0f} ms"
+    )
+    for i, m in enumerate(ex.moved):
+        if i not in ex.lifted:
+            print(f"  object {i} ({names[i]}) moved {m * 100:.1f} cm")
+    if args.out_scene:
+        print(f"wrote {args.out_scene} ({len(ex.remaining.objects)} object(s) left)")
     return 0
 
 
+def _add_scene_source(s, what: str) -> None:
+    g = s.add_mutually_exclusive_group(required=True)
+    g.add_argument("--object", type=input_path, help=f"one object URDF {what} (a path, or relative to pybullet_data)")
+    g.add_argument("--scene", type=input_path, help="a scene file (graspmix_cli scene; format graspmix.scene/1)")
+
+
 def add_parsers(sub) -> None:
-    s = sub.add_parser("acquire", help="a stitched point cloud of an object from 4 simulated depth cameras (pybullet)")
+    s = sub.add_parser("acquire", help="a point cloud of an object or a scene as simulated depth cameras see it")
+    _add_scene_source(s, "at its rest pose at the origin")
     s.add_argument(
-        "--object",
-        type=input_path,
-        required=True,
-        help="object URDF: a path, or relative to pybullet_data (random_urdfs/012/012.urdf)",
+        "--views",
+        type=int_in(1, 64),
+        default=1,
+        help="1: one fixed camera above the table at 45 degrees, 640x480 (default); n > 1: the paper's ring of n",
     )
     s.add_argument("--noise", action="store_true", help="apply the depth noise model (sigma_p = 1 px, sigma_d = 1 mm)")
     s.add_argument("--seed", type=seed, default=0, help="seed of the noise")
     s.add_argument(
         "--keep",
         choices=["object", "scene"],
-        default="object",
-        help="object: the pixels that see the object (segmentation); scene: the support plane too",
+        default="scene",
+        help="scene: what the camera sees, the table too (default); object: the objects' pixels only",
     )
     s.add_argument("--out", type=output_file, required=True, help="output cloud (.pcd)")
     s.add_argument("--picture", type=output_file, help="also save a picture of the depth images (.png)")
@@ -87,8 +153,16 @@ def add_parsers(sub) -> None:
     s.set_defaults(func=cmd_acquire)
 
     d = _core.SimSettings()  # the C++ defaults, for the help texts
-    s = sub.add_parser("execute", help="execute a grasp from grasps.json on an object in Bullet physics")
-    s.add_argument("--object", type=input_path, required=True, help="object URDF: a path, or relative to pybullet_data")
+    s = sub.add_parser("execute", help="execute a grasp from grasps.json on an object or in a scene in Bullet physics")
+    _add_scene_source(s, "")
+    s.add_argument("--object-pose", help="x,y,z,qx,qy,qz,qw of --object (default: its rest pose, as acquire puts it)")
+    s.add_argument(
+        "--closing",
+        choices=["full", "learnt"],
+        default="full",
+        help="full: the fingers close until they stop, force-limited (default); learnt: just past the grasp joints",
+    )
+    s.add_argument("--out-scene", type=output_file, help="write the scene that remains (lifted objects removed)")
     s.add_argument("--grasps", type=input_path, required=True, help="grasps.json (format graspmix.grasps/1)")
     s.add_argument("--rank", type=int_in(1), default=1, help="which grasp (1 = the best)")
     s.add_argument("--hand", type=input_path, help="hand URDF (default: the bundled WSG 50)")

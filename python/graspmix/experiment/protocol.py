@@ -13,6 +13,7 @@ from ..io import PROTOCOL_FORMAT, read_document, resolve_object, sha256_file, te
 from ..io.checks import MAX_ITERATIONS, MAX_SAMPLES, check_float, check_int, check_seed, quote
 from ..model import default_model_path
 from ..model.settings import METHODS, SynthesisOptions
+from ..sim.execution import CLOSING  # how an executed grasp closes: one definition for every caller
 
 _ANNEALING = _core.AnnealingSettings()  # the C++ defaults, the single source
 
@@ -33,13 +34,6 @@ CONDITIONS = {
     "C": Condition("C", False, False, "no depth noise, no optimisation"),
     "D": Condition("D", True, False, "depth noise, no optimisation"),
 }
-# How an executed grasp closes. "full": the fingers close, force-limited, until they stop on the object or
-# reach their closed limit, as a parallel gripper's grasp command does (the simulation's motor target is
-# pushed past the grasp joints far enough to be clamped to the closed limit). "learnt": the simulation's
-# default, a target 0.5 x (grasp - pregrasp) past the synthesised grasp joints; with a configuration
-# model learnt from one 6 cm box, the fingers then stop about 4.4 cm apart and cannot hold anything
-# narrower, whatever the method.
-CLOSING = {"full": {"close_overshoot": 1000.0}, "learnt": {}}
 PRESETS = ("smoke", "paper")
 # The smoke preset's objects: three of the test set with different shapes (a mug, a small block-like
 # part, an elongated part), so the smoke run exercises more than one kind of grasp.

@@ -30,6 +30,7 @@ from .formats import (
     GRASPS_FORMAT,
     MODEL_FORMAT,
     PROTOCOL_FORMAT,
+    SCENE_FORMAT,
     SCHEMAS,
     SUMMARY_FORMAT,
     check_format,

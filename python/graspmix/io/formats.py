@@ -19,6 +19,7 @@ PROTOCOL_FORMAT = "graspmix.experiment/1"
 SUMMARY_FORMAT = "graspmix.summary/1"
 BENCHMARK_FORMAT = "graspmix.benchmark/1"
 GMM_FORMAT = "graspmix.gmm/1"
+SCENE_FORMAT = "graspmix.scene/1"
 
 # format -> (what the file is called in messages, whether a file without a "format" field is taken as it)
 FORMATS = {
@@ -29,6 +30,7 @@ FORMATS = {
     SUMMARY_FORMAT: ("summary", False),
     BENCHMARK_FORMAT: ("benchmark", False),
     GMM_FORMAT: ("mixture", False),
+    SCENE_FORMAT: ("scene", False),
 }
 
 
@@ -224,6 +226,21 @@ _GMM = Obj(
     required=["weights", "means", "covariances"],
 )
 
+# A scene of objects on the table z = 0 (graspmix.sim.scenes.SceneSpec): each object's URDF, link pose and
+# scale; the seed and mode that made it (null for a scene made by hand).
+_SCENE = Obj(
+    {
+        "format": Str(),
+        "objects": Arr(
+            Obj({"urdf": Str(nonempty=True), "pose": _POSE, "scale": _POSITIVE}, required=["urdf", "pose"]),
+            min_len=0,  # a table cleared of every object is a scene too
+        ),
+        "seed": Either(Int(lo=0), Null()),
+        "mode": Either(Str(), Null()),
+    },
+    required=["format", "objects"],
+)
+
 SCHEMAS = {
     DEMO_FORMAT: _DEMO,
     MODEL_FORMAT: _MODEL,
@@ -232,6 +249,7 @@ SCHEMAS = {
     SUMMARY_FORMAT: _SUMMARY,
     BENCHMARK_FORMAT: _BENCHMARK,
     GMM_FORMAT: _GMM,
+    SCENE_FORMAT: _SCENE,
 }
 
 

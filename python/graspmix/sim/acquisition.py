@@ -126,9 +126,10 @@ class Acquisition:
     object_masks: list[np.ndarray] = field(default_factory=list)  # per camera: pixels whose ray hits the object
     keep: str = "object"  # what the acquisition kept (AcquisitionSettings.keep)
     plane: np.ndarray | None = None  # [a, b, c, d] of the support plane when a clean-up found it
+    labels: np.ndarray | None = None  # (N,) of a scene: -1 the table, else the object's index (acquire_scene)
 
 
-def _depth_from_buffer(buffer: np.ndarray, near: float, far: float) -> np.ndarray:
+def depth_from_buffer(buffer: np.ndarray, near: float, far: float) -> np.ndarray:
     """OpenGL depth buffer values in [0, 1] to metric depth along the optical axis."""
     return far * near / (far - (far - near) * buffer)
 
@@ -157,6 +158,26 @@ def back_project(depth: np.ndarray, cam: Camera) -> tuple[np.ndarray, np.ndarray
     pts_cam = np.stack([x_ndc[ok] * tan_x * z, y_ndc[ok] * tan_y * z, -z, np.ones_like(z)], axis=1)
     world = pts_cam @ np.linalg.inv(cam.view_matrix()).T
     return world[:, :3], np.flatnonzero(ok)
+
+
+def render_depth(client: int, cam: Camera) -> tuple[np.ndarray, np.ndarray]:
+    """What camera `cam` sees of pybullet world `client`: metric depth (inf where nothing was hit) and the
+    segmentation mask (body id per pixel, < 0 for nothing)."""
+    import pybullet as p
+
+    _, _, _, buf, seg = p.getCameraImage(
+        cam.width,
+        cam.height,
+        cam.view_matrix().T.ravel().tolist(),
+        cam.projection(),
+        renderer=p.ER_TINY_RENDERER,
+        physicsClientId=client,
+    )
+    buf = np.asarray(buf, dtype=float).reshape(cam.height, cam.width)
+    seg = np.asarray(seg).reshape(cam.height, cam.width)
+    depth = depth_from_buffer(buf, cam.near, cam.far)
+    depth[(buf >= 1.0) | (seg < 0)] = np.inf
+    return depth, seg
 
 
 class Scene:
@@ -200,21 +221,7 @@ class Scene:
 
     def render_depth(self, cam: Camera) -> tuple[np.ndarray, np.ndarray]:
         """Metric depth (inf where nothing was hit) and the segmentation mask (body id per pixel)."""
-        import pybullet as p
-
-        _, _, _, buf, seg = p.getCameraImage(
-            cam.width,
-            cam.height,
-            cam.view_matrix().T.ravel().tolist(),
-            cam.projection(),
-            renderer=p.ER_TINY_RENDERER,
-            physicsClientId=self.client,
-        )
-        buf = np.asarray(buf, dtype=float).reshape(cam.height, cam.width)
-        seg = np.asarray(seg).reshape(cam.height, cam.width)
-        depth = _depth_from_buffer(buf, cam.near, cam.far)
-        depth[(buf >= 1.0) | (seg < 0)] = np.inf
-        return depth, seg
+        return render_depth(self.client, cam)
 
     def close(self):
         import pybullet as p

@@ -28,6 +28,21 @@ SimSettings = _core.SimSettings
 SimResult = _core.SimResult
 SimObject = _core.SimObject
 
+# How an executed grasp closes. "full": the fingers close, force-limited, until they stop on the object or
+# reach their closed limit, as a parallel gripper's grasp command does (the simulation's motor target is
+# pushed past the grasp joints far enough to be clamped to the closed limit). "learnt": the simulation's
+# default, a target 0.5 x (grasp - pregrasp) past the synthesised grasp joints; with a configuration
+# model learnt from one 6 cm box, the fingers then stop about 4.4 cm apart and cannot hold anything
+# narrower, whatever the method.
+CLOSING = {"full": {"close_overshoot": 1000.0}, "learnt": {}}
+
+
+def closing_overrides(closing: str) -> dict:
+    """The SimSettings overrides of a closing rule (CLOSING); ValueError for an unknown one."""
+    if not isinstance(closing, str) or closing not in CLOSING:
+        raise ValueError(f"closing must be one of {', '.join(CLOSING)}, got {quote(closing)}")
+    return dict(CLOSING[closing])
+
 
 @functools.lru_cache(maxsize=16)
 def _hand(path: str) -> _core.Hand:
@@ -199,18 +214,24 @@ def execute(
     return _core.sim_execute(h, o, pose, wrist, pre, fin, settings)
 
 
-def execute_file(
-    obj, grasps_path, rank: int = 1, hand=None, settings: SimSettings | None = None, **overrides
-) -> SimResult:
-    """Executes the grasp of the given rank from a grasps.json. hand: a Hand or URDF; None: the file's
-    hand if it can be found (as given or relative to the grasps file), else the bundled WSG 50; either way
-    the file's hand must be the one used (ValueError otherwise)."""
-    rank = check_int(rank, "rank", 1)
+def grasps_and_hand(grasps_path, hand=None) -> tuple[dict, _core.Hand]:
+    """A grasps.json and its hand: the given Hand or URDF; None: the file's hand if it can be found (as given
+    or relative to the grasps file), else the bundled WSG 50; either way the file's hand must be the one
+    used (ValueError otherwise)."""
     doc = load_grasps(grasps_path)
     if hand is None:
         hand = _doc_hand_file(doc.get("hand"), grasps_path)
     h = load_hand(hand)
     _check_hand_matches(h, doc.get("hand"), grasps_path)
+    return doc, h
+
+
+def execute_file(
+    obj, grasps_path, rank: int = 1, hand=None, settings: SimSettings | None = None, **overrides
+) -> SimResult:
+    """Executes the grasp of the given rank from a grasps.json (its hand: see grasps_and_hand)."""
+    rank = check_int(rank, "rank", 1)
+    doc, h = grasps_and_hand(grasps_path, hand)
     return execute(obj, grasp_by_rank(doc, rank), hand=h, settings=settings, **overrides)
 
 

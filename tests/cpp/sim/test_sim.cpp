@@ -13,9 +13,11 @@
 
 #include "graspmix/robot/hand.hpp"
 #include "graspmix/sim/sim.hpp"
+#include "sim_test_support.hpp"
 
 namespace fs = std::filesystem;
 using namespace graspmix;
+using namespace graspmix::sim_test;
 
 namespace {
 
@@ -45,18 +47,6 @@ const char* kCube = R"(<?xml version="1.0"?>
     <collision><geometry><box size="0.04 0.04 0.04"/></geometry></collision>
   </link>
 </robot>)";
-
-Hand wsg50() { return Hand::from_urdf((kRepo / "data" / "hands" / "wsg50.urdf").string()); }
-
-/// A top grasp of the WSG 50: palm z pointing down, fingertips `tip_z` above the plane at (x, y).
-Eigen::Isometry3d top_wrist(double x, double y, double tip_z) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()).toRotationMatrix();
-  T.translation() = Eigen::Vector3d(x, y, tip_z + 0.0725 + 0.081);
-  return T;
-}
-
-Eigen::VectorXd q(double v) { return Eigen::VectorXd::Constant(1, v); }
 
 }  // namespace
 

@@ -149,6 +149,10 @@ def test_cli_acquire(tmp_path, capsys):
                 "acquire",
                 "--object",
                 "random_urdfs/012/012.urdf",
+                "--views",  # the paper's ring and the object's pixels: the library's defaults
+                "4",
+                "--keep",
+                "object",
                 "--noise",
                 "--seed",
                 "3",

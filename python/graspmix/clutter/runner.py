@@ -39,8 +39,8 @@ def run_clutter(
     command: str | None = None,
     round_fn=run_round,
 ) -> dict:
-    """Runs (or resumes) the protocol into the folder out; returns {"rounds", "ran", "skipped", "total",
-    "seconds"}. jobs, executor, ray_address: as graspmix.experiment.run. max_rounds: stop after this many
+    """Runs (or resumes) the protocol into the folder out; returns {"rounds": rounds done, "ran": attempts
+    written now, "skipped": rounds done before, "total": rounds of the protocol, "seconds"}. jobs, executor, ray_address: as graspmix.experiment.run. max_rounds: stop after this many
     rounds (tests of resuming). round_fn(pdoc, unit, todo) -> rows: the round (a module-level function,
     for workers to import; tests give one with fake stages)."""
     check_run_options(executor, jobs)

@@ -118,12 +118,8 @@ def describe(parts: list[np.ndarray]) -> dict:
     }
 
 
-def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--out", default="data/objects/test60.txt")
-    ap.add_argument("-n", type=int, default=60)
-    ap.add_argument("--seed", type=int, default=0)
-    args = ap.parse_args(argv)
+def describe_candidates() -> list[dict]:
+    """The descriptors (describe) of every candidate, with its "path" relative to pybullet_data, sorted."""
     D = data_path()
     candidates = sorted(str(p.relative_to(D)) for p in (D / "random_urdfs").glob("*/*.urdf")) + NAMED
     rows = []
@@ -143,13 +139,24 @@ def main(argv=None) -> int:
             continue
         d["path"] = rel
         rows.append(d)
-    fit = [
-        r
-        for r in rows
-        if WIDTH[0] <= r["width"] <= WIDTH[1]
-        and HEIGHT[0] <= r["height"] <= HEIGHT[1]
-        and r["convexity"] >= MIN_CONVEXITY
-    ]
+    return rows
+
+
+def fits_wsg50(r: dict) -> bool:
+    """The object fits the WSG 50 and is solid enough (WIDTH, HEIGHT, MIN_CONVEXITY)."""
+    return (
+        WIDTH[0] <= r["width"] <= WIDTH[1] and HEIGHT[0] <= r["height"] <= HEIGHT[1] and r["convexity"] >= MIN_CONVEXITY
+    )
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--out", default="data/objects/test60.txt")
+    ap.add_argument("-n", type=int, default=60)
+    ap.add_argument("--seed", type=int, default=0)
+    args = ap.parse_args(argv)
+    rows = describe_candidates()
+    fit = [r for r in rows if fits_wsg50(r)]
     print(f"[select] {len(rows)} described, {len(fit)} fit the WSG 50", file=sys.stderr)
     if len(fit) < args.n:
         raise SystemExit(f"only {len(fit)} objects fit, {args.n} wanted")

@@ -31,11 +31,23 @@ def _protocol(args):
     )
 
 
+def run_options(args: argparse.Namespace) -> dict:
+    """The keyword arguments of a run (the experiment's or the clutter protocol's) from the shared options
+    --jobs, --executor, --ray-address, --quiet, and the command line to record."""
+    command = "graspmix_cli " + " ".join(shlex.quote(a) for a in (args.argv or []))
+    return {
+        "jobs": args.jobs,
+        "executor": args.executor,
+        "progress": not args.quiet,
+        "ray_address": args.ray_address,
+        "command": command,
+    }
+
+
 def cmd_experiment(args: argparse.Namespace) -> int:
     from ..experiment import CSV_NAME, run
 
     protocol = _protocol(args)
-    command = "graspmix_cli " + " ".join(shlex.quote(a) for a in (args.argv or []))
     n = len(protocol.all_attempts())
     print(
         f"experiment: {len(protocol.objects)} objects x {protocol.trials} trials x conditions "
@@ -43,15 +55,7 @@ def cmd_experiment(args: argparse.Namespace) -> int:
         f"{args.jobs} job(s), executor {args.executor}; into {args.out}",
         flush=True,
     )
-    res = run(
-        protocol,
-        args.out,
-        jobs=args.jobs,
-        executor=args.executor,
-        progress=not args.quiet,
-        ray_address=args.ray_address,
-        command=command,
-    )
+    res = run(protocol, args.out, **run_options(args))
     print(
         f"ran {res['ran']} attempts in {res['seconds']:.1f} s ({res['skipped']} already done); "
         f"{res['rows']}/{res['total']} in {Path(args.out) / CSV_NAME}"

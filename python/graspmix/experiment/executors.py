@@ -1,5 +1,8 @@
 """How work units run: in this process, in a pool of local worker processes, or as Ray tasks. Each
-calls record(rows) in this process as units finish (in any order: rows do not depend on it)."""
+calls record(rows) in this process as units finish (in any order: rows do not depend on it).
+
+A unit is run by fn(pdoc, unit, todo) -> rows, a module-level function (workers import it by name):
+the experiment's run_unit by default, the clutter protocol's run_round for its rounds."""
 
 from __future__ import annotations
 
@@ -11,16 +14,17 @@ from .attempt import run_unit
 EXECUTORS = ("local", "ray")
 
 
-def run_serial(pdoc: dict, work: list, record: Callable) -> None:
+def run_serial(pdoc: dict, work: list, record: Callable, fn: Callable = run_unit) -> None:
     for u, todo in work:
-        record(run_unit(pdoc, u, todo))
+        record(fn(pdoc, u, todo))
 
 
 def _unit_job(args):
-    return run_unit(*args)
+    fn, *rest = args
+    return fn(*rest)
 
 
-def run_pool(pdoc: dict, work: list, jobs: int, record: Callable) -> None:
+def run_pool(pdoc: dict, work: list, jobs: int, record: Callable, fn: Callable = run_unit) -> None:
     import multiprocessing as mp
 
     # Fresh interpreters (spawn) with one OpenMP thread each: jobs workers share the cores.
@@ -34,7 +38,7 @@ def run_pool(pdoc: dict, work: list, jobs: int, record: Callable) -> None:
         else:
             os.environ["OMP_NUM_THREADS"] = old
     try:
-        for rows in pool.imap_unordered(_unit_job, [(pdoc, u, todo) for u, todo in work], chunksize=1):
+        for rows in pool.imap_unordered(_unit_job, [(fn, pdoc, u, todo) for u, todo in work], chunksize=1):
             record(rows)
     except BaseException:
         # Stopped (Ctrl-C) or failed: the workers' unfinished units are lost anyway, so end them now.
@@ -52,7 +56,7 @@ def check_ray() -> None:
         raise ValueError("--executor ray needs the ray package (pip install ray)") from None
 
 
-def run_ray(pdoc: dict, work: list, jobs: int, record: Callable, address: str | None) -> None:
+def run_ray(pdoc: dict, work: list, jobs: int, record: Callable, address: str | None, fn: Callable = run_unit) -> None:
     import ray
 
     started = False
@@ -68,7 +72,7 @@ def run_ray(pdoc: dict, work: list, jobs: int, record: Callable, address: str | 
             )
         started = True
     try:
-        task = ray.remote(num_cpus=1)(run_unit)
+        task = ray.remote(num_cpus=1)(fn)
         pending = []
         queue = list(work)
         # Keep a bounded number of units in flight so rows reach the CSV as they finish.

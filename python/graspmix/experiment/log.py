@@ -1,10 +1,12 @@
-"""attempts.csv: one row per executed grasp, appended as work units finish."""
+"""attempts.csv: one row per executed grasp, appended as work units finish. The log is generic over its
+columns (a CsvSchema): the paper's experiment uses EXPERIMENT_CSV, the clutter protocol its own."""
 
 from __future__ import annotations
 
 import csv
 import io
 import os
+from dataclasses import dataclass
 from pathlib import Path
 
 from ..io.checks import check_input_file, quote
@@ -46,6 +48,24 @@ INT_COLUMNS = {
 FLOAT_COLUMNS = {"lift_height", "log_likelihood", *TIME_COLUMNS}
 
 
+@dataclass(frozen=True)
+class CsvSchema:
+    """The columns of an append-only attempts log: all of them in order, those that identify a row (its
+    key), and those read back as integers or floats (empty: None); the others are text."""
+
+    columns: tuple
+    key: tuple
+    ints: frozenset
+    floats: frozenset
+    what: str = "attempts"
+
+    def key_of(self, row: dict) -> tuple:
+        return tuple(int(row[k]) if k in self.ints else row[k] for k in self.key)
+
+
+EXPERIMENT_CSV = CsvSchema(tuple(COLUMNS), tuple(KEY_COLUMNS), frozenset(INT_COLUMNS), frozenset(FLOAT_COLUMNS))
+
+
 def _format(v) -> str:
     if isinstance(v, float):
         return repr(v)
@@ -55,18 +75,19 @@ def _format(v) -> str:
 class AttemptLog:
     """attempts.csv: append-only, one row per attempt, flushed and synced after every unit."""
 
-    def __init__(self, path: Path):
+    def __init__(self, path: Path, schema: CsvSchema = EXPERIMENT_CSV):
         self.path = Path(path)
+        self.schema = schema
         self._repair()
         if not self.path.exists() or self.path.stat().st_size == 0:
             with open(self.path, "w", newline="") as f:
-                csv.writer(f).writerow(COLUMNS)
+                csv.writer(f).writerow(schema.columns)
 
     def _repair(self) -> None:
         """A run killed while writing can leave a partial last line: cut it (its unit is run again)."""
         if not self.path.exists():
             return
-        data = check_input_file(self.path, "attempts").read_bytes()
+        data = check_input_file(self.path, self.schema.what).read_bytes()
         if data and not data.endswith(b"\n"):
             cut = data.rfind(b"\n") + 1
             with open(self.path, "r+b") as f:
@@ -77,27 +98,29 @@ class AttemptLog:
                     header = next(csv.reader(f), None)
                 except csv.Error:
                     header = None
-            if header != COLUMNS:
-                raise ValueError(f"{self.path}: its columns are not those of this graspmix version's attempts.csv")
+            if header != list(self.schema.columns):
+                raise ValueError(
+                    f"{self.path}: its columns are not those of this graspmix version's {self.schema.what} log"
+                )
 
     def done(self) -> set[tuple]:
-        return {(r["object"], int(r["trial"]), r["condition"], r["method"]) for r in read_rows(self.path)}
+        return {self.schema.key_of(r) for r in read_rows(self.path, self.schema)}
 
     def append(self, rows: list[dict]) -> None:
         buf = io.StringIO()
         w = csv.writer(buf, lineterminator="\n")
         for r in rows:
-            w.writerow([_format(r.get(c, "")) for c in COLUMNS])
+            w.writerow([_format(r.get(c, "")) for c in self.schema.columns])
         with open(self.path, "a", newline="") as f:
             f.write(buf.getvalue())
             f.flush()
             os.fsync(f.fileno())
 
 
-def read_rows(path: str | Path) -> list[dict]:
-    """The rows of an attempts.csv, typed (ints, floats, None for empty numbers), in file order; a
-    trailing partial line (a killed run) is ignored."""
-    path = check_input_file(path, "attempts")
+def read_rows(path: str | Path, schema: CsvSchema = EXPERIMENT_CSV) -> list[dict]:
+    """The rows of an attempts.csv (of the given schema), typed (ints, floats, None for empty numbers), in
+    file order; a trailing partial line (a killed run) is ignored."""
+    path = check_input_file(path, schema.what)
     try:
         text = path.read_bytes().decode("utf-8")
     except UnicodeDecodeError as e:
@@ -108,28 +131,28 @@ def read_rows(path: str | Path) -> list[dict]:
         reader = csv.DictReader(io.StringIO(text))
         if reader.fieldnames is None:
             return []
-        missing = [c for c in COLUMNS if c not in reader.fieldnames]
+        missing = [c for c in schema.columns if c not in reader.fieldnames]
         if missing:
-            raise ValueError(f"{path}: not an attempts.csv (missing columns {', '.join(missing)})")
-        return [_typed(r, path, reader.line_num) for r in reader]
+            raise ValueError(f"{path}: not an {schema.what} log (missing columns {', '.join(missing)})")
+        return [_typed(r, path, reader.line_num, schema) for r in reader]
     except csv.Error as e:
         raise ValueError(f"{path}: not a CSV file ({e})") from None
 
 
-def _typed(r: dict, path: Path, line: int) -> dict:
+def _typed(r: dict, path: Path, line: int, schema: CsvSchema) -> dict:
     out = {}
-    for k in COLUMNS:
+    for k in schema.columns:
         v = r[k]
         if v is None:
             raise ValueError(f"{path}: line {line} has fewer columns than the header")
         try:
-            if k in INT_COLUMNS:
+            if k in schema.ints:
                 out[k] = int(v) if v != "" else None
-            elif k in FLOAT_COLUMNS:
+            elif k in schema.floats:
                 out[k] = float(v) if v != "" else None
             else:
                 out[k] = v
         except ValueError:
-            kind = "an integer" if k in INT_COLUMNS else "a number"
+            kind = "an integer" if k in schema.ints else "a number"
             raise ValueError(f"{path}: line {line}, column {k!r}: expected {kind}, got {quote(v)}") from None
     return out

@@ -18,8 +18,11 @@ class Progress:
     """A one-line progress bar on stderr with the time left (from this session's pace). Off a terminal
     it prints a line every 5% instead of redrawing."""
 
-    def __init__(self, total: int, done: int = 0, stream=None, width: int = 30, enabled: bool = True):
+    def __init__(
+        self, total: int, done: int = 0, stream=None, width: int = 30, enabled: bool = True, unit: str = "attempts"
+    ):
         self.total, self.done, self.start_done = total, done, done
+        self.unit = unit
         self.stream = stream or sys.stderr
         self.width = width
         self.enabled = enabled
@@ -34,7 +37,7 @@ class Progress:
         new = self.done - self.start_done
         left = elapsed / new * (self.total - self.done) if new > 0 else math.inf
         return (
-            f"[{'#' * n}{'.' * (self.width - n)}] {self.done}/{self.total} attempts {frac * 100:5.1f}%  "
+            f"[{'#' * n}{'.' * (self.width - n)}] {self.done}/{self.total} {self.unit} {frac * 100:5.1f}%  "
             f"elapsed {hms(elapsed)}  left {hms(left)}"
         )
 

@@ -31,14 +31,14 @@ from .stats import mean_ci, paired_ttest
 REASONS = ("success", "not held", "no contact", "start in collision", "synthesis failed")
 
 
-def _finite(x):
+def finite_json(x):
     """JSON has no nan/inf: None for them."""
     if isinstance(x, float) and not math.isfinite(x):
         return None
     if isinstance(x, dict):
-        return {k: _finite(v) for k, v in x.items()}
+        return {k: finite_json(v) for k, v in x.items()}
     if isinstance(x, (list, tuple)):
-        return [_finite(v) for v in x]
+        return [finite_json(v) for v in x]
     return x
 
 
@@ -54,7 +54,7 @@ def summarize(rows: list[dict], protocol_doc: dict) -> dict:
     expected = len(objects) * trials * len(conditions) * len(methods)
     rows = _unique(rows)
     success, ttests, reasons = _success_rates(rows, conditions, methods, len(objects), trials)
-    return _finite(
+    return finite_json(
         {
             "format": SUMMARY_FORMAT,
             "protocol": proto,
@@ -312,7 +312,7 @@ def _blocks(summary: dict) -> list[tuple]:
     return blocks
 
 
-def _markdown(blocks) -> str:
+def render_markdown(blocks) -> str:
     out = []
     for b in blocks:
         if b[0] == "h1":
@@ -392,6 +392,6 @@ def build_report(run_dir: str | Path) -> dict:
     blocks = _blocks(summary)
     if not summary["runtime"]["median_s"]:
         blocks = [b for b in blocks if not (b[0] == "img" and b[1] == "runtime.png")]
-    (run_dir / "report.md").write_text(_markdown(blocks))
+    (run_dir / "report.md").write_text(render_markdown(blocks))
     (run_dir / "report.html").write_text(_html(blocks, run_dir))
     return summary

@@ -1,4 +1,5 @@
-"""Statistics of the paper's experiment: success rates over trials and the paired t-test GMM vs KDE.
+"""Statistics of the experiments: success rates over trials and the paired t-test GMM vs KDE (the paper's
+experiment); binomial rates with Wilson intervals, widened for clustered trials (the clutter protocol).
 
 The unit of replication is the trial (the paper repeats the whole object set 10 times): a trial's
 success rate is the fraction of objects whose best grasp held. Confidence intervals of a mean over
@@ -97,3 +98,59 @@ def paired_ttest(a, b, confidence: float = 0.95) -> PairedTTest:
         res = stats.ttest_rel(a, b)
         t, p = float(res.statistic), float(res.pvalue)
     return PairedTTest(ci.mean, ci.low, ci.high, t, p, len(a) - 1, len(a), confidence)
+
+
+@dataclass
+class RateCI:
+    """A rate = successes / trials over clusters of trials (scenes), with its Wilson interval computed on
+    the effective number of trials (trials / design_effect, design_effect >= 1)."""
+
+    rate: float
+    low: float
+    high: float
+    successes: int
+    trials: int
+    clusters: int
+    design_effect: float
+    confidence: float
+
+    def to_dict(self) -> dict:
+        return asdict(self)
+
+
+def wilson_ci(successes: float, n: float, confidence: float = 0.95) -> tuple[float, float]:
+    """Wilson's score interval of a binomial proportion successes / n (n may be an effective, non-integer
+    count). It stays inside [0, 1] and is not degenerate at 0 or n successes, unlike the Wald interval."""
+    from scipy import stats
+
+    _check_confidence(confidence)
+    if not (math.isfinite(n) and n > 0) or not 0 <= successes <= n:
+        raise ValueError(f"wilson_ci: need 0 <= successes <= n and n > 0, got {successes} of {n}")
+    z = float(stats.norm.ppf(0.5 + confidence / 2.0))
+    p, z2 = successes / n, z * z
+    centre = (p + z2 / (2 * n)) / (1 + z2 / n)
+    half = z / (1 + z2 / n) * math.sqrt(p * (1 - p) / n + z2 / (4 * n * n))
+    return max(0.0, centre - half), min(1.0, centre + half)
+
+
+def clustered_rate(successes, trials, confidence: float = 0.95) -> RateCI:
+    """The pooled rate sum(successes) / sum(trials) over clusters (one entry per scene) with a Wilson
+    interval that accounts for trials within a cluster not being independent (attempts and objects of one
+    scene share its clutter, and a scene's failures end it): the design effect is the ratio of the
+    between-cluster (linearised ratio-estimator) variance to the binomial variance, never below 1, and the
+    Wilson interval uses trials / design_effect trials (Kish's effective sample size)."""
+    y = np.asarray(successes, dtype=float)
+    m = np.asarray(trials, dtype=float)
+    if y.ndim != 1 or y.shape != m.shape or len(y) == 0:
+        raise ValueError("clustered_rate: successes and trials must be non-empty 1-D sequences of equal length")
+    if not (np.all(np.isfinite(m)) and np.all(m >= 0) and np.all((y >= 0) & (y <= m))) or m.sum() <= 0:
+        raise ValueError("clustered_rate: need 0 <= successes <= trials in every cluster and some trials")
+    n, k = float(m.sum()), len(m)
+    p = float(y.sum()) / n
+    deff = 1.0
+    binomial_var = p * (1 - p) / n
+    if k >= 2 and binomial_var > 0:
+        cluster_var = k / (k - 1) * float(np.sum((y - p * m) ** 2)) / (n * n)
+        deff = max(1.0, cluster_var / binomial_var)
+    low, high = wilson_ci(p * n / deff, n / deff, confidence)
+    return RateCI(p, low, high, int(round(y.sum())), int(round(n)), k, deff, confidence)

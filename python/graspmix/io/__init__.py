@@ -24,6 +24,8 @@ from .checks import (
 )
 from .formats import (
     BENCHMARK_FORMAT,
+    CLUTTER_FORMAT,
+    CLUTTER_SUMMARY_FORMAT,
     DEMO_FORMAT,
     FORMATS,
     GMM_FORMAT,

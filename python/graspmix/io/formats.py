@@ -20,6 +20,8 @@ SUMMARY_FORMAT = "graspmix.summary/1"
 BENCHMARK_FORMAT = "graspmix.benchmark/1"
 GMM_FORMAT = "graspmix.gmm/1"
 SCENE_FORMAT = "graspmix.scene/1"
+CLUTTER_FORMAT = "graspmix.clutter/1"
+CLUTTER_SUMMARY_FORMAT = "graspmix.clutter_summary/1"
 
 # format -> (what the file is called in messages, whether a file without a "format" field is taken as it)
 FORMATS = {
@@ -31,6 +33,8 @@ FORMATS = {
     BENCHMARK_FORMAT: ("benchmark", False),
     GMM_FORMAT: ("mixture", False),
     SCENE_FORMAT: ("scene", False),
+    CLUTTER_FORMAT: ("clutter protocol", False),
+    CLUTTER_SUMMARY_FORMAT: ("clutter summary", False),
 }
 
 
@@ -239,6 +243,45 @@ _SCENE = Obj(
         "mode": Either(Str(), Null()),
     },
     required=["format", "objects"],
+_CLUTTER = Obj(
+    {
+        "format": Str(),
+        "protocol": Obj(
+            {
+                "object_list": Str(nonempty=True),
+                "object_list_sha256": Str(),
+                "objects": Int(lo=1),
+                "scenes": Int(lo=1),
+                "modes": _STRINGS,
+                "methods": _STRINGS,
+                "views": Int(lo=1),
+                "noise": Bool(),
+                "n_samples": Int(lo=1),
+                "n_optimise": Int(lo=1),
+                "closing": Str(),
+                "max_attempts": _COUNT,
+                "seed": _COUNT,
+                "models": Map(Obj({"file": Str(), "sha256": Str()})),
+            },
+            required=["object_list", "objects", "scenes", "modes", "methods"],
+        ),
+        "provenance": Map(Any()),
+    },
+    required=["protocol"],
+)
+_RATE_CI = Obj(
+    {"rate": _RATE, "low": _RATE, "high": _RATE, "successes": _COUNT, "trials": _COUNT, "clusters": _COUNT},
+    required=["rate", "low", "high"],
+)
+_CLUTTER_SUMMARY = Obj(
+    {
+        "format": Str(),
+        "protocol": _CLUTTER.fields["protocol"],
+        "provenance": Map(Any()),
+        "rounds": Obj({"done": _COUNT, "expected": _COUNT, "complete": Bool()}, required=["done", "expected"]),
+        "results": Map(Map(Obj({"gsr": _RATE_CI, "dr": _RATE_CI}, required=["gsr", "dr"]))),
+    },
+    required=["protocol", "rounds", "results"],
 )
 
 SCHEMAS = {
@@ -250,6 +293,8 @@ SCHEMAS = {
     BENCHMARK_FORMAT: _BENCHMARK,
     GMM_FORMAT: _GMM,
     SCENE_FORMAT: _SCENE,
+    CLUTTER_FORMAT: _CLUTTER,
+    CLUTTER_SUMMARY_FORMAT: _CLUTTER_SUMMARY,
 }
 
 

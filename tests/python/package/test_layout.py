@@ -13,7 +13,7 @@ ROOT = Path(graspmix.__file__).resolve().parent
 # Lower number = lower layer. A subpackage imports from itself, from lower layers and from the C++ core;
 # sim and viz are peers that do not import each other. The package's __init__ and the deprecated alias
 # modules (the facade) may import anything, and nothing in a subpackage imports them.
-LAYERS = {"io": 0, "perception": 1, "model": 2, "sim": 3, "viz": 3, "experiment": 4, "cli": 5}
+LAYERS = {"io": 0, "perception": 1, "model": 2, "sim": 3, "viz": 3, "experiment": 4, "clutter": 5, "cli": 6}
 FACADE = {"graspmix", "graspmix.acquisition", "graspmix.demo", "graspmix.plots", "graspmix.report", "graspmix.stats"}
 # Module paths of earlier versions and the names each had (read from the last flat layout).
 OLD_NAMES = {

@@ -1,0 +1,81 @@
+"""clutter: the clutter-removal protocol (VGN, GIGA) in the simulation, GSR and DR with 95% intervals."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+from .common import input_path, int_in, output_folder, seed, split_list
+from .experiment_commands import run_options
+
+
+def _protocol(args):
+    from ..clutter import MODES, PLANNERS, ClutterProtocol
+
+    return ClutterProtocol(
+        object_list=args.object_list or "",
+        objects=args.objects,
+        scenes=args.scenes,
+        modes=split_list(args.mode, "--mode", MODES),
+        methods=split_list(args.method, "--method", PLANNERS),
+        views=args.views,
+        noise=args.noise,
+        closing=args.closing,
+        max_attempts=args.max_attempts,
+        seed=args.seed,
+    )
+
+
+def _print_results(res: dict, out: Path) -> None:
+    from ..clutter import CLUTTER_CSV_NAME, results_table
+    from ..io import CLUTTER_SUMMARY_FORMAT, read_document
+
+    done = f"{res['rounds']}/{res['total']} rounds in {out / CLUTTER_CSV_NAME}"
+    print(f"ran {res['ran']} attempts in {res['seconds']:.1f} s ({res['skipped']} rounds already done); {done}")
+    if res["rounds"] == 0:
+        return
+    for row in results_table(read_document(out / "summary.json", CLUTTER_SUMMARY_FORMAT)):
+        print("  " + " | ".join(row))
+    print(f"wrote {out / 'summary.json'}, {out / 'report.md'}, {out / 'clutter.png'}")
+
+
+def cmd_clutter(args: argparse.Namespace) -> int:
+    from ..clutter import run_clutter
+
+    p = _protocol(args)
+    what = f"{p.scenes} scenes x modes {','.join(p.modes)} x methods {','.join(p.methods)}, {p.objects} objects each"
+    seen = f"{p.views} view(s), {'noise' if p.noise else 'no noise'}"
+    print(f"clutter: {what} from {p.object_list}; {seen}; {args.jobs} job(s); into {args.out}", flush=True)
+    _print_results(run_clutter(p, args.out, **run_options(args)), Path(args.out))
+    return 0
+
+
+def add_parsers(sub) -> None:
+    from ..clutter.protocol import ROUNDS
+
+    s = sub.add_parser(
+        "clutter",
+        help="clutter removal (VGN/GIGA protocol): scenes of N objects, grasp until clear; GSR and DR with 95% CIs",
+    )
+    s.add_argument("--out", type=output_folder, required=True, help="run folder; running again into it resumes")
+    s.add_argument("--mode", default="pile", help="pile, packed, or both comma-separated (default pile)")
+    s.add_argument("--method", default="gmm", help="gmm, kde, topdown, or several comma-separated (default gmm)")
+    s.add_argument("--objects", type=int_in(1, 50), default=5, help="objects per scene (default 5)")
+    s.add_argument("--scenes", type=int_in(1, 1_000_000), default=ROUNDS, help=f"scenes per mode (default {ROUNDS})")
+    s.add_argument("--views", type=int_in(1, 64), default=1, help="cameras per observation (default 1)")
+    s.add_argument("--noise", action="store_true", help="the depth noise model")
+    s.add_argument(
+        "--object-list",
+        type=input_path,
+        help="objects to draw scenes from, one URDF a line (default: data/objects/clutter_test.txt)",
+    )
+    s.add_argument("--closing", choices=["full", "learnt"], default="full", help="how grasps close (default full)")
+    s.add_argument(
+        "--max-attempts", type=int_in(0, 10_000), default=0, help="attempts per scene at most (default 0: VGN's rules)"
+    )
+    s.add_argument("--seed", type=seed, default=0, help="base of every derived seed (default 0)")
+    s.add_argument("--jobs", type=int_in(1, 1024), default=1, help="parallel worker processes (or Ray tasks)")
+    s.add_argument("--executor", choices=["local", "ray"], default="local", help="local processes or Ray")
+    s.add_argument("--ray-address", help="address of a running Ray cluster (default: start a local one)")
+    s.add_argument("--quiet", action="store_true", help="no progress bar")
+    s.set_defaults(func=cmd_clutter)

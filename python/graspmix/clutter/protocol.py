@@ -1,0 +1,182 @@
+"""The clutter-removal protocol's settings (written to clutter.json), its seeds, its rules and its CSV.
+
+The rules are those of Breyer et al. 2020 (VGN, ethz-asl/vgn, src/vgn/experiments/clutter_removal.py),
+which Jiang et al. 2021 (GIGA) keep: per round (a scene of N objects), observe, plan, execute the best
+grasp, and go on while objects remain and fewer than MAX_CONSECUTIVE_FAILURES = 2 grasps in a row have
+failed; a planner that finds no grasp ends the round. VGN has no cap on the number of attempts (the rules
+bound it by 2N: every success removes an object and no two failures follow each other); max_attempts adds
+one (the issue's N + 2, say) where wanted, 0 keeps VGN's rules.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ..experiment.log import CsvSchema
+from ..experiment.protocol import CLOSING as EXPERIMENT_CLOSING
+from ..experiment.protocol import derive_seed
+from ..experiment.runner import RunFolder
+from ..io import CLUTTER_FORMAT, data_path, read_document, read_object_list, sha256_file
+from ..io.checks import MAX_SAMPLES, check_input_file, check_int, check_seed, quote
+from ..model import default_model_path
+from ..model.settings import METHODS, SynthesisOptions
+
+MODES = ("pile", "packed")
+PLANNERS = (*METHODS, "topdown")  # the methods' models, and the top-down baseline
+MAX_CONSECUTIVE_FAILURES = 2  # VGN's MAX_CONSECUTIVE_FAILURES
+ROUNDS = 40  # VGN's default number of rounds (num_rounds=40)
+CLOSING = tuple(EXPERIMENT_CLOSING)  # how executed grasps close: see graspmix.experiment.protocol.CLOSING
+# Outcomes of an attempt: the simulation's reasons, and a planner that found no object or no grasp.
+OUTCOMES = ("success", "start in collision", "no contact", "not held", "two objects lifted", "synthesis failed")
+# Why a round ended (the "stop" column of its last row).
+STOPS = ("clear", "two failures", "no grasp", "attempt limit")
+CLUTTER_NAME = "clutter.json"
+CLUTTER_CSV_NAME = "clutter_attempts.csv"
+
+
+def default_object_list() -> Path:
+    """The clutter test split (data/objects/clutter_test.txt): objects never used to choose a setting."""
+    return data_path("objects", "clutter_test.txt")
+
+
+@dataclass
+class ClutterProtocol:
+    """Everything that decides a clutter-removal run's rows. Equal protocols give equal rows (but times)."""
+
+    object_list: str = ""  # the list the scenes' objects are drawn from; "": the clutter test split
+    objects: int = 5  # objects placed per scene (VGN's num_objects)
+    scenes: int = ROUNDS  # rounds per mode and method; every method sees the same scenes
+    modes: list[str] = field(default_factory=lambda: ["pile"])
+    methods: list[str] = field(default_factory=lambda: ["gmm"])
+    views: int = 1  # cameras per observation
+    noise: bool = False  # the depth noise model
+    n_samples: int = SynthesisOptions.n_samples
+    n_optimise: int = SynthesisOptions.n_optimise
+    closing: str = "full"  # how executed grasps close (the experiment's CLOSING)
+    max_attempts: int = 0  # per round; 0: VGN's rules alone
+    seed: int = 0
+    models: dict = field(default_factory=dict)  # method -> model file; empty: the bundled box models
+
+    def __post_init__(self):
+        if not self.object_list:
+            self.object_list = str(default_object_list())
+        self.validate()
+
+    def validate(self) -> None:
+        if not isinstance(self.object_list, str):
+            raise ValueError(f"object_list must be a file name, got {quote(self.object_list)}")
+        check_int(self.objects, "objects", 1, 50)
+        check_int(self.scenes, "scenes", 1, 1_000_000)
+        check_int(self.views, "views", 1, 64)
+        check_int(self.n_samples, "n_samples", 1, MAX_SAMPLES)
+        check_int(self.n_optimise, "n_optimise", 1, MAX_SAMPLES)
+        check_int(self.max_attempts, "max_attempts", 0, 10_000)
+        check_seed(self.seed)
+        if not isinstance(self.noise, bool):
+            raise ValueError(f"noise must be true or false, got {quote(self.noise)}")
+        if self.closing not in CLOSING:
+            raise ValueError(f"closing must be one of {', '.join(CLOSING)}, got {quote(self.closing)}")
+        for what, values, known in (("mode", self.modes, MODES), ("method", self.methods, PLANNERS)):
+            if not isinstance(values, (list, tuple)) or not values:
+                raise ValueError(f"no {what}s given ({what}s: {quote(values)})")
+            for v in values:
+                if v not in known:
+                    raise ValueError(f"unknown {what} {quote(v)} (known: {', '.join(known)})")
+            if len(set(values)) != len(values):
+                raise ValueError(f"a {what} is listed twice: {','.join(values)}")
+        if not isinstance(self.models, dict) or any(m not in METHODS for m in self.models):
+            raise ValueError(f"models must be a dict method (gmm|kde) -> model file, got {quote(self.models)}")
+
+    def check_inputs(self) -> None:
+        """The object list has at least `objects` entries and every model file exists: before any work."""
+        entries = read_object_list(check_input_file(self.object_list, "object list"))
+        if len(entries) < self.objects:
+            raise ValueError(f"{self.object_list}: lists {len(entries)} objects, a scene needs {self.objects}")
+        for m in self.model_methods():
+            if not self.model_path(m).is_file():
+                raise ValueError(f"{self.model_path(m)}: no such {m} model file")
+
+    def model_methods(self) -> list[str]:
+        return [m for m in self.methods if m in METHODS]
+
+    def model_path(self, method: str) -> Path:
+        return Path(self.models[method]) if method in self.models else default_model_path(method)
+
+    def to_json(self) -> dict:
+        """clutter.json's "protocol": files identified by content (sha256) as well as by name."""
+        d = dataclasses.asdict(self)
+        d["object_list_sha256"] = sha256_file(self.object_list)
+        d["models"] = {
+            m: {"file": self.model_path(m).name, "sha256": sha256_file(self.model_path(m))}
+            for m in self.model_methods()
+        }
+        return d
+
+    # -- the work: one round per (mode, scene, method); all methods share a mode's scenes
+    def rounds(self) -> list[tuple[str, int, str]]:
+        return [(mode, s, m) for mode in self.modes for s in range(self.scenes) for m in self.methods]
+
+    def scene_seed(self, mode: str, scene: int) -> int:
+        return derive_seed(self.seed, "clutter scene", mode, scene)
+
+    def stage_seed(self, stage: str, mode: str, scene: int, attempt: int) -> int:
+        return derive_seed(self.seed, "clutter", stage, mode, scene, attempt)
+
+
+PROTOCOL_FIELDS = [f.name for f in dataclasses.fields(ClutterProtocol)]
+
+
+def clutter_protocol_from_json(d: dict) -> ClutterProtocol:
+    return ClutterProtocol(**{k: d[k] for k in PROTOCOL_FIELDS if k in d and k != "models"})
+
+
+def load_clutter_protocol(run_dir) -> dict:
+    """A run folder's clutter.json (format graspmix.clutter/1), checked."""
+    path = Path(run_dir) / CLUTTER_NAME
+    if not path.is_file():
+        raise ValueError(f"{run_dir}: no {CLUTTER_NAME} (not a clutter-removal run folder)")
+    doc = read_document(path, CLUTTER_FORMAT)
+    try:
+        clutter_protocol_from_json(doc["protocol"]).validate()
+    except (TypeError, ValueError) as e:
+        raise ValueError(f"{path}: {e}") from None
+    return doc
+
+
+CLUTTER_FOLDER = RunFolder(CLUTTER_NAME, CLUTTER_FORMAT, load_clutter_protocol)
+
+# clutter_attempts.csv: one row per attempt. A round's rows are written together when it ends; its last
+# row names why it ended (stop), so a round is done when a row of it has a stop.
+KEY_COLUMNS = ("mode", "scene", "method", "attempt")
+RESULT_COLUMNS = (
+    "scene_seed",
+    "placed",
+    "before",
+    "after",
+    "seen",
+    "target",
+    "outcome",
+    "success",
+    "lifted",
+    "max_moved",
+    "lift_height",
+    "stop",
+    "observe_seed",
+    "synthesis_seed",
+    "n_points",
+    "grasp",
+    "error",
+)
+TIME_COLUMNS = ("t_observe", "t_segment", "t_synthesis", "t_execution")
+TEXT_COLUMNS = frozenset({"mode", "method", "outcome", "stop", "grasp", "error"})
+FLOAT_COLUMNS = frozenset({"max_moved", "lift_height", *TIME_COLUMNS})
+ALL_COLUMNS = KEY_COLUMNS + RESULT_COLUMNS + TIME_COLUMNS
+CLUTTER_CSV = CsvSchema(
+    ALL_COLUMNS,
+    KEY_COLUMNS,
+    frozenset(ALL_COLUMNS) - TEXT_COLUMNS - FLOAT_COLUMNS,  # the counts, indices and seeds
+    FLOAT_COLUMNS,
+    "clutter attempts",
+)

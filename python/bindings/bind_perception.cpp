@@ -151,6 +151,7 @@ void bind_perception(py::module_& m) {
       .field("plane_distance", &SegmentationSettings::plane_distance, "m: RANSAC inlier threshold")
       .field("plane_max_iterations", &SegmentationSettings::plane_max_iterations, "RANSAC iterations per candidate")
       .seed("seed", &SegmentationSettings::seed, "seeds RANSAC (None: 0)")
+      .field("find_plane", &SegmentationSettings::find_plane, "search for the support plane (false: objects only)")
       .field("plane_candidates", &SegmentationSettings::plane_candidates,
              "planes tried, each on the points the previous ones left")
       .field("plane_min_fraction", &SegmentationSettings::plane_min_fraction,

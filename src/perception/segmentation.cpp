@@ -358,8 +358,10 @@ Segmentation segment_scene(const Vec3Array& points, const Vec3Array& viewpoints,
     out.plane = orient_given(*plane, P, cams, s);
     out.plane_given = true;
     finish(P, down.sources, extract(P, &out.plane, s), out);
-  } else {
+  } else if (s.find_plane) {
     finish(P, down.sources, find_support(P, cams, s, out), out);
+  } else {
+    finish(P, down.sources, extract(P, nullptr, s), out);
   }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;

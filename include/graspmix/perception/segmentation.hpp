@@ -44,6 +44,8 @@ struct SegmentationSettings {
   double plane_distance = SceneSettings{}.plane_distance;           ///< RANSAC inlier threshold (m)
   int plane_max_iterations = SceneSettings{}.plane_max_iterations;  ///< RANSAC iterations per candidate
   std::uint64_t seed = 0;                                           ///< seeds RANSAC
+  /// Search for the support plane (the rule below); false: the cloud is objects only, no plane is searched.
+  bool find_plane = true;
   int plane_candidates = 3;                 ///< planes tried, each on the points the previous ones left
   double plane_min_fraction = 0.05;         ///< rule 1: fraction of the voxelised points a candidate holds
   double plane_behind_distance = 0.01;      ///< rule 3: m behind the plane for a point to count as behind it

@@ -7,11 +7,13 @@ import time
 from pathlib import Path
 
 from .. import _core
-from ..io import data_path
+from ..io import data_path, load_points
 from ..io.checks import MAX_COMPONENTS, MAX_SAMPLES
 from ..model import GraspModel, default_model_path, learn
 from ..model.settings import METHODS, LearnSettings, SynthesisOptions
+from ..perception import parse_target
 from .common import CliError, float_in, input_path, int_in, output_file, parse_floats, parse_joints, seed
+from .views import add_view_arguments, view_inputs
 
 
 def cmd_demo(args: argparse.Namespace) -> int:
@@ -56,12 +58,26 @@ def print_grasps(grasps, top: int) -> None:
         return
     keys = list(rows[0]["experts"].keys())
     short = [k.replace("contact/", "Q:") for k in keys]
-    print(f"{'rank':>4} {'log L':>9} " + " ".join(f"{k:>14}" for k in short) + "   wrist position (m)        opening")
+    head = " ".join(f"{k:>14}" for k in short)
+    print(f"{'rank':>4} {'object':>6} {'log L':>9} {head}   wrist position (m)        opening")
     for g in rows:
         terms = " ".join(f"{g['experts'][k]:>14.3f}" for k in keys)
         pos = ", ".join(f"{x:+.3f}" for x in g["T_world_wrist"][:3])
         joints = ", ".join(f"{v:.4f}" for v in g["grasp_joints"].values())
-        print(f"{g['rank']:>4} {g['log_likelihood']:>9.3f} {terms}   [{pos}]   {joints}")
+        on = g.get("object")
+        print(f"{g['rank']:>4} {'-' if on is None else on['index']:>6} {g['log_likelihood']:>9.3f} {terms}   [{pos}]   {joints}")
+
+
+def describe_scene(scene, targets: list) -> str:
+    """One line: the support plane (found, given or none) and the objects, the targets among them."""
+    plane = "given" if scene.plane_given else ("found" if scene.plane_found else "none")
+    objects = ", ".join(
+        f"{o.index}{'*' if o.index in targets else ''} ({o.n_points} pts at "
+        + ",".join(f"{v:+.3f}" for v in o.centroid)
+        + ")"
+        for o in scene.objects
+    )
+    return f"support plane {plane}; {len(scene.objects)} objects (* = target): {objects}"
 
 
 def _model_for(args) -> tuple[GraspModel, Path]:
@@ -82,8 +98,12 @@ def _model_for(args) -> tuple[GraspModel, Path]:
 def cmd_synthesize(args: argparse.Namespace) -> int:
     model, model_path = _model_for(args)
     axis = parse_floats(args.approach_axis, 3, "--approach-axis") if args.approach_axis else None
+    points, viewpoints, plane = view_inputs(args, load_points(args.cloud))
     grasps = model.synthesize(
-        args.cloud,
+        points,
+        viewpoints=viewpoints,
+        plane=plane,
+        target=args.target,
         n_samples=args.samples,
         n_optimise=args.optimise_top,
         optimise=not args.no_optimise,
@@ -92,13 +112,13 @@ def cmd_synthesize(args: argparse.Namespace) -> int:
         approach_axis=axis,
         query_samples=args.query_samples,
     )
+    grasps.cloud = args.cloud
     t = grasps.timing
+    print(f"{model.method} model '{model_path.name}' on {args.cloud}: {len(grasps.surface.points)} surface points")
+    print(describe_scene(grasps.scene, grasps.targets))
     print(
-        f"{model.method} model '{model_path.name}' on {args.cloud}: {len(grasps.surface.points)} surface points, "
-        f"support plane {'found' if grasps.plane is not None else 'none'}"
-    )
-    print(
-        f"time: features {t['features'] * 1e3:.0f} ms, query densities {t['query'] * 1e3:.0f} ms, "
+        f"time: features {t['features'] * 1e3:.0f} ms (segmentation {t['segmentation'] * 1e3:.0f} ms), "
+        f"query densities {t['query'] * 1e3:.0f} ms, "
         f"sampling+ranking {t['sampling'] * 1e3:.0f} ms, optimisation {t['optimisation'] * 1e3:.0f} ms, "
         f"total {t['total'] * 1e3:.0f} ms ({grasps.evaluations} grasp evaluations, {grasps.rejected} samples rejected "
         f"by hard constraints)"
@@ -170,6 +190,14 @@ def _add_learn(sub) -> None:
     s.set_defaults(func=cmd_learn)
 
 
+def _target(text: str) -> str:
+    try:
+        parse_target(text)
+    except ValueError as e:
+        raise argparse.ArgumentTypeError(str(e)) from None
+    return text
+
+
 def _add_synthesize(sub) -> None:
     o = SynthesisOptions
     s = sub.add_parser("synthesize", help="synthesise, rank and optimise grasps on a cloud")
@@ -200,7 +228,15 @@ def _add_synthesize(sub) -> None:
     s.add_argument(
         "--approach-axis", help="prefer wrists approaching along this world axis, e.g. 0,0,-1 for top grasps"
     )
-    s.add_argument("--no-plane", action="store_true", help="the cloud is the object alone: find no support plane")
+    s.add_argument("--no-plane", action="store_true", help="the cloud is objects only: search for no support plane")
+    s.add_argument(
+        "--target",
+        type=_target,
+        default="all",
+        help="which object to grasp: all (default: any, best first), an object index (graspmix_cli segment), "
+        "point:x,y,z (the object nearest the point), largest, nearest (to the camera)",
+    )
+    add_view_arguments(s)
     s.add_argument("--seed", type=seed, default=o.seed)
     s.add_argument("--top", type=int_in(0), default=5, help="grasps to print")
     s.add_argument("--out", type=output_file, default="grasps.json", help="grasps file (default grasps.json)")

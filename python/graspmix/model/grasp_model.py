@@ -33,7 +33,8 @@ from ..io.checks import (
 )
 from .demonstration import Demonstration
 from .experts import collision_expert, constraint_experts
-from .grasps import GraspSet, grasps_from_result
+from .grasps import GraspSet
+from .scene_synthesis import segment_query, synthesize_targets
 from .serialization import config_dict, config_settings, density_from_json, density_to_json
 from .settings import FeatureSettings, LearnSettings, SynthesisOptions, check_method
 
@@ -236,61 +237,64 @@ class GraspModel:
         contact_tolerance: float = _S.contact_tolerance,
         collision_inside_weight: float = _S.collision_inside_weight,
         table_clearance: float = _S.table_clearance,
+        target="all",
         annealing: dict | None = None,
     ) -> GraspSet:
-        """Grasps on a novel object's cloud: a path (PCD/PLY/npy) or an (N, 3) array of points.
+        """Grasps on a scene or object cloud: a path (PCD/PLY/npy) or an (N, 3) array of points.
 
-        remove_plane: find and remove the support plane (a scene cloud); plane: give it instead
-        ([a, b, c, d]; points within table_clearance of it are dropped); approach_axis: prefer
+        The cloud is segmented (graspmix.segment_scene) into its support plane and the objects on it;
+        grasps are sampled on the target objects and checked for collision against all of them and the
+        plane. target: "all" (every object, best grasps first), an object index, "point:x,y,z" (the object
+        nearest the point), "largest", "nearest" (to the camera); every grasp records its object.
+        viewpoints: the camera position (3,) or one per point (N, 3) (default: the file's); they orient the
+        plane and the normals. remove_plane: search for the support plane (a table under the objects:
+        segment_scene's rule); plane: give it instead ([a, b, c, d]; points within table_clearance of it
+        are dropped); approach_axis: prefer
         wrists whose approach axis points along it (e.g. (0, 0, -1) for top grasps); reachable(wrists,
         joints) -> bool array: the hard reachability test; experts: more experts (graspmix.expert(...) or
         graspmix._core.Expert objects); annealing: AnnealingSettings fields to change. The other settings
         and their defaults: SynthesisOptions."""
-        # Every keyword but the cloud, plane, viewpoints, experts and annealing is a SynthesisOptions field.
+        # Every keyword but the cloud, plane, viewpoints, target, experts and annealing is a SynthesisOptions field.
         opts = _synthesis_options(locals())
         if annealing is not None and not isinstance(annealing, dict):
             raise ValueError(f"annealing must be a dict of AnnealingSettings fields, got {type(annealing).__name__}")
         t0 = time.perf_counter()
-        # Phase 1: the query object's representation O(v, r) (and the support plane).
-        surface, plane, name = self._query_surface(cloud, plane, viewpoints, opts)
-        t_features = time.perf_counter() - t0
-        # Phase 2: the experts and the settings of the C++ synthesis; phase 3: sample, rank, anneal.
-        collision = collision_expert(self.hand, surface.points, plane, opts)
-        extra = constraint_experts(
-            self.hand, surface.points, plane, opts, approach_axis=approach_axis, reachable=reachable, experts=experts
+        # Phase 1: the scene (support plane, objects) and the targets.
+        points, name, file_viewpoints = load_points(cloud)
+        scene = segment_query(
+            points, file_viewpoints if viewpoints is None else viewpoints, checked_plane(plane), opts, self.features
         )
-        res = self.synthesizer.synthesize(
-            surface.frames, surface.curvatures, collision, extra, self._synthesis_settings(opts, annealing)
+        targets = scene.select(target)
+        t_segment = time.perf_counter() - t0
+        # Phases 2-3: features, query densities, sampling, ranking and annealing per target, ranked together.
+        out = synthesize_targets(
+            self,
+            scene,
+            targets,
+            opts,
+            self._synthesis_settings(opts, annealing),
+            approach_axis=approach_axis,
+            reachable=reachable,
+            experts=experts,
         )
-        # Phase 4: the result as Grasps, with the stage times.
-        timing = dict(res.timing)
-        timing["features"] = t_features
+        timing = dict(out.timing)
+        timing["segmentation"] = t_segment
         timing["total"] = time.perf_counter() - t0
-        grasps = grasps_from_result(res, self.hand)
+        # Features: everything before the synthesiser's own stages (the segmentation, i.e. the clean-up, included).
+        timing["features"] = timing["total"] - sum(out.timing.values())
         return GraspSet(
-            grasps, self.hand_path, self.method, name, timing, surface, plane, res.evaluations, res.rejected
+            out.grasps,
+            self.hand_path,
+            self.method,
+            name,
+            timing,
+            out.surface,
+            scene.plane,
+            out.evaluations,
+            out.rejected,
+            scene=scene,
+            targets=targets,
         )
-
-    def _query_surface(self, cloud, plane, viewpoints, opts: SynthesisOptions):
-        """(SurfaceCloud, plane or None, the cloud's name) of the cloud to synthesise on."""
-        points, name, file_viewpoint = load_points(cloud)
-        if viewpoints is None:
-            viewpoints = file_viewpoint
-        if plane is not None:
-            plane = np.asarray(plane, dtype=float)
-            if plane.shape != (4,) or not np.all(np.isfinite(plane)) or not np.linalg.norm(plane[:3]) > 0:
-                raise ValueError("plane must be 4 finite numbers [a, b, c, d] with a non-zero normal")
-        surface, scene = self.features.surface(
-            points,
-            remove_plane=opts.remove_plane and plane is None,
-            seed=opts.seed,
-            viewpoints=viewpoints,
-            plane=plane,
-            table_clearance=opts.table_clearance,
-        )
-        if plane is None and scene.plane_found:
-            plane = np.asarray(scene.plane)
-        return surface, plane, name
 
     def _synthesis_settings(self, opts: SynthesisOptions, annealing: dict | None) -> "_core.SynthesisSettings":
         s = _core.SynthesisSettings()
@@ -310,6 +314,16 @@ class GraspModel:
             setattr(a, k, v)
         s.annealing = a
         return s
+
+
+def checked_plane(plane):
+    """None, or a plane [a, b, c, d] of 4 finite numbers with a non-zero normal (ValueError otherwise)."""
+    if plane is None:
+        return None
+    plane = np.asarray(plane, dtype=float)
+    if plane.shape != (4,) or not np.all(np.isfinite(plane)) or not np.linalg.norm(plane[:3]) > 0:
+        raise ValueError("plane must be 4 finite numbers [a, b, c, d] with a non-zero normal")
+    return plane
 
 
 def _check_learn_numbers(**v) -> None:

@@ -34,7 +34,7 @@ STAGE_LABELS = {
 class Grasp(MutableMapping):
     """One grasp in the world frame (the cloud's): the wrist pose [x, y, z, qx, qy, qz, qw], the pre-grasp
     and grasp joints (name -> value), and, for a synthesised grasp, its rank (1 = best), log-likelihood,
-    whether annealing moved it, and every expert's log value ("collision", "config", "pregrasp_clear",
+    whether annealing moved it, the object of the scene it is on, and every expert's log value ("collision", "config", "pregrasp_clear",
     "contact/<link>", constraint names). Fields a newer writer adds are kept in `extra`."""
 
     T_world_wrist: list
@@ -44,10 +44,20 @@ class Grasp(MutableMapping):
     log_likelihood: float | None = None
     optimised: bool | None = None
     experts: dict | None = None
+    object: dict | None = None  # the segmented object it is on: {"index": i, "centroid": [x, y, z]}
     extra: dict = field(default_factory=dict)
 
     # Key order of a grasps.json entry.
-    KEYS = ("rank", "T_world_wrist", "pregrasp_joints", "grasp_joints", "log_likelihood", "optimised", "experts")
+    KEYS = (
+        "rank",
+        "T_world_wrist",
+        "pregrasp_joints",
+        "grasp_joints",
+        "log_likelihood",
+        "optimised",
+        "object",
+        "experts",
+    )
 
     def to_dict(self, *, execution_only: bool = False) -> dict:
         """The grasps.json entry; execution_only: just T_world_wrist, pregrasp_joints and grasp_joints."""
@@ -67,7 +77,7 @@ class Grasp(MutableMapping):
         known = {k: d[k] for k in cls.KEYS if k in d}
         for k in ("T_world_wrist",):
             known[k] = list(known[k]) if not isinstance(known[k], str) else known[k]
-        for k in ("pregrasp_joints", "grasp_joints", "experts"):
+        for k in ("pregrasp_joints", "grasp_joints", "experts", "object"):
             if isinstance(known.get(k), Mapping):
                 known[k] = dict(known[k])
         return cls(**known, extra={k: v for k, v in d.items() if k not in cls.KEYS})
@@ -142,10 +152,12 @@ class GraspSet:
     method: str
     cloud: str
     timing: dict
-    surface: object = None  # the query object's SurfaceCloud
-    plane: np.ndarray | None = None
+    surface: object = None  # the target objects' SurfaceCloud (a SurfaceUnion of several)
+    plane: np.ndarray | None = None  # the support plane, oriented towards the cameras
     evaluations: int = 0
     rejected: int = 0
+    scene: object = None  # the segmented scene (graspmix.Scene)
+    targets: list = field(default_factory=list)  # indices of the objects grasps were sampled on
 
     def __len__(self):
         return len(self.grasps)

@@ -1,0 +1,102 @@
+"""Synthesis on a scene: the cloud is segmented into its support plane and objects
+(graspmix.segment_scene), grasps are sampled on the target objects only, and the collision expert sees
+every object and the table, so that a grasp on one object never goes through its neighbour.
+
+Each target object gets a synthesis of its own (its own query densities: a mixture fitted over several
+objects would spread its few components between them), with the same model, settings and seed; the
+grasps of all targets are then ranked together by their log-likelihood, which is comparable between
+objects because the model and every expert are the same.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .. import _core
+from ..perception import Scene, segment_scene
+from .experts import collision_expert, constraint_experts
+from .grasps import STAGES, grasps_from_result
+from .settings import FeatureSettings, SynthesisOptions
+
+
+@dataclass
+class SurfaceUnion:
+    """The surfaces of several objects as one (points, normals, curvatures, frames): what a picture of a
+    multi-object synthesis draws."""
+
+    points: np.ndarray
+    normals: np.ndarray
+    curvatures: np.ndarray
+    frames: np.ndarray
+
+    def __len__(self):
+        return len(self.points)
+
+    @classmethod
+    def of(cls, surfaces: list) -> "SurfaceUnion":
+        return cls(*(np.vstack([np.asarray(getattr(s, k)) for s in surfaces]) for k in cls.__annotations__))
+
+
+def segment_query(points, viewpoints, plane, opts: SynthesisOptions, features: FeatureSettings) -> Scene:
+    """The scene of a query cloud: the known plane (or the one found, opts.remove_plane), the objects above it."""
+    return segment_scene(
+        points,
+        viewpoints=viewpoints,
+        plane=plane,
+        find_plane=opts.remove_plane,
+        voxel_size=features.voxel_size,
+        table_clearance=opts.table_clearance,
+        seed=opts.seed,
+    )
+
+
+def object_surface(scene: Scene, index: int, features: FeatureSettings):
+    """The surface features of one segmented object, its normals oriented towards its viewpoints."""
+    rows = scene.objects[index].rows
+    vp = None if scene.viewpoints is None else scene.viewpoints[rows]
+    return _core.compute_surface_features(scene.points[rows], radius=features.radius, viewpoints=vp)
+
+
+@dataclass
+class SceneSynthesis:
+    """What the synthesis on the targets of a scene produced: grasps best first (each with its object),
+    the targets' surfaces, summed stage times, evaluations and rejected samples."""
+
+    grasps: list
+    surface: object
+    timing: dict
+    evaluations: int
+    rejected: int
+
+
+def synthesize_targets(
+    model, scene: Scene, targets: list[int], opts: SynthesisOptions, settings, *, approach_axis, reachable, experts
+) -> SceneSynthesis:
+    """Runs the model's synthesiser on every target object against the whole scene and ranks all grasps."""
+    collision = collision_expert(model.hand, scene.points, scene.plane, opts)
+    extra = constraint_experts(
+        model.hand, scene.points, scene.plane, opts, approach_axis=approach_axis, reachable=reachable, experts=experts
+    )
+    timing = dict.fromkeys(STAGES, 0.0)
+    grasps, surfaces, evaluations, rejected = [], [], 0, 0
+    for i in targets:
+        surface = object_surface(scene, i, model.features)
+        res = model.synthesizer.synthesize(surface.frames, surface.curvatures, collision, extra, settings)
+        on = {"index": int(i), "centroid": [float(x) for x in scene.objects[i].centroid]}
+        for g in grasps_from_result(res, model.hand):
+            g["object"] = on
+            grasps.append(g)
+        stage_times = dict(res.timing)
+        for k in STAGES:
+            timing[k] += stage_times[k]
+        surfaces.append(surface)
+        evaluations += res.evaluations
+        rejected += res.rejected
+    if len(targets) > 1:
+        grasps.sort(key=lambda g: -g.log_likelihood)  # stable: equal scores keep the targets' order
+        for rank, g in enumerate(grasps, start=1):
+            g.rank = rank
+    surface = surfaces[0] if len(surfaces) == 1 else SurfaceUnion.of(surfaces)
+    return SceneSynthesis(grasps, surface, timing, evaluations, rejected)

@@ -5,12 +5,13 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from ..clutter.protocol import ClutterProtocol
 from .common import input_path, int_in, output_folder, seed, split_list
 from .experiment_commands import run_options
 
 
 def _protocol(args):
-    from ..clutter import MODES, PLANNERS, ClutterProtocol
+    from ..clutter import MODES, PLANNERS
 
     return ClutterProtocol(
         object_list=args.object_list or "",
@@ -71,7 +72,10 @@ def add_parsers(sub) -> None:
     )
     s.add_argument("--closing", choices=["full", "learnt"], default="full", help="how grasps close (default full)")
     s.add_argument(
-        "--max-attempts", type=int_in(0, 10_000), default=0, help="attempts per scene at most (default 0: VGN's rules)"
+        "--max-attempts",
+        type=int_in(-1, 10_000),
+        default=ClutterProtocol.max_attempts,
+        help="attempts per scene at most (default -1: objects + 2; 0: no cap, VGN's rules alone)",
     )
     s.add_argument("--seed", type=seed, default=0, help="base of every derived seed (default 0)")
     s.add_argument("--jobs", type=int_in(1, 1024), default=1, help="parallel worker processes (or Ray tasks)")

@@ -4,8 +4,9 @@ The rules are those of Breyer et al. 2020 (VGN, ethz-asl/vgn, src/vgn/experiment
 which Jiang et al. 2021 (GIGA) keep: per round (a scene of N objects), observe, plan, execute the best
 grasp, and go on while objects remain and fewer than MAX_CONSECUTIVE_FAILURES = 2 grasps in a row have
 failed; a planner that finds no grasp ends the round. VGN has no cap on the number of attempts (the rules
-bound it by 2N: every success removes an object and no two failures follow each other); max_attempts adds
-one (the issue's N + 2, say) where wanted, 0 keeps VGN's rules.
+bound it by 2N: every success removes an object and no two failures follow each other). The cap of
+Jiang et al.'s protocol description and of graspmix's issue, N + 2 attempts, is the default here
+(max_attempts = -1); 0 keeps VGN's rules alone, any other number caps the attempts at it.
 """
 
 from __future__ import annotations
@@ -55,7 +56,7 @@ class ClutterProtocol:
     n_samples: int = SynthesisOptions.n_samples
     n_optimise: int = SynthesisOptions.n_optimise
     closing: str = "full"  # how executed grasps close (the experiment's CLOSING)
-    max_attempts: int = 0  # per round; 0: VGN's rules alone
+    max_attempts: int = -1  # per round; -1: objects + 2; 0: VGN's rules alone (no cap)
     seed: int = 0
     models: dict = field(default_factory=dict)  # method -> model file; empty: the bundled box models
 
@@ -63,6 +64,11 @@ class ClutterProtocol:
         if not self.object_list:
             self.object_list = str(default_object_list())
         self.validate()
+
+    @property
+    def attempt_limit(self) -> int:
+        """Attempts a round may take at most (0: no cap)."""
+        return self.objects + 2 if self.max_attempts < 0 else self.max_attempts
 
     def validate(self) -> None:
         if not isinstance(self.object_list, str):
@@ -72,7 +78,7 @@ class ClutterProtocol:
         check_int(self.views, "views", 1, 64)
         check_int(self.n_samples, "n_samples", 1, MAX_SAMPLES)
         check_int(self.n_optimise, "n_optimise", 1, MAX_SAMPLES)
-        check_int(self.max_attempts, "max_attempts", 0, 10_000)
+        check_int(self.max_attempts, "max_attempts", -1, 10_000)
         check_seed(self.seed)
         if not isinstance(self.noise, bool):
             raise ValueError(f"noise must be true or false, got {quote(self.noise)}")

@@ -156,7 +156,7 @@ def _blocks(summary: dict) -> list[tuple]:
             f"objects per scene from {Path(p['object_list']).name}; {p['views']} view(s), "
             f"{'with' if p['noise'] else 'no'} depth noise; grasps close {p['closing']}. A round ends when the "
             "table is clear, after 2 failures in a row, or when the planner finds no grasp (VGN's rules)"
-            + (f", or after {p['max_attempts']} attempts" if p.get("max_attempts") else "")
+            + (f", or after {_limit(p)} attempts" if _limit(p) else "")
             + f". graspmix {prov.get('graspmix', '?')}, commit {prov.get('commit') or 'unknown'}.",
         ),
     ]
@@ -222,3 +222,9 @@ def read_rows_checked(run_dir: Path, doc: dict) -> list[dict]:
     rows = read_rows(path, CLUTTER_CSV)
     check_rows(rows, doc["protocol"], path)
     return rows
+
+
+def _limit(p: dict) -> int:
+    """The attempt cap of a protocol document (ClutterProtocol.attempt_limit; 0: none)."""
+    m = p.get("max_attempts", 0)
+    return p["objects"] + 2 if m < 0 else m

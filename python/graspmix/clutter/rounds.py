@@ -180,7 +180,7 @@ def run_round(pdoc: dict, unit: tuple, todo=None) -> list[dict]:
     scene_seed = p.scene_seed(mode, scene)
     spec = make_scene(choose_objects(p.object_list, p.objects, scene_seed), mode, scene_seed)
     stages = real_stages(p, method, pdoc.get("model_paths", {}))
-    rows = run_scene(spec, stages, lambda stage, a: p.stage_seed(stage, mode, scene, a), p.max_attempts)
+    rows = run_scene(spec, stages, lambda stage, a: p.stage_seed(stage, mode, scene, a), p.attempt_limit)
     for r in rows:
         r.update(mode=mode, scene=scene, method=method, scene_seed=scene_seed)
     return rows

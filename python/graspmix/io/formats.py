@@ -243,6 +243,8 @@ _SCENE = Obj(
         "mode": Either(Str(), Null()),
     },
     required=["format", "objects"],
+)
+
 _CLUTTER = Obj(
     {
         "format": Str(),
@@ -259,7 +261,7 @@ _CLUTTER = Obj(
                 "n_samples": Int(lo=1),
                 "n_optimise": Int(lo=1),
                 "closing": Str(),
-                "max_attempts": _COUNT,
+                "max_attempts": Int(lo=-1),
                 "seed": _COUNT,
                 "models": Map(Obj({"file": Str(), "sha256": Str()})),
             },

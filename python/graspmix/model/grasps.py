@@ -55,8 +55,8 @@ class Grasp(MutableMapping):
         "grasp_joints",
         "log_likelihood",
         "optimised",
-        "object",
         "experts",
+        "object",  # added after the first release's keys, so their order stays what it was
     )
 
     def to_dict(self, *, execution_only: bool = False) -> dict:

@@ -243,6 +243,8 @@ _SCENE = Obj(
         "mode": Either(Str(), Null()),
     },
     required=["format", "objects"],
+)
+
 _CLUTTER = Obj(
     {
         "format": Str(),

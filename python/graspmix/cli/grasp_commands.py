@@ -65,7 +65,9 @@ def print_grasps(grasps, top: int) -> None:
         pos = ", ".join(f"{x:+.3f}" for x in g["T_world_wrist"][:3])
         joints = ", ".join(f"{v:.4f}" for v in g["grasp_joints"].values())
         on = g.get("object")
-        print(f"{g['rank']:>4} {'-' if on is None else on['index']:>6} {g['log_likelihood']:>9.3f} {terms}   [{pos}]   {joints}")
+        print(
+            f"{g['rank']:>4} {'-' if on is None else on['index']:>6} {g['log_likelihood']:>9.3f} {terms}   [{pos}]   {joints}"
+        )
 
 
 def describe_scene(scene, targets: list) -> str:

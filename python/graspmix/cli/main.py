@@ -9,7 +9,15 @@ import argparse
 import sys
 
 from ..io import package_version
-from . import clutter_commands, core_commands, experiment_commands, grasp_commands, scene_commands, segment_commands, sim_commands
+from . import (
+    clutter_commands,
+    core_commands,
+    experiment_commands,
+    grasp_commands,
+    scene_commands,
+    segment_commands,
+    sim_commands,
+)
 from .common import CliError, OneLineParser, report_error
 
 
@@ -17,7 +25,15 @@ def build_parser() -> argparse.ArgumentParser:
     p = OneLineParser(prog="graspmix_cli", description=__doc__.splitlines()[0])
     p.add_argument("--version", action="version", version=f"graspmix {package_version()}")
     sub = p.add_subparsers(dest="command", required=True, parser_class=OneLineParser)
-    for commands in (core_commands, segment_commands, grasp_commands, sim_commands, scene_commands, experiment_commands, clutter_commands):
+    for commands in (
+        core_commands,
+        segment_commands,
+        grasp_commands,
+        sim_commands,
+        scene_commands,
+        experiment_commands,
+        clutter_commands,
+    ):
         commands.add_parsers(sub)
     return p
 

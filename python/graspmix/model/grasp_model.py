@@ -32,7 +32,6 @@ from ..io.checks import (
     check_seed,
 )
 from .demonstration import Demonstration
-from .experts import collision_expert, constraint_experts
 from .grasps import GraspSet
 from .scene_synthesis import segment_query, synthesize_targets
 from .serialization import config_dict, config_settings, density_from_json, density_to_json

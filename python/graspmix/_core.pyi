@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AnnealingSettings', 'AxisAlignmentExpert', 'AxisAlignmentSettings', 'CloudData', 'CollisionBatchResult', 'CollisionExpert', 'CollisionResult', 'CollisionSettings', 'ConfigModel', 'ConfigModelSettings', 'ContactData', 'ContactModel', 'ContactSettings', 'Evaluation', 'Expert', 'FunctionExpert', 'GaussianMixture', 'GmmSettings', 'Grasp', 'GraspSynthesizer', 'Hand', 'HandLoadSettings', 'KdeSettings', 'KinematicFeasibilityExpert', 'KinematicFeasibilitySettings', 'PoseDensity', 'PoseKDE', 'PoseMixture', 'QueryDensity', 'QuerySettings', 'SceneResult', 'SceneSettings', 'SceneSimResult', 'SettleResult', 'SimObject', 'SimResult', 'SimSettings', 'SurfaceCloud', 'SurfaceFeatureSettings', 'SynthesisResult', 'SynthesisSettings', 'SynthesisTiming', 'build_info', 'compute_surface_features', 'contact_data', 'learn_contact_models', 'load_cloud', 'load_mesh', 'log_vmf_s3_normaliser', 'orient_plane', 'pose_inverse', 'pose_multiply', 'prepare_cloud', 'quat_exp', 'quat_log', 'save_cloud', 'sim_execute', 'sim_execute_scene', 'sim_settle_scene']
+__all__: list[str] = ['AnnealingSettings', 'AxisAlignmentExpert', 'AxisAlignmentSettings', 'CloudData', 'CollisionBatchResult', 'CollisionExpert', 'CollisionResult', 'CollisionSettings', 'ConfigModel', 'ConfigModelSettings', 'ContactData', 'ContactModel', 'ContactSettings', 'Evaluation', 'Expert', 'FunctionExpert', 'GaussianMixture', 'GmmSettings', 'Grasp', 'GraspSynthesizer', 'Hand', 'HandLoadSettings', 'KdeSettings', 'KinematicFeasibilityExpert', 'KinematicFeasibilitySettings', 'PlaneCandidate', 'PoseDensity', 'PoseKDE', 'PoseMixture', 'QueryDensity', 'QuerySettings', 'SceneObject', 'SceneResult', 'SceneSettings', 'SceneSimResult', 'Segmentation', 'SegmentationSettings', 'SettleResult', 'SimObject', 'SimResult', 'SimSettings', 'SurfaceCloud', 'SurfaceFeatureSettings', 'SynthesisResult', 'SynthesisSettings', 'SynthesisTiming', 'build_info', 'compute_surface_features', 'contact_data', 'learn_contact_models', 'load_cloud', 'load_mesh', 'log_vmf_s3_normaliser', 'orient_plane', 'pose_inverse', 'pose_multiply', 'prepare_cloud', 'quat_exp', 'quat_log', 'save_cloud', 'segment_scene', 'sim_execute', 'sim_execute_scene', 'sim_settle_scene']
 class GmmSettings:
     """
     How a GaussianMixture (or PoseMixture) is fitted by EM.
@@ -406,6 +406,11 @@ class CloudData:
         Sensor pose [x, y, z, qx, qy, qz, qw] from the PCD VIEWPOINT (identity when absent).
         """
     @property
+    def viewpoints(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        """
+        (N, 3) the camera position of each point (PCD/PLY fields vp_x vp_y vp_z, PCL's PointWithViewpoint), following the points kept; (0, 3) when the file has none.
+        """
+    @property
     def width(self) -> int:
         ...
 class SceneSettings:
@@ -606,6 +611,332 @@ class SceneResult:
         """
         (N) input row whose per-point data (viewpoint, camera) every point carries: its own, or for a
         voxel centroid the input point nearest to it in its voxel; index per-point arrays with it
+        """
+class SegmentationSettings:
+    """
+    The scene model (segment_scene): support plane rule, table cut, outliers, clusters.
+    
+    Settings: settings= a SegmentationSettings (None: its defaults), and/or its fields as keywords,
+    which override it (an unknown keyword is a ValueError):
+      voxel_size = 0.003: m: voxel-grid leaf size, 0 = off (SceneSettings')
+      plane_distance = 0.005: m: RANSAC inlier threshold
+      plane_max_iterations = 1000: RANSAC iterations per candidate
+      seed = 0: seeds RANSAC (None: 0)
+      find_plane = True: search for the support plane (false: objects only)
+      plane_candidates = 3: planes tried, each on the points the previous ones left
+      plane_min_fraction = 0.05: rule 1: fraction of the voxelised points a candidate holds
+      plane_behind_distance = 0.01: m, rule 3: how far behind the plane a point counts as behind it
+      plane_max_behind_fraction = 0.05: rule 3: fraction of all points allowed behind the plane
+      plane_margin = 0.01: m, rule 4: how far the plane's inliers must reach beyond the objects' footprint
+      table_clearance = 0.005: m: points at most this far above the support plane (or behind it) are the table
+      remove_outliers = True: statistical outlier removal on the object points
+      outlier_neighbours = 20: k of the mean-distance statistic
+      outlier_std_ratio = 2.0: drop points whose mean k-distance exceeds mean + ratio * std
+      cluster_tolerance = 0.006: m: object points closer than this are one object (Euclidean clusters)
+      min_cluster_size = 20: smaller clusters are noise, dropped
+      max_cluster_size = 0: larger clusters are dropped; 0 = no limit
+    """
+    __hash__: typing.ClassVar[None] = None
+    _fields: typing.ClassVar[tuple] = ('voxel_size', 'plane_distance', 'plane_max_iterations', 'seed', 'find_plane', 'plane_candidates', 'plane_min_fraction', 'plane_behind_distance', 'plane_max_behind_fraction', 'plane_margin', 'table_clearance', 'remove_outliers', 'outlier_neighbours', 'outlier_std_ratio', 'cluster_tolerance', 'min_cluster_size', 'max_cluster_size')
+    def __copy__(self) -> SegmentationSettings:
+        ...
+    def __deepcopy__(self, memo: typing.Any) -> SegmentationSettings:
+        ...
+    def __eq__(self, arg0: typing.Any) -> typing.Any:
+        ...
+    def __getstate__(self) -> dict:
+        ...
+    @typing.overload
+    def __init__(self) -> None:
+        """
+        The defaults: those of the default-constructed C++ struct.
+        """
+    @typing.overload
+    def __init__(self, **kwargs) -> None:
+        """
+        Keyword constructor: any of the fields (voxel_size, plane_distance, plane_max_iterations, seed, find_plane, plane_candidates, plane_min_fraction, plane_behind_distance, plane_max_behind_fraction, plane_margin, table_clearance, remove_outliers, outlier_neighbours, outlier_std_ratio, cluster_tolerance, min_cluster_size, max_cluster_size); the others keep their defaults.
+        """
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    @property
+    def cluster_tolerance(self) -> float:
+        """
+        m: object points closer than this are one object (Euclidean clusters)
+        """
+    @cluster_tolerance.setter
+    def cluster_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def find_plane(self) -> bool:
+        """
+        search for the support plane (false: objects only)
+        """
+    @find_plane.setter
+    def find_plane(self, arg0: bool) -> None:
+        ...
+    @property
+    def max_cluster_size(self) -> int:
+        """
+        larger clusters are dropped; 0 = no limit
+        """
+    @max_cluster_size.setter
+    def max_cluster_size(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def min_cluster_size(self) -> int:
+        """
+        smaller clusters are noise, dropped
+        """
+    @min_cluster_size.setter
+    def min_cluster_size(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def outlier_neighbours(self) -> int:
+        """
+        k of the mean-distance statistic
+        """
+    @outlier_neighbours.setter
+    def outlier_neighbours(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def outlier_std_ratio(self) -> float:
+        """
+        drop points whose mean k-distance exceeds mean + ratio * std
+        """
+    @outlier_std_ratio.setter
+    def outlier_std_ratio(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def plane_behind_distance(self) -> float:
+        """
+        m, rule 3: how far behind the plane a point counts as behind it
+        """
+    @plane_behind_distance.setter
+    def plane_behind_distance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def plane_candidates(self) -> int:
+        """
+        planes tried, each on the points the previous ones left
+        """
+    @plane_candidates.setter
+    def plane_candidates(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def plane_distance(self) -> float:
+        """
+        m: RANSAC inlier threshold
+        """
+    @plane_distance.setter
+    def plane_distance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def plane_margin(self) -> float:
+        """
+        m, rule 4: how far the plane's inliers must reach beyond the objects' footprint
+        """
+    @plane_margin.setter
+    def plane_margin(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def plane_max_behind_fraction(self) -> float:
+        """
+        rule 3: fraction of all points allowed behind the plane
+        """
+    @plane_max_behind_fraction.setter
+    def plane_max_behind_fraction(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def plane_max_iterations(self) -> int:
+        """
+        RANSAC iterations per candidate
+        """
+    @plane_max_iterations.setter
+    def plane_max_iterations(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def plane_min_fraction(self) -> float:
+        """
+        rule 1: fraction of the voxelised points a candidate holds
+        """
+    @plane_min_fraction.setter
+    def plane_min_fraction(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def remove_outliers(self) -> bool:
+        """
+        statistical outlier removal on the object points
+        """
+    @remove_outliers.setter
+    def remove_outliers(self, arg0: bool) -> None:
+        ...
+    @property
+    def seed(self) -> int:
+        """
+        seeds RANSAC (None: 0)
+        """
+    @seed.setter
+    def seed(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def table_clearance(self) -> float:
+        """
+        m: points at most this far above the support plane (or behind it) are the table
+        """
+    @table_clearance.setter
+    def table_clearance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def voxel_size(self) -> float:
+        """
+        m: voxel-grid leaf size, 0 = off (SceneSettings')
+        """
+    @voxel_size.setter
+    def voxel_size(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class SceneObject:
+    """
+    One object of a segmented scene: a Euclidean cluster above the plane.
+    """
+    @property
+    def centroid(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        """
+        (3,) m
+        """
+    @property
+    def index(self) -> int:
+        """
+        its label and its place in Segmentation.objects
+        """
+    @property
+    def n_points(self) -> int:
+        ...
+    @property
+    def obb_center(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        """
+        (3,) m: centre of the oriented bounding box
+        """
+    @property
+    def obb_extents(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        """
+        (3,) m: side lengths along those axes
+        """
+    @property
+    def obb_rotation(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 3]"]:
+        """
+        (3, 3): columns the box's axes by decreasing variance, right-handed
+        """
+    @property
+    def rows(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 1]"]:
+        """
+        (n) its rows of Segmentation.points
+        """
+class PlaneCandidate:
+    """
+    What the support plane rule saw of one RANSAC plane.
+    """
+    @property
+    def accepted(self) -> bool:
+        ...
+    @property
+    def behind_fraction(self) -> float:
+        """
+        rule 3
+        """
+    @property
+    def camera_height(self) -> float:
+        """
+        m, rule 2: mean camera height above it
+        """
+    @property
+    def inlier_fraction(self) -> float:
+        """
+        rule 1
+        """
+    @property
+    def margin(self) -> float:
+        """
+        m, rule 4 (NaN when not judged, inf with no object)
+        """
+    @property
+    def n_inliers(self) -> int:
+        ...
+    @property
+    def plane(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[4, 1]"]:
+        """
+        [a, b, c, d], (a, b, c) unit towards the cameras
+        """
+    @property
+    def reason(self) -> str:
+        """
+        why it was refused (empty when accepted)
+        """
+class Segmentation:
+    """
+    The support plane and the objects of a scene cloud (segment_scene).
+    """
+    @property
+    def candidates(self) -> list[PlaneCandidate]:
+        """
+        the support rule's figures, in the order found
+        """
+    @property
+    def labels(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 1]"]:
+        """
+        (M) object index of every point
+        """
+    @property
+    def n_after_voxel(self) -> int:
+        ...
+    @property
+    def n_input(self) -> int:
+        ...
+    @property
+    def n_outliers(self) -> int:
+        ...
+    @property
+    def n_output(self) -> int:
+        ...
+    @property
+    def n_plane(self) -> int:
+        """
+        dropped as the table
+        """
+    @property
+    def n_small_clusters(self) -> int:
+        """
+        points of clusters dropped as noise
+        """
+    @property
+    def objects(self) -> list[SceneObject]:
+        """
+        by decreasing point count, ties by centroid x, y, z
+        """
+    @property
+    def plane(self) -> typing.Any:
+        """
+        [a, b, c, d], (a, b, c) unit towards the cameras; None without a plane
+        """
+    @property
+    def plane_found(self) -> bool:
+        ...
+    @property
+    def plane_given(self) -> bool:
+        ...
+    @property
+    def points(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        """
+        (M, 3) the objects' points (voxelised), grouped by object
+        """
+    @property
+    def seconds(self) -> float:
+        ...
+    @property
+    def sources(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 1]"]:
+        """
+        (M) input row whose per-point data every point carries
         """
 class SurfaceFeatureSettings:
     """
@@ -2518,9 +2849,32 @@ def quat_log(q: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float
     """
     eq:log_map on (N, 4) quaternions [x, y, z, w]: arccos(w) v/|v| after canonicalising w >= 0 -> (N, 3).
     """
-def save_cloud(path: typing.Any, points: typing.Any, normals: typing.Any = None, encoding: str = 'binary', viewpoint: typing.Any = None) -> None:
+def save_cloud(path: typing.Any, points: typing.Any, normals: typing.Any = None, encoding: str = 'binary', viewpoint: typing.Any = None, viewpoints: typing.Any = None) -> None:
     """
-    Writes float32 x y z (+ normal_x normal_y normal_z) to .pcd (encoding ascii | binary | binary_compressed) or .ply (ascii | binary); viewpoint [x, y, z, qx, qy, qz, qw] goes into the header.
+    Writes float32 x y z (+ normal_x normal_y normal_z, + vp_x vp_y vp_z) to .pcd (encoding ascii | binary | binary_compressed) or .ply (ascii | binary); viewpoint [x, y, z, qx, qy, qz, qw] goes into the header, viewpoints (N, 3), one camera position per point, into the fields vp_x vp_y vp_z (PCL's PointWithViewpoint).
+    """
+def segment_scene(points: typing.Any, viewpoints: typing.Any = None, plane: typing.Any = None, *, settings: typing.Any = None, **kwargs) -> Segmentation:
+    """
+    The support plane and the objects of a scene cloud (N, 3) seen from viewpoints (None: a camera at the origin; (3,) or (N, 3)); plane [a, b, c, d] gives a known support. The rule that accepts a plane is in include/graspmix/perception/segmentation.hpp.
+    Settings: settings= a SegmentationSettings (None: its defaults), and/or its fields as keywords,
+    which override it (an unknown keyword is a ValueError):
+      voxel_size = 0.003: m: voxel-grid leaf size, 0 = off (SceneSettings')
+      plane_distance = 0.005: m: RANSAC inlier threshold
+      plane_max_iterations = 1000: RANSAC iterations per candidate
+      seed = 0: seeds RANSAC (None: 0)
+      find_plane = True: search for the support plane (false: objects only)
+      plane_candidates = 3: planes tried, each on the points the previous ones left
+      plane_min_fraction = 0.05: rule 1: fraction of the voxelised points a candidate holds
+      plane_behind_distance = 0.01: m, rule 3: how far behind the plane a point counts as behind it
+      plane_max_behind_fraction = 0.05: rule 3: fraction of all points allowed behind the plane
+      plane_margin = 0.01: m, rule 4: how far the plane's inliers must reach beyond the objects' footprint
+      table_clearance = 0.005: m: points at most this far above the support plane (or behind it) are the table
+      remove_outliers = True: statistical outlier removal on the object points
+      outlier_neighbours = 20: k of the mean-distance statistic
+      outlier_std_ratio = 2.0: drop points whose mean k-distance exceeds mean + ratio * std
+      cluster_tolerance = 0.006: m: object points closer than this are one object (Euclidean clusters)
+      min_cluster_size = 20: smaller clusters are noise, dropped
+      max_cluster_size = 0: larger clusters are dropped; 0 = no limit
     """
 def sim_execute(hand: Hand, object: SimObject, T_world_object: typing.Any, T_world_wrist: typing.Any, pregrasp: typing.Any, grasp: typing.Any, settings: typing.Any = None, **kwargs) -> SimResult:
     """

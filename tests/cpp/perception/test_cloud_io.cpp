@@ -326,7 +326,9 @@ TEST(CloudIo, PerPointViewpointsRoundTripInEveryEncoding) {
   const Vec3Array V = nearest_cameras(P);
   const Vec3Array N = random_points(300, 5).rowwise().normalized();
   for (const std::string name : {"a.pcd", "b.pcd", "c.pcd", "d.ply", "e.ply"}) {
-    const std::string enc = name[0] == 'a' || name[0] == 'd' ? "ascii" : name[0] == 'c' ? "binary_compressed" : "binary";
+    const std::string enc = name[0] == 'a' || name[0] == 'd' ? "ascii"
+                            : name[0] == 'c'                 ? "binary_compressed"
+                                                             : "binary";
     for (const bool with_normals : {false, true}) {
       save_cloud(tmp / name, P, with_normals ? N : Vec3Array(), enc, Eigen::Matrix<double, 7, 1>::Unit(6), V);
       const CloudData c = load_cloud(tmp / name);
@@ -393,14 +395,14 @@ TEST(CloudIo, MalformedViewpointFieldsAreRefused) {
                header("x y z vp_x vp_y vp_z", "4 4 4 4 4 4", "F F F F F F", "1 1 1 3 1 1") +
                    "1 2 3 4 4 4 5 6\n5 6 7 8 8 8 9 9\n",
                {"field vp_x has 3 entries a point (COUNT)"});
-  expect_error(tmp, "type.pcd",
-               header("x y z vp_x vp_y vp_z", "4 4 4 4 4 4", "F F F F U F", "1 1 1 1 1 1") +
-                   "1 2 3 4 5 6\n5 6 7 8 9 9\n",
-               {"field vp_y is not a float"});
-  expect_error(tmp, "nan.pcd",
-               header("x y z vp_x vp_y vp_z", "4 4 4 4 4 4", "F F F F F F", "1 1 1 1 1 1") +
-                   "1 2 3 4 5 6\n5 6 7 8 nan 9\n",
-               {"viewpoint (vp_x, vp_y, vp_z) of point 1 is NaN"});
+  expect_error(
+      tmp, "type.pcd",
+      header("x y z vp_x vp_y vp_z", "4 4 4 4 4 4", "F F F F U F", "1 1 1 1 1 1") + "1 2 3 4 5 6\n5 6 7 8 9 9\n",
+      {"field vp_y is not a float"});
+  expect_error(
+      tmp, "nan.pcd",
+      header("x y z vp_x vp_y vp_z", "4 4 4 4 4 4", "F F F F F F", "1 1 1 1 1 1") + "1 2 3 4 5 6\n5 6 7 8 nan 9\n",
+      {"viewpoint (vp_x, vp_y, vp_z) of point 1 is NaN"});
   // A NaN viewpoint on an invalid (dropped) point is no error: PCL writes organised clouds so.
   write(tmp / "nanpoint.pcd", header("x y z vp_x vp_y vp_z", "4 4 4 4 4 4", "F F F F F F", "1 1 1 1 1 1") +
                                   "1 2 3 4 5 6\nnan nan nan nan nan nan\n");

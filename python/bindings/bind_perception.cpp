@@ -30,6 +30,9 @@ void bind_perception(py::module_& m) {
       .def_property_readonly(
           "normals", [](const CloudData& c) { return optional_rows(c.normals); },
           "(N, 3) normals from the file (normal_x/y/z or nx/ny/nz), or None.")
+      .def_readonly("viewpoints", &CloudData::viewpoints,
+                    "(N, 3) the camera position of each point (PCD/PLY fields vp_x vp_y vp_z, PCL's "
+                    "PointWithViewpoint), following the points kept; (0, 3) when the file has none.")
       .def_readonly("viewpoint", &CloudData::viewpoint,
                     "Sensor pose [x, y, z, qx, qy, qz, qw] from the PCD VIEWPOINT (identity when absent).")
       .def_readonly("has_viewpoint", &CloudData::has_viewpoint, "True when the file's viewpoint is not the identity.")
@@ -59,7 +62,7 @@ void bind_perception(py::module_& m) {
   m.def(
       "save_cloud",
       [](const py::object& path, const py::object& points, const py::object& normals, const std::string& encoding,
-         const py::object& viewpoint) {
+         const py::object& viewpoint, const py::object& viewpoints) {
         const std::string p = to_path(path, "path");
         const Vec3Array P(to_matrix(points, "save_cloud: points", 3));
         const Vec3Array N =
@@ -67,13 +70,16 @@ void bind_perception(py::module_& m) {
         Eigen::Matrix<double, 7, 1> vp;
         vp << 0, 0, 0, 0, 0, 0, 1;
         if (!viewpoint.is_none()) vp = to_vector(viewpoint, "save_cloud: viewpoint", 7);
+        const Vec3Array V =
+            viewpoints.is_none() ? Vec3Array(0, 3) : Vec3Array(to_matrix(viewpoints, "save_cloud: viewpoints", 3));
         py::gil_scoped_release release;
-        save_cloud(p, P, N, encoding, vp);
+        save_cloud(p, P, N, encoding, vp, V);
       },
       py::arg("path"), py::arg("points"), py::arg("normals") = py::none(), py::arg("encoding") = "binary",
-      py::arg("viewpoint") = py::none(),
-      "Writes float32 x y z (+ normal_x normal_y normal_z) to .pcd (encoding ascii | binary | binary_compressed) "
-      "or .ply (ascii | binary); viewpoint [x, y, z, qx, qy, qz, qw] goes into the header.");
+      py::arg("viewpoint") = py::none(), py::arg("viewpoints") = py::none(),
+      "Writes float32 x y z (+ normal_x normal_y normal_z, + vp_x vp_y vp_z) to .pcd (encoding ascii | binary | "
+      "binary_compressed) or .ply (ascii | binary); viewpoint [x, y, z, qx, qy, qz, qw] goes into the header, "
+      "viewpoints (N, 3), one camera position per point, into the fields vp_x vp_y vp_z (PCL's PointWithViewpoint).");
 
   // ---- scene clean-up ----------------------------------------------------------------------------
   SettingsClass<SceneSettings>(m, "SceneSettings", "Scene clean-up before features (prepare_cloud).")

@@ -406,6 +406,11 @@ class CloudData:
         Sensor pose [x, y, z, qx, qy, qz, qw] from the PCD VIEWPOINT (identity when absent).
         """
     @property
+    def viewpoints(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        """
+        (N, 3) the camera position of each point (PCD/PLY fields vp_x vp_y vp_z, PCL's PointWithViewpoint), following the points kept; (0, 3) when the file has none.
+        """
+    @property
     def width(self) -> int:
         ...
 class SceneSettings:
@@ -2844,9 +2849,32 @@ def quat_log(q: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float
     """
     eq:log_map on (N, 4) quaternions [x, y, z, w]: arccos(w) v/|v| after canonicalising w >= 0 -> (N, 3).
     """
-def save_cloud(path: typing.Any, points: typing.Any, normals: typing.Any = None, encoding: str = 'binary', viewpoint: typing.Any = None) -> None:
+def save_cloud(path: typing.Any, points: typing.Any, normals: typing.Any = None, encoding: str = 'binary', viewpoint: typing.Any = None, viewpoints: typing.Any = None) -> None:
     """
-    Writes float32 x y z (+ normal_x normal_y normal_z) to .pcd (encoding ascii | binary | binary_compressed) or .ply (ascii | binary); viewpoint [x, y, z, qx, qy, qz, qw] goes into the header.
+    Writes float32 x y z (+ normal_x normal_y normal_z, + vp_x vp_y vp_z) to .pcd (encoding ascii | binary | binary_compressed) or .ply (ascii | binary); viewpoint [x, y, z, qx, qy, qz, qw] goes into the header, viewpoints (N, 3), one camera position per point, into the fields vp_x vp_y vp_z (PCL's PointWithViewpoint).
+    """
+def segment_scene(points: typing.Any, viewpoints: typing.Any = None, plane: typing.Any = None, *, settings: typing.Any = None, **kwargs) -> Segmentation:
+    """
+    The support plane and the objects of a scene cloud (N, 3) seen from viewpoints (None: a camera at the origin; (3,) or (N, 3)); plane [a, b, c, d] gives a known support. The rule that accepts a plane is in include/graspmix/perception/segmentation.hpp.
+    Settings: settings= a SegmentationSettings (None: its defaults), and/or its fields as keywords,
+    which override it (an unknown keyword is a ValueError):
+      voxel_size = 0.003: m: voxel-grid leaf size, 0 = off (SceneSettings')
+      plane_distance = 0.005: m: RANSAC inlier threshold
+      plane_max_iterations = 1000: RANSAC iterations per candidate
+      seed = 0: seeds RANSAC (None: 0)
+      find_plane = True: search for the support plane (false: objects only)
+      plane_candidates = 3: planes tried, each on the points the previous ones left
+      plane_min_fraction = 0.05: rule 1: fraction of the voxelised points a candidate holds
+      plane_behind_distance = 0.01: m, rule 3: how far behind the plane a point counts as behind it
+      plane_max_behind_fraction = 0.05: rule 3: fraction of all points allowed behind the plane
+      plane_margin = 0.01: m, rule 4: how far the plane's inliers must reach beyond the objects' footprint
+      table_clearance = 0.005: m: points at most this far above the support plane (or behind it) are the table
+      remove_outliers = True: statistical outlier removal on the object points
+      outlier_neighbours = 20: k of the mean-distance statistic
+      outlier_std_ratio = 2.0: drop points whose mean k-distance exceeds mean + ratio * std
+      cluster_tolerance = 0.006: m: object points closer than this are one object (Euclidean clusters)
+      min_cluster_size = 20: smaller clusters are noise, dropped
+      max_cluster_size = 0: larger clusters are dropped; 0 = no limit
     """
 def segment_scene(points: typing.Any, viewpoints: typing.Any = None, plane: typing.Any = None, *, settings: typing.Any = None, **kwargs) -> Segmentation:
     """

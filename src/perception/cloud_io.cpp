@@ -98,6 +98,35 @@ Eigen::VectorXd column(const pcl::PCLPointCloud2& c, const pcl::PCLPointField& f
   return out;
 }
 
+/// vp_x vp_y vp_z (PCL's PointWithViewpoint) as (n, 3), 0 rows when the file has none. All three or
+/// none, each one float number a point: a partial set or a malformed field would otherwise be ignored
+/// and the points oriented towards a camera the file does not name.
+RowMatrixXd viewpoint_columns(const pcl::PCLPointCloud2& c, std::size_t n, const std::string& path) {
+  const char* names[] = {"vp_x", "vp_y", "vp_z"};
+  const pcl::PCLPointField* f[3];
+  std::string present;
+  for (int j = 0; j < 3; ++j) {
+    f[j] = find_field(c, {names[j]});
+    if (f[j]) present += (present.empty() ? "" : ", ") + std::string(names[j]);
+  }
+  if (present.empty()) return {};
+  if (!f[0] || !f[1] || !f[2]) {
+    fail(path, "has only " + present + " of the per-point viewpoint fields vp_x, vp_y, vp_z (all three or none)");
+  }
+  RowMatrixXd V(static_cast<Eigen::Index>(n), 3);
+  for (int j = 0; j < 3; ++j) {
+    if (f[j]->count != 1) {
+      fail(path, std::string("field ") + names[j] + " has " + std::to_string(f[j]->count) +
+                     " entries a point (COUNT), a per-point viewpoint needs 1");
+    }
+    if (f[j]->datatype != pcl::PCLPointField::FLOAT32 && f[j]->datatype != pcl::PCLPointField::FLOAT64) {
+      fail(path, std::string("field ") + names[j] + " is not a float (TYPE F, SIZE 4 or 8): a viewpoint is in metres");
+    }
+    V.col(j) = column(c, *f[j], n);
+  }
+  return V;
+}
+
 CloudData from_pcl(const pcl::PCLPointCloud2& c, const Eigen::Vector4f& origin, const Eigen::Quaternionf& orientation,
                    const std::string& path, const std::string& format) {
   CloudData out;
@@ -132,9 +161,10 @@ CloudData from_pcl(const pcl::PCLPointCloud2& c, const Eigen::Vector4f& origin, 
     N.col(1) = column(c, *ny, n);
     N.col(2) = column(c, *nz, n);
   }
-  CloudData arrays = cloud_from_arrays(P, N, path);
+  CloudData arrays = cloud_from_arrays(P, N, path, viewpoint_columns(c, n, path));
   out.points = std::move(arrays.points);
   out.normals = std::move(arrays.normals);
+  out.viewpoints = std::move(arrays.viewpoints);
   out.n_invalid = arrays.n_invalid;
   out.viewpoint << origin.x(), origin.y(), origin.z(), orientation.x(), orientation.y(), orientation.z(),
       orientation.w();
@@ -260,7 +290,8 @@ CloudData load_npy(const std::string& path) {
 
 }  // namespace
 
-CloudData cloud_from_arrays(const RowMatrixXd& points, const RowMatrixXd& normals, const std::string& source) {
+CloudData cloud_from_arrays(const RowMatrixXd& points, const RowMatrixXd& normals, const std::string& source,
+                            const RowMatrixXd& viewpoints) {
   if (points.cols() != 3) {
     throw std::invalid_argument(source + ": expected points of shape (N, 3), got (" + std::to_string(points.rows()) +
                                 ", " + std::to_string(points.cols()) + ")");
@@ -270,6 +301,9 @@ CloudData cloud_from_arrays(const RowMatrixXd& points, const RowMatrixXd& normal
   const bool with_normals = normals.rows() > 0;
   if (with_normals && (normals.rows() != n || normals.cols() != 3)) {
     throw std::invalid_argument(source + ": normals must have shape (" + std::to_string(n) + ", 3)");
+  }
+  if (viewpoints.rows() > 0 && (viewpoints.rows() != n || viewpoints.cols() != 3)) {
+    throw std::invalid_argument(source + ": viewpoints must have shape (" + std::to_string(n) + ", 3)");
   }
   std::vector<Eigen::Index> keep;
   keep.reserve(static_cast<std::size_t>(n));
@@ -286,6 +320,16 @@ CloudData cloud_from_arrays(const RowMatrixXd& points, const RowMatrixXd& normal
   for (std::size_t k = 0; k < keep.size(); ++k) {
     out.points.row(static_cast<Eigen::Index>(k)) = points.row(keep[k]);
     if (normals_ok && !normals.row(keep[k]).allFinite()) normals_ok = false;
+  }
+  if (viewpoints.rows() > 0) {
+    out.viewpoints.resize(static_cast<Eigen::Index>(keep.size()), 3);
+    for (std::size_t k = 0; k < keep.size(); ++k) {
+      if (!viewpoints.row(keep[k]).allFinite()) {
+        throw std::invalid_argument(source + ": the viewpoint (vp_x, vp_y, vp_z) of point " + std::to_string(keep[k]) +
+                                    " is NaN or infinite (a valid point needs the camera that saw it)");
+      }
+      out.viewpoints.row(static_cast<Eigen::Index>(k)) = viewpoints.row(keep[k]);
+    }
   }
   // Normals are all-or-nothing: a partial set would silently mix given and estimated normals.
   if (normals_ok) {
@@ -312,7 +356,8 @@ CloudData load_cloud(const std::string& path) {
 namespace {
 
 void check_save_inputs(const std::string& path, const Vec3Array& points, const Vec3Array& normals,
-                       const std::string& encoding, const Eigen::Matrix<double, 7, 1>& viewpoint) {
+                       const std::string& encoding, const Eigen::Matrix<double, 7, 1>& viewpoint,
+                       const Vec3Array& viewpoints) {
   const std::string ext = lower_extension(path);
   if (ext != ".pcd" && ext != ".ply") fail(path, "can only write .pcd or .ply, got '" + ext + "'");
   const bool pcd = ext == ".pcd";
@@ -331,16 +376,22 @@ void check_save_inputs(const std::string& path, const Vec3Array& points, const V
   }
   if (with_normals && !normals.allFinite()) fail(path, "normals: contains NaN or infinite values");
   if (!viewpoint.allFinite()) fail(path, "viewpoint: contains NaN or infinite values");
+  if (viewpoints.rows() > 0 && viewpoints.rows() != n) {
+    fail(path, "viewpoints: " + std::to_string(viewpoints.rows()) + " rows for " + std::to_string(n) + " points");
+  }
+  if (!viewpoints.allFinite()) fail(path, "viewpoints: contains NaN or infinite values");
 }
 
-/// The points (and normals) as float32 fields x y z [normal_x normal_y normal_z].
-pcl::PCLPointCloud2 float_cloud(const Vec3Array& points, const Vec3Array& normals) {
+/// The points (and normals, and per-point viewpoints) as float32 fields x y z [normal_x normal_y normal_z]
+/// [vp_x vp_y vp_z]: with no normals, PCL's PointWithViewpoint layout.
+pcl::PCLPointCloud2 float_cloud(const Vec3Array& points, const Vec3Array& normals, const Vec3Array& viewpoints) {
   const Eigen::Index n = points.rows();
-  const bool with_normals = normals.rows() > 0;
+  std::vector<const Vec3Array*> blocks{&points};
+  std::vector<const char*> names{"x", "y", "z"};
+  if (normals.rows() > 0) blocks.push_back(&normals), names.insert(names.end(), {"normal_x", "normal_y", "normal_z"});
+  if (viewpoints.rows() > 0) blocks.push_back(&viewpoints), names.insert(names.end(), {"vp_x", "vp_y", "vp_z"});
   pcl::PCLPointCloud2 cloud;
-  const char* names[] = {"x", "y", "z", "normal_x", "normal_y", "normal_z"};
-  const int n_fields = with_normals ? 6 : 3;
-  for (int f = 0; f < n_fields; ++f) {
+  for (std::size_t f = 0; f < names.size(); ++f) {
     pcl::PCLPointField field;
     field.name = names[f];
     field.offset = static_cast<std::uint32_t>(4 * f);
@@ -351,14 +402,13 @@ pcl::PCLPointCloud2 float_cloud(const Vec3Array& points, const Vec3Array& normal
   cloud.width = static_cast<std::uint32_t>(n);
   cloud.height = 1;
   cloud.is_dense = true;
-  cloud.point_step = static_cast<std::uint32_t>(4 * n_fields);
+  cloud.point_step = static_cast<std::uint32_t>(4 * names.size());
   cloud.row_step = cloud.point_step * cloud.width;
   cloud.data.resize(static_cast<std::size_t>(cloud.row_step));
   for (Eigen::Index i = 0; i < n; ++i) {
-    float v[6];
-    for (int j = 0; j < 3; ++j) v[j] = static_cast<float>(points(i, j));
-    if (with_normals)
-      for (int j = 0; j < 3; ++j) v[3 + j] = static_cast<float>(normals(i, j));
+    float v[9];
+    for (std::size_t b = 0; b < blocks.size(); ++b)
+      for (int j = 0; j < 3; ++j) v[3 * b + j] = static_cast<float>((*blocks[b])(i, j));
     std::memcpy(&cloud.data[static_cast<std::size_t>(i) * cloud.point_step], v, cloud.point_step);
   }
   return cloud;
@@ -371,12 +421,14 @@ int write_ascii_ply(const std::string& path, const pcl::PCLPointCloud2& cloud) {
   if (!out) fail(path, "cannot open for writing (is the directory there and writable?)");
   const int n_fields = static_cast<int>(cloud.fields.size());
   out << "ply\nformat ascii 1.0\ncomment graspmix\nelement vertex " << cloud.width << "\n";
-  const char* ply_names[] = {"x", "y", "z", "nx", "ny", "nz"};
-  for (int f = 0; f < n_fields; ++f) out << "property float " << ply_names[f] << "\n";
+  for (const auto& f : cloud.fields) {
+    const bool normal = f.name.rfind("normal_", 0) == 0;  // nx ny nz, the names PLY files use
+    out << "property float " << (normal ? "n" + f.name.substr(7) : f.name) << "\n";
+  }
   out << "end_header\n";
   char buf[48];
   for (std::uint32_t i = 0; i < cloud.width; ++i) {
-    float v[6];
+    float v[9];
     std::memcpy(v, &cloud.data[static_cast<std::size_t>(i) * cloud.point_step], cloud.point_step);
     for (int f = 0; f < n_fields; ++f) {
       std::snprintf(buf, sizeof buf, f + 1 < n_fields ? "%.9g " : "%.9g\n", static_cast<double>(v[f]));
@@ -389,10 +441,10 @@ int write_ascii_ply(const std::string& path, const pcl::PCLPointCloud2& cloud) {
 }  // namespace
 
 void save_cloud(const std::string& path, const Vec3Array& points, const Vec3Array& normals, const std::string& encoding,
-                const Eigen::Matrix<double, 7, 1>& viewpoint) {
-  check_save_inputs(path, points, normals, encoding, viewpoint);
+                const Eigen::Matrix<double, 7, 1>& viewpoint, const Vec3Array& viewpoints) {
+  check_save_inputs(path, points, normals, encoding, viewpoint, viewpoints);
   const bool pcd = lower_extension(path) == ".pcd";
-  const pcl::PCLPointCloud2 cloud = float_cloud(points, normals);
+  const pcl::PCLPointCloud2 cloud = float_cloud(points, normals, viewpoints);
   const Eigen::Vector4f origin(static_cast<float>(viewpoint[0]), static_cast<float>(viewpoint[1]),
                                static_cast<float>(viewpoint[2]), 0.0f);
   Eigen::Quaternionf orientation(static_cast<float>(viewpoint[6]), static_cast<float>(viewpoint[3]),

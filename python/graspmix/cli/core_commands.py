@@ -102,6 +102,8 @@ def _normals_and_viewpoints(args, cloud, scene):
     viewpoints = None
     if args.viewpoint is not None:
         viewpoints = np.asarray(args.viewpoint, dtype=float)
+    elif len(cloud.viewpoints) and args.orientation in ("auto", "viewpoint"):  # per point, following the clean-up
+        viewpoints = cloud.viewpoints if scene is None else cloud.viewpoints[np.asarray(scene.indices)]
     elif cloud.has_viewpoint and args.orientation in ("auto", "viewpoint"):
         viewpoints = np.asarray(cloud.viewpoint[:3])
     return normals, viewpoints
@@ -210,7 +212,7 @@ def add_parsers(sub) -> None:
         "--orientation",
         default="auto",
         choices=["auto", "viewpoint", "propagate", "centroid", "given"],
-        help="how normals are turned outward (auto: the file's or --viewpoint camera, else propagation)",
+        help="how normals are turned outward (auto: --viewpoint, else the file's camera(s), else propagation)",
     )
     s.add_argument(
         "--viewpoint", type=float_in(), nargs=3, metavar=("X", "Y", "Z"), help="camera position for the normals"

@@ -46,9 +46,11 @@ def cmd_acquire(args: argparse.Namespace) -> int:
     if post is not None:
         acq = post(acq)
     dt = time.perf_counter() - t0
-    # One camera: its pose is the cloud's VIEWPOINT (what synthesize orients normals and finds the table by).
+    # One camera: its pose is the cloud's VIEWPOINT (what synthesize orients normals and finds the table by);
+    # several: each point carries the position of the camera that saw it (vp_x vp_y vp_z).
     viewpoint = _camera_pose(acq.cameras[0]) if len(acq.cameras) == 1 else None
-    _core.save_cloud(args.out, acq.points, viewpoint=viewpoint)
+    per_point = acq.viewpoints if viewpoint is None else None
+    _core.save_cloud(args.out, acq.points, viewpoint=viewpoint, viewpoints=per_point)
     what = args.scene or args.object
     print(
         f"acquired {len(acq.points)} points of {what} ({len(spec.objects)} object(s), "
@@ -56,7 +58,7 @@ def cmd_acquire(args: argparse.Namespace) -> int:
         f"(noise {'on' if args.noise else 'off'}, seed {args.seed}"
         + (", cleaned up" + (", support plane removed" if acq.plane is not None else "") if args.clean else "")
         + f") in {dt * 1e3:.0f} ms; wrote {args.out}"
-        + (f" (viewpoint {', '.join(f'{v:.3f}' for v in viewpoint[:3])})" if viewpoint else "")
+        + (f" (viewpoint {', '.join(f'{v:.3f}' for v in viewpoint[:3])})" if viewpoint else " (per-point viewpoints)")
     )
     if args.picture:
         from ..viz import plot_depth_images

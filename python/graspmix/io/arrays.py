@@ -38,12 +38,15 @@ def as_points(cloud) -> np.ndarray:
 
 
 def load_points(cloud):
-    """(points (N, 3), name, viewpoint or None) of a cloud given as a file (PCD/PLY/npy: its VIEWPOINT
-    is returned when the file has one) or as an array."""
+    """(points (N, 3), name, viewpoints) of a cloud given as a file (PCD/PLY/npy) or as an array. viewpoints:
+    the file's per-point camera positions (N, 3) (fields vp_x vp_y vp_z) when it has them, else the position
+    of its VIEWPOINT (3,) when it has one, else None (and None for an array)."""
     from .. import _core
 
     if isinstance(cloud, (str, Path)):
         check_input_file(cloud, "cloud")
         loaded = _core.load_cloud(str(cloud))
+        if len(loaded.viewpoints):
+            return loaded.points, str(cloud), loaded.viewpoints
         return loaded.points, str(cloud), (loaded.viewpoint[:3] if loaded.has_viewpoint else None)
     return as_points(cloud), "<array>", None

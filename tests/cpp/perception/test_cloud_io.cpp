@@ -6,6 +6,10 @@
 #include <random>
 #include <stdexcept>
 
+#include <pcl/io/pcd_io.h>
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+
 #include "graspmix/perception/cloud_io.hpp"
 
 using namespace graspmix;
@@ -295,4 +299,114 @@ TEST(CloudIo, NpyHeadersAreCheckedAgainstTheFileSize) {
   write(tmp / "ok.npy", npy("'descr': '<f8', 'fortran_order': False, 'shape': (1, 3), ",
                             std::string("\0\0\0\0\0\0\xf0\x3f", 8) + std::string(16, '\0')));
   EXPECT_EQ(load_cloud(tmp / "ok.npy").points.row(0), Eigen::RowVector3d(1, 0, 0));
+}
+
+// ---- per-point viewpoints (PCL's PointWithViewpoint: x y z vp_x vp_y vp_z) ----------------------
+
+namespace {
+
+/// Four cameras on a ring and the nearest one for each point: what a merged multi-view cloud carries.
+Vec3Array nearest_cameras(const Vec3Array& P) {
+  Vec3Array cams(4, 3);
+  cams << 1, 0, 0.5, 0, 1, 0.5, -1, 0, 0.5, 0, -1, 0.5;
+  Vec3Array V(P.rows(), 3);
+  for (Eigen::Index i = 0; i < P.rows(); ++i) {
+    Eigen::Index k = 0;
+    (cams.rowwise() - P.row(i)).rowwise().squaredNorm().minCoeff(&k);
+    V.row(i) = cams.row(k);
+  }
+  return V;
+}
+
+}  // namespace
+
+TEST(CloudIo, PerPointViewpointsRoundTripInEveryEncoding) {
+  TempDir tmp;
+  const Vec3Array P = random_points(300, 4);
+  const Vec3Array V = nearest_cameras(P);
+  const Vec3Array N = random_points(300, 5).rowwise().normalized();
+  for (const std::string name : {"a.pcd", "b.pcd", "c.pcd", "d.ply", "e.ply"}) {
+    const std::string enc = name[0] == 'a' || name[0] == 'd' ? "ascii"
+                            : name[0] == 'c'                 ? "binary_compressed"
+                                                             : "binary";
+    for (const bool with_normals : {false, true}) {
+      save_cloud(tmp / name, P, with_normals ? N : Vec3Array(), enc, Eigen::Matrix<double, 7, 1>::Unit(6), V);
+      const CloudData c = load_cloud(tmp / name);
+      ASSERT_EQ(c.viewpoints.rows(), 300) << name;
+      EXPECT_EQ(c.viewpoints, V.cast<float>().cast<double>()) << name;  // exactly the float32 written
+      EXPECT_LT((c.points - P).cwiseAbs().maxCoeff(), 1e-7) << name;
+      EXPECT_EQ(c.normals.rows(), with_normals ? 300 : 0) << name;
+      EXPECT_FALSE(c.has_viewpoint) << name;
+    }
+  }
+  save_cloud(tmp / "none.pcd", P);
+  EXPECT_EQ(load_cloud(tmp / "none.pcd").viewpoints.rows(), 0);
+  EXPECT_THROW(save_cloud(tmp / "x.pcd", P, {}, "binary", Eigen::Matrix<double, 7, 1>::Unit(6), V.topRows(5)),
+               std::invalid_argument);
+  Vec3Array bad = V;
+  bad(7, 1) = std::nan("");
+  EXPECT_THROW(save_cloud(tmp / "x.pcd", P, {}, "binary", Eigen::Matrix<double, 7, 1>::Unit(6), bad),
+               std::invalid_argument);
+}
+
+TEST(CloudIo, PclReadsOurViewpointsAndWeReadPcls) {
+  TempDir tmp;
+  const Vec3Array P = random_points(200, 6);
+  const Vec3Array V = nearest_cameras(P);
+  for (const std::string enc : {"ascii", "binary", "binary_compressed"}) {
+    save_cloud(tmp / (enc + ".pcd"), P, {}, enc, Eigen::Matrix<double, 7, 1>::Unit(6), V);
+    pcl::PointCloud<pcl::PointWithViewpoint> cloud;
+    ASSERT_EQ(pcl::io::loadPCDFile(tmp / (enc + ".pcd"), cloud), 0) << enc;
+    ASSERT_EQ(cloud.size(), 200u) << enc;
+    for (std::size_t i = 0; i < cloud.size(); ++i) {
+      const auto& q = cloud[i];
+      const auto r = static_cast<Eigen::Index>(i);
+      ASSERT_EQ(Eigen::RowVector3d(q.x, q.y, q.z), P.row(r).cast<float>().cast<double>()) << enc << " " << i;
+      ASSERT_EQ(Eigen::RowVector3d(q.vp_x, q.vp_y, q.vp_z), V.row(r)) << enc << " " << i;
+    }
+  }
+  // PCL's writer, an organised cloud with invalid points: the viewpoints follow the points kept.
+  pcl::PointCloud<pcl::PointWithViewpoint> org(3, 2);
+  for (int i = 0; i < 6; ++i) {
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    org[i] = pcl::PointWithViewpoint(i % 2 ? nan : 0.1f * i, 0.2f, 0.3f, 10.0f + i, 20.0f, 30.0f);
+  }
+  org.is_dense = false;
+  for (const bool binary : {false, true}) {
+    pcl::io::savePCDFile(tmp / "pcl.pcd", org, binary);
+    const CloudData c = load_cloud(tmp / "pcl.pcd");
+    ASSERT_EQ(c.points.rows(), 3);
+    EXPECT_EQ(c.n_invalid, 3u);
+    EXPECT_EQ(c.viewpoints.col(0), Eigen::Vector3d(10, 12, 14));
+    EXPECT_EQ(c.points.col(0), Eigen::Vector3d(0, 0.2f, 0.4f));
+  }
+}
+
+TEST(CloudIo, MalformedViewpointFieldsAreRefused) {
+  TempDir tmp;
+  const auto header = [](const std::string& fields, const std::string& size, const std::string& type,
+                         const std::string& count) {
+    return "VERSION 0.7\nFIELDS " + fields + "\nSIZE " + size + "\nTYPE " + type + "\nCOUNT " + count +
+           "\nWIDTH 2\nHEIGHT 1\nPOINTS 2\nDATA ascii\n";
+  };
+  expect_error(tmp, "partial.pcd", header("x y z vp_x", "4 4 4 4", "F F F F", "1 1 1 1") + "1 2 3 4\n5 6 7 8\n",
+               {"has only vp_x of the per-point viewpoint fields"});
+  expect_error(tmp, "count.pcd",
+               header("x y z vp_x vp_y vp_z", "4 4 4 4 4 4", "F F F F F F", "1 1 1 3 1 1") +
+                   "1 2 3 4 4 4 5 6\n5 6 7 8 8 8 9 9\n",
+               {"field vp_x has 3 entries a point (COUNT)"});
+  expect_error(
+      tmp, "type.pcd",
+      header("x y z vp_x vp_y vp_z", "4 4 4 4 4 4", "F F F F U F", "1 1 1 1 1 1") + "1 2 3 4 5 6\n5 6 7 8 9 9\n",
+      {"field vp_y is not a float"});
+  expect_error(
+      tmp, "nan.pcd",
+      header("x y z vp_x vp_y vp_z", "4 4 4 4 4 4", "F F F F F F", "1 1 1 1 1 1") + "1 2 3 4 5 6\n5 6 7 8 nan 9\n",
+      {"viewpoint (vp_x, vp_y, vp_z) of point 1 is NaN"});
+  // A NaN viewpoint on an invalid (dropped) point is no error: PCL writes organised clouds so.
+  write(tmp / "nanpoint.pcd", header("x y z vp_x vp_y vp_z", "4 4 4 4 4 4", "F F F F F F", "1 1 1 1 1 1") +
+                                  "1 2 3 4 5 6\nnan nan nan nan nan nan\n");
+  const CloudData c = load_cloud(tmp / "nanpoint.pcd");
+  ASSERT_EQ(c.viewpoints.rows(), 1);
+  EXPECT_EQ(c.viewpoints.row(0), Eigen::RowVector3d(4, 5, 6));
 }

@@ -11,12 +11,12 @@ graspmix. `CASES` is a list of dicts:
 
 Classes: hand-written broken files of every kind the readers check (truncated or short bodies in every
 encoding, huge and negative counts, inconsistent headers, non-numeric, short and long ASCII rows, unknown
-DATA, wrong magic, binary_compressed with bad sizes, .npy of wrong shape, dtype or length), NaN and
-infinite points, empty clouds, valid files in every encoding, and seeded mutations of valid files
+DATA, wrong magic, binary_compressed with bad sizes, .npy of wrong shape, dtype or length, malformed
+per-point viewpoints vp_x vp_y vp_z), NaN and infinite points, empty clouds, valid files in every encoding, and seeded mutations of valid files
 (truncations at random offsets, byte flips). Every expectation is known without running graspmix:
 
 - NaN or infinite points are dropped and counted (the command succeeds and reports them); a cloud with no
-  finite point is an error ("no valid point").
+  finite point is an error ("no valid point"). A NaN viewpoint is an error on a kept point only.
 - A truncation anywhere before the last row of a text body, or anywhere in a binary file, is an error.
 - Flips of the lowest-order byte of binary float coordinates move points by less than 1e-4 of their size: ok.
 - A binary_compressed payload with flipped bytes is decoded here by an LZF decoder with the checks of
@@ -112,11 +112,16 @@ def lzf_decompress(data: bytes, out_len: int) -> bytes | None:
     return bytes(out)
 
 
-def pcd(points, data: str = "binary", normals=None, header: dict | None = None, rows: list[str] | None = None) -> bytes:
-    """A PCD file of float32 x y z [normal_x normal_y normal_z]; `header` overrides header lines by keyword,
-    `rows` replaces an ASCII body."""
-    cols = [list(p) + (list(normals[i]) if normals else []) for i, p in enumerate(points)]
+def pcd(
+    points, data: str = "binary", normals=None, header: dict | None = None, rows: list[str] | None = None, vps=None
+) -> bytes:
+    """A PCD file of float32 x y z [normal_x normal_y normal_z] [vp_x vp_y vp_z] (vps: a camera per point);
+    `header` overrides header lines by keyword, `rows` replaces an ASCII body."""
+    cols = [
+        list(p) + (list(normals[i]) if normals else []) + (list(vps[i]) if vps else []) for i, p in enumerate(points)
+    ]
     names = ["x", "y", "z"] + (["normal_x", "normal_y", "normal_z"] if normals else [])
+    names += ["vp_x", "vp_y", "vp_z"] if vps else []
     k, n = len(names), len(points)
     lines = {
         "VERSION": "0.7",
@@ -206,6 +211,7 @@ def _case(name: str, filename: str, data: bytes, expect: str, mentions: str = ""
 P = _points(SEED)
 NORMALS = [tuple(c / 0.01 for c in p) for p in P]
 FLAT = [c for p in P for c in p]
+VPS = [(0.5, 0.0, 0.5) if p[0] > 0 else (-0.5, 0.0, 0.5) for p in P]  # two cameras, each seeing its half
 NAN, INF = float("nan"), float("inf")
 
 
@@ -220,6 +226,7 @@ def _valid_files() -> dict[str, bytes]:
         "ply_be.ply": ply(P, "binary_big_endian"),
         "npy_f8.npy": npy(FLAT, f"({N_POINTS}, 3)"),
         "npy_f4.npy": npy(FLAT, f"({N_POINTS}, 3)", "<f4"),
+        "pcd_vp_binary.pcd": pcd(P, "binary", vps=VPS),
     }
 
 
@@ -243,6 +250,26 @@ def _ok_cases() -> None:
     _case("ok_pcd_nan_ascii", "h.pcd", pcd(holes, "ascii"), "ok")
     _case("ok_ply_nan_points", "h.ply", ply(holes, "binary_little_endian"), "ok")
     _case("ok_npy_nan_points", "h.npy", npy([c for p in holes for c in p], f"({N_POINTS}, 3)"), "ok")
+    # Per-point viewpoints (PCL's PointWithViewpoint) in the other encodings; NaN ones only on dropped points.
+    _case("ok_pcd_vp_ascii", "v.pcd", pcd(P, "ascii", vps=VPS), "ok")
+    _case("ok_pcd_vp_compressed_normals", "v.pcd", pcd(P, "binary_compressed", NORMALS, vps=VPS), "ok")
+    nan_vps = [(NAN,) * 3 if h[0] != p[0] else v for h, p, v in zip(holes, P, VPS)]
+    _case("ok_pcd_vp_nan_on_nan_points", "v.pcd", pcd(holes, "binary", vps=nan_vps), "ok")
+
+
+def _vp_error_cases() -> None:
+    """Malformed per-point viewpoints: a partial set, several entries, an integer type, NaN on a kept point."""
+    e, v6 = "error", "x y z vp_x vp_y vp_z"
+    only_x = {"FIELDS": "x y z vp_x", "SIZE": "4 4 4 4", "TYPE": "F F F F", "COUNT": "1 1 1 1"}
+    rows = [" ".join(f"{c:.9g}" for c in (*p, 1, 2, 3, 4, 5)) for p in P]
+    only_x_rows = [r.rsplit(" ", 4)[0] for r in rows]
+    _case("pcd_vp_only_x", "v.pcd", pcd(P, "ascii", header=only_x, rows=only_x_rows), e, "has only vp_x of the")
+    three = {"FIELDS": v6, "SIZE": "4 4 4 4 4 4", "TYPE": "F F F F F F", "COUNT": "1 1 1 3 1 1"}
+    _case("pcd_vp_count_3", "v.pcd", pcd(P, "ascii", header=three, rows=rows), e, "vp_x has 3 entries a point")
+    _case("pcd_vp_type_u", "v.pcd", pcd(P, "binary", header={"TYPE": "F F F F U F"}, vps=VPS), e, "vp_y is not a float")
+    bad = [(NAN, 0.0, 0.5) if i == 5 else v for i, v in enumerate(VPS)]
+    _case("pcd_vp_nan_binary", "v.pcd", pcd(P, "binary", vps=bad), e, "of point 5 is NaN or infinite")
+    _case("pcd_vp_inf_compressed", "v.pcd", pcd(P, "binary_compressed", vps=[(INF, 0, 0)] * N_POINTS), e, "point 0 is")
 
 
 def _pcd_error_cases() -> None:
@@ -443,4 +470,5 @@ _ok_cases()
 _pcd_error_cases()
 _ply_error_cases()
 _npy_error_cases()
+_vp_error_cases()
 _mutations()

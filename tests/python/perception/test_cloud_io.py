@@ -198,3 +198,75 @@ def test_double_and_integer_pcd_fields(tmp_path):
     c = graspmix.load_cloud(path)
     np.testing.assert_array_equal(c.points, P)
     assert c.fields == ["x", "y", "z", "label"]
+
+
+# ---- per-point viewpoints (PCL's PointWithViewpoint: x y z vp_x vp_y vp_z) ----------------------------
+
+
+def _nearest_of_four(points):
+    """The camera of a four-camera ring nearest each point: what a merged multi-view cloud carries."""
+    cams = np.array([[1.0, 0, 0.5], [0, 1, 0.5], [-1, 0, 0.5], [0, -1, 0.5]])
+    return cams[np.argmin(np.linalg.norm(points[:, None] - cams[None], axis=2), axis=1)]
+
+
+@pytest.mark.parametrize(
+    "name,encoding",
+    [("a.pcd", "ascii"), ("b.pcd", "binary"), ("c.pcd", "binary_compressed"), ("d.ply", "ascii"), ("e.ply", "binary")],
+)
+def test_per_point_viewpoints_round_trip(tmp_path, points, name, encoding):
+    vps = _nearest_of_four(points) + np.random.default_rng(3).normal(0, 0.01, (len(points), 3))
+    graspmix.save_cloud(tmp_path / name, points, encoding=encoding, viewpoints=vps)
+    c = graspmix.load_cloud(tmp_path / name)
+    assert c.fields == ["x", "y", "z", "vp_x", "vp_y", "vp_z"] and not c.has_viewpoint
+    np.testing.assert_array_equal(c.viewpoints, vps.astype(np.float32).astype(float))  # exactly what was written
+    np.testing.assert_array_equal(c.points, points.astype(np.float32).astype(float))
+    p, _, v = graspmix.io.load_points(tmp_path / name)
+    assert v.shape == (300, 3)
+    np.testing.assert_array_equal(v, c.viewpoints)
+
+
+def test_per_point_viewpoints_follow_the_kept_points(tmp_path):
+    # Written by numpy, not by us: an organised binary cloud with NaN holes, and a header VIEWPOINT too.
+    rec = np.zeros(6, dtype=[(f, "<f4") for f in ("x", "y", "z", "vp_x", "vp_y", "vp_z")])
+    rec["x"] = [0.1, np.nan, 0.3, 0.4, np.nan, 0.6]
+    rec["vp_x"] = np.arange(6)
+    rec["vp_y"][[1, 4]] = np.nan  # a NaN viewpoint on a dropped point is no error
+    fields = ["x", "y", "z", "vp_x", "vp_y", "vp_z"]
+    head = _pcd_header(fields, [4] * 6, ["F"] * 6, 3, 2, "binary", viewpoint="1 2 3 1 0 0 0")
+    (tmp_path / "o.pcd").write_bytes(head + rec.tobytes())
+    c = graspmix.load_cloud(tmp_path / "o.pcd")
+    assert c.n_invalid == 2 and c.has_viewpoint
+    np.testing.assert_array_equal(c.viewpoints[:, 0], [0, 2, 3, 5])
+    np.testing.assert_array_equal(c.points[:, 0], np.float32([0.1, 0.3, 0.4, 0.6]))
+    # load_points prefers the per-point viewpoints; without them the header's position, else None
+    assert graspmix.io.load_points(tmp_path / "o.pcd")[2].shape == (4, 3)
+    graspmix.save_cloud(tmp_path / "h.pcd", c.points, viewpoint=[1, 2, 3, 0, 0, 0, 1])
+    np.testing.assert_array_equal(graspmix.io.load_points(tmp_path / "h.pcd")[2], [1, 2, 3])
+    graspmix.save_cloud(tmp_path / "n.pcd", c.points)
+    assert graspmix.io.load_points(tmp_path / "n.pcd")[2] is None
+    assert graspmix.load_cloud(tmp_path / "n.pcd").viewpoints.shape == (0, 3)
+
+
+@pytest.mark.parametrize(
+    "fields,typ,row,words",
+    [
+        ("x y z vp_x vp_y", "F F F F F", "1 2 3 4 5", ["only vp_x, vp_y of the per-point viewpoint fields"]),
+        ("x y z vp_x vp_y vp_z", "F F F F F I", "1 2 3 4 5 6", ["field vp_z is not a float"]),
+        ("x y z vp_x vp_y vp_z", "F F F F F F", "1 2 3 inf 5 6", ["viewpoint", "of point 0 is NaN or infinite"]),
+    ],
+)
+def test_malformed_viewpoint_fields(tmp_path, fields, typ, row, words):
+    f, t = fields.split(), typ.split()
+    (tmp_path / "v.pcd").write_bytes(_pcd_header(f, [4] * len(f), t, 1, 1, "ascii") + row.encode() + b"\n")
+    _expect_error(tmp_path / "v.pcd", *words)
+
+
+def test_save_viewpoints_errors(tmp_path, points):
+    vps = _nearest_of_four(points)
+    with pytest.raises(ValueError, match="viewpoints: 299 rows for 300 points"):
+        graspmix.save_cloud(tmp_path / "x.pcd", points, viewpoints=vps[1:])
+    vps[3, 2] = np.nan
+    with pytest.raises(ValueError, match="viewpoints: contains NaN"):
+        graspmix.save_cloud(tmp_path / "x.pcd", points, viewpoints=vps)
+    with pytest.raises(ValueError, match="viewpoints"):
+        graspmix.save_cloud(tmp_path / "x.pcd", points, viewpoints=vps[:, :2])

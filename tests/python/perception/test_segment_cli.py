@@ -1,4 +1,5 @@
-"""graspmix_cli segment and the view flags (cli/views.py) on a rendered scene saved as files."""
+"""graspmix_cli segment and the view flags (cli/views.py) on a rendered scene saved as files; the per-point
+viewpoints of a multi-camera acquisition (acquire --views 4) read back by segment and synthesize."""
 
 import json
 
@@ -70,3 +71,30 @@ def test_bad_view_inputs_are_one_line_and_exit_2(clouds, capsys, flags, message)
     assert main(["segment", "--cloud", str(d / "world.npy"), *flags]) == 2
     err = capsys.readouterr().err
     assert message in err and err.count("\n") == 1
+
+
+def test_acquire_views_4_writes_per_point_viewpoints_that_segment_and_synthesize_use(tmp_path, capsys):
+    from graspmix.sim import scene_camera, scenes
+
+    scene, cloud = tmp_path / "scene.json", tmp_path / "s4.pcd"
+    assert main(["scene", "--objects", "3", "--mode", "packed", "--seed", "2", "--out", str(scene)]) == 0
+    assert main(["acquire", "--scene", str(scene), "--views", "4", "--out", str(cloud)]) == 0
+    assert "per-point viewpoints" in capsys.readouterr().out
+    # The file holds the camera that saw each point, as the renderer made them.
+    truth = scene_camera.acquire_scene(scenes.SceneSpec.load(str(scene)), views=4)
+    c = _core.load_cloud(str(cloud))
+    assert not c.has_viewpoint
+    np.testing.assert_array_equal(c.viewpoints, truth.viewpoints.astype(np.float32))
+    # segment orients the table towards those cameras and finds the three objects; the same points without
+    # the viewpoints (a camera at the origin, in the table's plane) give no support plane.
+    r = _json(capsys, ["segment", "--cloud", str(cloud), "--json"])
+    assert r["plane_found"] and r["plane"][2] > 0.999 and abs(r["plane"][3]) < 2e-3
+    assert len(r["objects"]) == len(set(truth.labels[truth.labels >= 0]))
+    _core.save_cloud(str(tmp_path / "bare.pcd"), c.points)
+    assert not _json(capsys, ["segment", "--cloud", str(tmp_path / "bare.pcd"), "--json"])["plane_found"]
+    grasps = tmp_path / "g.json"
+    assert main(["synthesize", "--cloud", str(cloud), "--target", "largest", "--out", str(grasps)]) == 0
+    doc = json.loads(grasps.read_text())
+    largest = max(r["objects"], key=lambda o: o["n_points"])
+    assert doc["grasps"] and all(g["object"]["index"] == largest["index"] for g in doc["grasps"])
+    assert all(g["T_world_wrist"][2] > 0 for g in doc["grasps"])  # above the table the viewpoints oriented

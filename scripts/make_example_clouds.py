@@ -1,6 +1,7 @@
 """Writes data/mug.pcd: pybullet_data's mug on a table seen by the four simulated depth cameras
-(noise-free), the table cropped to a 30 x 30 cm square around the mug; the scene clean-up of
-`graspmix_cli synthesize` then removes the table.
+(noise-free), the table cropped to a 30 x 30 cm square around the mug, every point with the position of
+the camera that saw it (vp_x vp_y vp_z); the scene model of `graspmix_cli synthesize` then finds the
+table (the cameras are above it) and removes it.
 
     python3 scripts/make_example_clouds.py
 """
@@ -15,5 +16,7 @@ root = Path(__file__).resolve().parent.parent
 scan = acquire("objects/mug.urdf", noise=False, seed=0, settings=AcquisitionSettings(keep="scene"))
 P = scan.points
 keep = (np.abs(P[:, 0]) < 0.15) & (np.abs(P[:, 1]) < 0.15) & (P[:, 2] > -0.01) & (P[:, 2] < 0.3)
-graspmix.save_cloud(str(root / "data" / "mug.pcd"), P[keep], encoding="binary_compressed")
+graspmix.save_cloud(
+    str(root / "data" / "mug.pcd"), P[keep], encoding="binary_compressed", viewpoints=scan.viewpoints[keep]
+)
 print(f"wrote data/mug.pcd: {keep.sum()} points")

@@ -2876,29 +2876,6 @@ def segment_scene(points: typing.Any, viewpoints: typing.Any = None, plane: typi
       min_cluster_size = 20: smaller clusters are noise, dropped
       max_cluster_size = 0: larger clusters are dropped; 0 = no limit
     """
-def segment_scene(points: typing.Any, viewpoints: typing.Any = None, plane: typing.Any = None, *, settings: typing.Any = None, **kwargs) -> Segmentation:
-    """
-    The support plane and the objects of a scene cloud (N, 3) seen from viewpoints (None: a camera at the origin; (3,) or (N, 3)); plane [a, b, c, d] gives a known support. The rule that accepts a plane is in include/graspmix/perception/segmentation.hpp.
-    Settings: settings= a SegmentationSettings (None: its defaults), and/or its fields as keywords,
-    which override it (an unknown keyword is a ValueError):
-      voxel_size = 0.003: m: voxel-grid leaf size, 0 = off (SceneSettings')
-      plane_distance = 0.005: m: RANSAC inlier threshold
-      plane_max_iterations = 1000: RANSAC iterations per candidate
-      seed = 0: seeds RANSAC (None: 0)
-      find_plane = True: search for the support plane (false: objects only)
-      plane_candidates = 3: planes tried, each on the points the previous ones left
-      plane_min_fraction = 0.05: rule 1: fraction of the voxelised points a candidate holds
-      plane_behind_distance = 0.01: m, rule 3: how far behind the plane a point counts as behind it
-      plane_max_behind_fraction = 0.05: rule 3: fraction of all points allowed behind the plane
-      plane_margin = 0.01: m, rule 4: how far the plane's inliers must reach beyond the objects' footprint
-      table_clearance = 0.005: m: points at most this far above the support plane (or behind it) are the table
-      remove_outliers = True: statistical outlier removal on the object points
-      outlier_neighbours = 20: k of the mean-distance statistic
-      outlier_std_ratio = 2.0: drop points whose mean k-distance exceeds mean + ratio * std
-      cluster_tolerance = 0.006: m: object points closer than this are one object (Euclidean clusters)
-      min_cluster_size = 20: smaller clusters are noise, dropped
-      max_cluster_size = 0: larger clusters are dropped; 0 = no limit
-    """
 def sim_execute(hand: Hand, object: SimObject, T_world_object: typing.Any, T_world_wrist: typing.Any, pregrasp: typing.Any, grasp: typing.Any, settings: typing.Any = None, **kwargs) -> SimResult:
     """
     Executes one grasp in Bullet (arrays in hand.joint_names order); see graspmix.sim.execute.

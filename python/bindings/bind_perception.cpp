@@ -212,7 +212,22 @@ void bind_perception(py::module_& m) {
       .def_readonly("n_outliers", &Segmentation::n_outliers)
       .def_readonly("n_small_clusters", &Segmentation::n_small_clusters, "points of clusters dropped as noise")
       .def_readonly("n_output", &Segmentation::n_output)
-      .def_readonly("seconds", &Segmentation::seconds);
+      .def_readonly("seconds", &Segmentation::seconds, "wall time of the whole segmentation")
+      .def_property_readonly(
+          "step_seconds",
+          [](const Segmentation& r) {
+            const SegmentationTimes& t = r.times;
+            py::dict d;
+            d["voxel"] = t.voxel;
+            d["candidates"] = t.candidates;
+            d["table_cut"] = t.table_cut;
+            d["outliers"] = t.outliers;
+            d["clusters"] = t.clusters;
+            d["objects"] = t.objects;
+            return d;
+          },
+          "wall time (s) of each step: voxel, candidates (RANSAC, rules 1-3), table_cut, outliers, clusters "
+          "(and rule 4), objects; the middle three summed over the candidates tried");
   m.def(
       "segment_scene",
       [](const py::object& points, const py::object& viewpoints, const py::object& plane, const py::object& settings,

@@ -918,11 +918,18 @@ class Segmentation:
         """
     @property
     def seconds(self) -> float:
-        ...
+        """
+        wall time of the whole segmentation
+        """
     @property
     def sources(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 1]"]:
         """
         (M) input row whose per-point data every point carries
+        """
+    @property
+    def step_seconds(self) -> dict:
+        """
+        wall time (s) of each step: voxel, candidates (RANSAC, rules 1-3), table_cut, outliers, clusters (and rule 4), objects; the middle three summed over the candidates tried
         """
 class SurfaceFeatureSettings:
     """

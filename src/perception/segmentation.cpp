@@ -25,6 +25,19 @@ using detail::Cloud;
 
 [[noreturn]] void bad(const std::string& m) { throw std::invalid_argument("segment_scene: " + m); }
 
+/// Adds the seconds since it was made (or last added) to a step's time.
+class Lap {
+ public:
+  void add_to(double& step) {
+    const auto now = std::chrono::steady_clock::now();
+    step += std::chrono::duration<double>(now - t_).count();
+    t_ = now;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point t_ = std::chrono::steady_clock::now();
+};
+
 bool finite_ge(double v, double lo) { return std::isfinite(v) && v >= lo; }
 
 void check_settings(const SegmentationSettings& s) {
@@ -195,7 +208,9 @@ struct Extraction {
 
 /// Rows above the clearance (all without a plane), outliers removed, then Euclidean clusters; the clusters
 /// smaller than min_cluster_size (or larger than a set maximum) are dropped.
-Extraction extract(const Vec3Array& P, const Eigen::Vector4d* plane, const SegmentationSettings& s) {
+Extraction extract(const Vec3Array& P, const Eigen::Vector4d* plane, const SegmentationSettings& s,
+                   SegmentationTimes& times) {
+  Lap lap;
   Extraction e;
   std::vector<int> rows;
   const Eigen::VectorXd h = plane ? heights(P, *plane) : Eigen::VectorXd();
@@ -204,6 +219,7 @@ Extraction extract(const Vec3Array& P, const Eigen::Vector4d* plane, const Segme
   e.n_plane = static_cast<std::size_t>(P.rows()) - rows.size();
   Cloud::Ptr cloud(new Cloud);
   for (const int r : rows) cloud->push_back(to_pcl(P, r));
+  lap.add_to(times.table_cut);
   if (s.remove_outliers && rows.size() > static_cast<std::size_t>(s.outlier_neighbours)) {
     const pcl::Indices kept = detail::statistical_inliers(cloud, s.outlier_neighbours, s.outlier_std_ratio);
     std::vector<int> kept_rows;
@@ -216,6 +232,7 @@ Extraction extract(const Vec3Array& P, const Eigen::Vector4d* plane, const Segme
     rows.swap(kept_rows);
     cloud = kept_cloud;
   }
+  lap.add_to(times.outliers);
   if (rows.empty()) return e;
   pcl::search::KdTree<pcl::PointXYZ>::Ptr tree(new pcl::search::KdTree<pcl::PointXYZ>);
   pcl::EuclideanClusterExtraction<pcl::PointXYZ> ec;
@@ -237,6 +254,7 @@ Extraction extract(const Vec3Array& P, const Eigen::Vector4d* plane, const Segme
     std::sort(g.begin(), g.end());
     e.groups.push_back(std::move(g));
   }
+  lap.add_to(times.clusters);
   return e;
 }
 
@@ -309,7 +327,9 @@ void finish(const Vec3Array& P, const Eigen::VectorXi& src, const Extraction& e,
 /// The support plane by the rule: the candidates that pass rules 1-3, lowest (farthest from the cameras)
 /// first, until one passes rule 4 on the objects above it; no plane when none does.
 Extraction find_support(const Vec3Array& P, const Cameras& cams, const SegmentationSettings& s, Segmentation& out) {
+  Lap lap;
   const std::vector<std::vector<int>> inliers = find_candidates(P, cams, s, out);
+  lap.add_to(out.times.candidates);
   std::vector<std::size_t> order;
   for (std::size_t i = 0; i < out.candidates.size(); ++i)
     if (out.candidates[i].accepted) order.push_back(i);
@@ -318,8 +338,10 @@ Extraction find_support(const Vec3Array& P, const Cameras& cams, const Segmentat
   });
   for (const auto i : order) {
     PlaneCandidate& c = out.candidates[i];
-    Extraction e = extract(P, &c.plane, s);
+    Extraction e = extract(P, &c.plane, s, out.times);
+    lap = Lap();
     c.margin = footprint_margin(P, inliers[i], c.plane, e.groups);
+    lap.add_to(out.times.clusters);
     if (c.margin >= s.plane_margin) {
       out.plane = c.plane;
       out.plane_found = true;
@@ -328,7 +350,7 @@ Extraction find_support(const Vec3Array& P, const Cameras& cams, const Segmentat
     c.accepted = false;
     c.reason = "does not reach beyond the objects (rule 4)";
   }
-  return extract(P, nullptr, s);
+  return extract(P, nullptr, s, out.times);
 }
 
 }  // namespace
@@ -344,6 +366,7 @@ Segmentation segment_scene(const Vec3Array& points, const Vec3Array& viewpoints,
   voxel.voxel_size = s.voxel_size;
   voxel.remove_outliers = false;
   voxel.remove_plane = false;
+  Lap lap;
   const SceneResult down = prepare_cloud(points, voxel);
   const Vec3Array& P = down.points;
   out.n_after_voxel = static_cast<std::size_t>(P.rows());
@@ -354,13 +377,19 @@ Segmentation segment_scene(const Vec3Array& points, const Vec3Array& viewpoints,
     cams.per_point.resize(P.rows(), 3);
     for (Eigen::Index i = 0; i < P.rows(); ++i) cams.per_point.row(i) = viewpoints.row(down.sources[i]);
   }
+  lap.add_to(out.times.voxel);
+  Extraction e;
   if (plane) {
     out.plane = orient_given(*plane, P, cams, s);
     out.plane_given = true;
-    finish(P, down.sources, extract(P, &out.plane, s), out);
+    lap.add_to(out.times.candidates);
+    e = extract(P, &out.plane, s, out.times);
   } else {
-    finish(P, down.sources, find_support(P, cams, s, out), out);
+    e = find_support(P, cams, s, out);
   }
+  lap = Lap();
+  finish(P, down.sources, e, out);
+  lap.add_to(out.times.objects);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
 }

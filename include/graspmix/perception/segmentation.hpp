@@ -87,6 +87,17 @@ struct PlaneCandidate {
   std::string reason;  ///< why it was refused (empty when accepted)
 };
 
+/// Wall time (s) of each step of segment_scene; the table cut, outliers and clusters are summed over the
+/// candidates the support rule tried (each is judged on the objects above it).
+struct SegmentationTimes {
+  double voxel = 0;       ///< the voxel grid and the sources of its centroids
+  double candidates = 0;  ///< RANSAC candidates and rules 1-3
+  double table_cut = 0;   ///< the points above the table_clearance
+  double outliers = 0;    ///< statistical outlier removal on them
+  double clusters = 0;    ///< Euclidean clusters (and rule 4's footprint)
+  double objects = 0;     ///< the objects described, ordered and written out
+};
+
 struct Segmentation {
   /// a x + b y + c z + d = 0, (a, b, c) unit towards the cameras; zero when there is no plane
   Eigen::Vector4d plane = Eigen::Vector4d::Zero();
@@ -104,6 +115,7 @@ struct Segmentation {
   std::size_t n_small_clusters = 0;  ///< points of clusters under min_cluster_size (or over the maximum)
   std::size_t n_output = 0;
   double seconds = 0.0;  ///< wall time of the whole segmentation
+  SegmentationTimes times;  ///< and of each step
 };
 
 /// The support plane and the objects of `points` (N, 3) seen from `viewpoints` (0 x 3: none, 1 x 3 or

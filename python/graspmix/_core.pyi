@@ -629,9 +629,12 @@ class SegmentationSettings:
       cluster_tolerance = 0.006: m: object points closer than this are one object (Euclidean clusters)
       min_cluster_size = 20: smaller clusters are noise, dropped
       max_cluster_size = 0: larger clusters are dropped; 0 = no limit
+      merge_seen_through = True: a cluster seen through a larger one joins it (a container's inside seen over its rim)
+      merge_through_fraction = 0.2: fraction of a cluster's lines of sight that must cross the larger one's envelope
+      merge_inset = 0.006: m: the larger cluster's envelope is inset by this
     """
     __hash__: typing.ClassVar[None] = None
-    _fields: typing.ClassVar[tuple] = ('voxel_size', 'plane_distance', 'plane_max_iterations', 'seed', 'plane_candidates', 'plane_min_fraction', 'plane_behind_distance', 'plane_max_behind_fraction', 'plane_margin', 'table_clearance', 'remove_outliers', 'outlier_neighbours', 'outlier_std_ratio', 'cluster_tolerance', 'min_cluster_size', 'max_cluster_size')
+    _fields: typing.ClassVar[tuple] = ('voxel_size', 'plane_distance', 'plane_max_iterations', 'seed', 'plane_candidates', 'plane_min_fraction', 'plane_behind_distance', 'plane_max_behind_fraction', 'plane_margin', 'table_clearance', 'remove_outliers', 'outlier_neighbours', 'outlier_std_ratio', 'cluster_tolerance', 'min_cluster_size', 'max_cluster_size', 'merge_seen_through', 'merge_through_fraction', 'merge_inset')
     def __copy__(self) -> SegmentationSettings:
         ...
     def __deepcopy__(self, memo: typing.Any) -> SegmentationSettings:
@@ -648,7 +651,7 @@ class SegmentationSettings:
     @typing.overload
     def __init__(self, **kwargs) -> None:
         """
-        Keyword constructor: any of the fields (voxel_size, plane_distance, plane_max_iterations, seed, plane_candidates, plane_min_fraction, plane_behind_distance, plane_max_behind_fraction, plane_margin, table_clearance, remove_outliers, outlier_neighbours, outlier_std_ratio, cluster_tolerance, min_cluster_size, max_cluster_size); the others keep their defaults.
+        Keyword constructor: any of the fields (voxel_size, plane_distance, plane_max_iterations, seed, plane_candidates, plane_min_fraction, plane_behind_distance, plane_max_behind_fraction, plane_margin, table_clearance, remove_outliers, outlier_neighbours, outlier_std_ratio, cluster_tolerance, min_cluster_size, max_cluster_size, merge_seen_through, merge_through_fraction, merge_inset); the others keep their defaults.
         """
     def __repr__(self) -> str:
         ...
@@ -669,6 +672,30 @@ class SegmentationSettings:
         """
     @max_cluster_size.setter
     def max_cluster_size(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def merge_inset(self) -> float:
+        """
+        m: the larger cluster's envelope is inset by this
+        """
+    @merge_inset.setter
+    def merge_inset(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def merge_seen_through(self) -> bool:
+        """
+        a cluster seen through a larger one joins it (a container's inside seen over its rim)
+        """
+    @merge_seen_through.setter
+    def merge_seen_through(self, arg0: bool) -> None:
+        ...
+    @property
+    def merge_through_fraction(self) -> float:
+        """
+        fraction of a cluster's lines of sight that must cross the larger one's envelope
+        """
+    @merge_through_fraction.setter
+    def merge_through_fraction(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def min_cluster_size(self) -> int:
@@ -880,6 +907,11 @@ class Segmentation:
     def n_input(self) -> int:
         ...
     @property
+    def n_merged(self) -> int:
+        """
+        clusters joined to a larger one (seen through it)
+        """
+    @property
     def n_outliers(self) -> int:
         ...
     @property
@@ -929,7 +961,7 @@ class Segmentation:
     @property
     def step_seconds(self) -> dict:
         """
-        wall time (s) of each step: voxel, candidates (RANSAC, rules 1-3), table_cut, outliers, clusters (and rule 4), objects; the middle three summed over the candidates tried
+        wall time (s) of each step: voxel, candidates (RANSAC, rules 1-3), table_cut, outliers, clusters (and rule 4), merge, objects; the middle three summed over the candidates tried
         """
 class SurfaceFeatureSettings:
     """
@@ -2816,6 +2848,9 @@ def segment_scene(points: typing.Any, viewpoints: typing.Any = None, plane: typi
       cluster_tolerance = 0.006: m: object points closer than this are one object (Euclidean clusters)
       min_cluster_size = 20: smaller clusters are noise, dropped
       max_cluster_size = 0: larger clusters are dropped; 0 = no limit
+      merge_seen_through = True: a cluster seen through a larger one joins it (a container's inside seen over its rim)
+      merge_through_fraction = 0.2: fraction of a cluster's lines of sight that must cross the larger one's envelope
+      merge_inset = 0.006: m: the larger cluster's envelope is inset by this
     """
 def sim_execute(hand: Hand, object: SimObject, T_world_object: typing.Any, T_world_wrist: typing.Any, pregrasp: typing.Any, grasp: typing.Any, settings: typing.Any = None, **kwargs) -> SimResult:
     """

@@ -8,12 +8,12 @@
 #include <string>
 #include <vector>
 
-#include <boost/sort/spreadsort/integer_sort.hpp>
 #include <pcl/common/common.h>
 #include <pcl/filters/crop_box.h>
 #include <pcl/filters/voxel_grid.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
+#include <boost/sort/spreadsort/integer_sort.hpp>
 
 #include "cloud_filters.hpp"
 #include "graspmix/core/plane.hpp"

@@ -12,10 +12,10 @@
 
 #include <pcl/search/kdtree.h>
 #include <pcl/segmentation/extract_clusters.h>
-#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
 #include "cloud_filters.hpp"
+#include "cluster_merge.hpp"
 
 namespace graspmix {
 
@@ -58,6 +58,10 @@ void check_settings(const SegmentationSettings& s) {
   }
   if (!(finite_ge(s.cluster_tolerance, 0) && s.cluster_tolerance > 0)) bad("cluster_tolerance must be > 0 (m)");
   if (s.min_cluster_size < 1) bad("min_cluster_size must be >= 1");
+  if (!(finite_ge(s.merge_through_fraction, 0) && s.merge_through_fraction <= 1)) {
+    bad("merge_through_fraction must be in [0, 1]");
+  }
+  if (!finite_ge(s.merge_inset, 0)) bad("merge_inset must be a finite distance >= 0 (m)");
   if (s.max_cluster_size < 0 || (s.max_cluster_size > 0 && s.max_cluster_size < s.min_cluster_size)) {
     bad("max_cluster_size must be 0 (no limit) or >= min_cluster_size");
   }
@@ -262,19 +266,11 @@ Extraction extract(const Vec3Array& P, const Eigen::Vector4d* plane, const Segme
 SceneObject describe(const Vec3Array& P, const std::vector<int>& rows) {
   SceneObject o;
   o.n_points = rows.size();
-  Vec3Array Q(static_cast<Eigen::Index>(rows.size()), 3);
-  for (std::size_t i = 0; i < rows.size(); ++i) Q.row(static_cast<Eigen::Index>(i)) = P.row(rows[i]);
-  o.centroid = Q.colwise().mean().transpose();
-  const Vec3Array C = Q.rowwise() - o.centroid.transpose();
-  const Eigen::Matrix3d cov = C.transpose() * C / static_cast<double>(rows.size());
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
-  Eigen::Matrix3d R = eig.eigenvectors().rowwise().reverse();  // decreasing variance
-  for (int k = 0; k < 2; ++k) {  // a deterministic sign: the largest component of each axis positive
-    Eigen::Index big = 0;
-    R.col(k).cwiseAbs().maxCoeff(&big);
-    if (R(big, k) < 0) R.col(k) = -R.col(k);
-  }
-  R.col(2) = R.col(0).cross(R.col(1));
+  Eigen::Matrix3d R;
+  detail::principal_axes(P, rows, o.centroid, R);
+  Vec3Array C(static_cast<Eigen::Index>(rows.size()), 3);
+  for (std::size_t i = 0; i < rows.size(); ++i) C.row(static_cast<Eigen::Index>(i)) = P.row(rows[i]);
+  C.rowwise() -= o.centroid.transpose();
   const Vec3Array L = C * R;
   const Eigen::Vector3d lo = L.colwise().minCoeff().transpose(), hi = L.colwise().maxCoeff().transpose();
   o.obb_rotation = R;
@@ -388,6 +384,12 @@ Segmentation segment_scene(const Vec3Array& points, const Vec3Array& viewpoints,
     e = find_support(P, cams, s, out);
   }
   lap = Lap();
+  if (s.merge_seen_through && e.groups.size() > 1) {
+    const Vec3Array one = cams.single.transpose();
+    const Vec3Array& seen_from = cams.per_point.rows() > 0 ? cams.per_point : one;
+    out.n_merged = detail::merge_seen_through(P, seen_from, e.groups, s.merge_through_fraction, s.merge_inset);
+  }
+  lap.add_to(out.times.merge);
   finish(P, down.sources, e, out);
   lap.add_to(out.times.objects);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -198,6 +198,7 @@ class Scene:
                 "plane": r.n_plane,
                 "outliers": r.n_outliers,
                 "small_clusters": r.n_small_clusters,
+                "merged": r.n_merged,
                 "output": r.n_output,
             },
             "timing_s": dict(self.timing),

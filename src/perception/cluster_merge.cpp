@@ -45,8 +45,8 @@ void principal_axes(const Vec3Array& P, const std::vector<int>& rows, Eigen::Vec
   axes.col(2) = axes.col(0).cross(axes.col(1));
 }
 
-double seen_through(const Vec3Array& P, const Vec3Array& cameras, const std::vector<int>& b,
-                    const std::vector<int>& a, double inset) {
+double seen_through(const Vec3Array& P, const Vec3Array& cameras, const std::vector<int>& b, const std::vector<int>& a,
+                    double inset) {
   Eigen::Vector3d centroid;
   Eigen::Matrix3d axes;
   principal_axes(P, b, centroid, axes);

@@ -179,6 +179,11 @@ void bind_perception(py::module_& m) {
              "m: object points closer than this are one object (Euclidean clusters)")
       .field("min_cluster_size", &SegmentationSettings::min_cluster_size, "smaller clusters are noise, dropped")
       .field("max_cluster_size", &SegmentationSettings::max_cluster_size, "larger clusters are dropped; 0 = no limit")
+      .field("merge_seen_through", &SegmentationSettings::merge_seen_through,
+             "a cluster seen through a larger one joins it (a container's inside seen over its rim)")
+      .field("merge_through_fraction", &SegmentationSettings::merge_through_fraction,
+             "fraction of a cluster's lines of sight that must cross the larger one's envelope")
+      .field("merge_inset", &SegmentationSettings::merge_inset, "m: the larger cluster's envelope is inset by this")
       .done();
 
   py::class_<SceneObject>(m, "SceneObject", "One object of a segmented scene: a Euclidean cluster above the plane.")
@@ -218,8 +223,25 @@ void bind_perception(py::module_& m) {
       .def_readonly("n_plane", &Segmentation::n_plane, "dropped as the table")
       .def_readonly("n_outliers", &Segmentation::n_outliers)
       .def_readonly("n_small_clusters", &Segmentation::n_small_clusters, "points of clusters dropped as noise")
+      .def_readonly("n_merged", &Segmentation::n_merged, "clusters joined to a larger one (seen through it)")
       .def_readonly("n_output", &Segmentation::n_output)
-      .def_readonly("seconds", &Segmentation::seconds);
+      .def_readonly("seconds", &Segmentation::seconds, "wall time of the whole segmentation")
+      .def_property_readonly(
+          "step_seconds",
+          [](const Segmentation& r) {
+            const SegmentationTimes& t = r.times;
+            py::dict d;
+            d["voxel"] = t.voxel;
+            d["candidates"] = t.candidates;
+            d["table_cut"] = t.table_cut;
+            d["outliers"] = t.outliers;
+            d["clusters"] = t.clusters;
+            d["merge"] = t.merge;
+            d["objects"] = t.objects;
+            return d;
+          },
+          "wall time (s) of each step: voxel, candidates (RANSAC, rules 1-3), table_cut, outliers, clusters "
+          "(and rule 4), merge, objects; the middle three summed over the candidates tried");
   m.def(
       "segment_scene",
       [](const py::object& points, const py::object& viewpoints, const py::object& plane, const py::object& settings,

@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AnnealingSettings', 'AxisAlignmentExpert', 'AxisAlignmentSettings', 'CloudData', 'CollisionBatchResult', 'CollisionExpert', 'CollisionResult', 'CollisionSettings', 'ConfigModel', 'ConfigModelSettings', 'ContactData', 'ContactModel', 'ContactSettings', 'Evaluation', 'Expert', 'FunctionExpert', 'GaussianMixture', 'GmmSettings', 'Grasp', 'GraspSynthesizer', 'Hand', 'HandLoadSettings', 'KdeSettings', 'KinematicFeasibilityExpert', 'KinematicFeasibilitySettings', 'PlaneCandidate', 'PoseDensity', 'PoseKDE', 'PoseMixture', 'QueryDensity', 'QuerySettings', 'SceneObject', 'SceneResult', 'SceneSettings', 'SceneSimResult', 'Segmentation', 'SegmentationSettings', 'SettleResult', 'SimObject', 'SimResult', 'SimSettings', 'SurfaceCloud', 'SurfaceFeatureSettings', 'SynthesisResult', 'SynthesisSettings', 'SynthesisTiming', 'build_info', 'compute_surface_features', 'contact_data', 'learn_contact_models', 'load_cloud', 'load_mesh', 'log_vmf_s3_normaliser', 'orient_plane', 'pose_inverse', 'pose_multiply', 'prepare_cloud', 'quat_exp', 'quat_log', 'save_cloud', 'segment_scene', 'sim_execute', 'sim_execute_scene', 'sim_settle_scene']
+__all__: list[str] = ['AnnealingSettings', 'AxisAlignmentExpert', 'AxisAlignmentSettings', 'CloudData', 'CollisionBatchResult', 'CollisionExpert', 'CollisionResult', 'CollisionSettings', 'ConfigModel', 'ConfigModelSettings', 'ContactData', 'ContactModel', 'ContactSettings', 'Evaluation', 'Expert', 'FunctionExpert', 'GaussianMixture', 'GmmSettings', 'Grasp', 'GraspSynthesizer', 'Hand', 'HandLoadSettings', 'KdeSettings', 'KinematicFeasibilityExpert', 'KinematicFeasibilitySettings', 'PlaneCandidate', 'PoseDensity', 'PoseKDE', 'PoseMixture', 'QueryDensity', 'QuerySettings', 'SceneObject', 'SceneResult', 'SceneSettings', 'Segmentation', 'SegmentationSettings', 'SimObject', 'SimResult', 'SimSettings', 'SurfaceCloud', 'SurfaceFeatureSettings', 'SynthesisResult', 'SynthesisSettings', 'SynthesisTiming', 'build_info', 'compute_surface_features', 'contact_data', 'learn_contact_models', 'load_cloud', 'load_mesh', 'log_vmf_s3_normaliser', 'orient_plane', 'pose_inverse', 'pose_multiply', 'prepare_cloud', 'quat_exp', 'quat_log', 'save_cloud', 'segment_scene', 'sim_execute']
 class GmmSettings:
     """
     How a GaussianMixture (or PoseMixture) is fitted by EM.
@@ -406,11 +406,6 @@ class CloudData:
         Sensor pose [x, y, z, qx, qy, qz, qw] from the PCD VIEWPOINT (identity when absent).
         """
     @property
-    def viewpoints(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
-        """
-        (N, 3) the camera position of each point (PCD/PLY fields vp_x vp_y vp_z, PCL's PointWithViewpoint), following the points kept; (0, 3) when the file has none.
-        """
-    @property
     def width(self) -> int:
         ...
 class SceneSettings:
@@ -622,7 +617,6 @@ class SegmentationSettings:
       plane_distance = 0.005: m: RANSAC inlier threshold
       plane_max_iterations = 1000: RANSAC iterations per candidate
       seed = 0: seeds RANSAC (None: 0)
-      find_plane = True: search for the support plane (false: objects only)
       plane_candidates = 3: planes tried, each on the points the previous ones left
       plane_min_fraction = 0.05: rule 1: fraction of the voxelised points a candidate holds
       plane_behind_distance = 0.01: m, rule 3: how far behind the plane a point counts as behind it
@@ -635,9 +629,12 @@ class SegmentationSettings:
       cluster_tolerance = 0.006: m: object points closer than this are one object (Euclidean clusters)
       min_cluster_size = 20: smaller clusters are noise, dropped
       max_cluster_size = 0: larger clusters are dropped; 0 = no limit
+      merge_seen_through = True: a cluster seen through a larger one joins it (a container's inside seen over its rim)
+      merge_through_fraction = 0.2: fraction of a cluster's lines of sight that must cross the larger one's envelope
+      merge_inset = 0.006: m: the larger cluster's envelope is inset by this
     """
     __hash__: typing.ClassVar[None] = None
-    _fields: typing.ClassVar[tuple] = ('voxel_size', 'plane_distance', 'plane_max_iterations', 'seed', 'find_plane', 'plane_candidates', 'plane_min_fraction', 'plane_behind_distance', 'plane_max_behind_fraction', 'plane_margin', 'table_clearance', 'remove_outliers', 'outlier_neighbours', 'outlier_std_ratio', 'cluster_tolerance', 'min_cluster_size', 'max_cluster_size')
+    _fields: typing.ClassVar[tuple] = ('voxel_size', 'plane_distance', 'plane_max_iterations', 'seed', 'plane_candidates', 'plane_min_fraction', 'plane_behind_distance', 'plane_max_behind_fraction', 'plane_margin', 'table_clearance', 'remove_outliers', 'outlier_neighbours', 'outlier_std_ratio', 'cluster_tolerance', 'min_cluster_size', 'max_cluster_size', 'merge_seen_through', 'merge_through_fraction', 'merge_inset')
     def __copy__(self) -> SegmentationSettings:
         ...
     def __deepcopy__(self, memo: typing.Any) -> SegmentationSettings:
@@ -654,7 +651,7 @@ class SegmentationSettings:
     @typing.overload
     def __init__(self, **kwargs) -> None:
         """
-        Keyword constructor: any of the fields (voxel_size, plane_distance, plane_max_iterations, seed, find_plane, plane_candidates, plane_min_fraction, plane_behind_distance, plane_max_behind_fraction, plane_margin, table_clearance, remove_outliers, outlier_neighbours, outlier_std_ratio, cluster_tolerance, min_cluster_size, max_cluster_size); the others keep their defaults.
+        Keyword constructor: any of the fields (voxel_size, plane_distance, plane_max_iterations, seed, plane_candidates, plane_min_fraction, plane_behind_distance, plane_max_behind_fraction, plane_margin, table_clearance, remove_outliers, outlier_neighbours, outlier_std_ratio, cluster_tolerance, min_cluster_size, max_cluster_size, merge_seen_through, merge_through_fraction, merge_inset); the others keep their defaults.
         """
     def __repr__(self) -> str:
         ...
@@ -669,20 +666,36 @@ class SegmentationSettings:
     def cluster_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
-    def find_plane(self) -> bool:
-        """
-        search for the support plane (false: objects only)
-        """
-    @find_plane.setter
-    def find_plane(self, arg0: bool) -> None:
-        ...
-    @property
     def max_cluster_size(self) -> int:
         """
         larger clusters are dropped; 0 = no limit
         """
     @max_cluster_size.setter
     def max_cluster_size(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def merge_inset(self) -> float:
+        """
+        m: the larger cluster's envelope is inset by this
+        """
+    @merge_inset.setter
+    def merge_inset(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def merge_seen_through(self) -> bool:
+        """
+        a cluster seen through a larger one joins it (a container's inside seen over its rim)
+        """
+    @merge_seen_through.setter
+    def merge_seen_through(self, arg0: bool) -> None:
+        ...
+    @property
+    def merge_through_fraction(self) -> float:
+        """
+        fraction of a cluster's lines of sight that must cross the larger one's envelope
+        """
+    @merge_through_fraction.setter
+    def merge_through_fraction(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def min_cluster_size(self) -> int:
@@ -894,6 +907,11 @@ class Segmentation:
     def n_input(self) -> int:
         ...
     @property
+    def n_merged(self) -> int:
+        """
+        clusters joined to a larger one (seen through it)
+        """
+    @property
     def n_outliers(self) -> int:
         ...
     @property
@@ -932,11 +950,18 @@ class Segmentation:
         """
     @property
     def seconds(self) -> float:
-        ...
+        """
+        wall time of the whole segmentation
+        """
     @property
     def sources(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 1]"]:
         """
         (M) input row whose per-point data every point carries
+        """
+    @property
+    def step_seconds(self) -> dict:
+        """
+        wall time (s) of each step: voxel, candidates (RANSAC, rules 1-3), table_cut, outliers, clusters (and rule 4), merge, objects; the middle three summed over the candidates tried
         """
 class SurfaceFeatureSettings:
     """
@@ -2709,57 +2734,6 @@ class SimResult:
         """
         s
         """
-class SceneSimResult:
-    """
-    The outcome of one grasp in a scene of several objects.
-    """
-    @property
-    def lifted(self) -> list[int]:
-        """
-        indices of the objects that rose and are held by the hand
-        """
-    @property
-    def moved(self) -> list[float]:
-        """
-        m each object's link origin moved
-        """
-    @property
-    def object_poses(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
-        """
-        (N, 7) every object's final link pose
-        """
-    @property
-    def result(self) -> SimResult:
-        """
-        SimResult: outcome of the grasp; lift_height and object_pose of the object that rose most
-        """
-    @property
-    def rise(self) -> list[float]:
-        """
-        m each object's centre of mass rose
-        """
-class SettleResult:
-    """
-    A scene simulated without a hand until its objects rest.
-    """
-    @property
-    def at_rest(self) -> bool:
-        """
-        every object came to rest in time
-        """
-    @property
-    def object_poses(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
-        """
-        (N, 7) every object's final link pose
-        """
-    @property
-    def simulated_time(self) -> float:
-        """
-        s
-        """
-    @property
-    def steps(self) -> int:
-        ...
 def build_info() -> dict[str, str]:
     """
     Versions of graspmix and of every library it was built against.
@@ -2849,9 +2823,9 @@ def quat_log(q: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float
     """
     eq:log_map on (N, 4) quaternions [x, y, z, w]: arccos(w) v/|v| after canonicalising w >= 0 -> (N, 3).
     """
-def save_cloud(path: typing.Any, points: typing.Any, normals: typing.Any = None, encoding: str = 'binary', viewpoint: typing.Any = None, viewpoints: typing.Any = None) -> None:
+def save_cloud(path: typing.Any, points: typing.Any, normals: typing.Any = None, encoding: str = 'binary', viewpoint: typing.Any = None) -> None:
     """
-    Writes float32 x y z (+ normal_x normal_y normal_z, + vp_x vp_y vp_z) to .pcd (encoding ascii | binary | binary_compressed) or .ply (ascii | binary); viewpoint [x, y, z, qx, qy, qz, qw] goes into the header, viewpoints (N, 3), one camera position per point, into the fields vp_x vp_y vp_z (PCL's PointWithViewpoint).
+    Writes float32 x y z (+ normal_x normal_y normal_z) to .pcd (encoding ascii | binary | binary_compressed) or .ply (ascii | binary); viewpoint [x, y, z, qx, qy, qz, qw] goes into the header.
     """
 def segment_scene(points: typing.Any, viewpoints: typing.Any = None, plane: typing.Any = None, *, settings: typing.Any = None, **kwargs) -> Segmentation:
     """
@@ -2862,7 +2836,6 @@ def segment_scene(points: typing.Any, viewpoints: typing.Any = None, plane: typi
       plane_distance = 0.005: m: RANSAC inlier threshold
       plane_max_iterations = 1000: RANSAC iterations per candidate
       seed = 0: seeds RANSAC (None: 0)
-      find_plane = True: search for the support plane (false: objects only)
       plane_candidates = 3: planes tried, each on the points the previous ones left
       plane_min_fraction = 0.05: rule 1: fraction of the voxelised points a candidate holds
       plane_behind_distance = 0.01: m, rule 3: how far behind the plane a point counts as behind it
@@ -2875,6 +2848,9 @@ def segment_scene(points: typing.Any, viewpoints: typing.Any = None, plane: typi
       cluster_tolerance = 0.006: m: object points closer than this are one object (Euclidean clusters)
       min_cluster_size = 20: smaller clusters are noise, dropped
       max_cluster_size = 0: larger clusters are dropped; 0 = no limit
+      merge_seen_through = True: a cluster seen through a larger one joins it (a container's inside seen over its rim)
+      merge_through_fraction = 0.2: fraction of a cluster's lines of sight that must cross the larger one's envelope
+      merge_inset = 0.006: m: the larger cluster's envelope is inset by this
     """
 def sim_execute(hand: Hand, object: SimObject, T_world_object: typing.Any, T_world_wrist: typing.Any, pregrasp: typing.Any, grasp: typing.Any, settings: typing.Any = None, **kwargs) -> SimResult:
     """
@@ -2900,12 +2876,4 @@ def sim_execute(hand: Hand, object: SimObject, T_world_object: typing.Any, T_wor
       start_penetration = 0.002: m: a start penetrating deeper than this is 'start in collision'
       contact_distance = 0.001: m: contact points closer than this count as touching
       success_fraction = 0.5: the object must rise by this fraction of lift_height
-    """
-def sim_execute_scene(hand: Hand, objects: typing.Any, object_poses: typing.Any, T_world_wrist: typing.Any, pregrasp: typing.Any, grasp: typing.Any, settings: typing.Any = None, **kwargs) -> SceneSimResult:
-    """
-    Executes one grasp among several objects (link poses (N, 7)); see graspmix.sim.scenes.execute_in_scene.
-    """
-def sim_settle_scene(objects: typing.Any, object_poses: typing.Any, settings: typing.Any = None, seconds: typing.SupportsFloat | typing.SupportsIndex = 2.0, walls: typing.Any = None) -> SettleResult:
-    """
-    Simulates the objects without a hand until they rest (at most `seconds`); walls: [xmin, ymin, xmax, ymax, height] of a box standing around them, or None.
     """

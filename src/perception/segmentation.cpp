@@ -12,10 +12,10 @@
 
 #include <pcl/search/kdtree.h>
 #include <pcl/segmentation/extract_clusters.h>
-#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
 #include "cloud_filters.hpp"
+#include "cluster_merge.hpp"
 
 namespace graspmix {
 
@@ -24,6 +24,19 @@ namespace {
 using detail::Cloud;
 
 [[noreturn]] void bad(const std::string& m) { throw std::invalid_argument("segment_scene: " + m); }
+
+/// Adds the seconds since it was made (or last added) to a step's time.
+class Lap {
+ public:
+  void add_to(double& step) {
+    const auto now = std::chrono::steady_clock::now();
+    step += std::chrono::duration<double>(now - t_).count();
+    t_ = now;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point t_ = std::chrono::steady_clock::now();
+};
 
 bool finite_ge(double v, double lo) { return std::isfinite(v) && v >= lo; }
 
@@ -45,6 +58,10 @@ void check_settings(const SegmentationSettings& s) {
   }
   if (!(finite_ge(s.cluster_tolerance, 0) && s.cluster_tolerance > 0)) bad("cluster_tolerance must be > 0 (m)");
   if (s.min_cluster_size < 1) bad("min_cluster_size must be >= 1");
+  if (!(finite_ge(s.merge_through_fraction, 0) && s.merge_through_fraction <= 1)) {
+    bad("merge_through_fraction must be in [0, 1]");
+  }
+  if (!finite_ge(s.merge_inset, 0)) bad("merge_inset must be a finite distance >= 0 (m)");
   if (s.max_cluster_size < 0 || (s.max_cluster_size > 0 && s.max_cluster_size < s.min_cluster_size)) {
     bad("max_cluster_size must be 0 (no limit) or >= min_cluster_size");
   }
@@ -195,7 +212,9 @@ struct Extraction {
 
 /// Rows above the clearance (all without a plane), outliers removed, then Euclidean clusters; the clusters
 /// smaller than min_cluster_size (or larger than a set maximum) are dropped.
-Extraction extract(const Vec3Array& P, const Eigen::Vector4d* plane, const SegmentationSettings& s) {
+Extraction extract(const Vec3Array& P, const Eigen::Vector4d* plane, const SegmentationSettings& s,
+                   SegmentationTimes& times) {
+  Lap lap;
   Extraction e;
   std::vector<int> rows;
   const Eigen::VectorXd h = plane ? heights(P, *plane) : Eigen::VectorXd();
@@ -204,6 +223,7 @@ Extraction extract(const Vec3Array& P, const Eigen::Vector4d* plane, const Segme
   e.n_plane = static_cast<std::size_t>(P.rows()) - rows.size();
   Cloud::Ptr cloud(new Cloud);
   for (const int r : rows) cloud->push_back(to_pcl(P, r));
+  lap.add_to(times.table_cut);
   if (s.remove_outliers && rows.size() > static_cast<std::size_t>(s.outlier_neighbours)) {
     const pcl::Indices kept = detail::statistical_inliers(cloud, s.outlier_neighbours, s.outlier_std_ratio);
     std::vector<int> kept_rows;
@@ -216,6 +236,7 @@ Extraction extract(const Vec3Array& P, const Eigen::Vector4d* plane, const Segme
     rows.swap(kept_rows);
     cloud = kept_cloud;
   }
+  lap.add_to(times.outliers);
   if (rows.empty()) return e;
   pcl::search::KdTree<pcl::PointXYZ>::Ptr tree(new pcl::search::KdTree<pcl::PointXYZ>);
   pcl::EuclideanClusterExtraction<pcl::PointXYZ> ec;
@@ -237,6 +258,7 @@ Extraction extract(const Vec3Array& P, const Eigen::Vector4d* plane, const Segme
     std::sort(g.begin(), g.end());
     e.groups.push_back(std::move(g));
   }
+  lap.add_to(times.clusters);
   return e;
 }
 
@@ -244,19 +266,11 @@ Extraction extract(const Vec3Array& P, const Eigen::Vector4d* plane, const Segme
 SceneObject describe(const Vec3Array& P, const std::vector<int>& rows) {
   SceneObject o;
   o.n_points = rows.size();
-  Vec3Array Q(static_cast<Eigen::Index>(rows.size()), 3);
-  for (std::size_t i = 0; i < rows.size(); ++i) Q.row(static_cast<Eigen::Index>(i)) = P.row(rows[i]);
-  o.centroid = Q.colwise().mean().transpose();
-  const Vec3Array C = Q.rowwise() - o.centroid.transpose();
-  const Eigen::Matrix3d cov = C.transpose() * C / static_cast<double>(rows.size());
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
-  Eigen::Matrix3d R = eig.eigenvectors().rowwise().reverse();  // decreasing variance
-  for (int k = 0; k < 2; ++k) {  // a deterministic sign: the largest component of each axis positive
-    Eigen::Index big = 0;
-    R.col(k).cwiseAbs().maxCoeff(&big);
-    if (R(big, k) < 0) R.col(k) = -R.col(k);
-  }
-  R.col(2) = R.col(0).cross(R.col(1));
+  Eigen::Matrix3d R;
+  detail::principal_axes(P, rows, o.centroid, R);
+  Vec3Array C(static_cast<Eigen::Index>(rows.size()), 3);
+  for (std::size_t i = 0; i < rows.size(); ++i) C.row(static_cast<Eigen::Index>(i)) = P.row(rows[i]);
+  C.rowwise() -= o.centroid.transpose();
   const Vec3Array L = C * R;
   const Eigen::Vector3d lo = L.colwise().minCoeff().transpose(), hi = L.colwise().maxCoeff().transpose();
   o.obb_rotation = R;
@@ -309,7 +323,9 @@ void finish(const Vec3Array& P, const Eigen::VectorXi& src, const Extraction& e,
 /// The support plane by the rule: the candidates that pass rules 1-3, lowest (farthest from the cameras)
 /// first, until one passes rule 4 on the objects above it; no plane when none does.
 Extraction find_support(const Vec3Array& P, const Cameras& cams, const SegmentationSettings& s, Segmentation& out) {
+  Lap lap;
   const std::vector<std::vector<int>> inliers = find_candidates(P, cams, s, out);
+  lap.add_to(out.times.candidates);
   std::vector<std::size_t> order;
   for (std::size_t i = 0; i < out.candidates.size(); ++i)
     if (out.candidates[i].accepted) order.push_back(i);
@@ -318,8 +334,10 @@ Extraction find_support(const Vec3Array& P, const Cameras& cams, const Segmentat
   });
   for (const auto i : order) {
     PlaneCandidate& c = out.candidates[i];
-    Extraction e = extract(P, &c.plane, s);
+    Extraction e = extract(P, &c.plane, s, out.times);
+    lap = Lap();
     c.margin = footprint_margin(P, inliers[i], c.plane, e.groups);
+    lap.add_to(out.times.clusters);
     if (c.margin >= s.plane_margin) {
       out.plane = c.plane;
       out.plane_found = true;
@@ -328,7 +346,7 @@ Extraction find_support(const Vec3Array& P, const Cameras& cams, const Segmentat
     c.accepted = false;
     c.reason = "does not reach beyond the objects (rule 4)";
   }
-  return extract(P, nullptr, s);
+  return extract(P, nullptr, s, out.times);
 }
 
 }  // namespace
@@ -344,6 +362,7 @@ Segmentation segment_scene(const Vec3Array& points, const Vec3Array& viewpoints,
   voxel.voxel_size = s.voxel_size;
   voxel.remove_outliers = false;
   voxel.remove_plane = false;
+  Lap lap;
   const SceneResult down = prepare_cloud(points, voxel);
   const Vec3Array& P = down.points;
   out.n_after_voxel = static_cast<std::size_t>(P.rows());
@@ -354,15 +373,27 @@ Segmentation segment_scene(const Vec3Array& points, const Vec3Array& viewpoints,
     cams.per_point.resize(P.rows(), 3);
     for (Eigen::Index i = 0; i < P.rows(); ++i) cams.per_point.row(i) = viewpoints.row(down.sources[i]);
   }
+  lap.add_to(out.times.voxel);
+  Extraction e;
   if (plane) {
     out.plane = orient_given(*plane, P, cams, s);
     out.plane_given = true;
-    finish(P, down.sources, extract(P, &out.plane, s), out);
+    lap.add_to(out.times.candidates);
+    e = extract(P, &out.plane, s, out.times);
   } else if (s.find_plane) {
-    finish(P, down.sources, find_support(P, cams, s, out), out);
+    e = find_support(P, cams, s, out);
   } else {
-    finish(P, down.sources, extract(P, nullptr, s), out);
+    e = extract(P, nullptr, s, out.times);
   }
+  lap = Lap();
+  if (s.merge_seen_through && e.groups.size() > 1) {
+    const Vec3Array one = cams.single.transpose();
+    const Vec3Array& seen_from = cams.per_point.rows() > 0 ? cams.per_point : one;
+    out.n_merged = detail::merge_seen_through(P, seen_from, e.groups, s.merge_through_fraction, s.merge_inset);
+  }
+  lap.add_to(out.times.merge);
+  finish(P, down.sources, e, out);
+  lap.add_to(out.times.objects);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
 }

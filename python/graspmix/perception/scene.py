@@ -120,7 +120,9 @@ class Scene:
             )
             for o in result.objects
         ]
+        # the whole segmentation, then each of its steps (Segmentation.step_seconds)
         self.timing = {"segmentation": float(result.seconds)}
+        self.timing.update({f"segmentation.{k}": float(v) for k, v in result.step_seconds.items()})
 
     def __len__(self) -> int:
         return len(self.objects)
@@ -196,6 +198,7 @@ class Scene:
                 "plane": r.n_plane,
                 "outliers": r.n_outliers,
                 "small_clusters": r.n_small_clusters,
+                "merged": r.n_merged,
                 "output": r.n_output,
             },
             "timing_s": dict(self.timing),

@@ -1,7 +1,12 @@
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cmath>
+#include <limits>
+#include <map>
 #include <random>
 #include <stdexcept>
+#include <vector>
 
 #include "graspmix/perception/scene.hpp"
 
@@ -97,4 +102,80 @@ TEST(Scene, BadInputThrows) {
   crop.crop_max << 6, 6, 6;
   EXPECT_THROW(prepare_cloud(sc.points, crop), std::invalid_argument);
   EXPECT_THROW(prepare_cloud(Vec3Array(0, 3)), std::invalid_argument);
+}
+
+namespace {
+
+/// Brute-force voxel grid: the input rows of each voxel (cell floor(x / leaf) per axis, in float as PCL
+/// computes it) keyed by cell, in increasing row order.
+std::map<std::array<int, 3>, std::vector<int>> cells_of(const Vec3Array& pts, float leaf) {
+  const float inv = 1.0f / leaf;
+  std::map<std::array<int, 3>, std::vector<int>> cells;
+  for (Eigen::Index i = 0; i < pts.rows(); ++i) {
+    std::array<int, 3> c{};
+    for (int k = 0; k < 3; ++k) c[k] = static_cast<int>(std::floor(static_cast<float>(pts(i, k)) * inv));
+    cells[c].push_back(static_cast<int>(i));
+  }
+  return cells;
+}
+
+/// Random clouds: uniform, snapped to a lattice finer than the voxel (many equal distances: the tie
+/// rule), and with every point repeated (exact duplicates in one voxel).
+Vec3Array random_cloud(int kind, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-0.05, 0.05);
+  const int n = 6000;
+  Vec3Array p(kind == 2 ? 2 * n : n, 3);
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < 3; ++k) p(i, k) = kind == 1 ? std::round(u(rng) / 0.001) * 0.001 : u(rng);
+  if (kind == 2) p.bottomRows(n) = p.topRows(n);
+  return p;
+}
+
+}  // namespace
+
+TEST(Scene, VoxelCentroidsAndSourcesMatchABruteForceGrid) {
+  SceneSettings st;
+  st.voxel_size = 0.004;
+  st.remove_outliers = false;
+  st.remove_plane = false;
+  for (int kind = 0; kind < 3; ++kind) {
+    for (std::uint64_t seed = 0; seed < 3; ++seed) {
+      const Vec3Array pts = random_cloud(kind, seed);
+      const SceneResult r = prepare_cloud(pts, st);
+      const auto cells = cells_of(pts, static_cast<float>(st.voxel_size));
+      ASSERT_EQ(static_cast<std::size_t>(r.points.rows()), cells.size());
+      std::vector<Eigen::RowVector3d> means;  // in double, for the centroids to be matched with
+      std::vector<const std::vector<int>*> voxels;
+      for (const auto& [cell, rows] : cells) {
+        Eigen::RowVector3d mean = Eigen::RowVector3d::Zero();
+        for (const int i : rows) mean += pts.row(i);
+        means.push_back(mean / static_cast<double>(rows.size()));
+        voxels.push_back(&rows);
+      }
+      std::vector<char> seen(cells.size(), 0);
+      for (Eigen::Index j = 0; j < r.points.rows(); ++j) {
+        const std::vector<int>* members = nullptr;  // the voxel whose mean this centroid is (to float precision)
+        std::size_t which = 0;
+        for (std::size_t v = 0; v < means.size(); ++v)
+          if ((means[v] - r.points.row(j)).cwiseAbs().maxCoeff() < 1e-6) members = voxels[v], which = v;
+        ASSERT_NE(members, nullptr) << "centroid " << j << " is no voxel's mean";
+        EXPECT_FALSE(seen[which]) << "two centroids for one voxel";
+        seen[which] = 1;
+        // its source: the member nearest to it (float squared distance), the lowest row on a tie
+        int best = -1;
+        float best_d2 = std::numeric_limits<float>::infinity();
+        for (const int i : *members) {
+          float d2 = 0;
+          for (int k = 0; k < 3; ++k) {
+            const float d = static_cast<float>(pts(i, k)) - static_cast<float>(r.points(j, k));
+            d2 += d * d;
+          }
+          if (d2 < best_d2) best = i, best_d2 = d2;
+        }
+        EXPECT_EQ(r.sources[j], best) << "kind " << kind << " seed " << seed << " centroid " << j;
+        EXPECT_EQ(r.indices[j], -1);
+      }
+    }
+  }
 }

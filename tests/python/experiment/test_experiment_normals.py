@@ -57,15 +57,19 @@ def test_viewpoints_must_match_the_points():
         FeatureSettings().surface(pts, remove_plane=False, viewpoints=np.full(3, np.nan))
 
 
-def test_sources_point_at_the_nearest_input_point():
-    """SceneResult.sources: every kept point's source row is the input point nearest to it (voxel centroids)."""
+def test_sources_point_at_the_nearest_member_of_their_voxel():
+    """SceneResult.sources: every voxel centroid's source row is the member of its voxel nearest to it."""
     rng = np.random.default_rng(1)
     pts = rng.uniform(-0.05, 0.05, size=(3000, 3))
     scene = graspmix.prepare_cloud(pts, voxel_size=0.01, remove_plane=False, remove_outliers=False)
     assert np.all(scene.indices == -1) and len(scene.sources) == len(scene.points)
-    d = np.linalg.norm(scene.points[:, None, :] - pts[None, :, :], axis=2)
-    # a centroid of two points is equally near both: compare distances, not rows
-    np.testing.assert_allclose(d[np.arange(len(d)), scene.sources], d.min(axis=1), rtol=0, atol=1e-6)
+    cells = np.floor(pts.astype(np.float32) * np.float32(1 / 0.01)).astype(int)  # PCL's voxel of each point
+    for centroid, src in zip(scene.points, scene.sources):
+        members = np.all(cells == cells[src], axis=1)
+        np.testing.assert_allclose(pts[members].mean(axis=0), centroid, atol=1e-6)  # the source is in its voxel
+        d = np.linalg.norm(pts[members] - centroid, axis=1)
+        # a centroid of two points is equally near both: compare distances, not rows
+        assert np.linalg.norm(pts[src] - centroid) <= d.min() + 1e-6
     kept = graspmix.prepare_cloud(pts, voxel_size=0.0, remove_plane=False, remove_outliers=True)
     np.testing.assert_array_equal(kept.sources, kept.indices)
 

@@ -9,7 +9,7 @@ import pytest
 from graspmix import _core
 from graspmix.model.settings import SynthesisOptions
 from graspmix.perception import POINT_TARGET_MAX_DISTANCE, camera_to_world, parse_target, segment_scene
-from graspmix.sim.acquisition import AcquisitionSettings, Camera, acquire, back_project, ring_cameras
+from graspmix.sim.acquisition import AcquisitionSettings, Camera, acquire, apply_noise, back_project, ring_cameras
 from graspmix.sim.acquisition import Scene as BulletScene
 
 EYE = (0.5, 0.1, 0.45)
@@ -183,6 +183,10 @@ def test_known_plane_and_bad_inputs(rendered):
         segment_scene(np.full((10, 3), np.nan))
     with pytest.raises(ValueError, match="cluster_tolerance"):
         segment_scene(points, eye, cluster_tolerance=-1)
+    with pytest.raises(ValueError, match="merge_through_fraction"):
+        segment_scene(points, eye, merge_through_fraction=1.5)
+    with pytest.raises(ValueError, match="merge_inset"):
+        segment_scene(points, eye, merge_inset=float("nan"))
     with pytest.raises(ValueError, match="unknown setting"):
         segment_scene(points, eye, tolerance=1)
 
@@ -196,3 +200,111 @@ def test_defaults_come_from_cpp_and_the_dict_is_json(rendered):
     d = json.loads(json.dumps(segment_scene(points, eye).to_dict(), allow_nan=False))
     assert d["plane_found"] and len(d["objects"]) == 3 and d["candidates"][0]["accepted"]
     assert graspmix.segment_scene is segment_scene
+
+
+# ---- the merge rule: a cluster seen through a larger one is part of it ------------------------------------
+
+OPEN_BOX = """<?xml version="1.0"?>
+<robot name="open_box"><link name="base">{parts}
+  <inertial><mass value="0.5"/><inertia ixx="1e-3" iyy="1e-3" izz="1e-3" ixy="0" ixz="0" iyz="0"/></inertial>
+</link></robot>"""
+
+
+def _open_box(tmp_path, side=0.16, height=0.08, wall=0.005):
+    """A box without a lid: a floor and four walls of `wall` thickness, origin at the floor's centre."""
+    parts = [((0, 0, wall / 2), (side, side, wall))]
+    for sx, sy in [(1, 0), (-1, 0), (0, 1), (0, -1)]:
+        size = (wall, side, height) if sx else (side, wall, height)
+        parts.append(((sx * (side - wall) / 2, sy * (side - wall) / 2, height / 2), size))
+    xml = "".join(
+        f'<{tag}><origin xyz="{x} {y} {z}"/><geometry><box size="{a} {b} {c}"/></geometry></{tag}>'
+        for (x, y, z), (a, b, c) in parts
+        for tag in ("visual", "collision")
+    )
+    path = tmp_path / "open_box.urdf"
+    path.write_text(OPEN_BOX.format(parts=xml))
+    return path
+
+
+def _render(bodies, eye, seed):
+    """One noisy view (the acquisition's noise model) of bodies [(urdf, (x, y), scale)] resting on plane.urdf."""
+    settings = AcquisitionSettings()
+    with BulletScene("cube_small.urdf", settings) as world:
+        p.removeBody(world.body, physicsClientId=world.client)
+        for urdf, (x, y), scale in bodies:
+            b = p.loadURDF(str(urdf), (x, y, 1.0), globalScaling=scale, physicsClientId=world.client)
+            lo, _ = p.getAABB(b, -1, physicsClientId=world.client)
+            p.resetBasePositionAndOrientation(b, (x, y, 1.0 - lo[2]), (0, 0, 0, 1), physicsClientId=world.client)
+        cam = Camera(eye=eye, width=320, height=240)
+        depth, _ = world.render_depth(cam)
+    depth = apply_noise(depth, np.random.default_rng(seed), settings.pixel_noise_std, settings.depth_noise_std)
+    return back_project(depth, cam)[0]
+
+
+@pytest.mark.parametrize("eye", [EYE, (0.6, 0.0, 0.3)])
+@pytest.mark.parametrize("seed", range(4))
+def test_a_mug_seen_into_is_one_object(eye, seed):
+    acq = acquire(
+        "objects/mug.urdf", noise=True, seed=seed, settings=AcquisitionSettings(cameras=[Camera(eye=eye)], keep="scene")
+    )
+    scene = segment_scene(acq.points, acq.viewpoints)
+    assert len(scene.objects) == 1, scene.to_dict()["objects"]
+    assert scene.result.n_merged == len(segment_scene(acq.points, acq.viewpoints, merge_seen_through=False)) - 1
+
+
+def test_the_merge_rule_did_the_work_on_a_split_mug():
+    # the view where the inner wall behind the opening is a second cluster without the rule
+    acq = acquire(
+        "objects/mug.urdf", noise=True, seed=0, settings=AcquisitionSettings(cameras=[Camera(eye=EYE)], keep="scene")
+    )
+    apart = segment_scene(acq.points, acq.viewpoints, merge_seen_through=False)
+    assert len(apart.objects) == 2
+    inner = apart.objects[1]  # the inner wall: on the far side of the mug's axis from the camera
+    towards_camera = np.asarray(EYE[:2]) / np.linalg.norm(EYE[:2])
+    assert inner.centroid[:2] @ towards_camera < 0 < apart.objects[0].centroid[:2] @ towards_camera
+    whole = segment_scene(acq.points, acq.viewpoints)
+    assert len(whole.objects) == 1 and whole.result.n_merged == 1
+    assert whole.objects[0].n_points == apart.objects[0].n_points + inner.n_points
+
+
+@pytest.mark.parametrize("eye", [EYE, (-0.5, 0.0, 0.4), (0.0, 0.5, 0.4), (0.4, 0.4, 0.3), (0.3, -0.1, 0.6)])
+@pytest.mark.parametrize("sizes", [(0.05, 0.05), (0.08, 0.05)])
+def test_boxes_1cm_apart_are_not_merged(eye, sizes):
+    gap = 0.01
+    centres = (sizes[0] / 2, sizes[0] + gap + sizes[1] / 2)
+    bodies = [("cube.urdf", (c, 0.0), s) for c, s in zip(centres, sizes)]
+    points = _render(bodies, eye, seed=1)
+    scene = segment_scene(points, np.asarray(eye))
+    # the rule joins nothing: the clusters are those found without it (flying pixels at the boxes' edges
+    # sometimes bridge the gap for the Euclidean clustering itself, before the rule)
+    assert scene.result.n_merged == 0
+    assert len(scene.objects) == len(segment_scene(points, np.asarray(eye), merge_seen_through=False).objects)
+    # each object is one box: (nearly) every point on its side of the gap (the geometry is the ground truth)
+    if len(scene.objects) == 2:
+        for o in scene.objects:
+            side = o.points[:, 0] > sizes[0] + gap / 2
+            assert max(side.mean(), 1 - side.mean()) > 0.98
+
+
+def test_a_small_box_inside_an_open_box_stays_its_own_object(tmp_path):
+    # What happens (segmentation.hpp): the container's thin floor goes with the table and its walls come apart;
+    # the lines of sight to the cube cross no wall's envelope, so the rule leaves the cube alone.
+    bodies = [(_open_box(tmp_path), (0.0, 0.0), 1.0), ("cube.urdf", (0.0, 0.0), 0.04)]
+    points = _render(bodies, EYE, seed=2)
+    scene = segment_scene(points, np.asarray(EYE))
+    cubes = [o for o in scene.objects if np.linalg.norm(o.centroid[:2]) < 0.01]
+    assert len(cubes) == 1
+    inside = np.all(
+        np.abs(cubes[0].points[:, :2]) < 0.02 + 0.003, axis=1
+    )  # the cube's footprint (+ noise; flying pixels at its edges)
+    assert inside.mean() > 0.95 and cubes[0].points[:, 2].max() < 0.005 + 0.04 + 0.003
+
+
+def test_step_seconds_add_up():
+    acq = acquire(
+        "objects/mug.urdf", noise=True, seed=1, settings=AcquisitionSettings(cameras=[Camera(eye=EYE)], keep="scene")
+    )
+    r = segment_scene(acq.points, acq.viewpoints).result
+    steps = r.step_seconds
+    assert set(steps) == {"voxel", "candidates", "table_cut", "outliers", "clusters", "merge", "objects"}
+    assert all(v >= 0 for v in steps.values()) and sum(steps.values()) <= r.seconds

@@ -17,6 +17,10 @@ namespace {
 /// The collision expert W and its settings and results.
 void bind_collision(py::module_& m) {
   SettingsClass<CollisionSettings>(m, "CollisionSettings", "The collision expert W(h) (eq:opt_criterion_std_col).")
+      .property(
+          "model", [](const CollisionSettings& s) { return to_string(s.model); },
+          [](CollisionSettings& s, const std::string& v) { s.model = collision_model_from_string(v); },
+          "surface (the cloud's points) | occupancy (an OccupancyMap of what the cameras saw)")
       .field("beta", &CollisionSettings::beta,
              "1/m: log W = -beta * total depth (2000: 0.5 mm of penetration costs one nat)")
       .field("point_radius", &CollisionSettings::point_radius, "m: cloud points are balls of this radius (>= 0)")
@@ -29,6 +33,8 @@ void bind_collision(py::module_& m) {
              "m: depths up to this count as touching, not penetrating (a cloud is a noisy surface)")
       .field("inside_weight", &CollisionSettings::inside_weight,
              "m per point: each cloud point inside a link adds this much to the total depth (0: depths alone)")
+      .field("reference_area", &CollisionSettings::reference_area,
+             "m^2: the occupancy model charges a link's volume in blocked cells divided by this")
       .done();
 
   py::class_<CollisionResult>(m, "CollisionResult",
@@ -65,15 +71,21 @@ void bind_collision(py::module_& m) {
                       const py::kwargs& kw) {
             if (!hand) throw py::value_error("hand: expected a Hand, got None");
             const CollisionSettings s = settings_from<CollisionSettings>(settings, kw, "CollisionExpert");
-            const Vec3Array P = cloud.is_none() ? Vec3Array(0, 3) : Vec3Array(to_matrix(cloud, "cloud", 3));
             std::optional<Eigen::Vector4d> pl;
             if (!plane.is_none()) pl = Eigen::Vector4d(to_vector(plane, "plane", 4));
+            if (py::isinstance<OccupancyMap>(cloud)) {
+              auto map = cloud.cast<std::shared_ptr<OccupancyMap>>();
+              py::gil_scoped_release release;
+              return std::make_shared<CollisionExpert>(std::move(hand), std::move(map), pl, s);
+            }
+            const Vec3Array P = cloud.is_none() ? Vec3Array(0, 3) : Vec3Array(to_matrix(cloud, "cloud", 3));
             py::gil_scoped_release release;
             return std::make_shared<CollisionExpert>(std::move(hand), P, pl, s);
           }),
           py::arg("hand"), py::arg("cloud"), py::arg("plane") = py::none(), py::kw_only(),
           py::arg("settings") = py::none(),
-          ("hand: Hand; cloud: (N, 3) points (world frame); plane: [a, b, c, d] of a x + b y + c z + d = 0 or None.\n" +
+          ("hand: Hand; cloud: (N, 3) points (world frame): the surface model, or an OccupancyMap: the occupancy\n"
+           "model; plane: [a, b, c, d] of a x + b y + c z + d = 0 or None.\n" +
            settings_doc<CollisionSettings>())
               .c_str())
       .def(
@@ -121,6 +133,13 @@ void bind_collision(py::module_& m) {
           },
           "The normalised, oriented plane [a, b, c, d] (free side a x + b y + c z + d > 0), or None.")
       .def_property_readonly("n_points", &CollisionExpert::n_points)
+      .def_property_readonly(
+          "model", [](const CollisionExpert& e) { return to_string(e.settings().model); }, "surface | occupancy")
+      .def_property_readonly(
+          "occupancy", [](const CollisionExpert& e) -> py::object {
+            return e.occupancy() ? py::cast(std::const_pointer_cast<OccupancyMap>(e.occupancy())) : py::none();
+          },
+          "The OccupancyMap of the occupancy model, or None.")
       .def_property_readonly("cell_size", &CollisionExpert::cell_size, "The grid cell of the cloud index (m).")
       .def_property_readonly(
           "settings", [](const CollisionExpert& e) { return CollisionSettings(e.settings()); },

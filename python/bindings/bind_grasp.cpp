@@ -67,25 +67,22 @@ void bind_collision(py::module_& m) {
       "cylinders, spheres; meshes as their convex hulls); plane depth: the deepest point of the link below the\n"
       "plane (FCL half-space). The cloud is indexed once at construction.")
       .def(
-          py::init([](HandPtr hand, const py::object& cloud, const py::object& plane, const py::object& settings,
-                      const py::kwargs& kw) {
+          py::init([](HandPtr hand, const py::object& cloud, const py::object& plane,
+                      const std::shared_ptr<OccupancyMap>& occupancy, const py::object& settings, const py::kwargs& kw) {
             if (!hand) throw py::value_error("hand: expected a Hand, got None");
             const CollisionSettings s = settings_from<CollisionSettings>(settings, kw, "CollisionExpert");
             std::optional<Eigen::Vector4d> pl;
             if (!plane.is_none()) pl = Eigen::Vector4d(to_vector(plane, "plane", 4));
-            if (py::isinstance<OccupancyMap>(cloud)) {
-              auto map = cloud.cast<std::shared_ptr<OccupancyMap>>();
-              py::gil_scoped_release release;
-              return std::make_shared<CollisionExpert>(std::move(hand), std::move(map), pl, s);
-            }
             const Vec3Array P = cloud.is_none() ? Vec3Array(0, 3) : Vec3Array(to_matrix(cloud, "cloud", 3));
             py::gil_scoped_release release;
+            if (occupancy) return std::make_shared<CollisionExpert>(std::move(hand), occupancy, P, pl, s);
             return std::make_shared<CollisionExpert>(std::move(hand), P, pl, s);
           }),
           py::arg("hand"), py::arg("cloud"), py::arg("plane") = py::none(), py::kw_only(),
-          py::arg("settings") = py::none(),
-          ("hand: Hand; cloud: (N, 3) points (world frame): the surface model, or an OccupancyMap: the occupancy\n"
-           "model; plane: [a, b, c, d] of a x + b y + c z + d = 0 or None.\n" +
+          py::arg("occupancy") = py::none(), py::arg("settings") = py::none(),
+          ("hand: Hand; cloud: (N, 3) points (world frame) or None; plane: [a, b, c, d] of a x + b y + c z + d = 0\n"
+           "or None; occupancy: an OccupancyMap for the occupancy model (its volume charge, plus the cloud's\n"
+           "depths), None for the surface model (settings.model names it).\n" +
            settings_doc<CollisionSettings>())
               .c_str())
       .def(

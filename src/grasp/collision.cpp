@@ -234,16 +234,18 @@ CollisionExpert::CollisionExpert(std::shared_ptr<const Hand> hand, const Eigen::
 }
 
 CollisionExpert::CollisionExpert(std::shared_ptr<const Hand> hand, std::shared_ptr<const OccupancyMap> occupancy,
-                                 const std::optional<Eigen::Vector4d>& plane, CollisionSettings settings)
+                                 const Eigen::Ref<const Vec3Array>& cloud, const std::optional<Eigen::Vector4d>& plane,
+                                 CollisionSettings settings)
     : hand_(std::move(hand)), settings_(settings), occupancy_(std::move(occupancy)) {
   if (!hand_) throw std::invalid_argument("hand: expected a Hand, got none");
   if (!occupancy_) throw std::invalid_argument("occupancy: expected an OccupancyMap, got none");
   settings_.model = CollisionModel::Occupancy;
   check_settings(settings_);
-  index_ = std::make_shared<const Index>(Vec3Array(0, 3), settings_.cell_size);
+  require_finite(cloud, "cloud");
+  index_ = std::make_shared<const Index>(cloud, settings_.cell_size);
   if (plane) {
     const Vec3Array centre = (0.5 * (occupancy_->objects_min() + occupancy_->objects_max())).transpose();
-    plane_ = checked_plane(*plane, centre, settings_.orient_plane);
+    plane_ = checked_plane(*plane, cloud.rows() > 0 ? Vec3Array(cloud) : centre, settings_.orient_plane);
   }
   auto shapes = std::make_shared<Shapes>(*hand_, plane_, settings_.plane_margin);
   shapes->sample_interiors(occupancy_->resolution());

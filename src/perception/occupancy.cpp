@@ -65,7 +65,7 @@ octomap::point3d to_point(const Eigen::Vector3d& p) {
 }
 
 /// Every ray's cells inside [lo, hi]: crossed cells free, the cell of its point (when inside) occupied.
-/// One ray per (point's cell, viewpoint): the cloud is voxelised at the map's resolution on the way in.
+/// One ray per (point's half cell, viewpoint): the cloud is voxelised on the way in.
 struct RayCells {
   octomap::KeySet free, occupied;
   std::int64_t n_rays = 0;
@@ -86,9 +86,17 @@ RayCells cast_rays(const octomap::OcTree& tree, const Eigen::Ref<const Vec3Array
     const bool end_in_tree = tree.coordToKeyChecked(to_point(p), end_key);
     const std::uint64_t origin = origin_ids.emplace(std::array<double, 3>{o.x(), o.y(), o.z()}, origin_ids.size())
                                      .first->second;
-    if (end_in_tree && origin < (1u << 16)) {
-      const std::uint64_t id = (std::uint64_t{end_key[0]} << 48) | (std::uint64_t{end_key[1]} << 32) |
-                               (std::uint64_t{end_key[2]} << 16) | origin;
+    // De-duplicated on half cells: one ray per whole cell leaves cells between neighbouring rays unvisited
+    // (a ray crosses a cell row obliquely), half cells leave none at the density of a depth image.
+    if (end_in_tree && origin < (1u << 15)) {
+      // The point's cell key (OctoMap's) and which half of the cell it is in, per axis.
+      const octomap::point3d q = to_point(p);
+      std::uint64_t id = origin;
+      for (int k = 0; k < 3; ++k) {
+        const double f = static_cast<double>(q(static_cast<unsigned>(k))) / tree.getResolution();
+        const std::uint64_t half = f - std::floor(f) >= 0.5 ? 1 : 0;
+        id = (id << 17) | (std::uint64_t{end_key[static_cast<unsigned>(k)]} << 1) | half;
+      }
       if (!seen.insert(id).second) continue;
     }
     ++out.n_rays;

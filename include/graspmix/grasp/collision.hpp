@@ -34,7 +34,9 @@
 // reaches up to one cell outside the true surface, and its centre half of that, so a finger touching the
 // surface is not charged. O_l grows with how much of the link is inside (it does not saturate: a finger
 // through the middle of an object costs its whole volume), 1 cm^3 inside costs 1 cm at the default area.
-// The plane term P_l is the same in both models; total, log W and collision_free are formed alike.
+// The occupancy model adds the surface model's D_l when it is given the cloud too (the default from
+// Python): a cell of 5 mm cannot tell a 3 mm penetration from a touch, the points can. The plane term
+// P_l is the same in both models; total, log W and collision_free are formed alike.
 //
 // The cloud is indexed once, in the constructor, into a uniform grid whose cells are ordered so that
 // a row of cells is one contiguous run of points; an evaluation visits only the cells under each
@@ -116,10 +118,12 @@ class CollisionExpert {
   CollisionExpert(std::shared_ptr<const Hand> hand, const Eigen::Ref<const Vec3Array>& cloud,
                   const std::optional<Eigen::Vector4d>& plane = std::nullopt, CollisionSettings settings = {});
 
-  /// The occupancy model on a map of the scene (settings.model is set to Occupancy). plane as above; its
-  /// sign is chosen so the centre of the map's objects is on its free side (with orient_plane).
+  /// The occupancy model on a map of the scene (settings.model is set to Occupancy): O_l plus, when a cloud
+  /// is given, the surface model's D_l on it (exact depths of shallow contacts, which the map's cells are
+  /// too coarse to see). plane as above, oriented by the cloud's mean (or the map's objects' centre).
   CollisionExpert(std::shared_ptr<const Hand> hand, std::shared_ptr<const OccupancyMap> occupancy,
-                  const std::optional<Eigen::Vector4d>& plane = std::nullopt, CollisionSettings settings = {});
+                  const Eigen::Ref<const Vec3Array>& cloud, const std::optional<Eigen::Vector4d>& plane = std::nullopt,
+                  CollisionSettings settings = {});
 
   /// W(h) for the wrist pose and configuration (joint_names() order).
   CollisionResult evaluate(const Eigen::Isometry3d& T_world_wrist, const Eigen::Ref<const Eigen::VectorXd>& q) const;

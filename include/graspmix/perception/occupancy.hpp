@@ -42,7 +42,7 @@ enum class CellState : std::uint8_t { Free = 0, Occupied = 1, Unknown = 2 };
 
 /// Diagnostics of a map's construction.
 struct OccupancyStats {
-  std::int64_t n_rays = 0;       ///< rays inserted after de-duplication (one per cell and viewpoint)
+  std::int64_t n_rays = 0;       ///< rays inserted after de-duplication (one per half cell and viewpoint)
   std::int64_t n_free = 0;       ///< cells of the dense grid by state
   std::int64_t n_occupied = 0;
   std::int64_t n_unknown = 0;

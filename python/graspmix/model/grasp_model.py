@@ -33,6 +33,7 @@ from ..io.checks import (
 )
 from .demonstration import Demonstration
 from .grasps import GraspSet
+from .experts import COLLISION_MODELS, occupancy_map
 from .scene_synthesis import segment_query, synthesize_targets
 from .serialization import config_dict, config_settings, density_from_json, density_to_json
 from .settings import FeatureSettings, LearnSettings, SynthesisOptions, check_method
@@ -235,6 +236,8 @@ class GraspModel:
         collision_beta: float = _S.collision_beta,
         contact_tolerance: float = _S.contact_tolerance,
         collision_inside_weight: float = _S.collision_inside_weight,
+        collision: str = _S.collision,
+        occupancy_resolution: float = _S.occupancy_resolution,
         table_clearance: float = _S.table_clearance,
         target="all",
         annealing: dict | None = None,
@@ -252,7 +255,8 @@ class GraspModel:
         wrists whose approach axis points along it (e.g. (0, 0, -1) for top grasps); reachable(wrists,
         joints) -> bool array: the hard reachability test; experts: more experts (graspmix.expert(...) or
         graspmix._core.Expert objects); annealing: AnnealingSettings fields to change. The other settings
-        and their defaults: SynthesisOptions."""
+        and their defaults: SynthesisOptions. collision: "surface" (W on the points) or "occupancy" (W on an
+        occupancy map of the whole cloud from its viewpoints, built once: space no camera saw free is solid)."""
         # Every keyword but the cloud, plane, viewpoints, target, experts and annealing is a SynthesisOptions field.
         opts = _synthesis_options(locals())
         if annealing is not None and not isinstance(annealing, dict):
@@ -260,11 +264,13 @@ class GraspModel:
         t0 = time.perf_counter()
         # Phase 1: the scene (support plane, objects) and the targets.
         points, name, file_viewpoints = load_points(cloud)
-        scene = segment_query(
-            points, file_viewpoints if viewpoints is None else viewpoints, checked_plane(plane), opts, self.features
-        )
+        viewpoints = file_viewpoints if viewpoints is None else viewpoints
+        scene = segment_query(points, viewpoints, checked_plane(plane), opts, self.features)
         targets = scene.select(target)
         t_segment = time.perf_counter() - t0
+        occupancy = None
+        if opts.collision == "occupancy":
+            occupancy = occupancy_map(points, viewpoints, scene.points, scene.plane, opts)
         # Phases 2-3: features, query densities, sampling, ranking and annealing per target, ranked together.
         out = synthesize_targets(
             self,
@@ -275,9 +281,12 @@ class GraspModel:
             approach_axis=approach_axis,
             reachable=reachable,
             experts=experts,
+            occupancy=occupancy,
         )
         timing = dict(out.timing)
         timing["segmentation"] = t_segment
+        if occupancy is not None:
+            timing["occupancy"] = occupancy.stats["seconds"]
         timing["total"] = time.perf_counter() - t0
         # Features: everything before the synthesiser's own stages (the segmentation, i.e. the clean-up, included).
         timing["features"] = timing["total"] - sum(out.timing.values())
@@ -352,6 +361,9 @@ def _synthesis_options(args: dict) -> SynthesisOptions:
     check_seed(v["seed"])
     for name in ("approach_concentration", "collision_beta", "contact_tolerance", "collision_inside_weight"):
         check_float(v[name], name, 0.0)
+    check_float(v["occupancy_resolution"], "occupancy_resolution", gt=0.0)
+    if v["collision"] not in COLLISION_MODELS:
+        raise ValueError(f"collision must be one of {', '.join(COLLISION_MODELS)}, got {v['collision']!r}")
     return SynthesisOptions(**v)
 
 

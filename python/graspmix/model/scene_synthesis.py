@@ -92,10 +92,20 @@ class SceneSynthesis:
 
 
 def synthesize_targets(
-    model, scene: Scene, targets: list[int], opts: SynthesisOptions, settings, *, approach_axis, reachable, experts
+    model,
+    scene: Scene,
+    targets: list[int],
+    opts: SynthesisOptions,
+    settings,
+    *,
+    approach_axis,
+    reachable,
+    experts,
+    occupancy=None,
 ) -> SceneSynthesis:
-    """Runs the model's synthesiser on every target object against the whole scene and ranks all grasps."""
-    collision = collision_expert(model.hand, scene.points, scene.plane, opts)
+    """Runs the model's synthesiser on every target object against the whole scene and ranks all grasps;
+    occupancy: the scene's OccupancyMap, built once, shared by every target (collision="occupancy")."""
+    collision = collision_expert(model.hand, scene.points, scene.plane, opts, occupancy)
     timing = dict.fromkeys(STAGES, 0.0)
     grasps, surfaces, evaluations, rejected = [], [], 0, 0
     for i in targets:

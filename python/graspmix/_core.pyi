@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AnnealingSettings', 'AxisAlignmentExpert', 'AxisAlignmentSettings', 'CloudData', 'CollisionBatchResult', 'CollisionExpert', 'CollisionResult', 'CollisionSettings', 'ConfigModel', 'ConfigModelSettings', 'ContactData', 'ContactModel', 'ContactSettings', 'Evaluation', 'Expert', 'FunctionExpert', 'GaussianMixture', 'GmmSettings', 'Grasp', 'GraspSynthesizer', 'Hand', 'HandLoadSettings', 'KdeSettings', 'KinematicFeasibilityExpert', 'KinematicFeasibilitySettings', 'PoseDensity', 'PoseKDE', 'PoseMixture', 'QueryDensity', 'QuerySettings', 'SceneResult', 'SceneSettings', 'SceneSimResult', 'SettleResult', 'SimObject', 'SimResult', 'SimSettings', 'SurfaceCloud', 'SurfaceFeatureSettings', 'SynthesisResult', 'SynthesisSettings', 'SynthesisTiming', 'build_info', 'compute_surface_features', 'contact_data', 'learn_contact_models', 'load_cloud', 'load_mesh', 'log_vmf_s3_normaliser', 'orient_plane', 'pose_inverse', 'pose_multiply', 'prepare_cloud', 'quat_exp', 'quat_log', 'save_cloud', 'sim_execute', 'sim_execute_scene', 'sim_settle_scene']
+__all__: list[str] = ['AnnealingSettings', 'AxisAlignmentExpert', 'AxisAlignmentSettings', 'CloudData', 'CollisionBatchResult', 'CollisionExpert', 'CollisionResult', 'CollisionSettings', 'ConfigModel', 'ConfigModelSettings', 'ContactData', 'ContactModel', 'ContactSettings', 'Evaluation', 'Expert', 'FunctionExpert', 'GaussianMixture', 'GmmSettings', 'Grasp', 'GraspSynthesizer', 'Hand', 'HandLoadSettings', 'KdeSettings', 'KinematicFeasibilityExpert', 'KinematicFeasibilitySettings', 'OccupancyMap', 'OccupancySettings', 'PlaneCandidate', 'PoseDensity', 'PoseKDE', 'PoseMixture', 'QueryDensity', 'QuerySettings', 'SceneObject', 'SceneResult', 'SceneSettings', 'SceneSimResult', 'Segmentation', 'SegmentationSettings', 'SettleResult', 'SimObject', 'SimResult', 'SimSettings', 'SurfaceCloud', 'SurfaceFeatureSettings', 'SynthesisResult', 'SynthesisSettings', 'SynthesisTiming', 'build_info', 'compute_surface_features', 'contact_data', 'learn_contact_models', 'load_cloud', 'load_mesh', 'log_vmf_s3_normaliser', 'orient_plane', 'pose_inverse', 'pose_multiply', 'prepare_cloud', 'quat_exp', 'quat_log', 'save_cloud', 'segment_scene', 'sim_execute', 'sim_execute_scene', 'sim_settle_scene']
 class GmmSettings:
     """
     How a GaussianMixture (or PoseMixture) is fitted by EM.
@@ -607,6 +607,332 @@ class SceneResult:
         (N) input row whose per-point data (viewpoint, camera) every point carries: its own, or for a
         voxel centroid the input point nearest to it in its voxel; index per-point arrays with it
         """
+class SegmentationSettings:
+    """
+    The scene model (segment_scene): support plane rule, table cut, outliers, clusters.
+    
+    Settings: settings= a SegmentationSettings (None: its defaults), and/or its fields as keywords,
+    which override it (an unknown keyword is a ValueError):
+      voxel_size = 0.003: m: voxel-grid leaf size, 0 = off (SceneSettings')
+      plane_distance = 0.005: m: RANSAC inlier threshold
+      plane_max_iterations = 1000: RANSAC iterations per candidate
+      seed = 0: seeds RANSAC (None: 0)
+      find_plane = True: search for the support plane (false: objects only)
+      plane_candidates = 3: planes tried, each on the points the previous ones left
+      plane_min_fraction = 0.05: rule 1: fraction of the voxelised points a candidate holds
+      plane_behind_distance = 0.01: m, rule 3: how far behind the plane a point counts as behind it
+      plane_max_behind_fraction = 0.05: rule 3: fraction of all points allowed behind the plane
+      plane_margin = 0.01: m, rule 4: how far the plane's inliers must reach beyond the objects' footprint
+      table_clearance = 0.005: m: points at most this far above the support plane (or behind it) are the table
+      remove_outliers = True: statistical outlier removal on the object points
+      outlier_neighbours = 20: k of the mean-distance statistic
+      outlier_std_ratio = 2.0: drop points whose mean k-distance exceeds mean + ratio * std
+      cluster_tolerance = 0.006: m: object points closer than this are one object (Euclidean clusters)
+      min_cluster_size = 20: smaller clusters are noise, dropped
+      max_cluster_size = 0: larger clusters are dropped; 0 = no limit
+    """
+    __hash__: typing.ClassVar[None] = None
+    _fields: typing.ClassVar[tuple] = ('voxel_size', 'plane_distance', 'plane_max_iterations', 'seed', 'find_plane', 'plane_candidates', 'plane_min_fraction', 'plane_behind_distance', 'plane_max_behind_fraction', 'plane_margin', 'table_clearance', 'remove_outliers', 'outlier_neighbours', 'outlier_std_ratio', 'cluster_tolerance', 'min_cluster_size', 'max_cluster_size')
+    def __copy__(self) -> SegmentationSettings:
+        ...
+    def __deepcopy__(self, memo: typing.Any) -> SegmentationSettings:
+        ...
+    def __eq__(self, arg0: typing.Any) -> typing.Any:
+        ...
+    def __getstate__(self) -> dict:
+        ...
+    @typing.overload
+    def __init__(self) -> None:
+        """
+        The defaults: those of the default-constructed C++ struct.
+        """
+    @typing.overload
+    def __init__(self, **kwargs) -> None:
+        """
+        Keyword constructor: any of the fields (voxel_size, plane_distance, plane_max_iterations, seed, find_plane, plane_candidates, plane_min_fraction, plane_behind_distance, plane_max_behind_fraction, plane_margin, table_clearance, remove_outliers, outlier_neighbours, outlier_std_ratio, cluster_tolerance, min_cluster_size, max_cluster_size); the others keep their defaults.
+        """
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    @property
+    def cluster_tolerance(self) -> float:
+        """
+        m: object points closer than this are one object (Euclidean clusters)
+        """
+    @cluster_tolerance.setter
+    def cluster_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def find_plane(self) -> bool:
+        """
+        search for the support plane (false: objects only)
+        """
+    @find_plane.setter
+    def find_plane(self, arg0: bool) -> None:
+        ...
+    @property
+    def max_cluster_size(self) -> int:
+        """
+        larger clusters are dropped; 0 = no limit
+        """
+    @max_cluster_size.setter
+    def max_cluster_size(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def min_cluster_size(self) -> int:
+        """
+        smaller clusters are noise, dropped
+        """
+    @min_cluster_size.setter
+    def min_cluster_size(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def outlier_neighbours(self) -> int:
+        """
+        k of the mean-distance statistic
+        """
+    @outlier_neighbours.setter
+    def outlier_neighbours(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def outlier_std_ratio(self) -> float:
+        """
+        drop points whose mean k-distance exceeds mean + ratio * std
+        """
+    @outlier_std_ratio.setter
+    def outlier_std_ratio(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def plane_behind_distance(self) -> float:
+        """
+        m, rule 3: how far behind the plane a point counts as behind it
+        """
+    @plane_behind_distance.setter
+    def plane_behind_distance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def plane_candidates(self) -> int:
+        """
+        planes tried, each on the points the previous ones left
+        """
+    @plane_candidates.setter
+    def plane_candidates(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def plane_distance(self) -> float:
+        """
+        m: RANSAC inlier threshold
+        """
+    @plane_distance.setter
+    def plane_distance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def plane_margin(self) -> float:
+        """
+        m, rule 4: how far the plane's inliers must reach beyond the objects' footprint
+        """
+    @plane_margin.setter
+    def plane_margin(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def plane_max_behind_fraction(self) -> float:
+        """
+        rule 3: fraction of all points allowed behind the plane
+        """
+    @plane_max_behind_fraction.setter
+    def plane_max_behind_fraction(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def plane_max_iterations(self) -> int:
+        """
+        RANSAC iterations per candidate
+        """
+    @plane_max_iterations.setter
+    def plane_max_iterations(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def plane_min_fraction(self) -> float:
+        """
+        rule 1: fraction of the voxelised points a candidate holds
+        """
+    @plane_min_fraction.setter
+    def plane_min_fraction(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def remove_outliers(self) -> bool:
+        """
+        statistical outlier removal on the object points
+        """
+    @remove_outliers.setter
+    def remove_outliers(self, arg0: bool) -> None:
+        ...
+    @property
+    def seed(self) -> int:
+        """
+        seeds RANSAC (None: 0)
+        """
+    @seed.setter
+    def seed(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def table_clearance(self) -> float:
+        """
+        m: points at most this far above the support plane (or behind it) are the table
+        """
+    @table_clearance.setter
+    def table_clearance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def voxel_size(self) -> float:
+        """
+        m: voxel-grid leaf size, 0 = off (SceneSettings')
+        """
+    @voxel_size.setter
+    def voxel_size(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class SceneObject:
+    """
+    One object of a segmented scene: a Euclidean cluster above the plane.
+    """
+    @property
+    def centroid(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        """
+        (3,) m
+        """
+    @property
+    def index(self) -> int:
+        """
+        its label and its place in Segmentation.objects
+        """
+    @property
+    def n_points(self) -> int:
+        ...
+    @property
+    def obb_center(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        """
+        (3,) m: centre of the oriented bounding box
+        """
+    @property
+    def obb_extents(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        """
+        (3,) m: side lengths along those axes
+        """
+    @property
+    def obb_rotation(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 3]"]:
+        """
+        (3, 3): columns the box's axes by decreasing variance, right-handed
+        """
+    @property
+    def rows(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 1]"]:
+        """
+        (n) its rows of Segmentation.points
+        """
+class PlaneCandidate:
+    """
+    What the support plane rule saw of one RANSAC plane.
+    """
+    @property
+    def accepted(self) -> bool:
+        ...
+    @property
+    def behind_fraction(self) -> float:
+        """
+        rule 3
+        """
+    @property
+    def camera_height(self) -> float:
+        """
+        m, rule 2: mean camera height above it
+        """
+    @property
+    def inlier_fraction(self) -> float:
+        """
+        rule 1
+        """
+    @property
+    def margin(self) -> float:
+        """
+        m, rule 4 (NaN when not judged, inf with no object)
+        """
+    @property
+    def n_inliers(self) -> int:
+        ...
+    @property
+    def plane(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[4, 1]"]:
+        """
+        [a, b, c, d], (a, b, c) unit towards the cameras
+        """
+    @property
+    def reason(self) -> str:
+        """
+        why it was refused (empty when accepted)
+        """
+class Segmentation:
+    """
+    The support plane and the objects of a scene cloud (segment_scene).
+    """
+    @property
+    def candidates(self) -> list[PlaneCandidate]:
+        """
+        the support rule's figures, in the order found
+        """
+    @property
+    def labels(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 1]"]:
+        """
+        (M) object index of every point
+        """
+    @property
+    def n_after_voxel(self) -> int:
+        ...
+    @property
+    def n_input(self) -> int:
+        ...
+    @property
+    def n_outliers(self) -> int:
+        ...
+    @property
+    def n_output(self) -> int:
+        ...
+    @property
+    def n_plane(self) -> int:
+        """
+        dropped as the table
+        """
+    @property
+    def n_small_clusters(self) -> int:
+        """
+        points of clusters dropped as noise
+        """
+    @property
+    def objects(self) -> list[SceneObject]:
+        """
+        by decreasing point count, ties by centroid x, y, z
+        """
+    @property
+    def plane(self) -> typing.Any:
+        """
+        [a, b, c, d], (a, b, c) unit towards the cameras; None without a plane
+        """
+    @property
+    def plane_found(self) -> bool:
+        ...
+    @property
+    def plane_given(self) -> bool:
+        ...
+    @property
+    def points(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        """
+        (M, 3) the objects' points (voxelised), grouped by object
+        """
+    @property
+    def seconds(self) -> float:
+        ...
+    @property
+    def sources(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 1]"]:
+        """
+        (M) input row whose per-point data every point carries
+        """
 class SurfaceFeatureSettings:
     """
     Normals, curvatures and frames (compute_surface_features); the C++ FeatureSettings.
@@ -964,12 +1290,132 @@ class Hand:
         """
         The URDF file it was read from.
         """
+class OccupancySettings:
+    """
+    The occupancy map of a scene from its cameras' rays (OccupancyMap).
+    
+    Settings: settings= a OccupancySettings (None: its defaults), and/or its fields as keywords,
+    which override it (an unknown keyword is a ValueError):
+      resolution = 0.005: m: cell size (OctoMap's resolution), > 0
+      margin = 0.1: m: the objects' bounding box grown by this is the mapped region
+      unknown_is_occupied = True: cells no ray reached are obstacles (space the cameras did not see is not free)
+      max_cells = 50000000: the dense grid's largest size (cells)
+    """
+    __hash__: typing.ClassVar[None] = None
+    _fields: typing.ClassVar[tuple] = ('resolution', 'margin', 'unknown_is_occupied', 'max_cells')
+    def __copy__(self) -> OccupancySettings:
+        ...
+    def __deepcopy__(self, memo: typing.Any) -> OccupancySettings:
+        ...
+    def __eq__(self, arg0: typing.Any) -> typing.Any:
+        ...
+    def __getstate__(self) -> dict:
+        ...
+    @typing.overload
+    def __init__(self) -> None:
+        """
+        The defaults: those of the default-constructed C++ struct.
+        """
+    @typing.overload
+    def __init__(self, **kwargs) -> None:
+        """
+        Keyword constructor: any of the fields (resolution, margin, unknown_is_occupied, max_cells); the others keep their defaults.
+        """
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    @property
+    def margin(self) -> float:
+        """
+        m: the objects' bounding box grown by this is the mapped region
+        """
+    @margin.setter
+    def margin(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def max_cells(self) -> int:
+        """
+        the dense grid's largest size (cells)
+        """
+    @max_cells.setter
+    def max_cells(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def resolution(self) -> float:
+        """
+        m: cell size (OctoMap's resolution), > 0
+        """
+    @resolution.setter
+    def resolution(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def unknown_is_occupied(self) -> bool:
+        """
+        cells no ray reached are obstacles (space the cameras did not see is not free)
+        """
+    @unknown_is_occupied.setter
+    def unknown_is_occupied(self, arg0: bool) -> None:
+        ...
+class OccupancyMap:
+    """
+    Free, occupied and unknown space of a scene: OctoMap's ray insertion of every point from its own viewpoint,
+    baked into a dense grid over the objects' box grown by a margin (free outside it, and within one cell of
+    the support plane). The rule: include/graspmix/grasp/occupancy.hpp.
+    """
+    def __init__(self, points: typing.Any, viewpoints: typing.Any, objects: typing.Any = None, plane: typing.Any = None, *, settings: typing.Any = None, **kwargs) -> None:
+        """
+        points (N, 3), the whole cloud; viewpoints (3,) or (N, 3), the camera of each point; objects (M, 3): the
+        points whose box (grown by margin) is mapped (None: all points); plane [a, b, c, d] or None.
+        Settings: settings= a OccupancySettings (None: its defaults), and/or its fields as keywords,
+        which override it (an unknown keyword is a ValueError):
+          resolution = 0.005: m: cell size (OctoMap's resolution), > 0
+          margin = 0.1: m: the objects' bounding box grown by this is the mapped region
+          unknown_is_occupied = True: cells no ray reached are obstacles (space the cameras did not see is not free)
+          max_cells = 50000000: the dense grid's largest size (cells)
+        """
+    def state(self, points: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.uint8], "[m, 1]"]:
+        """
+        (N,) uint8 state of each point's cell: 0 free, 1 occupied, 2 unknown (free outside).
+        """
+    @property
+    def dims(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[3, 1]"]:
+        """
+        (3,) cells along x, y, z.
+        """
+    @property
+    def plane(self) -> typing.Any:
+        """
+        The support plane, normalised, its normal towards the cameras, or None.
+        """
+    @property
+    def region_max(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        """
+        (3,) upper corner of the mapped region (m).
+        """
+    @property
+    def region_min(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        """
+        (3,) lower corner of the mapped region (m).
+        """
+    @property
+    def resolution(self) -> float:
+        ...
+    @property
+    def settings(self) -> OccupancySettings:
+        ...
+    @property
+    def stats(self) -> dict:
+        """
+        Rays inserted (one per cell and viewpoint), cells by state, wall time (s).
+        """
 class CollisionSettings:
     """
     The collision expert W(h) (eq:opt_criterion_std_col).
     
     Settings: settings= a CollisionSettings (None: its defaults), and/or its fields as keywords,
     which override it (an unknown keyword is a ValueError):
+      model = 'surface': surface (the cloud's points) | occupancy (an OccupancyMap of what the cameras saw)
       beta = 2000.0: 1/m: log W = -beta * total depth (2000: 0.5 mm of penetration costs one nat)
       point_radius = 0.0: m: cloud points are balls of this radius (>= 0)
       plane_margin = 0.0: m: the support plane is raised by this much (negative: tolerate contact)
@@ -977,9 +1423,10 @@ class CollisionSettings:
       orient_plane = True: flip the plane's sign so the cloud's mean lies on its free (positive) side
       contact_tolerance = 0.001: m: depths up to this count as touching, not penetrating (a cloud is a noisy surface)
       inside_weight = 0.0: m per point: each cloud point inside a link adds this much to the total depth (0: depths alone)
+      reference_area = 0.0001: m^2: the occupancy model charges a link's volume in blocked cells divided by this
     """
     __hash__: typing.ClassVar[None] = None
-    _fields: typing.ClassVar[tuple] = ('beta', 'point_radius', 'plane_margin', 'cell_size', 'orient_plane', 'contact_tolerance', 'inside_weight')
+    _fields: typing.ClassVar[tuple] = ('model', 'beta', 'point_radius', 'plane_margin', 'cell_size', 'orient_plane', 'contact_tolerance', 'inside_weight', 'reference_area')
     def __copy__(self) -> CollisionSettings:
         ...
     def __deepcopy__(self, memo: typing.Any) -> CollisionSettings:
@@ -996,7 +1443,7 @@ class CollisionSettings:
     @typing.overload
     def __init__(self, **kwargs) -> None:
         """
-        Keyword constructor: any of the fields (beta, point_radius, plane_margin, cell_size, orient_plane, contact_tolerance, inside_weight); the others keep their defaults.
+        Keyword constructor: any of the fields (model, beta, point_radius, plane_margin, cell_size, orient_plane, contact_tolerance, inside_weight, reference_area); the others keep their defaults.
         """
     def __repr__(self) -> str:
         ...
@@ -1035,6 +1482,14 @@ class CollisionSettings:
     def inside_weight(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
+    def model(self) -> str:
+        """
+        surface (the cloud's points) | occupancy (an OccupancyMap of what the cameras saw)
+        """
+    @model.setter
+    def model(self, arg1: str) -> None:
+        ...
+    @property
     def orient_plane(self) -> bool:
         """
         flip the plane's sign so the cloud's mean lies on its free (positive) side
@@ -1057,6 +1512,14 @@ class CollisionSettings:
         """
     @point_radius.setter
     def point_radius(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def reference_area(self) -> float:
+        """
+        m^2: the occupancy model charges a link's volume in blocked cells divided by this
+        """
+    @reference_area.setter
+    def reference_area(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
 class CollisionResult:
     """
@@ -1136,11 +1599,14 @@ class CollisionExpert:
     cylinders, spheres; meshes as their convex hulls); plane depth: the deepest point of the link below the
     plane (FCL half-space). The cloud is indexed once at construction.
     """
-    def __init__(self, hand: Hand, cloud: typing.Any, plane: typing.Any = None, *, settings: typing.Any = None, **kwargs) -> None:
+    def __init__(self, hand: Hand, cloud: typing.Any, plane: typing.Any = None, *, occupancy: OccupancyMap = None, settings: typing.Any = None, **kwargs) -> None:
         """
-        hand: Hand; cloud: (N, 3) points (world frame); plane: [a, b, c, d] of a x + b y + c z + d = 0 or None.
+        hand: Hand; cloud: (N, 3) points (world frame) or None; plane: [a, b, c, d] of a x + b y + c z + d = 0
+        or None; occupancy: an OccupancyMap for the occupancy model (its volume charge, plus the cloud's
+        depths), None for the surface model (settings.model names it).
         Settings: settings= a CollisionSettings (None: its defaults), and/or its fields as keywords,
         which override it (an unknown keyword is a ValueError):
+          model = 'surface': surface (the cloud's points) | occupancy (an OccupancyMap of what the cameras saw)
           beta = 2000.0: 1/m: log W = -beta * total depth (2000: 0.5 mm of penetration costs one nat)
           point_radius = 0.0: m: cloud points are balls of this radius (>= 0)
           plane_margin = 0.0: m: the support plane is raised by this much (negative: tolerate contact)
@@ -1148,6 +1614,7 @@ class CollisionExpert:
           orient_plane = True: flip the plane's sign so the cloud's mean lies on its free (positive) side
           contact_tolerance = 0.001: m: depths up to this count as touching, not penetrating (a cloud is a noisy surface)
           inside_weight = 0.0: m per point: each cloud point inside a link adds this much to the total depth (0: depths alone)
+          reference_area = 0.0001: m^2: the occupancy model charges a link's volume in blocked cells divided by this
         """
     def collision_free(self, T_world_wrist: typing.Any, joints: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"]:
         """
@@ -1174,8 +1641,18 @@ class CollisionExpert:
         The grid cell of the cloud index (m).
         """
     @property
+    def model(self) -> str:
+        """
+        surface | occupancy
+        """
+    @property
     def n_points(self) -> int:
         ...
+    @property
+    def occupancy(self) -> typing.Any:
+        """
+        The OccupancyMap of the occupancy model, or None.
+        """
     @property
     def plane(self) -> typing.Any:
         """
@@ -2521,6 +2998,29 @@ def quat_log(q: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float
 def save_cloud(path: typing.Any, points: typing.Any, normals: typing.Any = None, encoding: str = 'binary', viewpoint: typing.Any = None) -> None:
     """
     Writes float32 x y z (+ normal_x normal_y normal_z) to .pcd (encoding ascii | binary | binary_compressed) or .ply (ascii | binary); viewpoint [x, y, z, qx, qy, qz, qw] goes into the header.
+    """
+def segment_scene(points: typing.Any, viewpoints: typing.Any = None, plane: typing.Any = None, *, settings: typing.Any = None, **kwargs) -> Segmentation:
+    """
+    The support plane and the objects of a scene cloud (N, 3) seen from viewpoints (None: a camera at the origin; (3,) or (N, 3)); plane [a, b, c, d] gives a known support. The rule that accepts a plane is in include/graspmix/perception/segmentation.hpp.
+    Settings: settings= a SegmentationSettings (None: its defaults), and/or its fields as keywords,
+    which override it (an unknown keyword is a ValueError):
+      voxel_size = 0.003: m: voxel-grid leaf size, 0 = off (SceneSettings')
+      plane_distance = 0.005: m: RANSAC inlier threshold
+      plane_max_iterations = 1000: RANSAC iterations per candidate
+      seed = 0: seeds RANSAC (None: 0)
+      find_plane = True: search for the support plane (false: objects only)
+      plane_candidates = 3: planes tried, each on the points the previous ones left
+      plane_min_fraction = 0.05: rule 1: fraction of the voxelised points a candidate holds
+      plane_behind_distance = 0.01: m, rule 3: how far behind the plane a point counts as behind it
+      plane_max_behind_fraction = 0.05: rule 3: fraction of all points allowed behind the plane
+      plane_margin = 0.01: m, rule 4: how far the plane's inliers must reach beyond the objects' footprint
+      table_clearance = 0.005: m: points at most this far above the support plane (or behind it) are the table
+      remove_outliers = True: statistical outlier removal on the object points
+      outlier_neighbours = 20: k of the mean-distance statistic
+      outlier_std_ratio = 2.0: drop points whose mean k-distance exceeds mean + ratio * std
+      cluster_tolerance = 0.006: m: object points closer than this are one object (Euclidean clusters)
+      min_cluster_size = 20: smaller clusters are noise, dropped
+      max_cluster_size = 0: larger clusters are dropped; 0 = no limit
     """
 def sim_execute(hand: Hand, object: SimObject, T_world_object: typing.Any, T_world_wrist: typing.Any, pregrasp: typing.Any, grasp: typing.Any, settings: typing.Any = None, **kwargs) -> SimResult:
     """

@@ -224,8 +224,9 @@ CollisionExpert::CollisionExpert(std::shared_ptr<const Hand> hand, const Eigen::
   if (!hand_) throw std::invalid_argument("hand: expected a Hand, got none");
   check_settings(settings_);
   if (settings_.model != CollisionModel::Surface) {
-    throw std::invalid_argument("collision model 'occupancy' is built from an OccupancyMap (the cloud with its "
-                                "viewpoints), not from points alone");
+    throw std::invalid_argument(
+        "collision model 'occupancy' is built from an OccupancyMap (the cloud with its "
+        "viewpoints), not from points alone");
   }
   require_finite(cloud, "cloud");
   index_ = std::make_shared<const Index>(cloud, settings_.cell_size);
@@ -290,8 +291,9 @@ void CollisionExpert::evaluate_into(const Eigen::Isometry3d* link_poses, double*
       const OccupancyMap& map = *occupancy_;
       if (((centre - half).array() <= map.region_max().array()).all() &&
           ((centre + half).array() >= map.region_min().array()).all()) {
-        cloud_depth[sh.link] += blocked_volume(map, *sh.src, sh.samples, sh.sample_volume, T, tol, points_inside[sh.link]) /
-                                settings_.reference_area;
+        cloud_depth[sh.link] +=
+            blocked_volume(map, *sh.src, sh.samples, sh.sample_volume, T, tol, points_inside[sh.link]) /
+            settings_.reference_area;
       }
     }
     // Cloud: the points in the cells under the shape's world box (grown by r).

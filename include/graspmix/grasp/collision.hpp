@@ -49,7 +49,7 @@
 #include <Eigen/Geometry>
 
 #include "graspmix/core/types.hpp"
-#include "graspmix/perception/occupancy.hpp"
+#include "graspmix/grasp/occupancy.hpp"
 #include "graspmix/robot/hand.hpp"
 
 namespace graspmix {

@@ -32,8 +32,8 @@ from ..io.checks import (
     check_seed,
 )
 from .demonstration import Demonstration
-from .grasps import GraspSet
 from .experts import COLLISION_MODELS, occupancy_map
+from .grasps import GraspSet
 from .scene_synthesis import segment_query, synthesize_targets
 from .serialization import config_dict, config_settings, density_from_json, density_to_json
 from .settings import FeatureSettings, LearnSettings, SynthesisOptions, check_method

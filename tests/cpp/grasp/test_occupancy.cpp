@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "graspmix/perception/occupancy.hpp"
+#include "graspmix/grasp/occupancy.hpp"
 
 using graspmix::CellState;
 using graspmix::OccupancyMap;

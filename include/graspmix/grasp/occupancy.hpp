@@ -1,5 +1,6 @@
 #pragma once
-// What the cameras saw of a scene, as occupancy: OctoMap's ray insertion of the cloud, each point from its
+// What the cameras saw of a scene, as occupancy (grasp layer: it is the collision expert's model of the scene,
+// and the grasp layer may not use perception): OctoMap's ray insertion of the cloud, each point from its
 // own viewpoint (the camera that saw it), baked into a dense grid over a region of interest for O(1)
 // queries.
 //
@@ -42,11 +43,11 @@ enum class CellState : std::uint8_t { Free = 0, Occupied = 1, Unknown = 2 };
 
 /// Diagnostics of a map's construction.
 struct OccupancyStats {
-  std::int64_t n_rays = 0;       ///< rays inserted after de-duplication (one per half cell and viewpoint)
-  std::int64_t n_free = 0;       ///< cells of the dense grid by state
+  std::int64_t n_rays = 0;  ///< rays inserted after de-duplication (one per half cell and viewpoint)
+  std::int64_t n_free = 0;  ///< cells of the dense grid by state
   std::int64_t n_occupied = 0;
   std::int64_t n_unknown = 0;
-  double seconds = 0.0;          ///< wall time of insertion and baking
+  double seconds = 0.0;  ///< wall time of insertion and baking
 };
 
 class OccupancyMap {

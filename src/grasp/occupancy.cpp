@@ -1,5 +1,5 @@
 // The occupancy map: OctoMap ray insertion clipped to the region of interest, baked into a dense grid.
-#include "graspmix/perception/occupancy.hpp"
+#include "graspmix/grasp/occupancy.hpp"
 
 #include <algorithm>
 #include <array>
@@ -19,7 +19,8 @@ namespace {
 
 void check_settings(const OccupancySettings& s) {
   if (!(s.resolution > 0) || !std::isfinite(s.resolution)) {
-    throw std::invalid_argument("occupancy: resolution must be finite and > 0 (m), got " + std::to_string(s.resolution));
+    throw std::invalid_argument("occupancy: resolution must be finite and > 0 (m), got " +
+                                std::to_string(s.resolution));
   }
   if (!(s.margin >= 0) || !std::isfinite(s.margin)) {
     throw std::invalid_argument("occupancy: margin must be finite and >= 0 (m), got " + std::to_string(s.margin));
@@ -72,7 +73,8 @@ struct RayCells {
 };
 
 RayCells cast_rays(const octomap::OcTree& tree, const Eigen::Ref<const Vec3Array>& points,
-                   const Eigen::Ref<const Vec3Array>& viewpoints, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
+                   const Eigen::Ref<const Vec3Array>& viewpoints, const Eigen::Vector3d& lo,
+                   const Eigen::Vector3d& hi) {
   RayCells out;
   std::map<std::array<double, 3>, std::uint64_t> origin_ids;
   std::unordered_set<std::uint64_t> seen;
@@ -84,8 +86,8 @@ RayCells cast_rays(const octomap::OcTree& tree, const Eigen::Ref<const Vec3Array
     if (!clip_segment(o, p, lo, hi, t0, t1)) continue;
     octomap::OcTreeKey end_key;
     const bool end_in_tree = tree.coordToKeyChecked(to_point(p), end_key);
-    const std::uint64_t origin = origin_ids.emplace(std::array<double, 3>{o.x(), o.y(), o.z()}, origin_ids.size())
-                                     .first->second;
+    const std::uint64_t origin =
+        origin_ids.emplace(std::array<double, 3>{o.x(), o.y(), o.z()}, origin_ids.size()).first->second;
     // De-duplicated on half cells: one ray per whole cell leaves cells between neighbouring rays unvisited
     // (a ray crosses a cell row obliquely), half cells leave none at the density of a depth image.
     if (end_in_tree && origin < (1u << 15)) {
@@ -131,7 +133,8 @@ std::vector<std::uint8_t> bake_cells(const octomap::OcTree& tree, const Eigen::V
     const Dims l0 = f.cwiseMax(0), l1 = (f.array() + n).matrix().cwiseMin(dims);
     for (std::int64_t k = l0.z(); k < l1.z(); ++k)
       for (std::int64_t j = l0.y(); j < l1.y(); ++j)
-        for (std::int64_t i = l0.x(); i < l1.x(); ++i) cells[static_cast<std::size_t>((k * dims.y() + j) * dims.x() + i)] = state;
+        for (std::int64_t i = l0.x(); i < l1.x(); ++i)
+          cells[static_cast<std::size_t>((k * dims.y() + j) * dims.x() + i)] = state;
   }
   if (plane) {
     const Eigen::Vector3d n = plane->head<3>();
@@ -140,7 +143,8 @@ std::vector<std::uint8_t> bake_cells(const octomap::OcTree& tree, const Eigen::V
         for (std::int64_t i = 0; i < dims.x(); ++i) {
           const Eigen::Vector3d c = origin + h * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5);
           if (n.dot(c) + (*plane)[3] < h) {
-            cells[static_cast<std::size_t>((k * dims.y() + j) * dims.x() + i)] = static_cast<std::uint8_t>(CellState::Free);
+            cells[static_cast<std::size_t>((k * dims.y() + j) * dims.x() + i)] =
+                static_cast<std::uint8_t>(CellState::Free);
           }
         }
   }
@@ -177,7 +181,8 @@ OccupancyMap::OccupancyMap(const Eigen::Ref<const Vec3Array>& points, const Eige
   const Eigen::Vector3d lo = ((objects_lo_.array() - settings_.margin) / h_).floor() * h_;
   const Eigen::Vector3d hi = ((objects_hi_.array() + settings_.margin) / h_).ceil() * h_;
   dims_ = ((hi - lo) / h_).array().round().cast<std::int64_t>().max(1);
-  const double n_cells = static_cast<double>(dims_.x()) * static_cast<double>(dims_.y()) * static_cast<double>(dims_.z());
+  const double n_cells =
+      static_cast<double>(dims_.x()) * static_cast<double>(dims_.y()) * static_cast<double>(dims_.z());
   if (n_cells > static_cast<double>(settings_.max_cells)) {
     throw std::invalid_argument("occupancy: the region needs " + std::to_string(static_cast<std::int64_t>(n_cells)) +
                                 " cells at resolution " + std::to_string(h_) + " m, more than max_cells = " +

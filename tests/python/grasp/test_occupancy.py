@@ -11,12 +11,6 @@ from graspmix.sim.acquisition import AcquisitionSettings, Camera, acquire
 
 EYE = (0.5, 0.1, 0.45)  # sees the box's +x face (and its top)
 SIZE = (0.06, 0.06, 0.10)  # m
-BOX = """<?xml version="1.0"?>
-<robot name="box"><link name="base">
-  <visual><geometry><box size="{0} {1} {2}"/></geometry></visual>
-  <collision><geometry><box size="{0} {1} {2}"/></geometry></collision>
-  <inertial><mass value="0.2"/><inertia ixx="1e-4" iyy="1e-4" izz="1e-4" ixy="0" ixz="0" iyz="0"/></inertial>
-</link></robot>"""
 # A finger: a free box link 2 x 4 x 6 cm centred on its frame (2 cm along x, the approach).
 FINGER = """<robot name="finger"><link name="finger"><collision><geometry><box size="0.02 0.04 0.06"/></geometry>
 </collision></link><link name="tip"/><joint name="slide" type="prismatic"><parent link="finger"/><child link="tip"/>
@@ -24,9 +18,8 @@ FINGER = """<robot name="finger"><link name="finger"><collision><geometry><box s
 
 
 @pytest.fixture(scope="module")
-def seen(tmp_path_factory):
-    path = tmp_path_factory.mktemp("occupancy") / "box.urdf"
-    path.write_text(BOX.format(*SIZE))
+def seen(box_urdf):
+    path = box_urdf(SIZE)
     acq = acquire(path, seed=0, settings=AcquisitionSettings(cameras=[Camera(eye=EYE)], keep="scene"))
     scene = segment_scene(acq.points, acq.viewpoints)
     occ = _core.OccupancyMap(acq.points, acq.viewpoints, scene.points, scene.plane)

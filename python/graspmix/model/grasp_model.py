@@ -32,7 +32,7 @@ from ..io.checks import (
     check_seed,
 )
 from .demonstration import Demonstration
-from .experts import COLLISION_MODELS, occupancy_map
+from .experts import COLLISION_MODELS
 from .grasps import GraspSet
 from .scene_synthesis import segment_query, synthesize_targets
 from .serialization import config_dict, config_settings, density_from_json, density_to_json
@@ -255,12 +255,9 @@ class GraspModel:
         wrists whose approach axis points along it (e.g. (0, 0, -1) for top grasps); reachable(wrists,
         joints) -> bool array: the hard reachability test; experts: more experts (graspmix.expert(...) or
         graspmix._core.Expert objects); annealing: AnnealingSettings fields to change. The other settings
-        and their defaults: SynthesisOptions. collision: "surface" (W on the points) or "occupancy" (W on an
-        occupancy map of the whole cloud from its viewpoints, built once: space no camera saw free is solid)."""
+        and their defaults (collision: "surface" or "occupancy"): SynthesisOptions."""
         # Every keyword but the cloud, plane, viewpoints, target, experts and annealing is a SynthesisOptions field.
         opts = _synthesis_options(locals())
-        if annealing is not None and not isinstance(annealing, dict):
-            raise ValueError(f"annealing must be a dict of AnnealingSettings fields, got {type(annealing).__name__}")
         t0 = time.perf_counter()
         # Phase 1: the scene (support plane, objects) and the targets.
         points, name, file_viewpoints = load_points(cloud)
@@ -268,9 +265,6 @@ class GraspModel:
         scene = segment_query(points, viewpoints, checked_plane(plane), opts, self.features)
         targets = scene.select(target)
         t_segment = time.perf_counter() - t0
-        occupancy = None
-        if opts.collision == "occupancy":
-            occupancy = occupancy_map(points, viewpoints, scene.points, scene.plane, opts)
         # Phases 2-3: features, query densities, sampling, ranking and annealing per target, ranked together.
         out = synthesize_targets(
             self,
@@ -281,12 +275,10 @@ class GraspModel:
             approach_axis=approach_axis,
             reachable=reachable,
             experts=experts,
-            occupancy=occupancy,
+            cloud=(points, viewpoints),
         )
         timing = dict(out.timing)
         timing["segmentation"] = t_segment
-        if occupancy is not None:
-            timing["occupancy"] = occupancy.stats["seconds"]
         timing["total"] = time.perf_counter() - t0
         # Features: everything before the synthesiser's own stages (the segmentation, i.e. the clean-up, included).
         timing["features"] = timing["total"] - sum(out.timing.values())
@@ -305,6 +297,8 @@ class GraspModel:
         )
 
     def _synthesis_settings(self, opts: SynthesisOptions, annealing: dict | None) -> "_core.SynthesisSettings":
+        if annealing is not None and not isinstance(annealing, dict):
+            raise ValueError(f"annealing must be a dict of AnnealingSettings fields, got {type(annealing).__name__}")
         s = _core.SynthesisSettings()
         s.n_samples, s.n_optimise, s.optimise, s.seed = opts.n_samples, opts.n_optimise, opts.optimise, opts.seed
         s.clear_pregrasp = opts.clear_pregrasp

@@ -12,6 +12,11 @@ add_library(graspmix_fcl INTERFACE)
 target_link_libraries(graspmix_fcl INTERFACE fcl)
 add_library(graspmix::fcl ALIAS graspmix_fcl)
 
+add_library(graspmix_octomap INTERFACE)
+target_include_directories(graspmix_octomap SYSTEM INTERFACE ${OCTOMAP_INCLUDE_DIRS})
+target_link_libraries(graspmix_octomap INTERFACE ${OCTOMAP_LIBRARIES})
+add_library(graspmix::octomap ALIAS graspmix_octomap)
+
 add_library(graspmix_bullet INTERFACE)
 target_include_directories(graspmix_bullet SYSTEM INTERFACE ${BULLET_ROOT_DIR}/${BULLET_INCLUDE_DIR})
 target_compile_definitions(graspmix_bullet INTERFACE BT_USE_DOUBLE_PRECISION)
@@ -44,6 +49,7 @@ add_library(graspmix::qhull ALIAS graspmix_qhull)
 set(GRASPMIX_DEP_VERSIONS
   "GRASPMIX_PCL_VERSION=\"${PCL_VERSION}\""
   "GRASPMIX_FCL_VERSION=\"${fcl_VERSION}\""
+  "GRASPMIX_OCTOMAP_VERSION=\"${OCTOMAP_VERSION}\""
   "GRASPMIX_BULLET_VERSION=\"${BULLET_VERSION_STRING}\""
   "GRASPMIX_URDFDOM_VERSION=\"${GRASPMIX_URDFDOM_PC_VERSION}\""
   "GRASPMIX_ASSIMP_VERSION=\"${assimp_VERSION}\"")

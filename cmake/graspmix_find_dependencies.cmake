@@ -10,6 +10,8 @@ if(NOT DEFINED CMAKE_POLICY_VERSION_MINIMUM)
 endif()
 find_package(PCL 1.10 REQUIRED COMPONENTS common io filters features kdtree search sample_consensus segmentation)
 find_package(fcl 0.6 REQUIRED)
+# Occupancy maps of what the cameras saw (ray insertion): OctoMap, which Debian's FCL is built with too.
+find_package(octomap 1.9 REQUIRED)
 # Bullet in double precision, as pybullet is built, so that both simulate the same numbers.
 find_package(Bullet REQUIRED CONFIGS BulletConfig-float64.cmake)
 find_package(urdfdom REQUIRED)

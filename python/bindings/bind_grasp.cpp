@@ -7,6 +7,7 @@
 #include "graspmix/grasp/config_model.hpp"
 #include "graspmix/grasp/contact_model.hpp"
 #include "graspmix/grasp/experts.hpp"
+#include "graspmix/grasp/occupancy.hpp"
 #include "graspmix/grasp/synthesis.hpp"
 #include "settings.hpp"
 
@@ -14,9 +15,84 @@ namespace graspmix::py_bind {
 
 namespace {
 
+/// The occupancy map of what the cameras saw (OccupancyMap) and its settings.
+void bind_occupancy(py::module_& m) {
+  SettingsClass<OccupancySettings>(m, "OccupancySettings",
+                                   "The occupancy map of a scene from its cameras' rays (OccupancyMap).")
+      .field("resolution", &OccupancySettings::resolution, "m: cell size (OctoMap's resolution), > 0")
+      .field("margin", &OccupancySettings::margin, "m: the objects' bounding box grown by this is the mapped region")
+      .field("unknown_is_occupied", &OccupancySettings::unknown_is_occupied,
+             "cells no ray reached are obstacles (space the cameras did not see is not free)")
+      .field("max_cells", &OccupancySettings::max_cells, "the dense grid's largest size (cells)")
+      .done();
+  py::class_<OccupancyMap, std::shared_ptr<OccupancyMap>>(
+      m, "OccupancyMap",
+      "Free, occupied and unknown space of a scene: OctoMap's ray insertion of every point from its own viewpoint,\n"
+      "baked into a dense grid over the objects' box grown by a margin (free outside it, and within one cell of\n"
+      "the support plane). The rule: include/graspmix/grasp/occupancy.hpp.")
+      .def(py::init([](const py::object& points, const py::object& viewpoints, const py::object& objects,
+                       const py::object& plane, const py::object& settings, const py::kwargs& kw) {
+             const Vec3Array P(to_matrix(points, "OccupancyMap: points", 3));
+             if (viewpoints.is_none()) throw py::value_error("OccupancyMap: viewpoints are needed (the cameras' rays)");
+             const Vec3Array V = Vec3Array(to_matrix(viewpoints, "OccupancyMap: viewpoints", 3, true));
+             const Vec3Array O =
+                 objects.is_none() ? Vec3Array(0, 3) : Vec3Array(to_matrix(objects, "OccupancyMap: objects", 3, true));
+             std::optional<Eigen::Vector4d> pl;
+             if (!plane.is_none()) pl = Eigen::Vector4d(to_vector(plane, "OccupancyMap: plane", 4));
+             const OccupancySettings s = settings_from<OccupancySettings>(settings, kw, "OccupancyMap");
+             py::gil_scoped_release release;
+             return std::make_shared<OccupancyMap>(P, V, O, pl, s);
+           }),
+           py::arg("points"), py::arg("viewpoints"), py::arg("objects") = py::none(), py::arg("plane") = py::none(),
+           py::kw_only(), py::arg("settings") = py::none(),
+           ("points (N, 3), the whole cloud; viewpoints (3,) or (N, 3), the camera of each point; objects (M, 3): the\n"
+            "points whose box (grown by margin) is mapped (None: all points); plane [a, b, c, d] or None.\n" +
+            settings_doc<OccupancySettings>())
+               .c_str())
+      .def(
+          "state",
+          [](const OccupancyMap& map, const py::object& points) {
+            const Vec3Array P(to_matrix(points, "state: points", 3, true));
+            Eigen::Matrix<std::uint8_t, Eigen::Dynamic, 1> out(P.rows());
+            for (Eigen::Index i = 0; i < P.rows(); ++i)
+              out[i] = static_cast<std::uint8_t>(map.state(P.row(i).transpose()));
+            return out;
+          },
+          py::arg("points"), "(N,) uint8 state of each point's cell: 0 free, 1 occupied, 2 unknown (free outside).")
+      .def_property_readonly("resolution", &OccupancyMap::resolution)
+      .def_property_readonly("region_min", &OccupancyMap::region_min, "(3,) lower corner of the mapped region (m).")
+      .def_property_readonly("region_max", &OccupancyMap::region_max, "(3,) upper corner of the mapped region (m).")
+      .def_property_readonly("dims", &OccupancyMap::dims, "(3,) cells along x, y, z.")
+      .def_property_readonly(
+          "plane",
+          [](const OccupancyMap& m) -> py::object {
+            return m.has_plane() ? py::cast(Eigen::Vector4d(m.plane())) : py::none();
+          },
+          "The support plane, normalised, its normal towards the cameras, or None.")
+      .def_property_readonly("settings", [](const OccupancyMap& m) { return OccupancySettings(m.settings()); })
+      .def_property_readonly(
+          "stats",
+          [](const OccupancyMap& m) {
+            const OccupancyStats& s = m.stats();
+            py::dict d;
+            d["n_rays"] = s.n_rays;
+            d["n_free"] = s.n_free;
+            d["n_occupied"] = s.n_occupied;
+            d["n_unknown"] = s.n_unknown;
+            d["seconds"] = s.seconds;
+            return d;
+          },
+          "Rays inserted (one per cell and viewpoint), cells by state, wall time (s).");
+}
+
 /// The collision expert W and its settings and results.
 void bind_collision(py::module_& m) {
+  bind_occupancy(m);
   SettingsClass<CollisionSettings>(m, "CollisionSettings", "The collision expert W(h) (eq:opt_criterion_std_col).")
+      .property(
+          "model", [](const CollisionSettings& s) { return to_string(s.model); },
+          [](CollisionSettings& s, const std::string& v) { s.model = collision_model_from_string(v); },
+          "surface (the cloud's points) | occupancy (an OccupancyMap of what the cameras saw)")
       .field("beta", &CollisionSettings::beta,
              "1/m: log W = -beta * total depth (2000: 0.5 mm of penetration costs one nat)")
       .field("point_radius", &CollisionSettings::point_radius, "m: cloud points are balls of this radius (>= 0)")
@@ -29,6 +105,8 @@ void bind_collision(py::module_& m) {
              "m: depths up to this count as touching, not penetrating (a cloud is a noisy surface)")
       .field("inside_weight", &CollisionSettings::inside_weight,
              "m per point: each cloud point inside a link adds this much to the total depth (0: depths alone)")
+      .field("reference_area", &CollisionSettings::reference_area,
+             "m^2: the occupancy model charges a link's volume in blocked cells divided by this")
       .done();
 
   py::class_<CollisionResult>(m, "CollisionResult",
@@ -60,22 +138,25 @@ void bind_collision(py::module_& m) {
       "(eq:opt_criterion_std_col). Cloud depth of a link: the deepest cloud point inside it (exact for boxes,\n"
       "cylinders, spheres; meshes as their convex hulls); plane depth: the deepest point of the link below the\n"
       "plane (FCL half-space). The cloud is indexed once at construction.")
-      .def(
-          py::init([](HandPtr hand, const py::object& cloud, const py::object& plane, const py::object& settings,
-                      const py::kwargs& kw) {
-            if (!hand) throw py::value_error("hand: expected a Hand, got None");
-            const CollisionSettings s = settings_from<CollisionSettings>(settings, kw, "CollisionExpert");
-            const Vec3Array P = cloud.is_none() ? Vec3Array(0, 3) : Vec3Array(to_matrix(cloud, "cloud", 3));
-            std::optional<Eigen::Vector4d> pl;
-            if (!plane.is_none()) pl = Eigen::Vector4d(to_vector(plane, "plane", 4));
-            py::gil_scoped_release release;
-            return std::make_shared<CollisionExpert>(std::move(hand), P, pl, s);
-          }),
-          py::arg("hand"), py::arg("cloud"), py::arg("plane") = py::none(), py::kw_only(),
-          py::arg("settings") = py::none(),
-          ("hand: Hand; cloud: (N, 3) points (world frame); plane: [a, b, c, d] of a x + b y + c z + d = 0 or None.\n" +
-           settings_doc<CollisionSettings>())
-              .c_str())
+      .def(py::init([](HandPtr hand, const py::object& cloud, const py::object& plane,
+                       const std::shared_ptr<OccupancyMap>& occupancy, const py::object& settings,
+                       const py::kwargs& kw) {
+             if (!hand) throw py::value_error("hand: expected a Hand, got None");
+             const CollisionSettings s = settings_from<CollisionSettings>(settings, kw, "CollisionExpert");
+             std::optional<Eigen::Vector4d> pl;
+             if (!plane.is_none()) pl = Eigen::Vector4d(to_vector(plane, "plane", 4));
+             const Vec3Array P = cloud.is_none() ? Vec3Array(0, 3) : Vec3Array(to_matrix(cloud, "cloud", 3));
+             py::gil_scoped_release release;
+             if (occupancy) return std::make_shared<CollisionExpert>(std::move(hand), occupancy, P, pl, s);
+             return std::make_shared<CollisionExpert>(std::move(hand), P, pl, s);
+           }),
+           py::arg("hand"), py::arg("cloud"), py::arg("plane") = py::none(), py::kw_only(),
+           py::arg("occupancy") = py::none(), py::arg("settings") = py::none(),
+           ("hand: Hand; cloud: (N, 3) points (world frame) or None; plane: [a, b, c, d] of a x + b y + c z + d = 0\n"
+            "or None; occupancy: an OccupancyMap for the occupancy model (its volume charge, plus the cloud's\n"
+            "depths), None for the surface model (settings.model names it).\n" +
+            settings_doc<CollisionSettings>())
+               .c_str())
       .def(
           "evaluate",
           [](const CollisionExpert& e, const py::object& T_world_wrist, const py::object& joints) {
@@ -121,6 +202,14 @@ void bind_collision(py::module_& m) {
           },
           "The normalised, oriented plane [a, b, c, d] (free side a x + b y + c z + d > 0), or None.")
       .def_property_readonly("n_points", &CollisionExpert::n_points)
+      .def_property_readonly(
+          "model", [](const CollisionExpert& e) { return to_string(e.settings().model); }, "surface | occupancy")
+      .def_property_readonly(
+          "occupancy",
+          [](const CollisionExpert& e) -> py::object {
+            return e.occupancy() ? py::cast(std::const_pointer_cast<OccupancyMap>(e.occupancy())) : py::none();
+          },
+          "The OccupancyMap of the occupancy model, or None.")
       .def_property_readonly("cell_size", &CollisionExpert::cell_size, "The grid cell of the cloud index (m).")
       .def_property_readonly(
           "settings", [](const CollisionExpert& e) { return CollisionSettings(e.settings()); },

@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AnnealingSettings', 'AxisAlignmentExpert', 'AxisAlignmentSettings', 'CloudData', 'CollisionBatchResult', 'CollisionExpert', 'CollisionResult', 'CollisionSettings', 'ConfigModel', 'ConfigModelSettings', 'ContactData', 'ContactModel', 'ContactSettings', 'Evaluation', 'Expert', 'FunctionExpert', 'GaussianMixture', 'GmmSettings', 'Grasp', 'GraspSynthesizer', 'Hand', 'HandLoadSettings', 'KdeSettings', 'KinematicFeasibilityExpert', 'KinematicFeasibilitySettings', 'PlaneCandidate', 'PoseDensity', 'PoseKDE', 'PoseMixture', 'QueryDensity', 'QuerySettings', 'SceneObject', 'SceneResult', 'SceneSettings', 'Segmentation', 'SegmentationSettings', 'SimObject', 'SimResult', 'SimSettings', 'SurfaceCloud', 'SurfaceFeatureSettings', 'SynthesisResult', 'SynthesisSettings', 'SynthesisTiming', 'build_info', 'compute_surface_features', 'contact_data', 'learn_contact_models', 'load_cloud', 'load_mesh', 'log_vmf_s3_normaliser', 'orient_plane', 'pose_inverse', 'pose_multiply', 'prepare_cloud', 'quat_exp', 'quat_log', 'save_cloud', 'segment_scene', 'sim_execute']
+__all__: list[str] = ['AnnealingSettings', 'AxisAlignmentExpert', 'AxisAlignmentSettings', 'CloudData', 'CollisionBatchResult', 'CollisionExpert', 'CollisionResult', 'CollisionSettings', 'ConfigModel', 'ConfigModelSettings', 'ContactData', 'ContactModel', 'ContactSettings', 'Evaluation', 'Expert', 'FunctionExpert', 'GaussianMixture', 'GmmSettings', 'Grasp', 'GraspSynthesizer', 'Hand', 'HandLoadSettings', 'KdeSettings', 'KinematicFeasibilityExpert', 'KinematicFeasibilitySettings', 'OccupancyMap', 'OccupancySettings', 'PlaneCandidate', 'PoseDensity', 'PoseKDE', 'PoseMixture', 'QueryDensity', 'QuerySettings', 'SceneObject', 'SceneResult', 'SceneSettings', 'SceneSimResult', 'Segmentation', 'SegmentationSettings', 'SettleResult', 'SimObject', 'SimResult', 'SimSettings', 'SurfaceCloud', 'SurfaceFeatureSettings', 'SynthesisResult', 'SynthesisSettings', 'SynthesisTiming', 'build_info', 'compute_surface_features', 'contact_data', 'learn_contact_models', 'load_cloud', 'load_mesh', 'log_vmf_s3_normaliser', 'orient_plane', 'pose_inverse', 'pose_multiply', 'prepare_cloud', 'quat_exp', 'quat_log', 'save_cloud', 'segment_scene', 'sim_execute', 'sim_execute_scene', 'sim_settle_scene']
 class GmmSettings:
     """
     How a GaussianMixture (or PoseMixture) is fitted by EM.
@@ -617,6 +617,7 @@ class SegmentationSettings:
       plane_distance = 0.005: m: RANSAC inlier threshold
       plane_max_iterations = 1000: RANSAC iterations per candidate
       seed = 0: seeds RANSAC (None: 0)
+      find_plane = True: search for the support plane (false: objects only)
       plane_candidates = 3: planes tried, each on the points the previous ones left
       plane_min_fraction = 0.05: rule 1: fraction of the voxelised points a candidate holds
       plane_behind_distance = 0.01: m, rule 3: how far behind the plane a point counts as behind it
@@ -629,12 +630,9 @@ class SegmentationSettings:
       cluster_tolerance = 0.006: m: object points closer than this are one object (Euclidean clusters)
       min_cluster_size = 20: smaller clusters are noise, dropped
       max_cluster_size = 0: larger clusters are dropped; 0 = no limit
-      merge_seen_through = True: a cluster seen through a larger one joins it (a container's inside seen over its rim)
-      merge_through_fraction = 0.2: fraction of a cluster's lines of sight that must cross the larger one's envelope
-      merge_inset = 0.006: m: the larger cluster's envelope is inset by this
     """
     __hash__: typing.ClassVar[None] = None
-    _fields: typing.ClassVar[tuple] = ('voxel_size', 'plane_distance', 'plane_max_iterations', 'seed', 'plane_candidates', 'plane_min_fraction', 'plane_behind_distance', 'plane_max_behind_fraction', 'plane_margin', 'table_clearance', 'remove_outliers', 'outlier_neighbours', 'outlier_std_ratio', 'cluster_tolerance', 'min_cluster_size', 'max_cluster_size', 'merge_seen_through', 'merge_through_fraction', 'merge_inset')
+    _fields: typing.ClassVar[tuple] = ('voxel_size', 'plane_distance', 'plane_max_iterations', 'seed', 'find_plane', 'plane_candidates', 'plane_min_fraction', 'plane_behind_distance', 'plane_max_behind_fraction', 'plane_margin', 'table_clearance', 'remove_outliers', 'outlier_neighbours', 'outlier_std_ratio', 'cluster_tolerance', 'min_cluster_size', 'max_cluster_size')
     def __copy__(self) -> SegmentationSettings:
         ...
     def __deepcopy__(self, memo: typing.Any) -> SegmentationSettings:
@@ -651,7 +649,7 @@ class SegmentationSettings:
     @typing.overload
     def __init__(self, **kwargs) -> None:
         """
-        Keyword constructor: any of the fields (voxel_size, plane_distance, plane_max_iterations, seed, plane_candidates, plane_min_fraction, plane_behind_distance, plane_max_behind_fraction, plane_margin, table_clearance, remove_outliers, outlier_neighbours, outlier_std_ratio, cluster_tolerance, min_cluster_size, max_cluster_size, merge_seen_through, merge_through_fraction, merge_inset); the others keep their defaults.
+        Keyword constructor: any of the fields (voxel_size, plane_distance, plane_max_iterations, seed, find_plane, plane_candidates, plane_min_fraction, plane_behind_distance, plane_max_behind_fraction, plane_margin, table_clearance, remove_outliers, outlier_neighbours, outlier_std_ratio, cluster_tolerance, min_cluster_size, max_cluster_size); the others keep their defaults.
         """
     def __repr__(self) -> str:
         ...
@@ -666,36 +664,20 @@ class SegmentationSettings:
     def cluster_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
+    def find_plane(self) -> bool:
+        """
+        search for the support plane (false: objects only)
+        """
+    @find_plane.setter
+    def find_plane(self, arg0: bool) -> None:
+        ...
+    @property
     def max_cluster_size(self) -> int:
         """
         larger clusters are dropped; 0 = no limit
         """
     @max_cluster_size.setter
     def max_cluster_size(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def merge_inset(self) -> float:
-        """
-        m: the larger cluster's envelope is inset by this
-        """
-    @merge_inset.setter
-    def merge_inset(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def merge_seen_through(self) -> bool:
-        """
-        a cluster seen through a larger one joins it (a container's inside seen over its rim)
-        """
-    @merge_seen_through.setter
-    def merge_seen_through(self, arg0: bool) -> None:
-        ...
-    @property
-    def merge_through_fraction(self) -> float:
-        """
-        fraction of a cluster's lines of sight that must cross the larger one's envelope
-        """
-    @merge_through_fraction.setter
-    def merge_through_fraction(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def min_cluster_size(self) -> int:
@@ -907,11 +889,6 @@ class Segmentation:
     def n_input(self) -> int:
         ...
     @property
-    def n_merged(self) -> int:
-        """
-        clusters joined to a larger one (seen through it)
-        """
-    @property
     def n_outliers(self) -> int:
         ...
     @property
@@ -950,18 +927,11 @@ class Segmentation:
         """
     @property
     def seconds(self) -> float:
-        """
-        wall time of the whole segmentation
-        """
+        ...
     @property
     def sources(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 1]"]:
         """
         (M) input row whose per-point data every point carries
-        """
-    @property
-    def step_seconds(self) -> dict:
-        """
-        wall time (s) of each step: voxel, candidates (RANSAC, rules 1-3), table_cut, outliers, clusters (and rule 4), merge, objects; the middle three summed over the candidates tried
         """
 class SurfaceFeatureSettings:
     """
@@ -1320,12 +1290,132 @@ class Hand:
         """
         The URDF file it was read from.
         """
+class OccupancySettings:
+    """
+    The occupancy map of a scene from its cameras' rays (OccupancyMap).
+    
+    Settings: settings= a OccupancySettings (None: its defaults), and/or its fields as keywords,
+    which override it (an unknown keyword is a ValueError):
+      resolution = 0.005: m: cell size (OctoMap's resolution), > 0
+      margin = 0.1: m: the objects' bounding box grown by this is the mapped region
+      unknown_is_occupied = True: cells no ray reached are obstacles (space the cameras did not see is not free)
+      max_cells = 50000000: the dense grid's largest size (cells)
+    """
+    __hash__: typing.ClassVar[None] = None
+    _fields: typing.ClassVar[tuple] = ('resolution', 'margin', 'unknown_is_occupied', 'max_cells')
+    def __copy__(self) -> OccupancySettings:
+        ...
+    def __deepcopy__(self, memo: typing.Any) -> OccupancySettings:
+        ...
+    def __eq__(self, arg0: typing.Any) -> typing.Any:
+        ...
+    def __getstate__(self) -> dict:
+        ...
+    @typing.overload
+    def __init__(self) -> None:
+        """
+        The defaults: those of the default-constructed C++ struct.
+        """
+    @typing.overload
+    def __init__(self, **kwargs) -> None:
+        """
+        Keyword constructor: any of the fields (resolution, margin, unknown_is_occupied, max_cells); the others keep their defaults.
+        """
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    @property
+    def margin(self) -> float:
+        """
+        m: the objects' bounding box grown by this is the mapped region
+        """
+    @margin.setter
+    def margin(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def max_cells(self) -> int:
+        """
+        the dense grid's largest size (cells)
+        """
+    @max_cells.setter
+    def max_cells(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def resolution(self) -> float:
+        """
+        m: cell size (OctoMap's resolution), > 0
+        """
+    @resolution.setter
+    def resolution(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def unknown_is_occupied(self) -> bool:
+        """
+        cells no ray reached are obstacles (space the cameras did not see is not free)
+        """
+    @unknown_is_occupied.setter
+    def unknown_is_occupied(self, arg0: bool) -> None:
+        ...
+class OccupancyMap:
+    """
+    Free, occupied and unknown space of a scene: OctoMap's ray insertion of every point from its own viewpoint,
+    baked into a dense grid over the objects' box grown by a margin (free outside it, and within one cell of
+    the support plane). The rule: include/graspmix/grasp/occupancy.hpp.
+    """
+    def __init__(self, points: typing.Any, viewpoints: typing.Any, objects: typing.Any = None, plane: typing.Any = None, *, settings: typing.Any = None, **kwargs) -> None:
+        """
+        points (N, 3), the whole cloud; viewpoints (3,) or (N, 3), the camera of each point; objects (M, 3): the
+        points whose box (grown by margin) is mapped (None: all points); plane [a, b, c, d] or None.
+        Settings: settings= a OccupancySettings (None: its defaults), and/or its fields as keywords,
+        which override it (an unknown keyword is a ValueError):
+          resolution = 0.005: m: cell size (OctoMap's resolution), > 0
+          margin = 0.1: m: the objects' bounding box grown by this is the mapped region
+          unknown_is_occupied = True: cells no ray reached are obstacles (space the cameras did not see is not free)
+          max_cells = 50000000: the dense grid's largest size (cells)
+        """
+    def state(self, points: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.uint8], "[m, 1]"]:
+        """
+        (N,) uint8 state of each point's cell: 0 free, 1 occupied, 2 unknown (free outside).
+        """
+    @property
+    def dims(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[3, 1]"]:
+        """
+        (3,) cells along x, y, z.
+        """
+    @property
+    def plane(self) -> typing.Any:
+        """
+        The support plane, normalised, its normal towards the cameras, or None.
+        """
+    @property
+    def region_max(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        """
+        (3,) upper corner of the mapped region (m).
+        """
+    @property
+    def region_min(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        """
+        (3,) lower corner of the mapped region (m).
+        """
+    @property
+    def resolution(self) -> float:
+        ...
+    @property
+    def settings(self) -> OccupancySettings:
+        ...
+    @property
+    def stats(self) -> dict:
+        """
+        Rays inserted (one per cell and viewpoint), cells by state, wall time (s).
+        """
 class CollisionSettings:
     """
     The collision expert W(h) (eq:opt_criterion_std_col).
     
     Settings: settings= a CollisionSettings (None: its defaults), and/or its fields as keywords,
     which override it (an unknown keyword is a ValueError):
+      model = 'surface': surface (the cloud's points) | occupancy (an OccupancyMap of what the cameras saw)
       beta = 2000.0: 1/m: log W = -beta * total depth (2000: 0.5 mm of penetration costs one nat)
       point_radius = 0.0: m: cloud points are balls of this radius (>= 0)
       plane_margin = 0.0: m: the support plane is raised by this much (negative: tolerate contact)
@@ -1333,9 +1423,10 @@ class CollisionSettings:
       orient_plane = True: flip the plane's sign so the cloud's mean lies on its free (positive) side
       contact_tolerance = 0.001: m: depths up to this count as touching, not penetrating (a cloud is a noisy surface)
       inside_weight = 0.0: m per point: each cloud point inside a link adds this much to the total depth (0: depths alone)
+      reference_area = 0.0001: m^2: the occupancy model charges a link's volume in blocked cells divided by this
     """
     __hash__: typing.ClassVar[None] = None
-    _fields: typing.ClassVar[tuple] = ('beta', 'point_radius', 'plane_margin', 'cell_size', 'orient_plane', 'contact_tolerance', 'inside_weight')
+    _fields: typing.ClassVar[tuple] = ('model', 'beta', 'point_radius', 'plane_margin', 'cell_size', 'orient_plane', 'contact_tolerance', 'inside_weight', 'reference_area')
     def __copy__(self) -> CollisionSettings:
         ...
     def __deepcopy__(self, memo: typing.Any) -> CollisionSettings:
@@ -1352,7 +1443,7 @@ class CollisionSettings:
     @typing.overload
     def __init__(self, **kwargs) -> None:
         """
-        Keyword constructor: any of the fields (beta, point_radius, plane_margin, cell_size, orient_plane, contact_tolerance, inside_weight); the others keep their defaults.
+        Keyword constructor: any of the fields (model, beta, point_radius, plane_margin, cell_size, orient_plane, contact_tolerance, inside_weight, reference_area); the others keep their defaults.
         """
     def __repr__(self) -> str:
         ...
@@ -1391,6 +1482,14 @@ class CollisionSettings:
     def inside_weight(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
+    def model(self) -> str:
+        """
+        surface (the cloud's points) | occupancy (an OccupancyMap of what the cameras saw)
+        """
+    @model.setter
+    def model(self, arg1: str) -> None:
+        ...
+    @property
     def orient_plane(self) -> bool:
         """
         flip the plane's sign so the cloud's mean lies on its free (positive) side
@@ -1413,6 +1512,14 @@ class CollisionSettings:
         """
     @point_radius.setter
     def point_radius(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def reference_area(self) -> float:
+        """
+        m^2: the occupancy model charges a link's volume in blocked cells divided by this
+        """
+    @reference_area.setter
+    def reference_area(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
 class CollisionResult:
     """
@@ -1492,11 +1599,14 @@ class CollisionExpert:
     cylinders, spheres; meshes as their convex hulls); plane depth: the deepest point of the link below the
     plane (FCL half-space). The cloud is indexed once at construction.
     """
-    def __init__(self, hand: Hand, cloud: typing.Any, plane: typing.Any = None, *, settings: typing.Any = None, **kwargs) -> None:
+    def __init__(self, hand: Hand, cloud: typing.Any, plane: typing.Any = None, *, occupancy: OccupancyMap = None, settings: typing.Any = None, **kwargs) -> None:
         """
-        hand: Hand; cloud: (N, 3) points (world frame); plane: [a, b, c, d] of a x + b y + c z + d = 0 or None.
+        hand: Hand; cloud: (N, 3) points (world frame) or None; plane: [a, b, c, d] of a x + b y + c z + d = 0
+        or None; occupancy: an OccupancyMap for the occupancy model (its volume charge, plus the cloud's
+        depths), None for the surface model (settings.model names it).
         Settings: settings= a CollisionSettings (None: its defaults), and/or its fields as keywords,
         which override it (an unknown keyword is a ValueError):
+          model = 'surface': surface (the cloud's points) | occupancy (an OccupancyMap of what the cameras saw)
           beta = 2000.0: 1/m: log W = -beta * total depth (2000: 0.5 mm of penetration costs one nat)
           point_radius = 0.0: m: cloud points are balls of this radius (>= 0)
           plane_margin = 0.0: m: the support plane is raised by this much (negative: tolerate contact)
@@ -1504,6 +1614,7 @@ class CollisionExpert:
           orient_plane = True: flip the plane's sign so the cloud's mean lies on its free (positive) side
           contact_tolerance = 0.001: m: depths up to this count as touching, not penetrating (a cloud is a noisy surface)
           inside_weight = 0.0: m per point: each cloud point inside a link adds this much to the total depth (0: depths alone)
+          reference_area = 0.0001: m^2: the occupancy model charges a link's volume in blocked cells divided by this
         """
     def collision_free(self, T_world_wrist: typing.Any, joints: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"]:
         """
@@ -1530,8 +1641,18 @@ class CollisionExpert:
         The grid cell of the cloud index (m).
         """
     @property
+    def model(self) -> str:
+        """
+        surface | occupancy
+        """
+    @property
     def n_points(self) -> int:
         ...
+    @property
+    def occupancy(self) -> typing.Any:
+        """
+        The OccupancyMap of the occupancy model, or None.
+        """
     @property
     def plane(self) -> typing.Any:
         """
@@ -2734,6 +2855,57 @@ class SimResult:
         """
         s
         """
+class SceneSimResult:
+    """
+    The outcome of one grasp in a scene of several objects.
+    """
+    @property
+    def lifted(self) -> list[int]:
+        """
+        indices of the objects that rose and are held by the hand
+        """
+    @property
+    def moved(self) -> list[float]:
+        """
+        m each object's link origin moved
+        """
+    @property
+    def object_poses(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        """
+        (N, 7) every object's final link pose
+        """
+    @property
+    def result(self) -> SimResult:
+        """
+        SimResult: outcome of the grasp; lift_height and object_pose of the object that rose most
+        """
+    @property
+    def rise(self) -> list[float]:
+        """
+        m each object's centre of mass rose
+        """
+class SettleResult:
+    """
+    A scene simulated without a hand until its objects rest.
+    """
+    @property
+    def at_rest(self) -> bool:
+        """
+        every object came to rest in time
+        """
+    @property
+    def object_poses(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        """
+        (N, 7) every object's final link pose
+        """
+    @property
+    def simulated_time(self) -> float:
+        """
+        s
+        """
+    @property
+    def steps(self) -> int:
+        ...
 def build_info() -> dict[str, str]:
     """
     Versions of graspmix and of every library it was built against.
@@ -2836,6 +3008,7 @@ def segment_scene(points: typing.Any, viewpoints: typing.Any = None, plane: typi
       plane_distance = 0.005: m: RANSAC inlier threshold
       plane_max_iterations = 1000: RANSAC iterations per candidate
       seed = 0: seeds RANSAC (None: 0)
+      find_plane = True: search for the support plane (false: objects only)
       plane_candidates = 3: planes tried, each on the points the previous ones left
       plane_min_fraction = 0.05: rule 1: fraction of the voxelised points a candidate holds
       plane_behind_distance = 0.01: m, rule 3: how far behind the plane a point counts as behind it
@@ -2848,9 +3021,6 @@ def segment_scene(points: typing.Any, viewpoints: typing.Any = None, plane: typi
       cluster_tolerance = 0.006: m: object points closer than this are one object (Euclidean clusters)
       min_cluster_size = 20: smaller clusters are noise, dropped
       max_cluster_size = 0: larger clusters are dropped; 0 = no limit
-      merge_seen_through = True: a cluster seen through a larger one joins it (a container's inside seen over its rim)
-      merge_through_fraction = 0.2: fraction of a cluster's lines of sight that must cross the larger one's envelope
-      merge_inset = 0.006: m: the larger cluster's envelope is inset by this
     """
 def sim_execute(hand: Hand, object: SimObject, T_world_object: typing.Any, T_world_wrist: typing.Any, pregrasp: typing.Any, grasp: typing.Any, settings: typing.Any = None, **kwargs) -> SimResult:
     """
@@ -2876,4 +3046,12 @@ def sim_execute(hand: Hand, object: SimObject, T_world_object: typing.Any, T_wor
       start_penetration = 0.002: m: a start penetrating deeper than this is 'start in collision'
       contact_distance = 0.001: m: contact points closer than this count as touching
       success_fraction = 0.5: the object must rise by this fraction of lift_height
+    """
+def sim_execute_scene(hand: Hand, objects: typing.Any, object_poses: typing.Any, T_world_wrist: typing.Any, pregrasp: typing.Any, grasp: typing.Any, settings: typing.Any = None, **kwargs) -> SceneSimResult:
+    """
+    Executes one grasp among several objects (link poses (N, 7)); see graspmix.sim.scenes.execute_in_scene.
+    """
+def sim_settle_scene(objects: typing.Any, object_poses: typing.Any, settings: typing.Any = None, seconds: typing.SupportsFloat | typing.SupportsIndex = 2.0, walls: typing.Any = None) -> SettleResult:
+    """
+    Simulates the objects without a hand until they rest (at most `seconds`); walls: [xmin, ymin, xmax, ymax, height] of a box standing around them, or None.
     """

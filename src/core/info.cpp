@@ -14,6 +14,7 @@ std::map<std::string, std::string> build_info() {
                std::to_string(EIGEN_MINOR_VERSION);
   v["pcl"] = PCL_VERSION_PRETTY;
   v["fcl"] = FCL_VERSION;
+  v["octomap"] = GRASPMIX_OCTOMAP_VERSION;
   v["bullet"] = std::to_string(btGetVersion() / 100) + "." + std::to_string(btGetVersion() % 100) +
                 (btIsDoublePrecision() ? " (double precision)" : " (single precision)");
   v["urdfdom"] = GRASPMIX_URDFDOM_VERSION;

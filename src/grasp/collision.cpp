@@ -39,7 +39,11 @@ struct CollisionExpert::Shapes {
     Eigen::Vector3d half = Eigen::Vector3d::Zero();    ///< half extents of the local bounding box
     Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< centre of the local bounding box
     std::shared_ptr<fcl::CollisionGeometryd> fcl_geometry;
+    std::vector<Eigen::Vector3d> samples;  ///< interior points (shape frame), for the occupancy model
+    double sample_volume = 0.0;            ///< m^3 each stands for
   };
+  /// Fills every shape's interior samples: a grid of spacing min(h, half its thinnest side).
+  void sample_interiors(double h);
   std::vector<Shape> shapes;
   std::shared_ptr<fcl::Halfspaced> halfspace;
 };
@@ -106,6 +110,9 @@ void check_settings(const CollisionSettings& s) {
   if (!(s.contact_tolerance >= 0) || !std::isfinite(s.contact_tolerance)) {
     throw std::invalid_argument("contact_tolerance must be finite and >= 0");
   }
+  if (!(s.reference_area > 0) || !std::isfinite(s.reference_area)) {
+    throw std::invalid_argument("reference_area must be finite and > 0 (m^2)");
+  }
   if (!(s.cell_size >= 0) || !std::isfinite(s.cell_size)) {
     throw std::invalid_argument("cell_size must be finite and >= 0 (0 = automatic)");
   }
@@ -139,7 +146,32 @@ Eigen::Vector4d checked_plane(const Eigen::Vector4d& plane, const Eigen::Ref<con
   return orient ? orient_plane(p, cloud, PlaneSide::Mean) : p;
 }
 
+/// The volume (m^3) of the shape posed at T inside blocked cells of the map, over its interior samples
+/// whose cell's centre lies deeper than tol + h/2 inside it; `count` gets the samples charged.
+double blocked_volume(const OccupancyMap& map, const CollisionShape& shape, const std::vector<Eigen::Vector3d>& samples,
+                      double sample_volume, const Eigen::Isometry3d& T, double tol, int& count) {
+  const double erosion = tol + 0.5 * map.resolution();
+  const Eigen::Matrix3d& R = T.linear();
+  const Eigen::Vector3d t = T.translation();
+  int n = 0;
+  for (const Eigen::Vector3d& x : samples) {
+    Eigen::Vector3d centre;
+    if (!map.blocked(map.cell(R * x + t, centre))) continue;
+    if (-signed_distance(shape, R.transpose() * (centre - t)) > erosion) ++n;
+  }
+  count += n;
+  return n * sample_volume;
+}
+
 }  // namespace
+
+std::string to_string(CollisionModel model) { return model == CollisionModel::Occupancy ? "occupancy" : "surface"; }
+
+CollisionModel collision_model_from_string(const std::string& name) {
+  if (name == "surface") return CollisionModel::Surface;
+  if (name == "occupancy") return CollisionModel::Occupancy;
+  throw std::invalid_argument("collision model must be 'surface' or 'occupancy', got '" + name + "'");
+}
 
 CollisionExpert::Index::Index(const Eigen::Ref<const Vec3Array>& cloud, double cell_size)
     : lo(cloud.rows() > 0 ? Eigen::Vector3d(cloud.colwise().minCoeff().transpose()) : Eigen::Vector3d::Zero()),
@@ -191,10 +223,51 @@ CollisionExpert::CollisionExpert(std::shared_ptr<const Hand> hand, const Eigen::
     : hand_(std::move(hand)), settings_(settings) {
   if (!hand_) throw std::invalid_argument("hand: expected a Hand, got none");
   check_settings(settings_);
+  if (settings_.model != CollisionModel::Surface) {
+    throw std::invalid_argument(
+        "collision model 'occupancy' is built from an OccupancyMap (the cloud with its "
+        "viewpoints), not from points alone");
+  }
   require_finite(cloud, "cloud");
   index_ = std::make_shared<const Index>(cloud, settings_.cell_size);
   if (plane) plane_ = checked_plane(*plane, cloud, settings_.orient_plane);
   shapes_ = std::make_shared<const Shapes>(*hand_, plane_, settings_.plane_margin);
+}
+
+CollisionExpert::CollisionExpert(std::shared_ptr<const Hand> hand, std::shared_ptr<const OccupancyMap> occupancy,
+                                 const Eigen::Ref<const Vec3Array>& cloud, const std::optional<Eigen::Vector4d>& plane,
+                                 CollisionSettings settings)
+    : hand_(std::move(hand)), settings_(settings), occupancy_(std::move(occupancy)) {
+  if (!hand_) throw std::invalid_argument("hand: expected a Hand, got none");
+  if (!occupancy_) throw std::invalid_argument("occupancy: expected an OccupancyMap, got none");
+  settings_.model = CollisionModel::Occupancy;
+  check_settings(settings_);
+  require_finite(cloud, "cloud");
+  index_ = std::make_shared<const Index>(cloud, settings_.cell_size);
+  if (plane) {
+    const Vec3Array centre = (0.5 * (occupancy_->objects_min() + occupancy_->objects_max())).transpose();
+    plane_ = checked_plane(*plane, cloud.rows() > 0 ? Vec3Array(cloud) : centre, settings_.orient_plane);
+  }
+  auto shapes = std::make_shared<Shapes>(*hand_, plane_, settings_.plane_margin);
+  shapes->sample_interiors(occupancy_->resolution());
+  shapes_ = std::move(shapes);
+}
+
+void CollisionExpert::Shapes::sample_interiors(double h) {
+  for (Shape& sh : shapes) {
+    const double spacing = std::min(h, sh.half.minCoeff());  // at least two samples across
+    if (!(spacing > 0)) continue;
+    const Eigen::Vector3i n = (2.0 * sh.half / spacing).array().ceil().cast<int>().max(1);
+    // The grid centred on the shape's box, so that a symmetric shape gets symmetric samples.
+    const Eigen::Vector3d first = sh.centre - 0.5 * spacing * (n.cast<double>() - Eigen::Vector3d::Ones());
+    for (int k = 0; k < n.z(); ++k)
+      for (int j = 0; j < n.y(); ++j)
+        for (int i = 0; i < n.x(); ++i) {
+          const Eigen::Vector3d p = first + spacing * Eigen::Vector3d(i, j, k);
+          if (signed_distance(*sh.src, p) < 0) sh.samples.push_back(p);
+        }
+    sh.sample_volume = spacing * spacing * spacing;
+  }
 }
 
 Eigen::Index CollisionExpert::n_points() const { return index_->grid.size(); }
@@ -213,6 +286,16 @@ void CollisionExpert::evaluate_into(const Eigen::Isometry3d* link_poses, double*
     const Eigen::Vector3d centre = T * sh.centre;
     const Eigen::Vector3d half = R.cwiseAbs() * sh.half;
 
+    // Occupancy: the shape's volume in blocked cells, when its world box meets the map's region.
+    if (occupancy_) {
+      const OccupancyMap& map = *occupancy_;
+      if (((centre - half).array() <= map.region_max().array()).all() &&
+          ((centre + half).array() >= map.region_min().array()).all()) {
+        cloud_depth[sh.link] +=
+            blocked_volume(map, *sh.src, sh.samples, sh.sample_volume, T, tol, points_inside[sh.link]) /
+            settings_.reference_area;
+      }
+    }
     // Cloud: the points in the cells under the shape's world box (grown by r).
     if (N > 0) {
       const Eigen::Vector3d lo = (centre - half).array() - r, hi = (centre + half).array() + r;

@@ -23,21 +23,48 @@
 //   collision_free = no cloud point lies strictly inside any link (ball overlap when r > 0) and no
 //   link reaches below the raised plane, i.e. total == 0.
 //
+// The occupancy model (CollisionModel::Occupancy, built on an OccupancyMap of what the cameras saw): in
+// place of D_l, the volume of link l inside blocked cells (occupied, and unknown when the map counts them
+// as obstacles), in units of depth over reference_area:
+//   O_l = V_l / reference_area,  V_l = sum over the interior samples x of l's shapes (a regular grid of
+//   spacing min(map resolution, half the shape's thinnest side), each standing for its cell's volume)
+//   of the sample's volume, counted when x's map cell is blocked and that cell's centre lies deeper than
+//   contact_tolerance + resolution / 2 inside the shape.
+// The erosion by half a cell plus the tolerance is the contact rule: the occupied cell of a surface point
+// reaches up to one cell outside the true surface, and its centre half of that, so a finger touching the
+// surface is not charged. O_l grows with how much of the link is inside (it does not saturate: a finger
+// through the middle of an object costs its whole volume), 1 cm^3 inside costs 1 cm at the default area.
+// The occupancy model adds the surface model's D_l when it is given the cloud too (the default from
+// Python): a cell of 5 mm cannot tell a 3 mm penetration from a touch, the points can. The plane term
+// P_l is the same in both models; total, log W and collision_free are formed alike.
+//
 // The cloud is indexed once, in the constructor, into a uniform grid whose cells are ordered so that
 // a row of cells is one contiguous run of points; an evaluation visits only the cells under each
 // shape's world bounding box, so a hand away from the object costs little more than its fk.
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <Eigen/Geometry>
 
 #include "graspmix/core/types.hpp"
+#include "graspmix/grasp/occupancy.hpp"
 #include "graspmix/robot/hand.hpp"
 
 namespace graspmix {
 
+/// What W measures the hand against: the cloud's points (the paper's expert), or the occupancy of what the
+/// cameras saw (the space behind every surface is not free).
+enum class CollisionModel { Surface, Occupancy };
+std::string to_string(CollisionModel model);  ///< "surface" | "occupancy"
+/// The model of that name; std::invalid_argument naming the choices otherwise.
+CollisionModel collision_model_from_string(const std::string& name);
+
 struct CollisionSettings {
+  /// Which model; Python's `collision="surface"|"occupancy"` default. An expert built from a cloud is a
+  /// surface expert, one built from an OccupancyMap an occupancy expert.
+  CollisionModel model = CollisionModel::Surface;
   /// 1/m: log W = -beta * total depth (0.5 mm of penetration costs one nat). 2000, the value grasp synthesis
   /// has always run with from Python (it was 1000 here): W must outweigh the contact terms of a grasp whose
   /// fingers sink a few millimetres into the object.
@@ -55,13 +82,16 @@ struct CollisionSettings {
   /// than a shallow one); counting the points it swallows measures how much of the link is inside.
   /// 0 (the default) keeps W a function of depths alone.
   double inside_weight = 0.0;
+  /// m^2: the occupancy model charges the volume inside blocked cells divided by this (1 cm^2, about a
+  /// fingertip's face: a link pressed 1 mm into a surface over 1 cm^2 costs 1 mm, as a surface depth).
+  double reference_area = 1e-4;
 };
 
 /// One configuration's penetration, per link in Hand::link_names() order.
 struct CollisionResult {
-  Eigen::VectorXd cloud_depth;    ///< D_l (m)
+  Eigen::VectorXd cloud_depth;    ///< D_l (m), or O_l with the occupancy model
   Eigen::VectorXd plane_depth;    ///< P_l (m)
-  Eigen::VectorXi points_inside;  ///< cloud points that penetrate each link
+  Eigen::VectorXi points_inside;  ///< cloud points that penetrate each link (occupancy: samples charged)
   double total_depth = 0.0;       ///< sum_l D_l + P_l + inside_weight * n_l (m; see the header comment)
   double log_w = 0.0;             ///< -beta * total_depth
   double w = 1.0;                 ///< exp(log_w)
@@ -80,12 +110,20 @@ struct CollisionBatchResult {
 
 class CollisionExpert {
  public:
+  /// The surface model (settings.model must be Surface).
   /// cloud: (N, 3) object points in the world frame (may be empty when only the plane matters).
   /// plane: [a, b, c, d] with a x + b y + c z + d = 0 (the support plane, e.g. from prepare_cloud); it
   /// is normalised, and (with orient_plane) its sign chosen so the cloud lies above it.
   /// Throws std::invalid_argument for non-finite points, a degenerate plane or bad settings.
   CollisionExpert(std::shared_ptr<const Hand> hand, const Eigen::Ref<const Vec3Array>& cloud,
                   const std::optional<Eigen::Vector4d>& plane = std::nullopt, CollisionSettings settings = {});
+
+  /// The occupancy model on a map of the scene (settings.model is set to Occupancy): O_l plus, when a cloud
+  /// is given, the surface model's D_l on it (exact depths of shallow contacts, which the map's cells are
+  /// too coarse to see). plane as above, oriented by the cloud's mean (or the map's objects' centre).
+  CollisionExpert(std::shared_ptr<const Hand> hand, std::shared_ptr<const OccupancyMap> occupancy,
+                  const Eigen::Ref<const Vec3Array>& cloud, const std::optional<Eigen::Vector4d>& plane = std::nullopt,
+                  CollisionSettings settings = {});
 
   /// W(h) for the wrist pose and configuration (joint_names() order).
   CollisionResult evaluate(const Eigen::Isometry3d& T_world_wrist, const Eigen::Ref<const Eigen::VectorXd>& q) const;
@@ -99,6 +137,8 @@ class CollisionExpert {
   /// The normalised, oriented plane [n, d] (n . x + d >= 0 is free space).
   Eigen::Vector4d plane() const { return plane_.value_or(Eigen::Vector4d::Zero()); }
   Eigen::Index n_points() const;
+  /// The map of the occupancy model (null for the surface model).
+  const std::shared_ptr<const OccupancyMap>& occupancy() const { return occupancy_; }
   double cell_size() const;
 
   struct Index;   ///< the cloud's grid (defined in src/)
@@ -113,6 +153,7 @@ class CollisionExpert {
   std::optional<Eigen::Vector4d> plane_;
   std::shared_ptr<const Index> index_;
   std::shared_ptr<const Shapes> shapes_;
+  std::shared_ptr<const OccupancyMap> occupancy_;
 };
 
 /// Signed distance (m, negative inside) from every point (N, 3, world frame) to a link's collision

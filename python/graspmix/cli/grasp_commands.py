@@ -10,6 +10,7 @@ from .. import _core
 from ..io import data_path, load_points
 from ..io.checks import MAX_COMPONENTS, MAX_SAMPLES
 from ..model import GraspModel, default_model_path, learn
+from ..model.experts import COLLISION_MODELS
 from ..model.settings import METHODS, LearnSettings, SynthesisOptions
 from ..perception import parse_target
 from .common import CliError, float_in, input_path, int_in, output_file, parse_floats, parse_joints, seed
@@ -113,6 +114,7 @@ def cmd_synthesize(args: argparse.Namespace) -> int:
         remove_plane=not args.no_plane,
         approach_axis=axis,
         query_samples=args.query_samples,
+        collision=args.collision,
     )
     grasps.cloud = args.cloud
     t = grasps.timing
@@ -231,6 +233,13 @@ def _add_synthesize(sub) -> None:
         "--approach-axis", help="prefer wrists approaching along this world axis, e.g. 0,0,-1 for top grasps"
     )
     s.add_argument("--no-plane", action="store_true", help="the cloud is objects only: search for no support plane")
+    s.add_argument(
+        "--collision",
+        choices=list(COLLISION_MODELS),
+        default=o.collision,
+        help="the collision expert: surface (the cloud's points) or occupancy (what the cameras saw free; unseen "
+        f"space is solid); default {o.collision}",
+    )
     s.add_argument(
         "--target",
         type=_target,

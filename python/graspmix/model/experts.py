@@ -42,12 +42,27 @@ def oriented_plane(plane, points):
     return _core.orient_plane(plane, points, "mean")  # the collision expert's rule (CollisionSettings.orient_plane)
 
 
-def collision_expert(hand, points, plane, opts: SynthesisOptions) -> "_core.CollisionExpert":
-    """W on the query cloud and the support plane; depths up to contact_tolerance are touching."""
+COLLISION_MODELS = ("surface", "occupancy")
+
+
+def occupancy_map(points, viewpoints, objects, plane, opts: SynthesisOptions) -> "_core.OccupancyMap":
+    """The occupancy of a scene from its whole cloud (table included: its rays clear the space around the
+    objects) and each point's camera, over the objects' box grown by the map's margin."""
+    if viewpoints is None:
+        raise ValueError(
+            "collision='occupancy' needs the cameras' positions: viewpoints= (or the PCD's VIEWPOINT, --viewpoint)"
+        )
+    return _core.OccupancyMap(points, viewpoints, objects, plane, resolution=opts.occupancy_resolution)
+
+
+def collision_expert(hand, points, plane, opts: SynthesisOptions, occupancy=None) -> "_core.CollisionExpert":
+    """W on the query cloud and the support plane (and, with an OccupancyMap, on the space the cameras did not
+    see free: the occupancy model); depths up to contact_tolerance are touching."""
     return _core.CollisionExpert(
         hand,
         points,
         plane=plane,
+        occupancy=occupancy,
         beta=opts.collision_beta,
         contact_tolerance=opts.contact_tolerance,
         inside_weight=opts.collision_inside_weight,

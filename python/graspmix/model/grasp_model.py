@@ -32,6 +32,7 @@ from ..io.checks import (
     check_seed,
 )
 from .demonstration import Demonstration
+from .experts import COLLISION_MODELS
 from .grasps import GraspSet
 from .scene_synthesis import segment_query, synthesize_targets
 from .serialization import config_dict, config_settings, density_from_json, density_to_json
@@ -235,6 +236,8 @@ class GraspModel:
         collision_beta: float = _S.collision_beta,
         contact_tolerance: float = _S.contact_tolerance,
         collision_inside_weight: float = _S.collision_inside_weight,
+        collision: str = _S.collision,
+        occupancy_resolution: float = _S.occupancy_resolution,
         table_clearance: float = _S.table_clearance,
         target="all",
         annealing: dict | None = None,
@@ -252,17 +255,14 @@ class GraspModel:
         wrists whose approach axis points along it (e.g. (0, 0, -1) for top grasps); reachable(wrists,
         joints) -> bool array: the hard reachability test; experts: more experts (graspmix.expert(...) or
         graspmix._core.Expert objects); annealing: AnnealingSettings fields to change. The other settings
-        and their defaults: SynthesisOptions."""
+        and their defaults (collision: "surface" or "occupancy"): SynthesisOptions."""
         # Every keyword but the cloud, plane, viewpoints, target, experts and annealing is a SynthesisOptions field.
         opts = _synthesis_options(locals())
-        if annealing is not None and not isinstance(annealing, dict):
-            raise ValueError(f"annealing must be a dict of AnnealingSettings fields, got {type(annealing).__name__}")
         t0 = time.perf_counter()
         # Phase 1: the scene (support plane, objects) and the targets.
         points, name, file_viewpoints = load_points(cloud)
-        scene = segment_query(
-            points, file_viewpoints if viewpoints is None else viewpoints, checked_plane(plane), opts, self.features
-        )
+        viewpoints = file_viewpoints if viewpoints is None else viewpoints
+        scene = segment_query(points, viewpoints, checked_plane(plane), opts, self.features)
         targets = scene.select(target)
         t_segment = time.perf_counter() - t0
         # Phases 2-3: features, query densities, sampling, ranking and annealing per target, ranked together.
@@ -275,6 +275,7 @@ class GraspModel:
             approach_axis=approach_axis,
             reachable=reachable,
             experts=experts,
+            cloud=(points, viewpoints),
         )
         timing = dict(out.timing)
         timing["segmentation"] = t_segment
@@ -296,6 +297,8 @@ class GraspModel:
         )
 
     def _synthesis_settings(self, opts: SynthesisOptions, annealing: dict | None) -> "_core.SynthesisSettings":
+        if annealing is not None and not isinstance(annealing, dict):
+            raise ValueError(f"annealing must be a dict of AnnealingSettings fields, got {type(annealing).__name__}")
         s = _core.SynthesisSettings()
         s.n_samples, s.n_optimise, s.optimise, s.seed = opts.n_samples, opts.n_optimise, opts.optimise, opts.seed
         s.clear_pregrasp = opts.clear_pregrasp
@@ -352,6 +355,9 @@ def _synthesis_options(args: dict) -> SynthesisOptions:
     check_seed(v["seed"])
     for name in ("approach_concentration", "collision_beta", "contact_tolerance", "collision_inside_weight"):
         check_float(v[name], name, 0.0)
+    check_float(v["occupancy_resolution"], "occupancy_resolution", gt=0.0)
+    if v["collision"] not in COLLISION_MODELS:
+        raise ValueError(f"collision must be one of {', '.join(COLLISION_MODELS)}, got {v['collision']!r}")
     return SynthesisOptions(**v)
 
 

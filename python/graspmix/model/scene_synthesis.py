@@ -19,7 +19,7 @@ import numpy as np
 
 from .. import _core
 from ..perception import Scene, segment_scene
-from .experts import collision_expert, constraint_experts, expert
+from .experts import collision_expert, constraint_experts, expert, occupancy_map
 from .grasps import STAGES, grasps_from_result
 from .settings import FeatureSettings, SynthesisOptions
 
@@ -92,11 +92,27 @@ class SceneSynthesis:
 
 
 def synthesize_targets(
-    model, scene: Scene, targets: list[int], opts: SynthesisOptions, settings, *, approach_axis, reachable, experts
+    model,
+    scene: Scene,
+    targets: list[int],
+    opts: SynthesisOptions,
+    settings,
+    *,
+    approach_axis,
+    reachable,
+    experts,
+    cloud=None,
 ) -> SceneSynthesis:
-    """Runs the model's synthesiser on every target object against the whole scene and ranks all grasps."""
-    collision = collision_expert(model.hand, scene.points, scene.plane, opts)
+    """Runs the model's synthesiser on every target object against the whole scene and ranks all grasps.
+    cloud: (points, viewpoints) of the whole input cloud, table included: with collision="occupancy" the
+    scene's OccupancyMap is built from it once and shared by every target (its time: timing["occupancy"])."""
     timing = dict.fromkeys(STAGES, 0.0)
+    occupancy = None
+    if opts.collision == "occupancy":
+        points, viewpoints = (scene.points, scene.viewpoints) if cloud is None else cloud
+        occupancy = occupancy_map(points, viewpoints, scene.points, scene.plane, opts)
+        timing["occupancy"] = occupancy.stats["seconds"]
+    collision = collision_expert(model.hand, scene.points, scene.plane, opts, occupancy)
     grasps, surfaces, evaluations, rejected = [], [], 0, 0
     for i in targets:
         surface = object_surface(scene, i, model.features)

@@ -21,6 +21,7 @@ _CONTACT = _core.ContactSettings()
 _SYNTHESIS = _core.SynthesisSettings()
 _AXIS = _core.AxisAlignmentSettings()
 _COLLISION = _core.CollisionSettings()
+_OCCUPANCY = _core.OccupancySettings()
 
 METHODS = ("gmm", "kde")
 METHOD_LABELS = {"gmm": "GMM", "kde": "KDE"}
@@ -128,6 +129,10 @@ class SynthesisOptions:
     collision_beta: float = _COLLISION.beta  # 1/m: log W = -beta * depth
     contact_tolerance: float = _COLLISION.contact_tolerance  # m: depths up to this are touching
     collision_inside_weight: float = _COLLISION.inside_weight
+    # "surface": W on the cloud's points (the paper's); "occupancy": W on an OccupancyMap of what the cameras
+    # saw (unseen space is solid) plus the points' depths (CollisionSettings.model).
+    collision: str = _COLLISION.model
+    occupancy_resolution: float = _OCCUPANCY.resolution  # m: the occupancy map's cell (OccupancySettings)
     # m: with a known support plane (synthesize(plane=...)), every point at most this far above it (or
     # below it) is dropped as the table before anything else (SegmentationSettings.table_clearance; not the
     # RANSAC inlier threshold SceneSettings.plane_distance, used when the plane is searched for).

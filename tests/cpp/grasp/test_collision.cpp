@@ -244,3 +244,99 @@ TEST(Collision, InsideWeightAddsPerPenetratingPoint) {
   s.inside_weight = -1.0;
   EXPECT_THROW(CollisionExpert(finger(), box_surface(), std::nullopt, s), std::invalid_argument);
 }
+
+// ---- the occupancy model -------------------------------------------------------------------------
+
+namespace {
+
+/// box_surface() seen from outside every face: each point's camera 0.5 m out along its face's normal,
+/// so the box's inside is what no ray reached (unknown) and the space around it was seen free.
+std::shared_ptr<const graspmix::OccupancyMap> box_seen_all_round() {
+  const Vec3Array pts = box_surface();
+  Vec3Array views(pts.rows(), 3);
+  const Eigen::Vector3d centre(0.05, 0, 0);
+  for (Eigen::Index i = 0; i < pts.rows(); ++i) {
+    const Eigen::Vector3d d = pts.row(i).transpose() - centre;
+    Eigen::Index axis = 0;
+    (d.cwiseAbs().array() / Eigen::Array3d(0.05, 0.05, 0.05)).maxCoeff(&axis);
+    Eigen::Vector3d n = Eigen::Vector3d::Zero();
+    n[axis] = d[axis] > 0 ? 1.0 : -1.0;
+    views.row(i) = (pts.row(i).transpose() + 0.5 * n).transpose();
+  }
+  return std::make_shared<const graspmix::OccupancyMap>(pts, views, pts);
+}
+
+double occupancy_charge(const CollisionExpert& e, double x) {
+  return e.evaluate(at(x), Eigen::VectorXd::Zero(1)).cloud_depth[0];
+}
+
+}  // namespace
+
+TEST(CollisionOccupancy, ChargeGrowsWithDepthAndDoesNotSaturate) {
+  const Vec3Array none(0, 3);
+  const CollisionExpert occ(finger(), box_seen_all_round(), none);
+  EXPECT_EQ(occ.settings().model, graspmix::CollisionModel::Occupancy);
+  // The finger (2 cm thick along x) enters the face x = 0 by d: centred at x = d - 0.01.
+  EXPECT_EQ(occupancy_charge(occ, -0.0105), 0.0);  // 0.5 mm off the face
+  EXPECT_EQ(occupancy_charge(occ, -0.0095), 0.0);  // touching, 0.5 mm in: within the tolerance
+  // It grows with depth in steps of the map's cells (the erosion hides the first few millimetres).
+  std::vector<double> c;
+  for (double d : {0.01, 0.015, 0.02, 0.03}) c.push_back(occupancy_charge(occ, d - 0.01));
+  EXPECT_GT(c[0], 0.0);
+  EXPECT_GT(c[1], c[0]);
+  EXPECT_GE(c[2], c[1]);
+  EXPECT_GE(c[3], c[2]);
+  // Wholly inside: at least any partial entry, at most the link's volume over the reference area.
+  const double inside = occupancy_charge(occ, 0.05);
+  EXPECT_GE(inside, c[3]);
+  EXPECT_GT(inside, 10 * 0.003);  // ten times what a 3 mm surface penetration costs
+  EXPECT_LE(inside, 0.02 * 0.04 * 0.06 / occ.settings().reference_area + 1e-12);
+  const graspmix::CollisionResult r = occ.evaluate(at(0.05), Eigen::VectorXd::Zero(1));
+  EXPECT_FALSE(r.collision_free);
+  EXPECT_NEAR(r.log_w, -occ.settings().beta * r.total_depth, 1e-9);
+  // The surface model sees no point inside the same finger: the gap the occupancy model closes.
+  const CollisionExpert surface(finger(), box_surface());
+  EXPECT_EQ(surface.evaluate(at(0.05), Eigen::VectorXd::Zero(1)).cloud_depth[0], 0.0);
+  // Given the cloud too, the occupancy model also charges shallow penetrations by their exact depth.
+  const CollisionExpert both(finger(), box_seen_all_round(), box_surface(), std::nullopt, exact());
+  EXPECT_EQ(occupancy_charge(occ, 0.003 - 0.01), 0.0);
+  EXPECT_NEAR(occupancy_charge(both, 0.003 - 0.01), 0.003, 1e-9);
+  // The batch agrees with single evaluations.
+  graspmix::PoseArray W(3, 7);
+  for (int i = 0; i < 3; ++i) W.row(i) = graspmix::pose_to_vector(at(-0.01 + 0.02 * i)).transpose();
+  const auto b = occ.evaluate_batch(W, graspmix::RowMatrixXd::Zero(1, 1));
+  for (int i = 0; i < 3; ++i) EXPECT_DOUBLE_EQ(b.cloud_depth(i, 0), occupancy_charge(occ, -0.01 + 0.02 * i));
+}
+
+TEST(CollisionOccupancy, BehindAnObjectFromOneCameraIsCharged) {
+  // One camera at -x sees only the face x = 0 of the box.
+  Vec3Array face(41 * 41, 3);
+  for (int j = 0; j <= 40; ++j)
+    for (int k = 0; k <= 40; ++k) face.row(j * 41 + k) << 0.0, -0.05 + 0.0025 * j, -0.05 + 0.0025 * k;
+  auto map = std::make_shared<const graspmix::OccupancyMap>(face, Eigen::RowVector3d(-0.5, 0, 0), face);
+  const CollisionExpert occ(finger(), map, Vec3Array(0, 3));
+  EXPECT_TRUE(occ.evaluate(at(-0.04), Eigen::VectorXd::Zero(1)).collision_free);  // in front: seen free
+  EXPECT_GT(occupancy_charge(occ, 0.06), 0.0);                                    // behind: unseen
+  // With unknown space taken as free, the same finger behind the face is not charged.
+  graspmix::OccupancySettings free_unknown;
+  free_unknown.unknown_is_occupied = false;
+  const CollisionExpert lax(finger(),
+                            std::make_shared<const graspmix::OccupancyMap>(face, Eigen::RowVector3d(-0.5, 0, 0), face,
+                                                                           std::nullopt, free_unknown),
+                            Vec3Array(0, 3));
+  EXPECT_EQ(occupancy_charge(lax, 0.06), 0.0);
+}
+
+TEST(CollisionOccupancy, ModelNamesAndBadInput) {
+  EXPECT_EQ(graspmix::collision_model_from_string("occupancy"), graspmix::CollisionModel::Occupancy);
+  EXPECT_EQ(graspmix::to_string(graspmix::CollisionModel::Surface), "surface");
+  EXPECT_THROW(graspmix::collision_model_from_string("voxels"), std::invalid_argument);
+  CollisionSettings s;
+  s.model = graspmix::CollisionModel::Occupancy;
+  EXPECT_THROW(CollisionExpert(finger(), box_surface(), std::nullopt, s), std::invalid_argument);
+  EXPECT_THROW(CollisionExpert(finger(), std::shared_ptr<const graspmix::OccupancyMap>(), box_surface()),
+               std::invalid_argument);
+  s = CollisionSettings{};
+  s.reference_area = 0.0;
+  EXPECT_THROW(CollisionExpert(finger(), box_seen_all_round(), box_surface(), std::nullopt, s), std::invalid_argument);
+}

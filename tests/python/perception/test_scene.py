@@ -13,12 +13,6 @@ from graspmix.sim.acquisition import AcquisitionSettings, Camera, acquire, apply
 from graspmix.sim.acquisition import Scene as BulletScene
 
 EYE = (0.5, 0.1, 0.45)
-FLAT_BOX = """<?xml version="1.0"?>
-<robot name="flat"><link name="base">
-  <visual><geometry><box size="{x} {y} {z}"/></geometry></visual>
-  <collision><geometry><box size="{x} {y} {z}"/></geometry></collision>
-  <inertial><mass value="0.2"/><inertia ixx="1e-4" iyy="1e-4" izz="1e-4" ixy="0" ixz="0" iyz="0"/></inertial>
-</link></robot>"""
 
 
 def _up(plane):
@@ -50,20 +44,14 @@ def test_the_cameras_decide_the_side_not_the_points():
     assert scene.plane_found and scene.plane[2] < -0.999
 
 
-def _flat_box(tmp_path, size):
-    path = tmp_path / "flat.urdf"
-    path.write_text(FLAT_BOX.format(x=size[0], y=size[1], z=size[2]))
-    return path
-
-
 @pytest.mark.parametrize("shape", ["mug", "box", "flat", "on_side"])
 @pytest.mark.parametrize("n_cameras", [1, 4])
-def test_object_only_clouds_have_no_plane(tmp_path, shape, n_cameras):
+def test_object_only_clouds_have_no_plane(box_urdf, shape, n_cameras):
     obj = {
         "mug": "objects/mug.urdf",
-        "box": _flat_box(tmp_path, (0.06, 0.05, 0.1)),
-        "flat": _flat_box(tmp_path, (0.12, 0.08, 0.025)),
-        "on_side": _flat_box(tmp_path, (0.12, 0.025, 0.08)),
+        "box": box_urdf((0.06, 0.05, 0.1)),
+        "flat": box_urdf((0.12, 0.08, 0.025)),
+        "on_side": box_urdf((0.12, 0.025, 0.08)),
     }[shape]
     cams = [Camera(eye=EYE)] if n_cameras == 1 else ring_cameras(4)
     acq = acquire(obj, noise=True, seed=4, settings=AcquisitionSettings(cameras=cams, keep="object"))

@@ -1,0 +1,108 @@
+// The occupancy map against the analytic geometry of a box face seen by one camera.
+#include <cmath>
+#include <limits>
+#include <random>
+#include <stdexcept>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "graspmix/grasp/occupancy.hpp"
+
+using graspmix::CellState;
+using graspmix::OccupancyMap;
+using graspmix::OccupancySettings;
+using graspmix::Vec3Array;
+
+namespace {
+
+const Eigen::Vector3d kCamera(-0.5, 0.0, 0.0);
+
+/// What a camera at kCamera sees of the box [0, 0.1] x [-0.05, 0.05] x [-0.05, 0.05]: its face x = 0,
+/// on a 2.5 mm grid.
+Vec3Array seen_face() {
+  Vec3Array out(41 * 41, 3);
+  for (int j = 0; j <= 40; ++j)
+    for (int k = 0; k <= 40; ++k) out.row(j * 41 + k) << 0.0, -0.05 + 0.0025 * j, -0.05 + 0.0025 * k;
+  return out;
+}
+
+/// Where the camera's ray through p meets the plane x = 0 (p with x != camera's x).
+Eigen::Vector2d on_face(const Eigen::Vector3d& p) {
+  const Eigen::Vector3d d = p - kCamera;
+  const Eigen::Vector3d hit = kCamera + d * (-kCamera.x() / d.x());
+  return hit.tail<2>();
+}
+
+}  // namespace
+
+TEST(Occupancy, FaceSeenFromOneSideFreeInFrontUnknownBehind) {
+  const Vec3Array face = seen_face();
+  const OccupancyMap map(face, kCamera.transpose(), face);
+  const double h = map.resolution();
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> ux(-0.09, 0.09), uyz(-0.06, 0.06);
+  int n_front = 0, n_behind = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const Eigen::Vector3d p(ux(rng), uyz(rng), uyz(rng));
+    const Eigen::Vector2d f = on_face(p);
+    // Inside the cone of rays by more than two cells' diagonals, at p's distance from the camera.
+    const double lateral = (0.05 - f.cwiseAbs().maxCoeff()) * (p.x() - kCamera.x()) / -kCamera.x();
+    if (lateral < 2 * std::sqrt(3.0) * h) continue;
+    if (p.x() < -2 * h) {
+      ++n_front;
+      EXPECT_EQ(map.state(p), CellState::Free) << p.transpose();
+    } else if (p.x() > 2 * h) {
+      ++n_behind;
+      EXPECT_EQ(map.state(p), CellState::Unknown) << p.transpose();
+    }
+  }
+  EXPECT_GT(n_front, 1000);
+  EXPECT_GT(n_behind, 1000);
+  // The face's own cells are occupied; beside the box, where no ray went, unknown; outside the region free.
+  EXPECT_EQ(map.state({0.001, 0.01, -0.02}), CellState::Occupied);
+  EXPECT_EQ(map.state({0.05, 0.09, 0.0}), CellState::Unknown);
+  EXPECT_EQ(map.state({0.3, 0.0, 0.0}), CellState::Free);
+  EXPECT_GT(map.stats().n_rays, 0);
+  EXPECT_EQ(map.stats().n_free + map.stats().n_occupied + map.stats().n_unknown,
+            static_cast<std::int64_t>(map.dims().cast<double>().prod()));
+}
+
+TEST(Occupancy, CellsWithinOneCellOfThePlaneAreFree) {
+  const Vec3Array face = seen_face();
+  // The box stands on z = -0.05; the plane is given upside down and oriented towards the camera.
+  const OccupancyMap map(face, kCamera.transpose(), face, Eigen::Vector4d(0, 0, -1, -0.05));
+  EXPECT_NEAR(map.plane()[2], 1.0, 1e-12);
+  const double h = map.resolution();
+  EXPECT_EQ(map.state({0.05, 0.0, -0.05 + 0.5 * h}), CellState::Free);  // the table's layer: the plane's term
+  EXPECT_EQ(map.state({0.05, 0.0, -0.05 - 0.02}), CellState::Free);     // below the table
+  EXPECT_EQ(map.state({0.05, 0.0, -0.03}), CellState::Unknown);         // the shadow above it
+}
+
+TEST(Occupancy, BadInputThrows) {
+  const Vec3Array face = seen_face();
+  const Eigen::RowVector3d cam = kCamera.transpose();
+  OccupancySettings s;
+  s.resolution = 0.0;
+  EXPECT_THROW(OccupancyMap(face, cam, face, std::nullopt, s), std::invalid_argument);
+  s.resolution = -0.005;
+  EXPECT_THROW(OccupancyMap(face, cam, face, std::nullopt, s), std::invalid_argument);
+  s = OccupancySettings{};
+  s.margin = -1;
+  EXPECT_THROW(OccupancyMap(face, cam, face, std::nullopt, s), std::invalid_argument);
+  s = OccupancySettings{};
+  s.max_cells = 1000;
+  EXPECT_THROW(OccupancyMap(face, cam, face, std::nullopt, s), std::invalid_argument);
+  const Eigen::RowVector3d nan(std::numeric_limits<double>::quiet_NaN(), 0, 0);
+  EXPECT_THROW(OccupancyMap(face, nan, face), std::invalid_argument);
+  Vec3Array bad_points = face;
+  bad_points(3, 1) = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(OccupancyMap(bad_points, cam, face), std::invalid_argument);
+  EXPECT_THROW(OccupancyMap(Vec3Array(0, 3), cam, face), std::invalid_argument);
+  EXPECT_THROW(OccupancyMap(face, Vec3Array(2, 3), face), std::invalid_argument);  // neither 1 nor N rows
+  // A camera inside the objects' box (a cloud in its sensor's frame given without its viewpoint).
+  Vec3Array box = face;
+  box.col(0).setLinSpaced(0.0, 0.1);
+  EXPECT_THROW(OccupancyMap(box, Eigen::RowVector3d(0.05, 0, 0), box), std::invalid_argument);
+  EXPECT_THROW(OccupancyMap(face, cam, face, Eigen::Vector4d(0, 0, 0, 1)), std::invalid_argument);
+}

@@ -1,0 +1,98 @@
+"""The occupancy map and the occupancy collision model on a box rendered by pybullet from one camera (the
+renderer's ground truth: the box's pose and size), synthesis with collision="occupancy", and bad input."""
+
+import graspmix
+import numpy as np
+import pytest
+from graspmix import _core
+from graspmix.model.settings import SynthesisOptions
+from graspmix.perception import segment_scene
+from graspmix.sim.acquisition import AcquisitionSettings, Camera, acquire
+
+EYE = (0.5, 0.1, 0.45)  # sees the box's +x face (and its top)
+SIZE = (0.06, 0.06, 0.10)  # m
+# A finger: a free box link 2 x 4 x 6 cm centred on its frame (2 cm along x, the approach).
+FINGER = """<robot name="finger"><link name="finger"><collision><geometry><box size="0.02 0.04 0.06"/></geometry>
+</collision></link><link name="tip"/><joint name="slide" type="prismatic"><parent link="finger"/><child link="tip"/>
+<axis xyz="0 0 1"/><limit lower="0" upper="0.1" effort="1" velocity="1"/></joint></robot>"""
+
+
+@pytest.fixture(scope="module")
+def seen(box_urdf):
+    path = box_urdf(SIZE)
+    acq = acquire(path, seed=0, settings=AcquisitionSettings(cameras=[Camera(eye=EYE)], keep="scene"))
+    scene = segment_scene(acq.points, acq.viewpoints)
+    occ = _core.OccupancyMap(acq.points, acq.viewpoints, scene.points, scene.plane)
+    return acq, scene, occ, np.asarray(acq.object_pose[:3]), path
+
+
+def test_one_camera_sees_free_in_front_and_leaves_the_back_unknown(seen):
+    _, _, occ, c, _ = seen
+    free, occupied, unknown = 0, 1, 2
+    assert occ.state([c])[0] == unknown  # the box's inside: no ray reached it
+    assert occ.state([c + [0.06, 0, 0]])[0] == free  # 3 cm in front of the seen face
+    assert occ.state([c + [0.03 + 0.001, 0, 0]])[0] == occupied  # the seen face
+    assert occ.state([c - [0.06, 0, 0]])[0] == unknown  # 3 cm behind the hidden face: the shadow
+    assert occ.state([c + [0.5, 0, 0]])[0] == free  # outside the mapped region
+    assert occ.plane is not None and occ.plane[2] > 0.999  # towards the camera
+    s = occ.stats
+    assert s["n_free"] + s["n_occupied"] + s["n_unknown"] == np.prod(occ.dims)
+
+
+def _charges(expert, xs, c, zs=None):
+    zs = np.full(len(xs), c[2]) if zs is None else zs
+    wrists = np.array([[x, c[1], z, 0, 0, 0, 1] for x, z in zip(xs, zs)])
+    return expert.evaluate_batch(wrists, np.zeros((len(xs), 1))).cloud_depth[:, 0]
+
+
+def test_a_finger_inside_costs_more_than_one_grazing_and_the_charge_grows_with_depth(seen):
+    _, scene, occ, c, _ = seen
+    finger = _core.Hand.from_urdf_string(FINGER, ".")
+    occupancy = _core.CollisionExpert(finger, scene.points, scene.plane, occupancy=occ)
+    surface = _core.CollisionExpert(finger, scene.points, scene.plane)
+    assert occupancy.model == "occupancy" and surface.model == "surface"
+    # Down into the seen top face (the finger is 6 cm tall): 0 is touching.
+    top = c[2] + SIZE[2] / 2
+    depths = np.array([0.0, 0.01, 0.02, 0.04])
+    charge = _charges(occupancy, np.full(4, c[0]), c, top + 0.03 - depths)
+    assert charge[0] == 0.0
+    assert np.all(np.diff(charge) > 0)
+    face = c[0] + SIZE[0] / 2  # the seen side face
+    inside = _charges(occupancy, [c[0]], c)[0]  # the finger wholly inside the box
+    assert inside >= charge[-1] and inside > 10 * 0.003
+    assert _charges(surface, [c[0]], c)[0] == 0.0  # the surface model sees no point inside it
+    # Behind the box from this camera: charged by the occupancy model, invisible to the surface model.
+    behind = c[0] - SIZE[0] / 2 - 0.02
+    assert _charges(occupancy, [behind], c)[0] > 0.0
+    assert _charges(surface, [behind], c)[0] == 0.0
+    # The same finger in the space the camera saw free is not.
+    assert _charges(occupancy, [face + 0.03], c)[0] == 0.0
+
+
+def test_synthesis_with_the_occupancy_model(seen):
+    acq, *_ = seen
+    model = graspmix.GraspModel.load(graspmix.default_model_path())
+    kw = dict(viewpoints=acq.viewpoints, n_samples=40, n_optimise=1, seed=0)
+    grasps = model.synthesize(acq.points, collision="occupancy", **kw)
+    assert len(grasps) > 0 and grasps.timing["occupancy"] > 0
+    assert all(np.isfinite(g.log_likelihood) for g in grasps)
+    assert SynthesisOptions.collision == _core.CollisionSettings().model == "surface"
+
+
+def test_bad_input_is_a_value_error(seen):
+    acq, scene, _, c, _ = seen
+    model = graspmix.GraspModel.load(graspmix.default_model_path())
+    with pytest.raises(ValueError, match="collision must be one of"):
+        model.synthesize(acq.points, viewpoints=acq.viewpoints, collision="voxels")
+    with pytest.raises(ValueError, match="occupancy_resolution"):
+        model.synthesize(acq.points, viewpoints=acq.viewpoints, collision="occupancy", occupancy_resolution=0.0)
+    with pytest.raises(ValueError, match="viewpoints"):
+        model.synthesize(acq.points, collision="occupancy")  # an array has no VIEWPOINT
+    with pytest.raises(ValueError, match="resolution"):
+        _core.OccupancyMap(acq.points, acq.viewpoints, scene.points, resolution=-0.005)
+    with pytest.raises(ValueError, match="NaN"):
+        _core.OccupancyMap(acq.points, [np.nan, 0, 1], scene.points)
+    with pytest.raises(ValueError, match="inside the objects' bounding box"):
+        _core.OccupancyMap(acq.points, c, scene.points)  # a camera inside the box
+    with pytest.raises(ValueError, match="OccupancyMap"):
+        _core.CollisionExpert(model.hand, scene.points, model="occupancy")

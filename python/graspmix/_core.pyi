@@ -406,6 +406,11 @@ class CloudData:
         Sensor pose [x, y, z, qx, qy, qz, qw] from the PCD VIEWPOINT (identity when absent).
         """
     @property
+    def viewpoints(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        """
+        (N, 3) the camera position of each point (PCD/PLY fields vp_x vp_y vp_z, PCL's PointWithViewpoint), following the points kept; (0, 3) when the file has none.
+        """
+    @property
     def width(self) -> int:
         ...
 class SceneSettings:
@@ -630,9 +635,12 @@ class SegmentationSettings:
       cluster_tolerance = 0.006: m: object points closer than this are one object (Euclidean clusters)
       min_cluster_size = 20: smaller clusters are noise, dropped
       max_cluster_size = 0: larger clusters are dropped; 0 = no limit
+      merge_seen_through = True: a cluster seen through a larger one joins it (a container's inside seen over its rim)
+      merge_through_fraction = 0.2: fraction of a cluster's lines of sight that must cross the larger one's envelope
+      merge_inset = 0.006: m: the larger cluster's envelope is inset by this
     """
     __hash__: typing.ClassVar[None] = None
-    _fields: typing.ClassVar[tuple] = ('voxel_size', 'plane_distance', 'plane_max_iterations', 'seed', 'find_plane', 'plane_candidates', 'plane_min_fraction', 'plane_behind_distance', 'plane_max_behind_fraction', 'plane_margin', 'table_clearance', 'remove_outliers', 'outlier_neighbours', 'outlier_std_ratio', 'cluster_tolerance', 'min_cluster_size', 'max_cluster_size')
+    _fields: typing.ClassVar[tuple] = ('voxel_size', 'plane_distance', 'plane_max_iterations', 'seed', 'find_plane', 'plane_candidates', 'plane_min_fraction', 'plane_behind_distance', 'plane_max_behind_fraction', 'plane_margin', 'table_clearance', 'remove_outliers', 'outlier_neighbours', 'outlier_std_ratio', 'cluster_tolerance', 'min_cluster_size', 'max_cluster_size', 'merge_seen_through', 'merge_through_fraction', 'merge_inset')
     def __copy__(self) -> SegmentationSettings:
         ...
     def __deepcopy__(self, memo: typing.Any) -> SegmentationSettings:
@@ -649,7 +657,7 @@ class SegmentationSettings:
     @typing.overload
     def __init__(self, **kwargs) -> None:
         """
-        Keyword constructor: any of the fields (voxel_size, plane_distance, plane_max_iterations, seed, find_plane, plane_candidates, plane_min_fraction, plane_behind_distance, plane_max_behind_fraction, plane_margin, table_clearance, remove_outliers, outlier_neighbours, outlier_std_ratio, cluster_tolerance, min_cluster_size, max_cluster_size); the others keep their defaults.
+        Keyword constructor: any of the fields (voxel_size, plane_distance, plane_max_iterations, seed, find_plane, plane_candidates, plane_min_fraction, plane_behind_distance, plane_max_behind_fraction, plane_margin, table_clearance, remove_outliers, outlier_neighbours, outlier_std_ratio, cluster_tolerance, min_cluster_size, max_cluster_size, merge_seen_through, merge_through_fraction, merge_inset); the others keep their defaults.
         """
     def __repr__(self) -> str:
         ...
@@ -678,6 +686,30 @@ class SegmentationSettings:
         """
     @max_cluster_size.setter
     def max_cluster_size(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def merge_inset(self) -> float:
+        """
+        m: the larger cluster's envelope is inset by this
+        """
+    @merge_inset.setter
+    def merge_inset(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def merge_seen_through(self) -> bool:
+        """
+        a cluster seen through a larger one joins it (a container's inside seen over its rim)
+        """
+    @merge_seen_through.setter
+    def merge_seen_through(self, arg0: bool) -> None:
+        ...
+    @property
+    def merge_through_fraction(self) -> float:
+        """
+        fraction of a cluster's lines of sight that must cross the larger one's envelope
+        """
+    @merge_through_fraction.setter
+    def merge_through_fraction(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def min_cluster_size(self) -> int:
@@ -889,6 +921,11 @@ class Segmentation:
     def n_input(self) -> int:
         ...
     @property
+    def n_merged(self) -> int:
+        """
+        clusters joined to a larger one (seen through it)
+        """
+    @property
     def n_outliers(self) -> int:
         ...
     @property
@@ -927,11 +964,18 @@ class Segmentation:
         """
     @property
     def seconds(self) -> float:
-        ...
+        """
+        wall time of the whole segmentation
+        """
     @property
     def sources(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 1]"]:
         """
         (M) input row whose per-point data every point carries
+        """
+    @property
+    def step_seconds(self) -> dict:
+        """
+        wall time (s) of each step: voxel, candidates (RANSAC, rules 1-3), table_cut, outliers, clusters (and rule 4), merge, objects; the middle three summed over the candidates tried
         """
 class SurfaceFeatureSettings:
     """
@@ -2995,9 +3039,9 @@ def quat_log(q: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float
     """
     eq:log_map on (N, 4) quaternions [x, y, z, w]: arccos(w) v/|v| after canonicalising w >= 0 -> (N, 3).
     """
-def save_cloud(path: typing.Any, points: typing.Any, normals: typing.Any = None, encoding: str = 'binary', viewpoint: typing.Any = None) -> None:
+def save_cloud(path: typing.Any, points: typing.Any, normals: typing.Any = None, encoding: str = 'binary', viewpoint: typing.Any = None, viewpoints: typing.Any = None) -> None:
     """
-    Writes float32 x y z (+ normal_x normal_y normal_z) to .pcd (encoding ascii | binary | binary_compressed) or .ply (ascii | binary); viewpoint [x, y, z, qx, qy, qz, qw] goes into the header.
+    Writes float32 x y z (+ normal_x normal_y normal_z, + vp_x vp_y vp_z) to .pcd (encoding ascii | binary | binary_compressed) or .ply (ascii | binary); viewpoint [x, y, z, qx, qy, qz, qw] goes into the header, viewpoints (N, 3), one camera position per point, into the fields vp_x vp_y vp_z (PCL's PointWithViewpoint).
     """
 def segment_scene(points: typing.Any, viewpoints: typing.Any = None, plane: typing.Any = None, *, settings: typing.Any = None, **kwargs) -> Segmentation:
     """
@@ -3021,6 +3065,9 @@ def segment_scene(points: typing.Any, viewpoints: typing.Any = None, plane: typi
       cluster_tolerance = 0.006: m: object points closer than this are one object (Euclidean clusters)
       min_cluster_size = 20: smaller clusters are noise, dropped
       max_cluster_size = 0: larger clusters are dropped; 0 = no limit
+      merge_seen_through = True: a cluster seen through a larger one joins it (a container's inside seen over its rim)
+      merge_through_fraction = 0.2: fraction of a cluster's lines of sight that must cross the larger one's envelope
+      merge_inset = 0.006: m: the larger cluster's envelope is inset by this
     """
 def sim_execute(hand: Hand, object: SimObject, T_world_object: typing.Any, T_world_wrist: typing.Any, pregrasp: typing.Any, grasp: typing.Any, settings: typing.Any = None, **kwargs) -> SimResult:
     """

@@ -332,7 +332,7 @@ def clean_up(
         scene = _core.prepare_cloud(
             acq.points, voxel_size=voxel_size, remove_outliers=remove_outliers, remove_plane=plane_too, seed=seed
         )
-        rows = np.asarray(scene.indices)
+        rows = np.asarray(scene.sources)  # each kept point's source row (indices are -1 for voxel centroids)
         return dataclasses.replace(
             acq,
             points=np.asarray(scene.points),

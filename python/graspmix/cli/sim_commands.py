@@ -50,7 +50,7 @@ def cmd_acquire(args: argparse.Namespace) -> int:
     # several: each point carries the position of the camera that saw it (vp_x vp_y vp_z).
     viewpoint = _camera_pose(acq.cameras[0]) if len(acq.cameras) == 1 else None
     per_point = acq.viewpoints if viewpoint is None else None
-    _core.save_cloud(args.out, acq.points, viewpoint=viewpoint, viewpoints=per_point)
+    _core.save_cloud(args.out, acq.points, encoding=args.encoding, viewpoint=viewpoint, viewpoints=per_point)
     what = args.scene or args.object
     print(
         f"acquired {len(acq.points)} points of {what} ({len(spec.objects)} object(s), "
@@ -140,6 +140,12 @@ def add_parsers(sub) -> None:
         help="scene: what the camera sees, the table too (default); object: the objects' pixels only",
     )
     s.add_argument("--out", type=output_file, required=True, help="output cloud (.pcd)")
+    s.add_argument(
+        "--encoding",
+        choices=["binary", "binary_compressed", "ascii"],
+        default="binary",
+        help="PCD encoding (default binary; binary_compressed for files to keep)",
+    )
     s.add_argument("--picture", type=output_file, help="also save a picture of the depth images (.png)")
     s.add_argument(
         "--clean",

@@ -21,6 +21,7 @@ from ..experiment.protocol import derive_seed
 from ..experiment.runner import RunFolder
 from ..io import CLUTTER_FORMAT, data_path, read_document, read_object_list, sha256_file
 from ..io.checks import MAX_SAMPLES, check_input_file, check_int, check_seed, quote
+from ..io.paths import PACKAGE_PREFIX, resolve_path
 from ..model import default_model_path
 from ..model.settings import METHODS, SynthesisOptions
 
@@ -61,9 +62,14 @@ class ClutterProtocol:
     models: dict = field(default_factory=dict)  # method -> model file; empty: the bundled box models
 
     def __post_init__(self):
-        if not self.object_list:
-            self.object_list = str(default_object_list())
+        if not self.object_list:  # named as bundled data, so the run's files name no machine's path
+            self.object_list = PACKAGE_PREFIX + "objects/clutter_test.txt"
         self.validate()
+
+    @property
+    def object_list_path(self) -> Path:
+        """The object list as a file (package://graspmix/... names the bundled data)."""
+        return resolve_path(self.object_list, Path.cwd())
 
     @property
     def attempt_limit(self) -> int:
@@ -97,7 +103,7 @@ class ClutterProtocol:
 
     def check_inputs(self) -> None:
         """The object list has at least `objects` entries and every model file exists: before any work."""
-        entries = read_object_list(check_input_file(self.object_list, "object list"))
+        entries = read_object_list(check_input_file(self.object_list_path, "object list"))
         if len(entries) < self.objects:
             raise ValueError(f"{self.object_list}: lists {len(entries)} objects, a scene needs {self.objects}")
         for m in self.model_methods():
@@ -113,7 +119,7 @@ class ClutterProtocol:
     def to_json(self) -> dict:
         """clutter.json's "protocol": files identified by content (sha256) as well as by name."""
         d = dataclasses.asdict(self)
-        d["object_list_sha256"] = sha256_file(self.object_list)
+        d["object_list_sha256"] = sha256_file(self.object_list_path)
         d["models"] = {
             m: {"file": self.model_path(m).name, "sha256": sha256_file(self.model_path(m))}
             for m in self.model_methods()

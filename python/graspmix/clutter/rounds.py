@@ -178,7 +178,7 @@ def run_round(pdoc: dict, unit: tuple, todo=None) -> list[dict]:
     p = clutter_protocol_from_json(pdoc)
     mode, scene, method = unit[0], int(unit[1]), unit[2]
     scene_seed = p.scene_seed(mode, scene)
-    spec = make_scene(choose_objects(p.object_list, p.objects, scene_seed), mode, scene_seed)
+    spec = make_scene(choose_objects(p.object_list_path, p.objects, scene_seed), mode, scene_seed)
     stages = real_stages(p, method, pdoc.get("model_paths", {}))
     rows = run_scene(spec, stages, lambda stage, a: p.stage_seed(stage, mode, scene, a), p.attempt_limit)
     for r in rows:

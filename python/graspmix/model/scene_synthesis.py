@@ -113,19 +113,15 @@ def synthesize_targets(
         occupancy = occupancy_map(points, viewpoints, scene.points, scene.plane, opts)
         timing["occupancy"] = occupancy.stats["seconds"]
     collision = collision_expert(model.hand, scene.points, scene.plane, opts, occupancy)
+    # The same for every target; each target adds its own neighbours' expert at the end.
+    shared = constraint_experts(
+        model.hand, scene.points, scene.plane, opts, approach_axis=approach_axis, reachable=reachable, experts=experts
+    )
     grasps, surfaces, evaluations, rejected = [], [], 0, 0
     for i in targets:
         surface = object_surface(scene, i, model.features)
         neighbours = clear_of_neighbours(model, scene, i, opts)
-        extra = constraint_experts(
-            model.hand,
-            scene.points,
-            scene.plane,
-            opts,
-            approach_axis=approach_axis,
-            reachable=reachable,
-            experts=list(experts) + ([] if neighbours is None else [neighbours]),
-        )
+        extra = shared + ([] if neighbours is None else [neighbours])
         res = model.synthesizer.synthesize(surface.frames, surface.curvatures, collision, extra, settings)
         on = {"index": int(i), "centroid": [float(x) for x in scene.objects[i].centroid]}
         for g in grasps_from_result(res, model.hand):

@@ -57,22 +57,10 @@ class FeatureSettings:
         """Deprecated (one release): the table clearance is a synthesis option, SynthesisOptions.table_clearance."""
         return SynthesisOptions.table_clearance
 
-    def surface(
-        self,
-        points: np.ndarray,
-        *,
-        remove_plane: bool,
-        seed: int = 0,
-        viewpoints=None,
-        plane=None,
-        table_clearance: float | None = None,
-    ):
-        """(SurfaceCloud, SceneResult) of raw points: clean-up, then features. With a known support
-        plane [a, b, c, d], the points within table_clearance of it or below it are dropped first (the
-        table of a scene)."""
+    def surface(self, points: np.ndarray, *, remove_plane: bool, seed: int = 0, viewpoints=None):
+        """(SurfaceCloud, SceneResult) of raw points: clean-up (prepare_cloud), then features. A scene's
+        known table is cut by segment_scene (graspmix.perception), which synthesis goes through."""
         viewpoints = checked_viewpoints(viewpoints, len(points))
-        if plane is not None:
-            points, viewpoints = self.cut_plane(points, plane, viewpoints, table_clearance)
         scene = _core.prepare_cloud(points, voxel_size=self.voxel_size, remove_plane=remove_plane, seed=seed)
         if len(scene.points) == 0:
             raise ValueError("the cloud is empty after clean-up")
@@ -80,23 +68,6 @@ class FeatureSettings:
         if vp is not None and vp.ndim == 2:
             vp = vp[scene.sources]  # each kept point carries its source point's camera (voxel centroids too)
         return _core.compute_surface_features(scene.points, radius=self.radius, viewpoints=vp), scene
-
-    @staticmethod
-    def cut_plane(points: np.ndarray, plane, viewpoints=None, table_clearance: float | None = None):
-        """(points, viewpoints) strictly farther than table_clearance above the plane (its side is the one
-        most points are on); per-point viewpoints follow their points."""
-        n = _core.orient_plane(plane, points, "median")  # the side most of the cloud is on
-        dist = (points @ n[:3] + n[3]) / np.linalg.norm(n[:3])
-        clearance = SynthesisOptions.table_clearance if table_clearance is None else table_clearance
-        if not (np.isfinite(clearance) and clearance >= 0):
-            raise ValueError(f"table_clearance must be a finite distance >= 0 (m), got {clearance!r}")
-        keep = dist > clearance
-        points = points[keep]
-        if viewpoints is not None and np.ndim(viewpoints) == 2:
-            viewpoints = np.asarray(viewpoints)[keep]
-        if len(points) == 0:
-            raise ValueError("no point of the cloud lies above the given support plane")
-        return points, viewpoints
 
 
 @dataclass
@@ -133,7 +104,6 @@ class SynthesisOptions:
     # saw (unseen space is solid) plus the points' depths (CollisionSettings.model).
     collision: str = _COLLISION.model
     occupancy_resolution: float = _OCCUPANCY.resolution  # m: the occupancy map's cell (OccupancySettings)
-    # m: with a known support plane (synthesize(plane=...)), every point at most this far above it (or
-    # below it) is dropped as the table before anything else (SegmentationSettings.table_clearance; not the
-    # RANSAC inlier threshold SceneSettings.plane_distance, used when the plane is searched for).
+    # m: every point at most this far above the support plane (given or found), or below it, is dropped as
+    # the table (SegmentationSettings.table_clearance; not the RANSAC inlier threshold plane_distance).
     table_clearance: float = _SEGMENTATION.table_clearance

@@ -8,6 +8,8 @@ import pytest
 from graspmix.experiment import Protocol
 from graspmix.experiment.attempt import crop_above_plane
 from graspmix.model import FeatureSettings
+from graspmix.model.scene_synthesis import object_surface
+from graspmix.perception import segment_scene
 from graspmix.sim.acquisition import acquire
 
 SUPPORT_PLANE = [0.0, 0.0, 1.0, 0.0]
@@ -17,10 +19,10 @@ def experiment_surface(obj, noise):
     p = Protocol(objects=[obj], trials=1)
     acq = acquire(obj, noise=noise, seed=3, postprocess=crop_above_plane(p.min_height))
     assert len(np.unique(acq.camera_index)) >= 3  # the object is seen from several cameras
-    surface, _ = FeatureSettings().surface(
-        acq.points, remove_plane=False, viewpoints=acq.viewpoints, plane=SUPPORT_PLANE, table_clearance=p.min_height
-    )
-    return surface
+    # What the experiment's synthesis does: the scene with its known table, then the object's features.
+    scene = segment_scene(acq.points, acq.viewpoints, SUPPORT_PLANE, table_clearance=p.min_height)
+    assert len(scene.objects) == 1
+    return object_surface(scene, 0, FeatureSettings())
 
 
 @pytest.mark.parametrize("noise", [False, True])

@@ -251,11 +251,11 @@ class GraspModel:
         viewpoints: the camera position (3,) or one per point (N, 3) (default: the file's); they orient the
         plane and the normals. remove_plane: search for the support plane (a table under the objects:
         segment_scene's rule); plane: give it instead ([a, b, c, d]; points within table_clearance of it
-        are dropped); approach_axis: prefer
-        wrists whose approach axis points along it (e.g. (0, 0, -1) for top grasps); reachable(wrists,
-        joints) -> bool array: the hard reachability test; experts: more experts (graspmix.expert(...) or
-        graspmix._core.Expert objects); annealing: AnnealingSettings fields to change. The other settings
-        and their defaults (collision: "surface" or "occupancy"): SynthesisOptions."""
+        are dropped); approach_axis: prefer wrists whose approach axis points along it (e.g. (0, 0, -1) for
+        top grasps); reachable(wrists, joints) -> bool array: the hard reachability test; experts: more
+        experts (graspmix.expert(...) or graspmix._core.Expert objects); annealing: AnnealingSettings fields
+        to change. The other settings and their defaults (collision: "surface" or "occupancy"):
+        SynthesisOptions."""
         # Every keyword but the cloud, plane, viewpoints, target, experts and annealing is a SynthesisOptions field.
         opts = _synthesis_options(locals())
         t0 = time.perf_counter()

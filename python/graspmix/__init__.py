@@ -67,6 +67,7 @@ from ._core import (
 from .io import data_path
 from .model import Demonstration, FeatureSettings, Grasp, GraspModel, GraspSet, default_model_path, expert, learn
 from .perception import Scene, segment_scene
+from .viz import plot_grasps, plot_grasps_html
 
 __version__ = io.package_version()
 

@@ -53,21 +53,28 @@ def cmd_learn(args: argparse.Namespace) -> int:
 
 
 def print_grasps(grasps, top: int) -> None:
-    """A table of the best `top` grasps: log-likelihood, every expert's term, wrist position, joints."""
+    """A table of the best `top` grasps: log-likelihood, every expert's term, wrist position, and the opening:
+    for a two-finger hand the gap between the fingers in m (from the hand's forward kinematics at the grasp
+    joints: Grasp.opening_width), else the grasp joints (m or rad, the URDF's units)."""
     rows = grasps.grasps[:top]
     if not rows:
         return
     keys = list(rows[0]["experts"].keys())
     short = [k.replace("contact/", "Q:") for k in keys]
     head = " ".join(f"{k:>14}" for k in short)
-    print(f"{'rank':>4} {'object':>6} {'log L':>9} {head}   wrist position (m)        opening")
+    gap = all(g.get("opening_width") is not None for g in rows)
+    last = "opening: finger gap (m)" if gap else "grasp joints (m or rad)"
+    print(f"{'rank':>4} {'object':>6} {'log L':>9} {head}   wrist position (m)        {last}")
     for g in rows:
         terms = " ".join(f"{g['experts'][k]:>14.3f}" for k in keys)
         pos = ", ".join(f"{x:+.3f}" for x in g["T_world_wrist"][:3])
-        joints = ", ".join(f"{v:.4f}" for v in g["grasp_joints"].values())
+        if gap:
+            opening = f"{g['opening_width']:.4f}"
+        else:
+            opening = ", ".join(f"{k}={v:.4f}" for k, v in g["grasp_joints"].items())
         on = g.get("object")
         print(
-            f"{g['rank']:>4} {'-' if on is None else on['index']:>6} {g['log_likelihood']:>9.3f} {terms}   [{pos}]   {joints}"
+            f"{g['rank']:>4} {'-' if on is None else on['index']:>6} {g['log_likelihood']:>9.3f} {terms}   [{pos}]   {opening}"
         )
 
 
@@ -131,9 +138,7 @@ def cmd_synthesize(args: argparse.Namespace) -> int:
     grasps.save(args.out)
     print(f"wrote {args.out} ({len(grasps)} grasps, best first)")
     if args.png:
-        from ..viz import plot_grasps
-
-        plot_grasps(grasps, model.hand, args.png, top=min(args.top, 3))
+        grasps.plot(args.png, top=max(min(args.top, 3), 1))
         print(f"wrote {args.png}")
     return 0
 

@@ -129,6 +129,14 @@ _GRASP = Obj(
         "log_likelihood": _LOG,
         "optimised": Bool(),
         "experts": Map(_LOG),
+        # What a robot stack needs (graspmix.model.grasp_frames), after the first release's keys.
+        "T_world_wrist_matrix": Tensor(2, (4, 4)),
+        "T_world_tcp": _POSE,
+        "approach": Tensor(1, (3,)),
+        "closing": Tensor(1, (3,)),
+        "opening_width": Num(),
+        "T_world_pregrasp": _POSE,
+        "T_world_retreat": _POSE,
     },
     required=["T_world_wrist", "pregrasp_joints", "grasp_joints"],
 )
@@ -140,6 +148,19 @@ _GRASPS = Obj(
         "cloud": Str(),
         "timing_s": Map(Num(lo=0.0)),
         "grasps": Arr(_GRASP, min_len=1),
+        "plane": Either(Tensor(1, (4,)), Null()),
+        "evaluations": _COUNT,
+        "rejected": _COUNT,
+        "targets": Arr(_COUNT),
+        "frames": Obj(
+            {
+                "approach_axis": Tensor(1, (3,)),
+                "pregrasp_distance": _NONNEGATIVE,
+                "retreat_distance": _NONNEGATIVE,
+                "fingertip_tolerance": _NONNEGATIVE,
+                "fingertip_links": Arr(Str(nonempty=True)),
+            }
+        ),
     },
     required=["grasps"],
 )

@@ -7,6 +7,7 @@ Also the module path ``graspmix.model`` of earlier versions: every name it had i
 from ..io import DEMO_FORMAT, GRASPS_FORMAT, MODEL_FORMAT, PACKAGE_PREFIX, data_path
 from .demonstration import Demonstration
 from .experts import expert
+from .grasp_frames import GraspFrameSettings
 from .grasp_model import GraspModel, default_model_path, learn
 from .grasps import EXECUTION_KEYS, STAGE_LABELS, STAGES, Grasp, GraspSet, grasp_by_rank, load_grasps
 from .settings import (
@@ -36,6 +37,7 @@ __all__ = [
     "SynthesisOptions",
     "Grasp",
     "GraspSet",
+    "GraspFrameSettings",
     "GraspModel",
     "learn",
     "expert",

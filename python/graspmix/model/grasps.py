@@ -15,8 +15,10 @@ from pathlib import Path
 
 import numpy as np
 
-from ..io import GRASPS_FORMAT, read_document, relative_path
+from .. import _core
+from ..io import GRASPS_FORMAT, read_document, relative_path, resolve_path
 from ..io.checks import check_int, check_output_path
+from .grasp_frames import FRAME_KEYS, FrameMaker, GraspFrameSettings, contact_links_of, fingertip_links
 
 # What executing a grasp needs; the other fields describe how it was ranked.
 EXECUTION_KEYS = ("T_world_wrist", "pregrasp_joints", "grasp_joints")
@@ -35,7 +37,12 @@ class Grasp(MutableMapping):
     """One grasp in the world frame (the cloud's): the wrist pose [x, y, z, qx, qy, qz, qw], the pre-grasp
     and grasp joints (name -> value), and, for a synthesised grasp, its rank (1 = best), log-likelihood,
     whether annealing moved it, the object of the scene it is on, and every expert's log value ("collision", "config", "pregrasp_clear",
-    "contact/<link>", constraint names). Fields a newer writer adds are kept in `extra`."""
+    "contact/<link>", constraint names). Fields a newer writer adds are kept in `extra`.
+
+    What a robot stack needs (graspmix.model.grasp_frames; GraspSet fills them in from its hand):
+    T_world_wrist_matrix (4x4, nested lists), T_world_tcp (the tool centre point between the fingertips,
+    oriented like the wrist), approach and closing (world unit vectors), opening_width (m, two-finger
+    hands), T_world_pregrasp and T_world_retreat (the wrist backed off along the approach)."""
 
     T_world_wrist: list
     pregrasp_joints: dict
@@ -45,6 +52,13 @@ class Grasp(MutableMapping):
     optimised: bool | None = None
     experts: dict | None = None
     object: dict | None = None  # the segmented object it is on: {"index": i, "centroid": [x, y, z]}
+    T_world_wrist_matrix: list | None = None  # 4x4 homogeneous matrix of T_world_wrist
+    T_world_tcp: list | None = None  # [x, y, z, qx, qy, qz, qw]
+    approach: list | None = None  # (3,) world
+    closing: list | None = None  # (3,) world, two-finger hands
+    opening_width: float | None = None  # m, two-finger hands
+    T_world_pregrasp: list | None = None
+    T_world_retreat: list | None = None
     extra: dict = field(default_factory=dict)
 
     # Key order of a grasps.json entry.
@@ -57,6 +71,7 @@ class Grasp(MutableMapping):
         "optimised",
         "experts",
         "object",  # added after the first release's keys, so their order stays what it was
+        *FRAME_KEYS,  # what a robot stack needs (grasp_frames), after them
     )
 
     def to_dict(self, *, execution_only: bool = False) -> dict:
@@ -77,6 +92,9 @@ class Grasp(MutableMapping):
         known = {k: d[k] for k in cls.KEYS if k in d}
         for k in ("T_world_wrist",):
             known[k] = list(known[k]) if not isinstance(known[k], str) else known[k]
+        for k in FRAME_KEYS:
+            if isinstance(known.get(k), (list, tuple)):
+                known[k] = [list(r) if isinstance(r, (list, tuple)) else r for r in known[k]]
         for k in ("pregrasp_joints", "grasp_joints", "experts", "object"):
             if isinstance(known.get(k), Mapping):
                 known[k] = dict(known[k])
@@ -143,9 +161,23 @@ def grasps_from_result(result, hand) -> list[Grasp]:
     return grasps
 
 
+# The grasp pictures are drawn by graspmix.viz, a higher layer: it registers its drawing function here when
+# it is imported (``import graspmix`` does), so this layer needs nothing from it.
+_PLOTTER: list = []
+
+
+def register_grasp_plotter(plot) -> None:
+    """Sets the function GraspSet.plot calls: plot(grasp_set, path, cloud=..., **options)."""
+    _PLOTTER[:] = [plot]
+
+
 @dataclass
 class GraspSet:
-    """Synthesised grasps, best first, as written to grasps.json."""
+    """Synthesised grasps, best first, as written to grasps.json (GraspSet.load reads one back).
+
+    Every Grasp gets the frames a robot stack needs from the hand (grasp_frames; ``frame_settings`` says
+    how): per grasp as its fields, for the whole set as (N, ...) arrays (``tcp_poses``, ``wrist_matrices``,
+    ``approaches``, ``closings``, ``opening_widths``, ``pregrasp_poses``, ``retreat_poses``)."""
 
     grasps: list  # of Grasp
     hand_path: Path
@@ -158,6 +190,13 @@ class GraspSet:
     rejected: int = 0
     scene: object = None  # the segmented scene (graspmix.Scene)
     targets: list = field(default_factory=list)  # indices of the objects grasps were sampled on
+    frame_settings: GraspFrameSettings = field(default_factory=GraspFrameSettings)
+    fingertips: list = field(default_factory=list)  # the fingertip links the frames were made with
+    hand: object = None  # the graspmix.Hand of hand_path (read when first needed)
+
+    def __post_init__(self):
+        if any(isinstance(g, Grasp) and g.T_world_wrist_matrix is None for g in self.grasps):
+            self.add_frames()
 
     def __len__(self):
         return len(self.grasps)
@@ -168,12 +207,77 @@ class GraspSet:
     def best(self) -> Grasp:
         return self.grasps[0]
 
+    def get_hand(self):
+        """The graspmix.Hand of hand_path, read once."""
+        if self.hand is None:
+            self.hand = _core.Hand.from_urdf(str(self.hand_path))
+        return self.hand
+
+    def add_frames(self, settings: GraspFrameSettings | None = None) -> None:
+        """(Re)computes every Grasp's frames (T_world_wrist_matrix, T_world_tcp, approach, closing,
+        opening_width, T_world_pregrasp, T_world_retreat) from the hand at its grasp joints; call it again
+        after moving a grasp. settings: how (default: frame_settings)."""
+        self.frame_settings = (settings or self.frame_settings).checked()
+        rows = [g for g in self.grasps if isinstance(g, Grasp)]
+        if not rows:
+            return
+        hand = self.get_hand()
+        tips = list(self.frame_settings.fingertip_links) or fingertip_links(hand, contact_links_of(rows))
+        for n in tips:
+            if n not in hand.link_names:
+                raise ValueError(f"fingertip link {n!r} is not a link of hand '{hand.name}'")
+        maker = FrameMaker(hand, tips, self.frame_settings)
+        wrists = np.array([g.T_world_wrist for g in rows], dtype=float)
+        joints = np.array([hand.joints_array(g.grasp_joints) for g in rows], dtype=float)
+        for g, f in zip(rows, maker.frames(wrists, joints)):
+            for k, v in f.items():
+                setattr(g, k, v)
+        self.fingertips = tips
+
+    def _column(self, key: str) -> np.ndarray:
+        return np.array([np.nan if g.get(key) is None else g[key] for g in self.grasps], dtype=float)
+
+    @property
+    def wrist_matrices(self) -> np.ndarray:
+        """(N, 4, 4) T_world_wrist as homogeneous matrices."""
+        return np.array([g["T_world_wrist_matrix"] for g in self.grasps], dtype=float).reshape(-1, 4, 4)
+
+    @property
+    def tcp_poses(self) -> np.ndarray:
+        """(N, 7) T_world_tcp (NaN rows for a hand without fingertip links)."""
+        return np.array([g.get("T_world_tcp") or [np.nan] * 7 for g in self.grasps], dtype=float).reshape(-1, 7)
+
+    @property
+    def approaches(self) -> np.ndarray:
+        """(N, 3) approach directions (world, unit)."""
+        return np.array([g["approach"] for g in self.grasps], dtype=float).reshape(-1, 3)
+
+    @property
+    def closings(self) -> np.ndarray:
+        """(N, 3) closing directions (world, unit; NaN unless the hand has two fingertip links)."""
+        return np.array([g.get("closing") or [np.nan] * 3 for g in self.grasps], dtype=float).reshape(-1, 3)
+
+    @property
+    def opening_widths(self) -> np.ndarray:
+        """(N,) opening widths in m (NaN unless the hand has two fingertip links)."""
+        return self._column("opening_width")
+
+    @property
+    def pregrasp_poses(self) -> np.ndarray:
+        """(N, 7) T_world_pregrasp: the wrist frame_settings.pregrasp_distance back along the approach."""
+        return np.array([g["T_world_pregrasp"] for g in self.grasps], dtype=float).reshape(-1, 7)
+
+    @property
+    def retreat_poses(self) -> np.ndarray:
+        """(N, 7) T_world_retreat: the wrist frame_settings.retreat_distance back along the approach."""
+        return np.array([g["T_world_retreat"] for g in self.grasps], dtype=float).reshape(-1, 7)
+
     def to_json(self, base: Path | None = None) -> dict:
         """The grasps.json content; paths are written relative to `base` (the file's folder) when given."""
         hand, cloud = str(self.hand_path), self.cloud
         if base is not None:
             hand = relative_path(self.hand_path, base)
-            if Path(cloud).exists():
+            if cloud and Path(cloud).exists():
                 cloud = relative_path(Path(cloud), base)
         return {
             "format": GRASPS_FORMAT,
@@ -182,12 +286,60 @@ class GraspSet:
             "cloud": cloud,
             "timing_s": self.timing,
             "grasps": [_as_dict(g) for g in self.grasps],
+            # Added after the first release's keys: what GraspSet.load and plot need again.
+            "plane": None if self.plane is None else [float(v) for v in self.plane],
+            "evaluations": int(self.evaluations),
+            "rejected": int(self.rejected),
+            "targets": [int(t) for t in self.targets],
+            "frames": {**self.frame_settings.to_json(), "fingertip_links": list(self.fingertips)},
         }
 
     def save(self, path: str | Path) -> None:
         # Non-finite log values (a grasp a hard expert rejected) are written as the strings "-inf"/"inf".
         path = check_output_path(path, "grasps file")
         path.write_text(json.dumps(_json_safe(self.to_json(path.resolve().parent)), indent=1) + "\n")
+
+    @classmethod
+    def load(cls, path: str | Path) -> "GraspSet":
+        """A grasps.json (format graspmix.grasps/1) back as a GraspSet: its grasps (by rank), hand, method,
+        cloud (resolved against the file's folder), timing, support plane, counts and frames. A file
+        without frames (an older writer) gets them from its hand."""
+        doc = load_grasps(path)
+        base = Path(path).resolve().parent
+        cloud = doc.get("cloud", "")
+        if cloud and not cloud.startswith("<"):  # "<array>" and the like name no file
+            cloud = str(resolve_path(cloud, base))
+        if not doc.get("hand"):
+            raise ValueError(f"{path}: names no hand")
+        frames = doc.get("frames") or {}
+        known = {f.name for f in fields(GraspFrameSettings)} - {"fingertip_links"}
+        settings = GraspFrameSettings(
+            **{k: tuple(v) if isinstance(v, list) else v for k, v in frames.items() if k in known}
+        )
+        plane = doc.get("plane")
+        return cls(
+            [Grasp.from_dict(g) for g in doc["grasps"]],
+            resolve_path(doc["hand"], base),
+            doc.get("method", ""),
+            cloud,
+            dict(doc.get("timing_s", {})),
+            plane=None if plane is None else np.asarray(plane, dtype=float),
+            evaluations=int(doc.get("evaluations", 0)),
+            rejected=int(doc.get("rejected", 0)),
+            targets=list(doc.get("targets", [])),
+            frame_settings=settings.checked(),
+            fingertips=list(frames.get("fingertip_links", [])),
+        )
+
+    def plot(self, path: str | Path | None = None, cloud=None, **options):
+        """Draws the cloud (cloud: a path or (N, 3) points; default: the synthesis' scene, else the file's
+        cloud if it exists, else none), the support plane as a patch when known, and the hands of the best
+        `top` grasps as their links' collision shapes at their poses and grasp joints.
+        path: .html -> an interactive, self-contained 3D view (plotly); .png/.pdf/.svg -> a picture
+        (matplotlib); None -> the matplotlib Figure. Options: graspmix.viz.plot_grasps'."""
+        if not _PLOTTER:
+            raise RuntimeError("graspmix.viz is not imported (import graspmix does it)")
+        return _PLOTTER[0](self, path, cloud=cloud, **options)
 
 
 def _as_dict(g) -> dict:

@@ -6,24 +6,14 @@ from pathlib import Path
 
 import numpy as np
 
-from .plots import pyplot
-
-
-def _plane_frame(plane):
-    """(origin, u, v, n) of the plane (n its unit normal), or the cloud's own axes without a plane."""
-    if plane is None:
-        return np.zeros(3), np.eye(3)[0], np.eye(3)[1], np.eye(3)[2]
-    n = np.asarray(plane[:3]) / np.linalg.norm(plane[:3])
-    u = np.cross(n, [1.0, 0, 0] if abs(n[0]) < 0.9 else [0, 1.0, 0])
-    u /= np.linalg.norm(u)
-    return -plane[3] * n, u, np.cross(n, u), n
+from .plots import plane_frame, pyplot
 
 
 def plot_scene(scene, path: str | Path, cloud: np.ndarray | None = None, max_background: int = 20000) -> None:
     """Top view (on the plane) and side view (height over it) of scene.objects in colour, with the rest of
     `cloud` (the input points, subsampled) in grey. scene: a graspmix.Scene."""
     plt = pyplot()
-    o, u, v, n = _plane_frame(scene.plane)
+    o, u, v, n = plane_frame(scene.plane)
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.8))
     if cloud is not None and len(cloud):
         step = max(1, len(cloud) // max_background)

@@ -1,0 +1,183 @@
+"""What a robot stack needs of a grasp, computed from the hand's forward kinematics at the grasp joints
+(the frames are defined in the README's grasps.json section):
+
+- ``T_world_wrist_matrix``: the wrist pose as a 4x4 homogeneous matrix;
+- fingertip links: the contact links (those with a ``contact/<link>`` expert) that move with a joint,
+  without those whose descendants are also among them (the distal one of each finger); a grasp with no
+  contact terms takes the moving leaf links that have collision geometry;
+- a link's fingertip point: the centre of the box around its collision vertices that lie within
+  ``fingertip_tolerance`` of its farthest extent along the approach axis (in the wrist frame);
+- ``T_world_tcp``: the tool centre point, the mean of the fingertip points (for two fingers their midpoint),
+  oriented like the wrist;
+- ``approach``: the hand's approach axis (wrist frame, +z by the library's convention) in the world;
+- ``closing`` and ``opening_width`` (two fingertip links only, a parallel gripper): the unit vector from the
+  first fingertip point to the second (link order of the URDF), and the gap between the two links' collision
+  geometry along it (m; the WSG 50's is twice its joint value);
+- ``T_world_pregrasp`` / ``T_world_retreat``: the wrist moved back along the approach by
+  ``pregrasp_distance`` / ``retreat_distance``, same orientation.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from .. import _core
+from ..io.checks import check_float
+
+# The frame keys of a grasps.json entry, in their order (after the keys of the first release).
+FRAME_KEYS = (
+    "T_world_wrist_matrix",
+    "T_world_tcp",
+    "approach",
+    "closing",
+    "opening_width",
+    "T_world_pregrasp",
+    "T_world_retreat",
+)
+
+
+@dataclass(frozen=True)
+class GraspFrameSettings:
+    """How the exports of a grasp are made (a Python-only tool: the defaults live here once)."""
+
+    # The hand's approach axis in the wrist frame: the axis the approach-axis expert aligns
+    # (AxisAlignmentSettings.hand_axis, +z: the WSG 50's palm normal towards the fingertips).
+    approach_axis: tuple = tuple(float(v) for v in _core.AxisAlignmentSettings().hand_axis)
+    pregrasp_distance: float = 0.10  # m: stand-off of the pre-grasp wrist before the grasp, along -approach
+    retreat_distance: float = 0.10  # m: how far the wrist backs out after closing, along -approach
+    fingertip_tolerance: float = 0.002  # m: vertices this close to a link's far end form its fingertip
+    fingertip_links: tuple = ()  # the fingertip links by name; empty: derived (module docstring)
+
+    def checked(self) -> "GraspFrameSettings":
+        axis = np.asarray(self.approach_axis, dtype=float)
+        if axis.shape != (3,) or not np.all(np.isfinite(axis)) or not np.linalg.norm(axis) > 0:
+            raise ValueError(f"approach_axis must be 3 finite numbers, not all zero, got {self.approach_axis!r}")
+        check_float(self.pregrasp_distance, "pregrasp_distance", lo=0.0)
+        check_float(self.retreat_distance, "retreat_distance", lo=0.0)
+        check_float(self.fingertip_tolerance, "fingertip_tolerance", lo=0.0)
+        return self
+
+    def to_json(self) -> dict:
+        return {
+            "approach_axis": [float(v) for v in self.approach_axis],
+            "pregrasp_distance": float(self.pregrasp_distance),
+            "retreat_distance": float(self.retreat_distance),
+            "fingertip_tolerance": float(self.fingertip_tolerance),
+        }
+
+
+def pose_matrix(pose) -> np.ndarray:
+    """A pose [x, y, z, qx, qy, qz, qw] (unit quaternion) as a 4x4 homogeneous matrix."""
+    p = np.asarray(pose, dtype=float)
+    x, y, z, w = p[3:7] / np.linalg.norm(p[3:7])
+    T = np.eye(4)
+    T[:3, :3] = [
+        [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+        [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+        [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
+    ]
+    T[:3, 3] = p[:3]
+    return T
+
+
+def _moving_links(hand) -> tuple[set, dict]:
+    """(links that a non-fixed joint moves relative to the wrist, link -> parent link)."""
+    parent, moves = {}, {}
+    for j in hand.joints:  # parents before children
+        parent[j["child"]] = j["parent"]
+        moves[j["child"]] = j["type"] != "fixed" or moves.get(j["parent"], False)
+    return {link for link, m in moves.items() if m}, parent
+
+
+def fingertip_links(hand, contact_links: Sequence[str] = ()) -> list[str]:
+    """The fingertip links of a hand (module docstring), in the hand's link order."""
+    moving, parent = _moving_links(hand)
+    with_geometry = {n for n in hand.link_names if len(hand.collision_mesh(n)[1])}
+    if contact_links:
+        chosen = {n for n in contact_links if n in moving}
+    else:
+        chosen = {n for n in moving & with_geometry if n not in parent.values()}
+    ancestors = set()
+    for n in chosen:
+        p = parent.get(n)
+        while p is not None:
+            ancestors.add(p)
+            p = parent.get(p)
+    return [n for n in hand.link_names if n in chosen and n not in ancestors]
+
+
+def contact_links_of(grasps) -> list[str]:
+    """Every link with a contact/<link> expert term in any of the grasps (dicts or Grasps)."""
+    links = []
+    for g in grasps:
+        experts = g.get("experts") if isinstance(g, Mapping) else None
+        for k in experts or {}:
+            if k.startswith("contact/") and k[8:] not in links:
+                links.append(k[8:])
+    return links
+
+
+class FrameMaker:
+    """Computes the frames of grasps of one hand (batched over the grasps)."""
+
+    def __init__(self, hand, tips: Sequence[str], settings: GraspFrameSettings | None = None):
+        self.hand, self.tips = hand, list(tips)
+        self.settings = (settings or GraspFrameSettings()).checked()
+        axis = np.asarray(self.settings.approach_axis, dtype=float)
+        self.axis = axis / np.linalg.norm(axis)
+        self.rows = [hand.link_index(n) for n in self.tips]
+        self.vertices = []  # each fingertip link's collision vertices (those its triangles use), link frame
+        for n in self.tips:
+            V, T = hand.collision_mesh(n)
+            if len(T) == 0:
+                raise ValueError(f"fingertip link {n!r} of hand '{hand.name}' has no collision geometry")
+            self.vertices.append(np.asarray(V)[np.unique(np.asarray(T))])
+
+    def frames(self, wrists: np.ndarray, joints: np.ndarray) -> list[dict]:
+        """The frame keys (FRAME_KEYS) of grasps with wrists (N, 7) and grasp joints (N, n_dofs)."""
+        wrists = np.atleast_2d(np.asarray(wrists, dtype=float))
+        links = np.asarray(self.hand.fk_batch(wrists, np.atleast_2d(np.asarray(joints, dtype=float))))
+        R = np.stack([pose_matrix(w)[:3, :3] for w in wrists])
+        approach = R @ self.axis
+        tips, world = self._tips(links, wrists, R)
+        out = []
+        s = self.settings
+        for i, w in enumerate(wrists):
+            q = [float(v) for v in w[3:]]
+            f = {
+                "T_world_wrist_matrix": pose_matrix(w).tolist(),
+                "T_world_tcp": None,
+                "approach": [float(v) for v in approach[i]],
+                "closing": None,
+            }
+            if tips:
+                f["T_world_tcp"] = [float(v) for v in np.mean([t[i] for t in tips], axis=0)] + q
+            f["opening_width"] = None
+            if len(tips) == 2:
+                c = tips[1][i] - tips[0][i]
+                c = c / max(np.linalg.norm(c), 1e-12)
+                f["closing"] = [float(v) for v in c]
+                f["opening_width"] = float((world[1][i] @ c).min() - (world[0][i] @ c).max())
+            f["T_world_pregrasp"] = [float(v) for v in w[:3] - s.pregrasp_distance * approach[i]] + q
+            f["T_world_retreat"] = [float(v) for v in w[:3] - s.retreat_distance * approach[i]] + q
+            out.append({k: f[k] for k in FRAME_KEYS})
+        return out
+
+    def _tips(self, links, wrists, R):
+        """(fingertip points per tip link (N, 3), world vertices per tip link (N, V, 3))."""
+        tips, world = [], []
+        for row, V in zip(self.rows, self.vertices):
+            Rl = np.stack([pose_matrix(p)[:3, :3] for p in links[:, row]])
+            W = np.einsum("nij,vj->nvi", Rl, V) + links[:, row, None, :3]  # (N, V, 3) world
+            local = np.einsum("nji,nvj->nvi", R, W - wrists[:, None, :3])  # in the wrist frame
+            along = local @ self.axis
+            tip = np.empty((len(W), 3))
+            for i in range(len(W)):
+                near = local[i, along[i] >= along[i].max() - self.settings.fingertip_tolerance]
+                tip[i] = (near.min(axis=0) + near.max(axis=0)) / 2
+            tips.append(np.einsum("nij,nj->ni", R, tip) + wrists[:, :3])
+            world.append(W)
+        return tips, world

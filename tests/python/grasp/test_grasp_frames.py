@@ -1,0 +1,106 @@
+"""What a robot stack gets of a grasp (graspmix.model.grasp_frames), against exact geometry: the WSG 50's
+URDF (fingers' inner faces on their link origins, 73 mm box fingers from 8 mm above the palm's 72.5 mm
+top) and scipy's rotations."""
+
+import json
+
+import numpy as np
+import pytest
+from graspmix import Hand, data_path
+from graspmix.model import Grasp, GraspSet
+from graspmix.model.grasp_frames import FRAME_KEYS, GraspFrameSettings, fingertip_links
+from scipy.spatial.transform import Rotation
+
+WSG50 = data_path("hands", "wsg50.urdf")
+# A wrist at a known pose: 20 cm above the origin, rotated 30 degrees about z after 180 about x (approach
+# down and turned).
+ROT = Rotation.from_euler("z", 30, degrees=True) * Rotation.from_euler("x", 180, degrees=True)
+WRIST = [0.1, -0.05, 0.2, *ROT.as_quat()]
+# Where the WSG 50's fingertip midpoint is in the wrist frame, from the URDF's numbers alone: on the
+# centre plane, at the palm's top (0.0725) plus the finger's far end (0.0445 + 0.073 / 2).
+TCP_IN_WRIST = np.array([0.0, 0.0, 0.0725 + 0.0445 + 0.073 / 2])
+
+
+def _set(q=0.02, **settings):
+    g = Grasp(
+        list(WRIST),
+        {"finger_left_joint": 0.05},
+        {"finger_left_joint": q},
+        rank=1,
+        log_likelihood=-1.0,
+        experts={"contact/palm": -1.0, "contact/finger_left": -2.0, "contact/finger_right": -3.0},
+    )
+    return GraspSet([g], WSG50, "gmm", "", {}, frame_settings=GraspFrameSettings(**settings))
+
+
+@pytest.mark.parametrize("q", [0.0, 0.013, 0.055])
+def test_frames_of_a_wsg50_grasp_are_the_urdf_geometry(q):
+    g = _set(q).best()
+    R = ROT.as_matrix()
+    M = np.asarray(g.T_world_wrist_matrix)
+    np.testing.assert_allclose(M[:3, :3], R, atol=1e-12)  # the quaternion's rotation
+    np.testing.assert_allclose(M[:3, 3], WRIST[:3])
+    np.testing.assert_array_equal(M[3], [0, 0, 0, 1])
+    # The TCP: the fingertip midpoint at any opening, oriented like the wrist.
+    np.testing.assert_allclose(g.T_world_tcp[:3], R @ TCP_IN_WRIST + WRIST[:3], atol=1e-12)
+    np.testing.assert_allclose(g.T_world_tcp[3:], WRIST[3:])
+    np.testing.assert_allclose(g.approach, R[:, 2], atol=1e-12)  # +z of the wrist
+    np.testing.assert_allclose(g.closing, R[:, 0], atol=1e-12)  # from finger_left (-x) to finger_right
+    assert g.opening_width == pytest.approx(2 * q, abs=1e-12)  # the URDF: "the opening is twice the value"
+    np.testing.assert_allclose(g.T_world_pregrasp[:3], np.asarray(WRIST[:3]) - 0.10 * R[:, 2], atol=1e-12)
+    np.testing.assert_allclose(g.T_world_retreat[:3], np.asarray(WRIST[:3]) - 0.10 * R[:, 2], atol=1e-12)
+    assert g.T_world_pregrasp[3:] == g.T_world_retreat[3:] == list(WRIST[3:])
+
+
+def test_tcp_is_the_fk_midpoint_of_the_fingertips():
+    """Independently of grasp_frames: the far ends of the finger boxes from Hand.fk and the link-frame box."""
+    hand = Hand.from_urdf(WSG50)
+    q = 0.031
+    links = hand.fk(np.asarray(WRIST), {"finger_left_joint": q})
+    tips = []
+    for name in ("finger_left", "finger_right"):
+        pose = links[hand.link_names.index(name)]
+        # the finger box's far-end face centre in its link frame: x -0.0115, z 0.0445 + 0.073 / 2
+        tips.append(Rotation.from_quat(pose[3:]).apply([-0.0115, 0, 0.081]) + pose[:3])
+    g = _set(q).best()
+    np.testing.assert_allclose(g.T_world_tcp[:3], np.mean(tips, axis=0), atol=1e-12)
+    assert np.linalg.norm(tips[1] - tips[0]) == pytest.approx(2 * q + 0.023, abs=1e-12)  # centres, not faces
+
+
+def test_stand_off_distances_and_approach_axis_are_settings():
+    g = _set(0.02, pregrasp_distance=0.05, retreat_distance=0.2, approach_axis=(0, 0, 2)).best()
+    R = ROT.as_matrix()
+    np.testing.assert_allclose(g.T_world_pregrasp[:3], np.asarray(WRIST[:3]) - 0.05 * R[:, 2], atol=1e-12)
+    np.testing.assert_allclose(g.T_world_retreat[:3], np.asarray(WRIST[:3]) - 0.2 * R[:, 2], atol=1e-12)
+    for bad in ({"approach_axis": (0, 0, 0)}, {"pregrasp_distance": -1.0}, {"retreat_distance": float("nan")}):
+        with pytest.raises(ValueError):
+            _set(0.02, **bad)
+    with pytest.raises(ValueError, match="not a link"):
+        _set(0.02, fingertip_links=("thumb",))
+
+
+def test_fingertip_links_of_hands():
+    wsg = Hand.from_urdf(WSG50)
+    # The palm touched the demonstrated box but does not move: it is no fingertip.
+    assert fingertip_links(wsg, ["palm", "finger_left", "finger_right"]) == ["finger_left", "finger_right"]
+    assert fingertip_links(wsg) == ["finger_left", "finger_right"]  # moving leaves
+    import pybullet_data
+
+    pr2 = Hand.from_urdf(f"{pybullet_data.getDataPath()}/pr2_gripper.urdf")
+    # The tips are fixed to the revolute fingers: they move, and are the distal link of each finger.
+    assert fingertip_links(pr2) == ["left_tip", "right_tip"]
+    assert fingertip_links(pr2, ["gripper_pole", "left_gripper", "left_tip", "right_gripper"]) == [
+        "left_tip",
+        "right_gripper",
+    ]
+
+
+def test_grasps_json_keeps_the_old_keys_first(tmp_path):
+    grasps = _set(0.02)
+    grasps.save(tmp_path / "g.json")
+    doc = json.loads((tmp_path / "g.json").read_text())
+    old = ["rank", "T_world_wrist", "pregrasp_joints", "grasp_joints", "log_likelihood", "experts"]
+    assert list(doc["grasps"][0]) == old + list(FRAME_KEYS)
+    assert list(doc)[:6] == ["format", "hand", "method", "cloud", "timing_s", "grasps"]
+    assert doc["frames"]["fingertip_links"] == ["finger_left", "finger_right"]
+    assert doc["grasps"][0]["opening_width"] == pytest.approx(0.04)

@@ -1,0 +1,118 @@
+"""GraspSet.load: a saved grasps.json comes back equal, field by field; a loaded set plots; bad files are
+clear errors."""
+
+import dataclasses
+import json
+import shutil
+
+import graspmix
+import numpy as np
+import pytest
+from graspmix.model import Grasp, GraspSet
+
+
+@pytest.fixture(scope="module")
+def synthesised():
+    model = graspmix.GraspModel.load(graspmix.default_model_path("gmm"))
+    return model.synthesize(graspmix.data_path("mug.pcd"), n_samples=40, n_optimise=3, seed=1)
+
+
+def _same(a, b):
+    """Equality of JSON-like values, NaN equal to NaN and -inf to -inf."""
+    if isinstance(a, dict):
+        return isinstance(b, dict) and list(a) == list(b) and all(_same(a[k], b[k]) for k in a)
+    if isinstance(a, (list, tuple)):
+        return isinstance(b, (list, tuple)) and len(a) == len(b) and all(_same(x, y) for x, y in zip(a, b))
+    if isinstance(a, float) or isinstance(b, float):
+        return a == b or (np.isnan(a) and np.isnan(b))
+    return a == b
+
+
+def test_saved_and_loaded_set_is_equal(synthesised, tmp_path):
+    path = tmp_path / "out" / "grasps.json"
+    path.parent.mkdir()
+    synthesised.save(path)
+    loaded = GraspSet.load(path)
+    assert len(loaded) == len(synthesised)
+    for a, b in zip(synthesised, loaded):
+        assert isinstance(b, Grasp)
+        for f in dataclasses.fields(Grasp):
+            assert _same(getattr(a, f.name), getattr(b, f.name)), f.name
+    assert loaded.hand_path.resolve() == synthesised.hand_path.resolve()
+    assert loaded.cloud == str(graspmix.data_path("mug.pcd").resolve())
+    assert loaded.method == synthesised.method and loaded.timing == synthesised.timing
+    np.testing.assert_array_equal(loaded.plane, synthesised.plane)
+    assert (loaded.evaluations, loaded.rejected, loaded.targets) == (
+        synthesised.evaluations,
+        synthesised.rejected,
+        synthesised.targets,
+    )
+    assert loaded.frame_settings == synthesised.frame_settings and loaded.fingertips == synthesised.fingertips
+    for prop in ("wrist_matrices", "tcp_poses", "approaches", "closings", "opening_widths", "pregrasp_poses"):
+        np.testing.assert_array_equal(getattr(loaded, prop), getattr(synthesised, prop))
+    # Saved again, the file is the same: nothing is lost or changed by a round trip.
+    loaded.save(tmp_path / "again.json")
+    first, second = json.loads(path.read_text()), json.loads((tmp_path / "again.json").read_text())
+    assert second["cloud"] == first["cloud"] and _same(first["grasps"], second["grasps"])
+    # A file moved together with a cloud it names relatively still finds the cloud.
+    shutil.copy(graspmix.data_path("mug.pcd"), tmp_path / "mug.pcd")
+    doc = dict(first, cloud="../mug.pcd")
+    path.write_text(json.dumps(doc))
+    assert GraspSet.load(path).cloud == str((tmp_path / "mug.pcd").resolve())
+
+
+def test_a_file_without_frames_gets_them_from_its_hand(synthesised, tmp_path):
+    synthesised.save(tmp_path / "g.json")
+    doc = json.loads((tmp_path / "g.json").read_text())
+    for g in doc["grasps"]:
+        for k in graspmix.model.grasp_frames.FRAME_KEYS:
+            g.pop(k)
+    del doc["frames"], doc["plane"]
+    (tmp_path / "old.json").write_text(json.dumps(doc))
+    old = GraspSet.load(tmp_path / "old.json")
+    np.testing.assert_allclose(old.tcp_poses, synthesised.tcp_poses, atol=1e-12)
+    assert old.plane is None
+
+
+def test_loaded_sets_plot(synthesised, tmp_path):
+    synthesised.save(tmp_path / "g.json")
+    loaded = GraspSet.load(tmp_path / "g.json")
+    drawing = graspmix.viz.grasp_drawing(loaded, top=2)
+    # The file's cloud, its table points dropped (the mug's cloud is the mug on a table): every point drawn is
+    # off the plane, and the table patch lies in the plane.
+    plane = loaded.plane
+    assert len(drawing.points) > 1000
+    assert np.all(np.abs(drawing.points @ plane[:3] + plane[3]) > graspmix.model.SynthesisOptions.table_clearance)
+    np.testing.assert_allclose(drawing.plane_patch @ plane[:3] + plane[3], 0, atol=1e-9)
+    assert len(drawing.hands) == 2 and len(drawing.hands[0]) == 3  # palm and two fingers
+    np.testing.assert_allclose(drawing.tcps[0], loaded.best().T_world_tcp[:3])
+    assert loaded.plot(tmp_path / "g.png", top=2) == tmp_path / "g.png"
+    assert (tmp_path / "g.png").stat().st_size > 20_000
+    # A file without a cloud: the hands and the table alone.
+    doc = json.loads((tmp_path / "g.json").read_text())
+    (tmp_path / "bare.json").write_text(json.dumps(dict(doc, cloud="")))
+    bare = GraspSet.load(tmp_path / "bare.json")
+    assert len(graspmix.viz.grasp_drawing(bare).points) == 0
+    assert bare.plot(tmp_path / "bare.png").stat().st_size > 10_000
+    fig = loaded.plot(cloud=graspmix.data_path("mug.pcd"))
+    assert len(fig.axes) == 2
+    with pytest.raises(ValueError, match="no grasps to draw"):
+        loaded.plot(tmp_path / "x.png", top=0)
+
+
+def test_bad_grasps_files_are_clear_errors(tmp_path, synthesised):
+    synthesised.save(tmp_path / "g.json")
+    doc = json.loads((tmp_path / "g.json").read_text())
+    cases = {
+        "tcp": (lambda d: d["grasps"][0].__setitem__("T_world_tcp", [0, 0]), r"grasps\[0\].T_world_tcp"),
+        "matrix": (lambda d: d["grasps"][0].__setitem__("T_world_wrist_matrix", [[1, 0]]), "T_world_wrist_matrix"),
+        "plane": (lambda d: d.__setitem__("plane", [0, 0, 1]), "plane"),
+        "distance": (lambda d: d["frames"].__setitem__("pregrasp_distance", -1), "pregrasp_distance"),
+        "hand": (lambda d: d.pop("hand"), "names no hand"),
+    }
+    for name, (spoil, message) in cases.items():
+        bad = json.loads(json.dumps(doc))
+        spoil(bad)
+        (tmp_path / f"{name}.json").write_text(json.dumps(bad))
+        with pytest.raises(ValueError, match=message):
+            GraspSet.load(tmp_path / f"{name}.json")

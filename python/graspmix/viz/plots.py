@@ -140,8 +140,8 @@ def _link_meshes(hand, grasp) -> list:
     return out
 
 
-def _label(g) -> str:
-    text = f"#{g.get('rank', '?')}"
+def _label(g, k: int) -> str:
+    text = f"#{g.get('rank', k + 1)}"
     if g.get("log_likelihood") is not None:
         text += f": log L {float(g['log_likelihood']):.2f}"
     if g.get("opening_width") is not None:
@@ -172,7 +172,7 @@ def grasp_drawing(
         half = max(0.6 * float((allp.max(0) - allp.min(0)).max()), 0.05)
         patch = np.array([centre + half * (a * u + b * v) for a, b in ((-1, -1), (1, -1), (1, 1), (-1, 1))])
     tcps = [None if g.get("T_world_tcp") is None else np.asarray(g["T_world_tcp"][:3]) for g in rows]
-    return GraspDrawing(points, patch, hands, tcps, [_label(g) for g in rows])
+    return GraspDrawing(points, patch, hands, tcps, [_label(g, k) for k, g in enumerate(rows)])
 
 
 COLOURS = ["tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple"]
@@ -200,7 +200,7 @@ def plot_grasps(
     d = grasp_drawing(grasps, hand, cloud=cloud, plane=plane, top=top, max_points=max_points, seed=seed)
     plt = pyplot()
     fig = plt.figure(figsize=(12, 6))
-    allp = np.vstack([d.points, *[W for meshes in d.hands for W, _ in meshes]])
+    allp = np.vstack([d.points, *[W for meshes in d.hands for W, _ in meshes], *[t for t in d.tcps if t is not None]])
     centre, span = (allp.max(0) + allp.min(0)) / 2, (allp.max(0) - allp.min(0)).max() / 2
     for view, (elev, azim) in enumerate([(25, -60), (70, 30)]):
         ax = fig.add_subplot(1, 2, view + 1, projection="3d")

@@ -29,6 +29,7 @@ BASE = {
         "{out}",
     ),
     "execute": ("execute", "--object", BOX_URDF, "--grasps", "{tmp}/grasps.json"),
+    "plot": ("plot", "--grasps", "{tmp}/grasps.json", "--png", "{tmp}/p.png"),
     "experiment": ("experiment", "--preset", "smoke", "--out", "{out}"),
     "benchmark": ("benchmark", "--limit", "1", "--out", "{out}"),
 }
@@ -43,6 +44,7 @@ OUT_NAME = {
     "benchmark": "bench",
 }
 GRASPS = {"grasps.json": dumps(grasps_doc())}
+GRASPS_COMMANDS = ("execute", "plot")  # the commands that read {tmp}/grasps.json
 
 
 def _argv(cmd: str, out: str | None = None, extra=()) -> tuple:
@@ -65,6 +67,7 @@ def integer_cases():
         ("synthesize", "--samples"),
         ("synthesize", "--query-samples"),
         ("synthesize", "--top"),
+        ("plot", "--top"),
         ("acquire", "--seed"),
         ("demo", "--seed"),
         ("execute", "--rank"),
@@ -82,7 +85,7 @@ def integer_cases():
         for k in keys:
             if k == "minus" and opt == "--top":
                 continue
-            files = GRASPS if cmd == "execute" else None
+            files = GRASPS if cmd in GRASPS_COMMANDS else None
             cases.append(cli(f"cli/{cmd}{opt}={k}", *_argv(cmd, extra=(opt, values[k])), names=(opt,), files=files))
     cases.append(
         cli("cli/fit-gmm--seed=max-ok", "fit-gmm", "--seed", str(2**63 - 1), "--out", "{tmp}/g.json", expect="ok")
@@ -191,12 +194,14 @@ def output_cases():
         ("acquire", "--picture", "p.png"),
         ("demo", "--cloud-out", "c.pcd"),
         ("features", "--plot", "p.png"),
+        ("plot", "--html", "p.html"),
     ):
         cases.append(
             cli(
                 f"cli/{cmd}{opt}=missing-folder",
                 *_argv(cmd, extra=(opt, "{tmp}/nowhere/" + name)),
                 names=(opt, "nowhere"),
+                files=GRASPS if cmd in GRASPS_COMMANDS else None,
             )
         )
     cases.append(cli("cli/synthesize--png=a-folder", *_argv("synthesize", extra=("--png", "{tmp}")), names=("--png",)))
@@ -216,6 +221,8 @@ def input_cases():
         ("execute", "--grasps"),
         ("execute", "--object"),
         ("execute", "--hand"),
+        ("plot", "--grasps"),
+        ("plot", "--cloud"),
         ("demo", "--object"),
         ("demo", "--hand"),
         ("experiment", "--objects"),
@@ -224,7 +231,7 @@ def input_cases():
     cases = []
     for i, (cmd, opt) in enumerate(opts):
         argv = list(_argv(cmd))
-        files = GRASPS if cmd == "execute" else None
+        files = GRASPS if cmd in GRASPS_COMMANDS else None
         for label, value, names in (
             ("missing", "{tmp}/absent.file", ("absent.file",)),
             ("too-long", "{tmp}/" + LONG, ("255",)),

@@ -69,16 +69,25 @@ class GraspFrameSettings:
         }
 
 
+def rotation_matrices(quats) -> np.ndarray:
+    """Unit quaternions [qx, qy, qz, qw] (N, 4) as rotation matrices (N, 3, 3)."""
+    q = np.asarray(quats, dtype=float).reshape(-1, 4)
+    x, y, z, w = (q / np.linalg.norm(q, axis=1, keepdims=True)).T
+    return np.stack(
+        [
+            np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)], axis=-1),
+            np.stack([2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)], axis=-1),
+            np.stack([2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)], axis=-1),
+        ],
+        axis=1,
+    )
+
+
 def pose_matrix(pose) -> np.ndarray:
     """A pose [x, y, z, qx, qy, qz, qw] (unit quaternion) as a 4x4 homogeneous matrix."""
     p = np.asarray(pose, dtype=float)
-    x, y, z, w = p[3:7] / np.linalg.norm(p[3:7])
     T = np.eye(4)
-    T[:3, :3] = [
-        [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-        [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-        [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
-    ]
+    T[:3, :3] = rotation_matrices(p[3:7])[0]
     T[:3, 3] = p[:3]
     return T
 
@@ -140,44 +149,40 @@ class FrameMaker:
         """The frame keys (FRAME_KEYS) of grasps with wrists (N, 7) and grasp joints (N, n_dofs)."""
         wrists = np.atleast_2d(np.asarray(wrists, dtype=float))
         links = np.asarray(self.hand.fk_batch(wrists, np.atleast_2d(np.asarray(joints, dtype=float))))
-        R = np.stack([pose_matrix(w)[:3, :3] for w in wrists])
+        R = rotation_matrices(wrists[:, 3:])
+        n, s = len(wrists), self.settings
+        M = np.zeros((n, 4, 4))
+        M[:, :3, :3], M[:, :3, 3], M[:, 3, 3] = R, wrists[:, :3], 1.0
         approach = R @ self.axis
         tips, world = self._tips(links, wrists, R)
-        out = []
-        s = self.settings
-        for i, w in enumerate(wrists):
-            q = [float(v) for v in w[3:]]
-            f = {
-                "T_world_wrist_matrix": pose_matrix(w).tolist(),
-                "T_world_tcp": None,
-                "approach": [float(v) for v in approach[i]],
-                "closing": None,
-            }
-            if tips:
-                f["T_world_tcp"] = [float(v) for v in np.mean([t[i] for t in tips], axis=0)] + q
-            f["opening_width"] = None
-            if len(tips) == 2:
-                c = tips[1][i] - tips[0][i]
-                c = c / max(np.linalg.norm(c), 1e-12)
-                f["closing"] = [float(v) for v in c]
-                f["opening_width"] = float((world[1][i] @ c).min() - (world[0][i] @ c).max())
-            f["T_world_pregrasp"] = [float(v) for v in w[:3] - s.pregrasp_distance * approach[i]] + q
-            f["T_world_retreat"] = [float(v) for v in w[:3] - s.retreat_distance * approach[i]] + q
-            out.append({k: f[k] for k in FRAME_KEYS})
-        return out
+        cols = {
+            "T_world_wrist_matrix": M.tolist(),
+            "T_world_tcp": [None] * n,
+            "approach": approach.tolist(),
+            "closing": [None] * n,
+            "opening_width": [None] * n,
+            "T_world_pregrasp": np.hstack([wrists[:, :3] - s.pregrasp_distance * approach, wrists[:, 3:]]).tolist(),
+            "T_world_retreat": np.hstack([wrists[:, :3] - s.retreat_distance * approach, wrists[:, 3:]]).tolist(),
+        }
+        if tips:
+            cols["T_world_tcp"] = np.hstack([np.mean(tips, axis=0), wrists[:, 3:]]).tolist()
+        if len(tips) == 2:
+            c = tips[1] - tips[0]
+            c /= np.maximum(np.linalg.norm(c, axis=1, keepdims=True), 1e-12)
+            cols["closing"] = c.tolist()
+            gap = np.einsum("nvi,ni->nv", world[1], c).min(axis=1) - np.einsum("nvi,ni->nv", world[0], c).max(axis=1)
+            cols["opening_width"] = gap.tolist()
+        return [{k: cols[k][i] for k in FRAME_KEYS} for i in range(n)]
 
     def _tips(self, links, wrists, R):
         """(fingertip points per tip link (N, 3), world vertices per tip link (N, V, 3))."""
         tips, world = [], []
         for row, V in zip(self.rows, self.vertices):
-            Rl = np.stack([pose_matrix(p)[:3, :3] for p in links[:, row]])
-            W = np.einsum("nij,vj->nvi", Rl, V) + links[:, row, None, :3]  # (N, V, 3) world
+            W = np.einsum("nij,vj->nvi", rotation_matrices(links[:, row, 3:]), V) + links[:, row, None, :3]
             local = np.einsum("nji,nvj->nvi", R, W - wrists[:, None, :3])  # in the wrist frame
             along = local @ self.axis
-            tip = np.empty((len(W), 3))
-            for i in range(len(W)):
-                near = local[i, along[i] >= along[i].max() - self.settings.fingertip_tolerance]
-                tip[i] = (near.min(axis=0) + near.max(axis=0)) / 2
+            near = (along >= along.max(axis=1, keepdims=True) - self.settings.fingertip_tolerance)[..., None]
+            tip = (np.where(near, local, np.inf).min(axis=1) + np.where(near, local, -np.inf).max(axis=1)) / 2
             tips.append(np.einsum("nij,nj->ni", R, tip) + wrists[:, :3])
             world.append(W)
         return tips, world

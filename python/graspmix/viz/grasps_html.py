@@ -7,6 +7,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
+
 from .plots import COLOURS, grasp_drawing
 
 # matplotlib's tab10 colours of plots.COLOURS, as plotly takes them.
@@ -54,22 +56,8 @@ def grasps_figure(
     d = grasp_drawing(grasps, hand, cloud=cloud, plane=plane, top=top, max_points=max_points, seed=seed)
     traces = []
     if d.plane_patch is not None:
-        P = d.plane_patch
-        traces.append(
-            go.Mesh3d(
-                x=P[:, 0],
-                y=P[:, 1],
-                z=P[:, 2],
-                i=[0, 0],
-                j=[1, 2],
-                k=[2, 3],
-                color="#9a9a9a",
-                opacity=0.35,
-                name="support plane",
-                showlegend=True,
-                hoverinfo="name",
-            )
-        )
+        square = np.array([[0, 1, 2], [0, 2, 3]])
+        traces.append(_mesh(go, d.plane_patch, square, "#9a9a9a", 0.35, "support plane", True))
     if len(d.points):
         traces.append(
             go.Scatter3d(

@@ -317,8 +317,14 @@ class GraspSet:
             **{k: tuple(v) if isinstance(v, list) else v for k, v in frames.items() if k in known}
         )
         plane = doc.get("plane")
+        grasps = [Grasp.from_dict(g) for g in doc["grasps"]]
+        for g in grasps:  # the log values save() wrote as strings and null, as numbers again
+            if g.log_likelihood is not None:
+                g.log_likelihood = _from_json_safe(g.log_likelihood)
+            if g.experts is not None:
+                g.experts = {k: _from_json_safe(v) for k, v in g.experts.items()}
         return cls(
-            [Grasp.from_dict(g) for g in doc["grasps"]],
+            grasps,
             resolve_path(doc["hand"], base),
             doc.get("method", ""),
             cloud,
@@ -354,6 +360,11 @@ def _json_safe(x):
     if isinstance(x, list):
         return [_json_safe(v) for v in x]
     return x
+
+
+def _from_json_safe(x) -> float:
+    """A log value as _json_safe wrote it ("-inf", "inf", null for NaN, or a number) as a float."""
+    return math.nan if x is None else float(x)
 
 
 def load_grasps(path) -> dict:

@@ -104,3 +104,17 @@ def test_grasps_json_keeps_the_old_keys_first(tmp_path):
     assert list(doc)[:6] == ["format", "hand", "method", "cloud", "timing_s", "grasps"]
     assert doc["frames"]["fingertip_links"] == ["finger_left", "finger_right"]
     assert doc["grasps"][0]["opening_width"] == pytest.approx(0.04)
+
+
+def test_synthesize_table_prints_the_opening_in_metres(capsys):
+    from graspmix.cli.grasp_commands import print_grasps
+
+    grasps = _set(0.0123)
+    print_grasps(grasps, 5)
+    head, row = capsys.readouterr().out.splitlines()
+    assert head.endswith("opening: finger gap (m)")
+    assert row.split()[-1] == "0.0246"  # twice the joint value, in metres
+    # A hand that is no two-finger gripper: the joints, named, in the URDF's units.
+    print_grasps(_set(0.0123, fingertip_links=("finger_left",)), 5)
+    head, row = capsys.readouterr().out.splitlines()
+    assert head.endswith("grasp joints (m or rad)") and row.endswith("finger_left_joint=0.0123")

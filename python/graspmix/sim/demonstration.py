@@ -249,7 +249,7 @@ def _close(p, c: int, hand, body: int, joints: dict, q_close, force: float, max_
         for j, master, k, off in mimics:
             q = p.getJointState(body, master, physicsClientId=c)[0]
             p.setJointMotorControl2(
-                body, j, p.POSITION_CONTROL, targetPosition=k * q + off, force=MIMIC_STIFFNESS * force, physicsClientId=c
+                body, j, p.POSITION_CONTROL, targetPosition=k * q + off, force=MIMIC_STIFFNESS * force, positionGain=1.0, physicsClientId=c
             )
         p.stepSimulation(physicsClientId=c)
         v = max(abs(p.getJointState(body, j, physicsClientId=c)[1]) for j in moving)

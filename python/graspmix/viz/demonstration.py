@@ -57,7 +57,7 @@ def plot_demonstration(demo, path: str | Path, *, max_points: int = 8000, seed: 
         return ", ".join(f"{k}={v:.3f}" for k, v in joints.items())
 
     fig.suptitle(
-        f"{hand.name}: pre-grasp (orange outline) {fmt(demo.pregrasp_joints)}\n"
+        f"{Path(demo.hand_path).name}: pre-grasp (orange outline) {fmt(demo.pregrasp_joints)}\n"
         f"recorded grasp (blue) {fmt(demo.grasp_joints)}; {len(demo.cloud)} object points",
         fontsize=9,
     )

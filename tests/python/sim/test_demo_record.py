@@ -126,14 +126,14 @@ def test_xarm_linkage_gripper_records_and_its_joints_match_fk(tmp_path):
 
 
 def test_bundled_pr2_demonstration_loads_portably_and_records_again():
-    path = data_path("demos", "pr2_box.json")
+    path = data_path("demos", "pr2_cube_small.json")
     assert '"hand": "pybullet_data://pr2_gripper.urdf"' in path.read_text()
     demo = Demonstration.load(path)
     pr2 = Path(pybullet_data.getDataPath()) / "pr2_gripper.urdf"
     assert demo.hand_path == pr2
     assert relative_path(pr2, Path("/somewhere/else")) == "pybullet_data://pr2_gripper.urdf"
     assert resolve_path("pybullet_data://pr2_gripper.urdf", Path("/")) == pr2
-    again = record_demonstration(BOX, pr2, demo.T_world_wrist, demo.pregrasp_joints, {n: 0.0 for n in demo.grasp_joints})
+    again = record_demonstration("cube_small.urdf", pr2, demo.T_world_wrist, demo.pregrasp_joints, {n: 0.0 for n in demo.grasp_joints})
     for name, value in demo.grasp_joints.items():
         assert again.grasp_joints[name] == pytest.approx(value, abs=2e-3)
 

@@ -143,7 +143,9 @@ def check_joint_limits(hand, q: np.ndarray, what: str) -> None:
                 lo, hi = j["limits"]
                 v = values[j["name"]]
                 if not lo - 1e-9 <= v <= hi + 1e-9:
-                    bad.append(f"mimic joint {j['name']} (of {j['mimic']}) = {v:g} is outside its limits [{lo:g}, {hi:g}]")
+                    bad.append(
+                        f"mimic joint {j['name']} (of {j['mimic']}) = {v:g} is outside its limits [{lo:g}, {hi:g}]"
+                    )
     if bad:
         raise ValueError(f"{what}: " + "; ".join(bad))
 
@@ -185,9 +187,7 @@ def _check_outcome(hand, q_pre, q_close, q_grasp, touching: list, shift: float) 
     direction = np.sign(q_close - q_pre)
     opened = (q_grasp - q_pre) * direction < -OPENED_TOLERANCE
     if np.any(opened):
-        bad = ", ".join(
-            f"{n} {a:g} -> {b:g}" for n, a, b, o in zip(hand.joint_names, q_pre, q_grasp, opened) if o
-        )
+        bad = ", ".join(f"{n} {a:g} -> {b:g}" for n, a, b, o in zip(hand.joint_names, q_pre, q_grasp, opened) if o)
         raise ValueError(
             f"the grasp is wider than the pre-grasp ({bad}, away from the closing target): "
             "something pushed the fingers open; check the pre-grasp for collisions"
@@ -240,7 +240,13 @@ def _close(p, c: int, hand, body: int, joints: dict, q_close, force: float, max_
     ValueError if they never do."""
     for name, value in zip(hand.joint_names, q_close):
         p.setJointMotorControl2(
-            body, joints[name], p.POSITION_CONTROL, targetPosition=value, force=force, maxVelocity=0.2, physicsClientId=c
+            body,
+            joints[name],
+            p.POSITION_CONTROL,
+            targetPosition=value,
+            force=force,
+            maxVelocity=0.2,
+            physicsClientId=c,
         )
     mimics = [(joints[m], joints[master], k, off) for m, (master, k, off) in hand.mimic_joints.items()]
     moving = [joints[n] for n in hand.joint_names] + [m[0] for m in mimics]
@@ -249,7 +255,13 @@ def _close(p, c: int, hand, body: int, joints: dict, q_close, force: float, max_
         for j, master, k, off in mimics:
             q = p.getJointState(body, master, physicsClientId=c)[0]
             p.setJointMotorControl2(
-                body, j, p.POSITION_CONTROL, targetPosition=k * q + off, force=MIMIC_STIFFNESS * force, positionGain=1.0, physicsClientId=c
+                body,
+                j,
+                p.POSITION_CONTROL,
+                targetPosition=k * q + off,
+                force=MIMIC_STIFFNESS * force,
+                positionGain=1.0,
+                physicsClientId=c,
             )
         p.stepSimulation(physicsClientId=c)
         v = max(abs(p.getJointState(body, j, physicsClientId=c)[1]) for j in moving)

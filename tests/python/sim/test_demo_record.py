@@ -9,13 +9,11 @@ from pathlib import Path
 import numpy as np
 import pybullet_data
 import pytest
-from scipy.spatial.transform import Rotation
-
-from graspmix import _core
-from graspmix import cli
+from graspmix import _core, cli
 from graspmix.io import data_path, relative_path, resolve_path
 from graspmix.model import Demonstration
 from graspmix.sim.demonstration import _check_outcome, record, record_demonstration
+from scipy.spatial.transform import Rotation
 
 BOX = str(data_path("objects", "box.urdf"))  # 60 x 100 x 140 mm on the table: top at z = 0.14
 WSG = str(data_path("hands", "wsg50.urdf"))
@@ -133,7 +131,9 @@ def test_bundled_pr2_demonstration_loads_portably_and_records_again():
     assert demo.hand_path == pr2
     assert relative_path(pr2, Path("/somewhere/else")) == "pybullet_data://pr2_gripper.urdf"
     assert resolve_path("pybullet_data://pr2_gripper.urdf", Path("/")) == pr2
-    again = record_demonstration("cube_small.urdf", pr2, demo.T_world_wrist, demo.pregrasp_joints, {n: 0.0 for n in demo.grasp_joints})
+    again = record_demonstration(
+        "cube_small.urdf", pr2, demo.T_world_wrist, demo.pregrasp_joints, {n: 0.0 for n in demo.grasp_joints}
+    )
     for name, value in demo.grasp_joints.items():
         assert again.grasp_joints[name] == pytest.approx(value, abs=2e-3)
 
@@ -146,13 +146,23 @@ def cli_error(capsys, argv):
 
 
 def test_cli_demo(tmp_path, capsys):
-    base = ["demo", "--wrist", "0,0,0.2185,1,0,0,0", "--close", "finger_left_joint=0", "--out", str(tmp_path / "d.json")]
+    base = [
+        "demo",
+        "--wrist",
+        "0,0,0.2185,1,0,0,0",
+        "--close",
+        "finger_left_joint=0",
+        "--out",
+        str(tmp_path / "d.json"),
+    ]
     ok = base + ["--pregrasp", "finger_left_joint=0.05"]
     assert "outside its limits" in cli_error(capsys, base + ["--pregrasp", "finger_left_joint=0.07"])
     assert "finger_left (10.0 mm deep)" in cli_error(capsys, base + ["--pregrasp", "finger_left_joint=0.02"])
     assert "--max-steps" in cli_error(capsys, ok + ["--max-steps", "0"])
     assert "did not come to rest within 5 steps" in cli_error(capsys, ok + ["--max-steps", "5"])
-    assert "--wrist" in cli_error(capsys, ["demo", "--wrist", "0,0,1", "--pregrasp", "a=1", "--close", "a=0", "--out", "x.json"])
+    assert "--wrist" in cli_error(
+        capsys, ["demo", "--wrist", "0,0,1", "--pregrasp", "a=1", "--close", "a=0", "--out", "x.json"]
+    )
     assert not (tmp_path / "d.json").exists()
     png = tmp_path / "d.png"
     assert cli.main(ok + ["--png", str(png), "--max-steps", "3000"]) == 0

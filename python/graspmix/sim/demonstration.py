@@ -45,33 +45,10 @@ class Recording:
     object_shift: float = 0.0
 
 
-def record_demonstration(
-    object_path: str | Path,
-    hand_path: str | Path,
-    T_world_wrist,
-    pregrasp: dict,
-    close_to: dict,
-    *,
-    grip_force: float = DEMO_GRIP_FORCE,
-    max_steps: int = DEMO_MAX_STEPS,
-    settings: AcquisitionSettings | None = None,
-    seed: int = 0,
-) -> Demonstration:
-    """Closes the hand from `pregrasp` towards `close_to` (name -> value, independent joints) around the
-    object and returns the demonstration with the joints where the fingers stopped. ValueError (with the
-    joints or links at fault) for joints beyond their limits, a pre-grasp in collision, a hand that did
-    not end holding the object, or joints that never came to rest within `max_steps`."""
-    return record(
-        object_path,
-        hand_path,
-        T_world_wrist,
-        pregrasp,
-        close_to,
-        grip_force=grip_force,
-        max_steps=max_steps,
-        settings=settings,
-        seed=seed,
-    ).demonstration
+def record_demonstration(*args, **kwargs) -> Demonstration:
+    """record(...)'s demonstration: the hand closed from `pregrasp` towards `close_to` around the object,
+    with the joints where the fingers stopped. Arguments and errors as for `record`."""
+    return record(*args, **kwargs).demonstration
 
 
 def record(
@@ -86,7 +63,11 @@ def record(
     settings: AcquisitionSettings | None = None,
     seed: int = 0,
 ) -> Recording:
-    """record_demonstration, also returning pybullet's view of the end of the recording (a Recording)."""
+    """Closes the hand from `pregrasp` towards `close_to` (name -> value, independent joints) around the
+    object; returns the demonstration with the joints where the fingers stopped, and pybullet's view of
+    the end of the recording (a Recording). ValueError (with the joints or links at fault) for joints
+    beyond their limits, a pre-grasp in collision, a hand that did not end holding the object, or joints
+    that never came to rest within `max_steps`."""
     import pybullet as p
 
     check_float(grip_force, "grip_force", gt=0.0)

@@ -8,7 +8,7 @@ from pathlib import Path
 
 from .. import _core
 from ..io import data_path, load_points
-from ..io.checks import MAX_COMPONENTS, MAX_SAMPLES
+from ..io.checks import MAX_COMPONENTS, MAX_ITERATIONS, MAX_SAMPLES
 from ..model import GraspModel, default_model_path, learn
 from ..model.experts import COLLISION_MODELS
 from ..model.settings import METHODS, LearnSettings, SynthesisOptions
@@ -28,6 +28,7 @@ def cmd_demo(args: argparse.Namespace) -> int:
         parse_joints(args.pregrasp, "--pregrasp"),
         parse_joints(args.close, "--close"),
         grip_force=args.force,
+        max_steps=args.max_steps,
         seed=args.seed,
     )
     out = Path(args.out)
@@ -37,6 +38,11 @@ def cmd_demo(args: argparse.Namespace) -> int:
     demo.save(out)
     joints = ", ".join(f"{k}={v:.4f}" for k, v in demo.grasp_joints.items())
     print(f"demonstration: {len(demo.cloud)} object points, hand stopped at {joints}; wrote {out}")
+    if args.png:
+        from ..viz.demonstration import plot_demonstration
+
+        plot_demonstration(demo, args.png)
+        print(f"wrote {args.png}")
     return 0
 
 
@@ -150,7 +156,7 @@ def add_parsers(sub) -> None:
 
 
 def _add_demo(sub) -> None:
-    from ..sim.demonstration import DEMO_GRIP_FORCE
+    from ..sim.demonstration import DEMO_GRIP_FORCE, DEMO_MAX_STEPS
 
     s = sub.add_parser("demo", help="record a demonstrated grasp in simulation (pybullet) as a demonstration file")
     s.add_argument(
@@ -168,8 +174,15 @@ def _add_demo(sub) -> None:
         "--close", required=True, help="joints to close towards, name=value,... (the fingers stop on contact)"
     )
     s.add_argument("--force", type=float_in(gt=0.0), default=DEMO_GRIP_FORCE, help="motor force limit (N or N m)")
+    s.add_argument(
+        "--max-steps",
+        type=int_in(1, MAX_ITERATIONS),
+        default=DEMO_MAX_STEPS,
+        help="simulation steps (240 Hz) the closing fingers get to come to rest",
+    )
     s.add_argument("--seed", type=seed, default=0)
     s.add_argument("--out", type=output_file, required=True, help="demonstration file (.json)")
+    s.add_argument("--png", type=output_file, help="draw the object cloud and the hand at pre-grasp and grasp")
     s.add_argument(
         "--cloud-out", type=output_file, help="write the object cloud to this PCD and refer to it (default: inline)"
     )

@@ -10,6 +10,7 @@ from pathlib import Path
 from .checks import check_path_text
 
 PACKAGE_PREFIX = "package://graspmix/"
+PYBULLET_DATA_PREFIX = "pybullet_data://"  # a file of the installed pybullet_data package (e.g. its hands)
 
 # This file is graspmix/io/paths.py: the package folder is one level up, the source tree's data/ three.
 _PACKAGE = Path(__file__).resolve().parent.parent
@@ -29,11 +30,14 @@ def default_hand_path() -> Path:
 
 
 def resolve_path(path_text: str, base: Path) -> Path:
-    """A path from a file: package://graspmix/... (the bundled data), absolute, or relative to the file's
-    folder `base` (then to the bundled data). ValueError for a path that is not UTF-8 or too long."""
+    """A path from a file: package://graspmix/... (the bundled data), pybullet_data://... (the installed
+    pybullet_data), absolute, or relative to the file's folder `base` (then to the bundled data).
+    ValueError for a path that is not UTF-8 or too long."""
     check_path_text(path_text, "path")
     if path_text.startswith(PACKAGE_PREFIX):
         return data_path(path_text[len(PACKAGE_PREFIX) :])
+    if path_text.startswith(PYBULLET_DATA_PREFIX):
+        return pybullet_data_path() / path_text[len(PYBULLET_DATA_PREFIX) :]
     p = Path(path_text)
     if p.is_absolute():
         return p
@@ -44,13 +48,14 @@ def resolve_path(path_text: str, base: Path) -> Path:
 
 
 def relative_path(target: Path, base: Path) -> str:
-    """How a file in folder `base` refers to target: package://graspmix/... for the bundled data, else
-    relative to base when it can be (keeps files movable with their data), else absolute."""
-    root = data_path().resolve()
-    try:
-        return PACKAGE_PREFIX + Path(target).resolve().relative_to(root).as_posix()
-    except ValueError:
-        pass
+    """How a file in folder `base` refers to target: package://graspmix/... for the bundled data,
+    pybullet_data://... for pybullet_data's files, else relative to base when it can be (keeps files
+    movable with their data), else absolute."""
+    for prefix, root in ((PACKAGE_PREFIX, data_path()), (PYBULLET_DATA_PREFIX, pybullet_data_path())):
+        try:
+            return prefix + Path(target).resolve().relative_to(root.resolve()).as_posix()
+        except ValueError:
+            pass
     try:
         return os.path.relpath(Path(target).resolve(), Path(base).resolve())
     except ValueError:

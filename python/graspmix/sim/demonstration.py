@@ -4,10 +4,17 @@ The object rests on a plane; its cloud is acquired by the simulated depth camera
 the demonstrated wrist pose with its pre-grasp joints and closes with force-limited position motors
 until its joints stop; the joints it stops at are the demonstrated grasp. The result is a
 Demonstration (the file format of the design guide).
+
+A recording refuses what it cannot record honestly: joint values beyond the URDF limits, a pre-grasp
+whose links penetrate the object or the table (found after pybullet's collision detection has run),
+fingers that end wider than they started, a hand that pushed the object away, and a hand that closed
+in the air. pybullet does not enforce URDF mimic joints, so every mimic joint gets its own motor whose
+target follows its master joint (multiplier * master + offset) at every step: linkage grippers record.
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -18,9 +25,33 @@ from ..model import Demonstration
 from .acquisition import AcquisitionSettings, Scene, acquire
 
 DEMO_GRIP_FORCE = 20.0  # N (N m): the demonstrating hand's motor force limit (execution's SimSettings: 40)
+DEMO_MAX_STEPS = 2000  # simulation steps (240 Hz) the closing fingers get to come to rest
+PENETRATION_TOLERANCE = 1e-3  # m: a pre-grasp link deeper than this in the object or the table is refused
+OBJECT_PUSHED = 0.01  # m: an object that moved further while the hand closed was pushed, not grasped
+# A mimic joint is a mechanical linkage, not a second motor: its motor (MIMIC_STIFFNESS times the grip force)
+# holds it on its master's value, so the grip force acts once, as in the real mechanism.
+MIMIC_STIFFNESS = 10.0
+OPENED_TOLERANCE = 1e-3  # m or rad: a joint that ends further open than its pre-grasp by more was pushed open
 
 
-def record_demonstration(
+@dataclass
+class Recording:
+    """A recorded demonstration and what pybullet saw at its end: the URDF frame of every hand link
+    (name -> [x, y, z, qx, qy, qz, qw], world), the links touching the object, and how far the object moved."""
+
+    demonstration: Demonstration
+    link_poses: dict = field(default_factory=dict)
+    touching_links: list = field(default_factory=list)
+    object_shift: float = 0.0
+
+
+def record_demonstration(*args, **kwargs) -> Demonstration:
+    """record(...)'s demonstration: the hand closed from `pregrasp` towards `close_to` around the object,
+    with the joints where the fingers stopped. Arguments and errors as for `record`."""
+    return record(*args, **kwargs).demonstration
+
+
+def record(
     object_path: str | Path,
     hand_path: str | Path,
     T_world_wrist,
@@ -28,12 +59,15 @@ def record_demonstration(
     close_to: dict,
     *,
     grip_force: float = DEMO_GRIP_FORCE,
-    max_steps: int = 2000,
+    max_steps: int = DEMO_MAX_STEPS,
     settings: AcquisitionSettings | None = None,
     seed: int = 0,
-) -> Demonstration:
+) -> Recording:
     """Closes the hand from `pregrasp` towards `close_to` (name -> value, independent joints) around the
-    object and returns the demonstration with the joints where the fingers stopped."""
+    object; returns the demonstration with the joints where the fingers stopped, and pybullet's view of
+    the end of the recording (a Recording). ValueError (with the joints or links at fault) for joints
+    beyond their limits, a pre-grasp in collision, a hand that did not end holding the object, or joints
+    that never came to rest within `max_steps`."""
     import pybullet as p
 
     check_float(grip_force, "grip_force", gt=0.0)
@@ -45,41 +79,108 @@ def record_demonstration(
         raise ValueError("T_world_wrist must be 7 finite numbers [x, y, z, qx, qy, qz, qw]")
     q_pre = hand.joints_array(pregrasp)
     q_close = hand.joints_array(close_to)
+    check_joint_limits(hand, q_pre, "pregrasp")
+    check_joint_limits(hand, q_close, "close_to")
     settings = settings or AcquisitionSettings()
     cloud = acquire(object_path, noise=False, seed=seed, settings=settings)
     with Scene(object_path, settings) as scene:
         c = scene.client
         p.setGravity(0, 0, -9.81, physicsClientId=c)
         body, joints = _place_hand(p, c, hand_path, wrist)
-        start = hand.all_joint_values(q_pre)
-        target = hand.all_joint_values(q_close)
-        for name, value in start.items():
+        links = _link_names(p, c, body, hand.root_link)
+        for name, value in hand.all_joint_values(q_pre).items():
             p.resetJointState(body, joints[name], value, physicsClientId=c)
-        if p.getContactPoints(body, scene.body, physicsClientId=c):
-            raise ValueError("the hand's pre-grasp pose is in collision with the object")
-        for name, value in target.items():
-            p.setJointMotorControl2(
-                body,
-                joints[name],
-                p.POSITION_CONTROL,
-                targetPosition=value,
-                force=grip_force,
-                maxVelocity=0.2,
-                physicsClientId=c,
-            )
-        _close_until_still(p, c, body, [joints[n] for n in target], max_steps)
+        _check_pregrasp_collision(p, scene, body, links, _palm_links(hand))
+        start = scene.object_pose()
+        _close(p, c, hand, body, joints, q_close, grip_force, max_steps)
         reached = {n: p.getJointState(body, joints[n], physicsClientId=c)[0] for n in hand.joint_names}
-        touching = bool(p.getContactPoints(body, scene.body, physicsClientId=c))
-    if not touching:
-        raise ValueError("the hand closed without touching the object: move the wrist or close further")
+        p.performCollisionDetection(physicsClientId=c)
+        touching = sorted({links[pt[3]] for pt in p.getContactPoints(body, scene.body, physicsClientId=c)})
+        shift = float(np.linalg.norm(scene.object_pose()[:3] - start[:3]))
+        poses = _link_poses(p, c, body, links, wrist)
+    q_grasp = hand.joints_array(reached)
+    _check_outcome(hand, q_pre, q_close, q_grasp, touching, shift)
     demo = Demonstration(
         hand_path=Path(hand_path).resolve(),
         cloud=cloud.points,
         T_world_wrist=wrist,
         pregrasp_joints={n: float(v) for n, v in zip(hand.joint_names, q_pre)},
-        grasp_joints={n: float(v) for n, v in reached.items()},
+        grasp_joints={n: float(v) for n, v in zip(hand.joint_names, q_grasp)},
     )
-    return demo
+    return Recording(demo, poses, touching, shift)
+
+
+def check_joint_limits(hand, q: np.ndarray, what: str) -> None:
+    """ValueError naming every independent joint of `q` (joint_names order) outside its URDF limits, and
+    every mimic joint that its master's value drives outside the mimic joint's own limits."""
+    bad = []
+    for name, value, (lo, hi) in zip(hand.joint_names, q, hand.joint_limits):
+        if not lo - 1e-9 <= value <= hi + 1e-9:
+            bad.append(f"{name} = {value:g} is outside its limits [{lo:g}, {hi:g}]")
+    if not bad:
+        values = hand.all_joint_values(q)
+        for j in hand.joints:
+            if j["mimic"] is not None:
+                lo, hi = j["limits"]
+                v = values[j["name"]]
+                if not lo - 1e-9 <= v <= hi + 1e-9:
+                    bad.append(
+                        f"mimic joint {j['name']} (of {j['mimic']}) = {v:g} is outside its limits [{lo:g}, {hi:g}]"
+                    )
+    if bad:
+        raise ValueError(f"{what}: " + "; ".join(bad))
+
+
+def _palm_links(hand) -> set:
+    """The links rigidly attached to the wrist (through fixed joints only): the palm, not the fingers."""
+    palm = {hand.root_link}
+    for j in hand.joints:  # parents before children
+        if j["type"] == "fixed" and j["parent"] in palm:
+            palm.add(j["child"])
+    return palm
+
+
+def _check_pregrasp_collision(p, scene: Scene, body: int, links: dict, palm: set) -> None:
+    """ValueError naming the hand links that penetrate the object or the table at the pre-grasp."""
+    c = scene.client
+    p.performCollisionDetection(physicsClientId=c)
+    for other, what in ((scene.body, "the object"), (scene.plane, "the table")):
+        depth: dict = {}
+        for pt in p.getClosestPoints(body, other, 0.0, physicsClientId=c):
+            if pt[8] < -PENETRATION_TOLERANCE:
+                name = links[pt[3]]
+                depth[name] = max(depth.get(name, 0.0), -pt[8])
+        if not depth:
+            continue
+        named = ", ".join(f"{n} ({1000 * d:.1f} mm deep)" for n, d in sorted(depth.items()))
+        inside = sorted(set(depth) & palm)
+        hint = (
+            f"the wrist/palm ({', '.join(inside)}) is inside {what}: move the wrist back along the approach"
+            if inside
+            else "the fingers are inside it: open the pre-grasp further or move the wrist"
+        )
+        raise ValueError(f"the pre-grasp is in collision with {what}: {named}; {hint}")
+
+
+def _check_outcome(hand, q_pre, q_close, q_grasp, touching: list, shift: float) -> None:
+    """ValueError for a recording that is not a grasp: a joint pushed open, the object pushed away, or a
+    hand that closed without touching the object."""
+    direction = np.sign(q_close - q_pre)
+    opened = (q_grasp - q_pre) * direction < -OPENED_TOLERANCE
+    if np.any(opened):
+        bad = ", ".join(f"{n} {a:g} -> {b:g}" for n, a, b, o in zip(hand.joint_names, q_pre, q_grasp, opened) if o)
+        raise ValueError(
+            f"the grasp is wider than the pre-grasp ({bad}, away from the closing target): "
+            "something pushed the fingers open; check the pre-grasp for collisions"
+        )
+    if shift > OBJECT_PUSHED:
+        where = f" and ended touching {', '.join(touching)}" if touching else " and lost it"
+        raise ValueError(
+            f"the hand pushed the object {1000 * shift:.0f} mm away while closing{where}: "
+            "the wrist or palm is probably too deep; move the wrist back along the approach"
+        )
+    if not touching:
+        raise ValueError("the hand closed without touching the object: move the wrist or close further")
 
 
 def _place_hand(p, c: int, hand_path, wrist: np.ndarray):
@@ -96,10 +197,53 @@ def _place_hand(p, c: int, hand_path, wrist: np.ndarray):
     return body, joints
 
 
-def _close_until_still(p, c: int, body: int, moving: list, max_steps: int) -> None:
-    """Steps until the moving joints have rested for 20 steps; ValueError if they never do."""
+def _link_names(p, c: int, body: int, root: str) -> dict:
+    """pybullet link index -> URDF link name (-1: the root)."""
+    names = {-1: root}
+    for j in range(p.getNumJoints(body, physicsClientId=c)):
+        names[j] = p.getJointInfo(body, j, physicsClientId=c)[12].decode()
+    return names
+
+
+def _link_poses(p, c: int, body: int, links: dict, wrist: np.ndarray) -> dict:
+    """URDF link frames in the world, as pybullet has them (the root is the wrist)."""
+    poses = {links[-1]: wrist.copy()}
+    for j, name in links.items():
+        if j >= 0:
+            s = p.getLinkState(body, j, computeForwardKinematics=True, physicsClientId=c)
+            poses[name] = np.r_[s[4], s[5]]
+    return poses
+
+
+def _close(p, c: int, hand, body: int, joints: dict, q_close, force: float, max_steps: int) -> None:
+    """Position motors drive the independent joints to q_close (at most `force`); each mimic joint's
+    motor follows its master's current value every step (a stiff linkage). Steps until the joints have rested for 20 steps;
+    ValueError if they never do."""
+    for name, value in zip(hand.joint_names, q_close):
+        p.setJointMotorControl2(
+            body,
+            joints[name],
+            p.POSITION_CONTROL,
+            targetPosition=value,
+            force=force,
+            maxVelocity=0.2,
+            physicsClientId=c,
+        )
+    mimics = [(joints[m], joints[master], k, off) for m, (master, k, off) in hand.mimic_joints.items()]
+    moving = [joints[n] for n in hand.joint_names] + [m[0] for m in mimics]
     still = 0
     for _ in range(max_steps):
+        for j, master, k, off in mimics:
+            q = p.getJointState(body, master, physicsClientId=c)[0]
+            p.setJointMotorControl2(
+                body,
+                j,
+                p.POSITION_CONTROL,
+                targetPosition=k * q + off,
+                force=MIMIC_STIFFNESS * force,
+                positionGain=1.0,
+                physicsClientId=c,
+            )
         p.stepSimulation(physicsClientId=c)
         v = max(abs(p.getJointState(body, j, physicsClientId=c)[1]) for j in moving)
         # Two position motors pushing against each other through the object never quite settle (the
@@ -109,5 +253,5 @@ def _close_until_still(p, c: int, body: int, moving: list, max_steps: int) -> No
             return
     raise ValueError(
         f"the hand's joints did not come to rest within {max_steps} steps; "
-        "raise max_steps or check the object and the closing target"
+        "raise max_steps (--max-steps) or check the object and the closing target"
     )

@@ -60,9 +60,9 @@ def format_hand(info: dict) -> list[str]:
     lines = [f"hand {info['name']} ({info['urdf']})", f"wrist frame: link '{info['wrist']}' (the URDF's root link)"]
     lines.append(f"links ({len(info['links'])}):")
     for link in info["links"]:
-        moved = ", ".join(link["moved_by"]) or "rigid with the wrist"
+        moved = f"moved by {', '.join(link['moved_by'])}" if link["moved_by"] else "rigid with the wrist"
         tip = ", fingertip" if link["fingertip"] else ""
-        lines.append(f"  {link['name']}: collision {', '.join(link['shapes']) or 'none'}; moved by {moved}{tip}")
+        lines.append(f"  {link['name']}: collision {', '.join(link['shapes']) or 'none'}; {moved}{tip}")
     lines.append(f"joints ({len(info['joints'])}):")
     for j in info["joints"]:
         kind = ", independent" if j["independent"] else (f", mimics {j['mimic']}" if j["mimic"] else "")

@@ -57,7 +57,11 @@ def test_wsg50_is_its_urdf():
 
 @pytest.mark.parametrize(
     "urdf, tips",
-    [(WSG50, ("finger_left", "finger_right")), (PR2, ("left_tip", "right_tip")), ("xarm", ("left_finger", "right_finger"))],
+    [
+        (WSG50, ("finger_left", "finger_right")),
+        (PR2, ("left_tip", "right_tip")),
+        ("xarm", ("left_finger", "right_finger")),
+    ],
 )
 def test_opening_width_matches_pybullet(urdf, tips, xarm):
     urdf = xarm if urdf == "xarm" else urdf
@@ -97,7 +101,9 @@ def test_cut_hand_keeps_the_robot_fk(xarm):
         link = {x[12].decode(): x[0] for x in info}
         for name, value in hand.all_joint_values(q).items():
             p.resetJointState(body, joint[name], value, physicsClientId=c)
-        world = {n: p.getLinkState(body, link[n], computeForwardKinematics=True, physicsClientId=c) for n in hand.link_names}
+        world = {
+            n: p.getLinkState(body, link[n], computeForwardKinematics=True, physicsClientId=c) for n in hand.link_names
+        }
         wrist = world[hand.link_names[0]]
         inv = p.invertTransform(wrist[4], wrist[5])
         ours = hand.fk(np.array([0, 0, 0, 0, 0, 0, 1.0]), q)

@@ -51,7 +51,9 @@ def _limits(j: dict) -> str:
 
 
 def _closing(sign) -> str:
-    return {1: "closes as it increases", -1: "closes as it decreases", 0: "moves no fingertip"}.get(sign, "")
+    return {1: "closes as it increases", -1: "closes as it decreases", 0: "neither opens nor closes the fingers"}.get(
+        sign, ""
+    )
 
 
 def format_hand(info: dict) -> list[str]:

@@ -19,6 +19,7 @@ from ..io.checks import check_input_file, check_output_path, check_path_text
 APPROACH_AXIS = tuple(float(v) for v in _core.AxisAlignmentSettings().hand_axis)
 FINGERS_AGREE_DEG = 30.0  # the fingers' direction within this angle of the convention agrees with it
 CONTINUOUS_SPAN = 0.5  # rad either side of 0 to probe a continuous joint
+SPREAD_TOLERANCE = 1e-6  # m: a joint whose limits change its fingertips' spread less neither opens nor closes
 
 
 def _limits(hand) -> np.ndarray:
@@ -87,7 +88,7 @@ def _spread(points: np.ndarray, centre: np.ndarray, axis: np.ndarray) -> float:
 
 def _closing(hand, meshes, moving, tips, mid, lim, centre, axis) -> dict:
     """independent joint -> +1 when increasing it closes the fingers it moves (their tips come nearer the
-    approach line), -1 when decreasing it does, 0 when it moves no fingertip."""
+    approach line), -1 when decreasing it does, 0 when it moves no fingertip or neither opens nor closes."""
     out = {}
     for k, name in enumerate(hand.joint_names):
         links = [t for t in tips if name in moving[t]]
@@ -99,7 +100,8 @@ def _closing(hand, meshes, moving, tips, mid, lim, centre, axis) -> dict:
             q = mid.copy()
             q[k] = value
             spread.append(_spread(np.vstack(list(_vertices(hand, meshes, q, links).values())), centre, axis))
-        out[name] = 1 if spread[1] < spread[0] else -1
+        change = spread[1] - spread[0]
+        out[name] = 0 if abs(change) < SPREAD_TOLERANCE else (1 if change < 0 else -1)
     return out
 
 

@@ -65,7 +65,17 @@ from ._core import (
     save_cloud,
 )
 from .io import data_path
-from .model import Demonstration, FeatureSettings, Grasp, GraspModel, GraspSet, default_model_path, expert, learn
+from .model import (
+    Demonstration,
+    FeatureSettings,
+    Grasp,
+    GraspModel,
+    GraspSet,
+    default_model_path,
+    describe_hand,
+    expert,
+    learn,
+)
 from .perception import Scene, segment_scene
 from .viz import plot_grasps, plot_grasps_html
 

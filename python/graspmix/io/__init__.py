@@ -43,8 +43,10 @@ from .formats import (
 from .objects import read_object_list, read_objects_file, test_objects
 from .paths import (
     PACKAGE_PREFIX,
+    PYBULLET_DATA_PREFIX,
     data_path,
     default_hand_path,
+    object_reference,
     pybullet_data_path,
     relative_path,
     resolve_object,

@@ -1,6 +1,11 @@
 """Where files are: the bundled data folder (found here and nowhere else), paths written into graspmix
-files (package://graspmix/..., absolute, or relative to the file), and object URDFs (a path, or relative
-to pybullet_data)."""
+files, and object URDFs (a path, or relative to pybullet_data).
+
+Every path a graspmix file stores (a demonstration's hand and cloud, a model's hand and demonstration, a
+grasps file's hand and cloud, a scene's objects) is written by relative_path or object_reference and read
+by resolve_path or resolve_object, so the files load on another machine: the bundled data as
+package://graspmix/..., pybullet_data's files as pybullet_data://... (resolved against the installed
+pybullet_data), anything else relative to the file's folder (absolute only across drives)."""
 
 from __future__ import annotations
 
@@ -51,7 +56,9 @@ def relative_path(target: Path, base: Path) -> str:
     """How a file in folder `base` refers to target: package://graspmix/... for the bundled data,
     pybullet_data://... for pybullet_data's files, else relative to base when it can be (keeps files
     movable with their data), else absolute."""
-    for prefix, root in ((PACKAGE_PREFIX, data_path()), (PYBULLET_DATA_PREFIX, pybullet_data_path())):
+    for prefix, root in ((PACKAGE_PREFIX, data_path()), (PYBULLET_DATA_PREFIX, _pybullet_data_or_none())):
+        if root is None:
+            continue
         try:
             return prefix + Path(target).resolve().relative_to(root.resolve()).as_posix()
         except ValueError:
@@ -69,9 +76,32 @@ def pybullet_data_path() -> Path:
     return Path(pybullet_data.getDataPath())
 
 
+def _pybullet_data_or_none() -> Path | None:
+    try:
+        return pybullet_data_path()
+    except ImportError:  # pybullet is optional for reading and writing files
+        return None
+
+
+def object_reference(path: str | Path, base: Path) -> str:
+    """How a scene file in folder `base` names an object URDF: relative to pybullet_data for its objects
+    (the scene format's own form, e.g. random_urdfs/012/012.urdf), else as relative_path writes it."""
+    root = _pybullet_data_or_none()
+    target = resolve_object(path)
+    if root is not None:
+        try:
+            return target.resolve().relative_to(root.resolve()).as_posix()
+        except ValueError:
+            pass
+    return relative_path(target, base)
+
+
 def resolve_object(path: str | Path) -> Path:
-    """An object URDF: an existing path, or a path relative to pybullet_data (e.g. random_urdfs/012/012.urdf)."""
+    """An object URDF: an existing path, package://graspmix/..., pybullet_data://..., or a path relative to
+    pybullet_data (e.g. random_urdfs/012/012.urdf)."""
     p = check_path_text(path, "object")
+    if str(path).startswith((PACKAGE_PREFIX, PYBULLET_DATA_PREFIX)):
+        p = resolve_path(str(path), Path.cwd())
     if p.is_file():
         return p.resolve()
     q = pybullet_data_path() / p

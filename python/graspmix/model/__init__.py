@@ -10,6 +10,7 @@ from .experts import expert
 from .grasp_frames import GraspFrameSettings
 from .grasp_model import GraspModel, default_model_path, learn
 from .grasps import EXECUTION_KEYS, STAGE_LABELS, STAGES, Grasp, GraspSet, grasp_by_rank, load_grasps
+from .hands import describe_hand, hand_urdf_from_robot
 from .settings import (
     METHOD_LABELS,
     METHODS,
@@ -40,6 +41,8 @@ __all__ = [
     "GraspFrameSettings",
     "GraspModel",
     "learn",
+    "describe_hand",
+    "hand_urdf_from_robot",
     "expert",
     "check_method",
     "load_grasps",

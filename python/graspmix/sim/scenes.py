@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from .. import _core
-from ..io import SCENE_FORMAT, read_document, read_objects_file, resolve_object
+from ..io import SCENE_FORMAT, object_reference, read_document, read_objects_file, resolve_object
 from ..io.checks import check_int, check_seed, quote
 from .execution import SimSettings, closing_overrides, grasp_arrays, load_hand, load_object, make_settings
 
@@ -90,7 +90,12 @@ class SceneSpec:
         }
 
     def save(self, path) -> None:
-        Path(path).write_text(json.dumps(self.to_dict(), indent=1) + "\n")
+        """Writes the scene; object paths as object_reference gives them, so the file loads elsewhere."""
+        base = Path(path).resolve().parent
+        doc = self.to_dict()
+        for o, d in zip(self.objects, doc["objects"]):
+            d["urdf"] = object_reference(o.urdf, base)
+        Path(path).write_text(json.dumps(doc, indent=1) + "\n")
 
     @classmethod
     def load(cls, path) -> SceneSpec:

@@ -1,0 +1,95 @@
+"""graspmix_cli hand: what a hand URDF holds as graspmix reads it (links, joints, limits, mimic
+relations, the independent joints a demonstration sets, the wrist frame, the approach axis, closing
+directions, the opening width of a two-finger gripper), and a picture of it at its limits."""
+
+from __future__ import annotations
+
+import json
+
+from .common import CliError, input_path, output_file
+
+
+def add_parsers(sub) -> None:
+    s = sub.add_parser("hand", help="links, joints, frames and opening of a hand URDF; --png draws it at its limits")
+    s.add_argument("--urdf", type=input_path, required=True, help="the hand's URDF (its root link is the wrist)")
+    s.add_argument("--png", type=output_file, help="draw the hand at its lower and upper joint limits")
+    s.add_argument("--json", action="store_true", help="print the description as JSON instead")
+    s.add_argument("--wrist-link", help="--urdf is a robot's: cut the hand below this link (the new wrist) ...")
+    s.add_argument("--out", type=output_file, help="... into this hand-only URDF, then describe it")
+    s.set_defaults(func=cmd_hand)
+
+
+def cmd_hand(args) -> int:
+    from ..model.hands import describe_hand, hand_urdf_from_robot
+
+    if (args.wrist_link is None) != (args.out is None):
+        raise CliError("--wrist-link and --out go together (cut a hand from a robot's URDF)")
+    if args.wrist_link is not None:
+        args.urdf = str(hand_urdf_from_robot(args.urdf, args.wrist_link, args.out))
+        print(f"wrote {args.out}")
+    if args.png:
+        from ..viz.hand import plot_hand
+
+        info = plot_hand(args.urdf, args.png)
+    else:
+        info = describe_hand(args.urdf)
+    if args.json:
+        print(json.dumps(info, indent=1, allow_nan=False))
+    else:
+        print("\n".join(format_hand(info)))
+    if args.png:
+        print(f"wrote {args.png}")
+    return 0
+
+
+def _limits(j: dict) -> str:
+    if j["type"] == "fixed":
+        return ""
+    unit = "m" if j["type"] == "prismatic" else "rad"
+    lo, hi = ("-inf" if j["lower"] is None else f"{j['lower']:g}"), ("inf" if j["upper"] is None else f"{j['upper']:g}")
+    return f"[{lo}, {hi}] {unit}"
+
+
+def _closing(sign) -> str:
+    return {1: "closes as it increases", -1: "closes as it decreases", 0: "neither opens nor closes the fingers"}.get(
+        sign, ""
+    )
+
+
+def format_hand(info: dict) -> list[str]:
+    """The description as lines of text."""
+    a = info["approach_axis"]
+    lines = [f"hand {info['name']} ({info['urdf']})", f"wrist frame: link '{info['wrist']}' (the URDF's root link)"]
+    lines.append(f"links ({len(info['links'])}):")
+    for link in info["links"]:
+        moved = f"moved by {', '.join(link['moved_by'])}" if link["moved_by"] else "rigid with the wrist"
+        tip = ", fingertip" if link["fingertip"] else ""
+        lines.append(f"  {link['name']}: collision {', '.join(link['shapes']) or 'none'}; {moved}{tip}")
+    lines.append(f"joints ({len(info['joints'])}):")
+    for j in info["joints"]:
+        kind = ", independent" if j["independent"] else (f", mimics {j['mimic']}" if j["mimic"] else "")
+        axis = "" if j["type"] == "fixed" else f" axis {_vec(j['axis'])} {_limits(j)}"
+        closing = f", {_closing(j['closing'])}" if j["closing"] is not None else ""
+        lines.append(f"  {j['name']} ({j['type']}{kind}): {j['parent']} -> {j['child']}{axis}{closing}")
+    for name, m in info["mimic"].items():
+        lines.append(f"  mimic: {name} = {m['multiplier']:g} * {m['joint']} + {m['offset']:g}")
+    lines.append(f"independent joints (what a demonstration sets): {', '.join(info['independent_joints']) or 'none'}")
+    lines.append(f"approach axis: {_vec(a['convention'])} of the wrist frame (graspmix's convention)")
+    if a["angle_deg"] is not None:
+        verdict = "agrees" if a["agrees"] else "does NOT agree: --approach-axis would steer the wrong axis"
+        lines.append(
+            f"  the fingertips lie along {_vec(a['fingers_direction'])} from the wrist, "
+            f"{a['angle_deg']:.0f} deg from it ({verdict})"
+        )
+    w = info["opening_width"]
+    if w:
+        sides = " | ".join(", ".join(side) for side in info["fingers"])
+        lines.append(
+            f"two-finger gripper ({sides}): opening {1000 * w['lower'] + 0.0:.1f} mm at the lower limits, "
+            f"{1000 * w['upper'] + 0.0:.1f} mm at the upper limits"
+        )
+    return lines
+
+
+def _vec(v) -> str:
+    return "[" + ", ".join(f"{x + 0.0:.3g}" for x in v) + "]"

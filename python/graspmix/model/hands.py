@@ -13,10 +13,11 @@ import numpy as np
 
 from .. import _core
 from ..io.checks import check_input_file, check_output_path, check_path_text
+from .grasp_frames import GraspFrameSettings, fingertip_links
 
 # The hand's approach axis in the wrist frame: the convention of the approach-axis expert
-# (AxisAlignmentSettings.hand_axis, +z of the wrist).
-APPROACH_AXIS = tuple(float(v) for v in _core.AxisAlignmentSettings().hand_axis)
+# (AxisAlignmentSettings.hand_axis, +z of the wrist), as the grasp exports use it.
+APPROACH_AXIS = GraspFrameSettings.approach_axis
 FINGERS_AGREE_DEG = 30.0  # the fingers' direction within this angle of the convention agrees with it
 CONTINUOUS_SPAN = 0.5  # rad either side of 0 to probe a continuous joint
 SPREAD_TOLERANCE = 1e-6  # m: a joint whose limits change its fingertips' spread less neither opens nor closes
@@ -60,18 +61,6 @@ def _transform(pose: np.ndarray, points: np.ndarray) -> np.ndarray:
     from scipy.spatial.transform import Rotation
 
     return Rotation.from_quat(pose[3:]).apply(points) + pose[:3]
-
-
-def _fingertips(hand, moving: dict) -> list:
-    """The moving links with no moving child: the ends of the fingers."""
-    children = {}
-    for j in hand.joints:
-        children.setdefault(j["parent"], []).append(j["child"])
-
-    def moving_below(link):
-        return any(moving[c] or moving_below(c) for c in children.get(link, []))
-
-    return [link for link in hand.link_names if moving[link] and not moving_below(link)]
 
 
 def _unit(v) -> np.ndarray:
@@ -146,7 +135,7 @@ def describe_hand(path: str | Path, hand=None) -> dict:
     path = check_input_file(check_path_text(path, "urdf"), "urdf")
     hand = hand or _core.Hand.from_urdf(str(path))
     moving = _moving(hand)
-    tips = _fingertips(hand, moving)
+    tips = fingertip_links(hand)  # the grasp exports' rule: moving links with geometry and no moving child
     meshes = {name: np.asarray(hand.collision_mesh(name)[0]) for name in hand.link_names}
     lim = _limits(hand)
     mid = lim.mean(axis=1)

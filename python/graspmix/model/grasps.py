@@ -34,7 +34,7 @@ STAGE_LABELS = {
 class Grasp(MutableMapping):
     """One grasp in the world frame (the cloud's): the wrist pose [x, y, z, qx, qy, qz, qw], the pre-grasp
     and grasp joints (name -> value), and, for a synthesised grasp, its rank (1 = best), log-likelihood,
-    whether annealing moved it, the object of the scene it is on, and every expert's log value ("collision", "config", "pregrasp_clear",
+    whether annealing moved it, the object of the scene it is on, its grasp type, and every expert's log value ("collision", "config", "pregrasp_clear",
     "contact/<link>", constraint names). Fields a newer writer adds are kept in `extra`."""
 
     T_world_wrist: list
@@ -45,6 +45,7 @@ class Grasp(MutableMapping):
     optimised: bool | None = None
     experts: dict | None = None
     object: dict | None = None  # the segmented object it is on: {"index": i, "centroid": [x, y, z]}
+    type: str | None = None  # the grasp type (the model's demonstration) it was sampled from
     extra: dict = field(default_factory=dict)
 
     # Key order of a grasps.json entry.
@@ -57,6 +58,7 @@ class Grasp(MutableMapping):
         "optimised",
         "experts",
         "object",  # added after the first release's keys, so their order stays what it was
+        "type",
     )
 
     def to_dict(self, *, execution_only: bool = False) -> dict:

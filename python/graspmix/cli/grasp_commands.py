@@ -188,9 +188,7 @@ def _add_demo(sub) -> None:
 
 
 def _add_learn(sub) -> None:
-    s = sub.add_parser(
-        "learn", help="learn contact and configuration models from demonstrations (one grasp type each)"
-    )
+    s = sub.add_parser("learn", help="learn contact and configuration models from demonstrations (one grasp type each)")
     s.add_argument(
         "--demo",
         type=_demo_spec,

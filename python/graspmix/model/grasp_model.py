@@ -20,7 +20,17 @@ from typing import Callable, Iterable, Sequence
 import numpy as np
 
 from .. import _core
-from ..io import MODEL_FORMAT, MODEL_FORMAT_V1, data_path, load_points, read_document, read_json, relative_path, require_field, resolve_path
+from ..io import (
+    MODEL_FORMAT,
+    MODEL_FORMAT_V1,
+    data_path,
+    load_points,
+    read_document,
+    read_json,
+    relative_path,
+    require_field,
+    resolve_path,
+)
 from ..io.checks import (
     MAX_COMPONENTS,
     MAX_SAMPLES,

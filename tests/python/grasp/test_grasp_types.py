@@ -14,7 +14,10 @@ from graspmix.cli.main import main
 from graspmix.model.grasp_types import REFERENCE_EXPERT
 
 BOX, MUG = graspmix.data_path("demos", "box_wsg50.json"), graspmix.data_path("demos", "mug_side_wsg50.json")
-CLOUDS = {"box_wsg50": graspmix.data_path("demos", "box.pcd"), "mug_side_wsg50": graspmix.data_path("demos", "mug_side.pcd")}
+CLOUDS = {
+    "box_wsg50": graspmix.data_path("demos", "box.pcd"),
+    "mug_side_wsg50": graspmix.data_path("demos", "mug_side.pcd"),
+}
 FAST = dict(n_samples=100, n_optimise=3, remove_plane=False)  # the demonstrations' clouds have no table
 
 # The best 3 grasps of data/models/box_wsg50_gmm.json on data/mug.pcd, n_samples=50, n_optimise=3, seed=3, as
@@ -83,7 +86,9 @@ def test_unknown_type_is_a_clear_error(two, tmp_path, capsys):
     with pytest.raises(ValueError, match="unknown grasp type.*'top'.*box_wsg50, mug_side_wsg50"):
         two.synthesize(CLOUDS["box_wsg50"], types=["top"], **FAST)
     two.save(tmp_path / "two.json")
-    rc = main(["synthesize", "--cloud", str(CLOUDS["box_wsg50"]), "--model", str(tmp_path / "two.json"), "--types", "top"])
+    rc = main(
+        ["synthesize", "--cloud", str(CLOUDS["box_wsg50"]), "--model", str(tmp_path / "two.json"), "--types", "top"]
+    )
     err = capsys.readouterr().err.strip()
     assert rc == 2 and len(err.splitlines()) == 1 and "box_wsg50, mug_side_wsg50" in err
 
@@ -122,7 +127,9 @@ def test_demonstrations_of_different_hands_are_refused(tmp_path, capsys):
     (tmp_path / "other_demo.json").write_text(json.dumps(demo))
     with pytest.raises(ValueError, match="different hands: 'wsg50'.*'other'"):
         graspmix.learn([str(BOX), str(tmp_path / "other_demo.json")])
-    rc = main(["learn", "--demo", str(BOX), "--demo", str(tmp_path / "other_demo.json"), "--out", str(tmp_path / "m.json")])
+    rc = main(
+        ["learn", "--demo", str(BOX), "--demo", str(tmp_path / "other_demo.json"), "--out", str(tmp_path / "m.json")]
+    )
     err = capsys.readouterr().err.strip()
     assert rc == 2 and len(err.splitlines()) == 1 and "different hands" in err
     assert not (tmp_path / "m.json").exists()

@@ -20,6 +20,13 @@ def _protocol(args):
     objects = read_objects_file(args.objects) if args.objects else None
     if args.jobs < 1:
         raise CliError(f"--jobs must be at least 1, got {args.jobs}")
+    models = None
+    if args.model:
+        from ..model import GraspModel
+
+        models = {GraspModel.load(args.model).method: str(Path(args.model).resolve())}
+        if methods is not None and not set(models) & set(methods):
+            raise CliError(f"--model {args.model} is a {next(iter(models))} model, not one of --methods {args.methods}")
     return Protocol.preset(
         args.preset,
         objects=objects,
@@ -28,6 +35,7 @@ def _protocol(args):
         methods=methods,
         seed=args.seed,
         closing=args.closing,
+        models=models,
     )
 
 
@@ -124,6 +132,11 @@ def add_parsers(sub) -> None:
     s.add_argument("--trials", type=int_in(1, 100_000), help="trials (default: the preset's)")
     s.add_argument("--conditions", help="comma-separated subset of A,B,C,D (default: all)")
     s.add_argument("--methods", help="comma-separated subset of gmm,kde (default: both)")
+    s.add_argument(
+        "--model",
+        type=input_path,
+        help="a learnt model file (graspmix_cli learn): it replaces the bundled model of its method (gmm or kde)",
+    )
     s.add_argument("--seed", type=seed, default=None, help="base of every derived seed (default 0)")
     s.add_argument(
         "--closing",

@@ -48,14 +48,25 @@ def cmd_demo(args: argparse.Namespace) -> int:
 
 def cmd_learn(args: argparse.Namespace) -> int:
     t0 = time.perf_counter()
-    model = learn(args.demo, args.method, n_components=args.components, seed=args.seed, max_distance=args.max_distance)
+    demos = args.demo or [str(data_path("demos", "box_wsg50.json"))]
+    model = learn(demos, args.method, n_components=args.components, seed=args.seed, max_distance=args.max_distance)
     model.save(args.out)
-    print(
-        f"learnt a {model.method} model in {time.perf_counter() - t0:.2f} s: contact models for "
-        + ", ".join(f"{m.link_name} ({m.n_points} points)" for m in model.synthesizer.contact_models)
-    )
+    print(f"learnt a {model.method} model of {len(model.types)} grasp type(s) in {time.perf_counter() - t0:.2f} s")
+    for t in model.types:
+        ref = f", reference log L {t.log_reference:.2f}" if len(model.types) > 1 else ""
+        print(
+            f"  {t.name}: contact models for "
+            + ", ".join(f"{m.link_name} ({m.n_points} points)" for m in t.synthesizer.contact_models)
+            + ref
+        )
     print(f"wrote {args.out}")
     return 0
+
+
+def _demo_spec(text: str) -> str:
+    """--demo PATH or NAME=PATH: the file must exist."""
+    input_path(text.split("=", 1)[1] if "=" in text else text)
+    return text
 
 
 def print_grasps(grasps, top: int) -> None:
@@ -70,7 +81,9 @@ def print_grasps(grasps, top: int) -> None:
     head = " ".join(f"{k:>14}" for k in short)
     gap = all(g.get("opening_width") is not None for g in rows)
     last = "opening: finger gap (m)" if gap else "grasp joints (m or rad)"
-    print(f"{'rank':>4} {'object':>6} {'log L':>9} {head}   wrist position (m)        {last}")
+    typed = any(g.get("type") for g in rows)
+    kind = f" {'type':>14}" if typed else ""
+    print(f"{'rank':>4} {'object':>6}{kind} {'log L':>9} {head}   wrist position (m)        {last}")
     for g in rows:
         terms = " ".join(f"{g['experts'][k]:>14.3f}" for k in keys)
         pos = ", ".join(f"{x:+.3f}" for x in g["T_world_wrist"][:3])
@@ -79,8 +92,10 @@ def print_grasps(grasps, top: int) -> None:
         else:
             opening = ", ".join(f"{k}={v:.4f}" for k, v in g["grasp_joints"].items())
         on = g.get("object")
+        kind = f" {g.get('type', '-'):>14}" if typed else ""
         print(
-            f"{g['rank']:>4} {'-' if on is None else on['index']:>6} {g['log_likelihood']:>9.3f} {terms}   [{pos}]   {opening}"
+            f"{g['rank']:>4} {'-' if on is None else on['index']:>6}{kind} {g['log_likelihood']:>9.3f} {terms}   "
+            f"[{pos}]   {opening}"
         )
 
 
@@ -128,6 +143,7 @@ def cmd_synthesize(args: argparse.Namespace) -> int:
         approach_axis=axis,
         query_samples=args.query_samples,
         collision=args.collision,
+        types=args.types,
     )
     grasps.cloud = args.cloud
     t = grasps.timing
@@ -190,9 +206,13 @@ def _add_demo(sub) -> None:
 
 
 def _add_learn(sub) -> None:
-    s = sub.add_parser("learn", help="learn contact and configuration models from one demonstration")
+    s = sub.add_parser("learn", help="learn contact and configuration models from demonstrations (one grasp type each)")
     s.add_argument(
-        "--demo", type=input_path, default=str(data_path("demos", "box_wsg50.json")), help="demonstration file"
+        "--demo",
+        type=_demo_spec,
+        action="append",
+        help="demonstration file, or NAME=FILE to name its grasp type (default name: the file's stem); repeat for "
+        "several grasp types of one hand (default: the bundled box demonstration)",
     )
     s.add_argument("--method", default="gmm", choices=list(METHODS))
     s.add_argument(
@@ -231,6 +251,7 @@ def _add_synthesize(sub) -> None:
     )
     s.add_argument("--method", choices=list(METHODS), default=None, help="with no --model: which bundled model (gmm)")
     s.add_argument("--hand", type=input_path, help="hand URDF; must be the model's hand")
+    s.add_argument("--types", help="comma-separated grasp types of the model to sample (default: all)")
     s.add_argument(
         "--samples", type=int_in(1, MAX_SAMPLES), default=o.n_samples, help=f"grasps sampled and ranked ({o.n_samples})"
     )

@@ -13,7 +13,8 @@ from .checks import check_input_file, quote
 from .schema import Any, Arr, Bool, Either, Int, Map, Null, Num, Obj, Str, Tagged, Tensor, validate
 
 DEMO_FORMAT = "graspmix.demo/1"
-MODEL_FORMAT = "graspmix.model/1"
+MODEL_FORMAT = "graspmix.model/2"  # grasp types (a "types" list)
+MODEL_FORMAT_V1 = "graspmix.model/1"  # one demonstration; still read
 GRASPS_FORMAT = "graspmix.grasps/1"
 PROTOCOL_FORMAT = "graspmix.experiment/1"
 SUMMARY_FORMAT = "graspmix.summary/1"
@@ -27,6 +28,7 @@ CLUTTER_SUMMARY_FORMAT = "graspmix.clutter_summary/1"
 FORMATS = {
     DEMO_FORMAT: ("demonstration", True),  # hand-written demonstrations may omit it
     MODEL_FORMAT: ("model", False),
+    MODEL_FORMAT_V1: ("model", False),
     GRASPS_FORMAT: ("grasps", False),
     PROTOCOL_FORMAT: ("protocol", False),
     SUMMARY_FORMAT: ("summary", False),
@@ -82,42 +84,60 @@ _KDE_DENSITY = Obj(
 _CONFIG_SETTINGS = Obj(
     {"beta": Num(), "n_kernels": Int(lo=1, hi=1_000_000), "alpha": Num(), "bandwidth": Num(), "min_bandwidth": Num()}
 )
+_LEARN_SETTINGS = Obj(
+    {
+        "n_components": Int(lo=1),
+        "kde_position_bandwidth": _POSITIVE,
+        "kde_orientation_bandwidth": _POSITIVE,
+        "kde_feature_bandwidth": _POSITIVE,
+        "max_distance": _POSITIVE,
+        "contact_lambda": _POSITIVE,
+        "min_points": _COUNT,
+        "seed": _COUNT,
+        "config": _CONFIG_SETTINGS,
+    }
+)
+# One grasp type's models: the top level of a graspmix.model/1 file, an entry of a graspmix.model/2 "types".
+_TYPE_MODELS = {
+    "demonstration": Either(Str(), Null()),
+    "config_model": Obj(
+        {"pregrasp": _VECTOR, "grasp": _VECTOR, "settings": _CONFIG_SETTINGS}, required=["pregrasp", "grasp"]
+    ),
+    "contact_models": Arr(
+        Obj(
+            {
+                "link": Str(nonempty=True),
+                "n_points": _COUNT,
+                "density": Tagged("kind", {"gmm": _GMM_DENSITY, "kde": _KDE_DENSITY}),
+            },
+            required=["link", "density"],
+        ),
+        min_len=1,
+    ),
+}
+_MODEL_SHARED = {
+    "format": Str(),
+    "method": Str(choices=["gmm", "kde"]),
+    "hand": Str(nonempty=True),
+    "features": Obj({"voxel_size": _NONNEGATIVE, "radius": _POSITIVE}),
+    "learn_settings": _LEARN_SETTINGS,
+}
+_MODEL_V1 = Obj(
+    {**_MODEL_SHARED, **_TYPE_MODELS},
+    required=["method", "hand", "features", "config_model", "contact_models"],
+)
 _MODEL = Obj(
     {
-        "format": Str(),
-        "method": Str(choices=["gmm", "kde"]),
-        "hand": Str(nonempty=True),
-        "demonstration": Either(Str(), Null()),
-        "features": Obj({"voxel_size": _NONNEGATIVE, "radius": _POSITIVE}),
-        "learn_settings": Obj(
-            {
-                "n_components": Int(lo=1),
-                "kde_position_bandwidth": _POSITIVE,
-                "kde_orientation_bandwidth": _POSITIVE,
-                "kde_feature_bandwidth": _POSITIVE,
-                "max_distance": _POSITIVE,
-                "contact_lambda": _POSITIVE,
-                "min_points": _COUNT,
-                "seed": _COUNT,
-                "config": _CONFIG_SETTINGS,
-            }
-        ),
-        "config_model": Obj(
-            {"pregrasp": _VECTOR, "grasp": _VECTOR, "settings": _CONFIG_SETTINGS}, required=["pregrasp", "grasp"]
-        ),
-        "contact_models": Arr(
+        **_MODEL_SHARED,
+        "types": Arr(
             Obj(
-                {
-                    "link": Str(nonempty=True),
-                    "n_points": _COUNT,
-                    "density": Tagged("kind", {"gmm": _GMM_DENSITY, "kde": _KDE_DENSITY}),
-                },
-                required=["link", "density"],
+                {"name": Str(nonempty=True), "log_reference": Num(), **_TYPE_MODELS},
+                required=["name", "config_model", "contact_models"],
             ),
             min_len=1,
         ),
     },
-    required=["method", "hand", "features", "config_model", "contact_models"],
+    required=["method", "hand", "features", "types"],
 )
 
 _GRASP = Obj(
@@ -310,6 +330,7 @@ _CLUTTER_SUMMARY = Obj(
 SCHEMAS = {
     DEMO_FORMAT: _DEMO,
     MODEL_FORMAT: _MODEL,
+    MODEL_FORMAT_V1: _MODEL_V1,
     GRASPS_FORMAT: _GRASPS,
     PROTOCOL_FORMAT: _PROTOCOL,
     SUMMARY_FORMAT: _SUMMARY,

@@ -20,7 +20,17 @@ from typing import Callable, Iterable, Sequence
 import numpy as np
 
 from .. import _core
-from ..io import MODEL_FORMAT, data_path, load_points, read_document, relative_path, require_field, resolve_path
+from ..io import (
+    MODEL_FORMAT,
+    MODEL_FORMAT_V1,
+    data_path,
+    load_points,
+    read_document,
+    read_json,
+    relative_path,
+    require_field,
+    resolve_path,
+)
 from ..io.checks import (
     MAX_COMPONENTS,
     MAX_SAMPLES,
@@ -33,9 +43,20 @@ from ..io.checks import (
 )
 from .demonstration import Demonstration
 from .experts import COLLISION_MODELS
+from .grasp_types import (
+    GraspType,
+    check_names,
+    check_same_hand,
+    default_type_name,
+    log_reference,
+    parse_demo_spec,
+    select_types,
+    type_from_json,
+    type_to_json,
+)
 from .grasps import GraspSet
 from .scene_synthesis import segment_query, synthesize_targets
-from .serialization import config_dict, config_settings, density_from_json, density_to_json
+from .serialization import config_dict, config_settings
 from .settings import FeatureSettings, LearnSettings, SynthesisOptions, check_method
 
 _L, _S = LearnSettings, SynthesisOptions  # the defaults of learn() and synthesize()
@@ -48,26 +69,45 @@ def default_model_path(method: str = "gmm") -> Path:
 
 
 class GraspModel:
-    """Contact models M_i for every link that touched the object, the configuration model C, and how
-    they were learnt; synthesises grasps on new clouds."""
+    """One or more grasp types (GraspType: a demonstration's contact models M_i for every link that touched
+    the object and its configuration model C), all for one hand, and how they were learnt; synthesises
+    grasps of every type on new clouds and ranks them together (graspmix.model.grasp_types says how)."""
 
     def __init__(
         self,
         hand: "_core.Hand",
         hand_path: Path,
-        synthesizer: "_core.GraspSynthesizer",
+        types: "list[GraspType] | _core.GraspSynthesizer",
         features: FeatureSettings,
         learn_settings: dict,
         demo: str | None = None,
     ):
         self._hand = hand
         self.hand_path = Path(hand_path)
-        self.synthesizer = synthesizer
+        if not isinstance(types, list):  # one synthesiser: a model of one type, as before grasp types
+            types = [GraspType(Path(demo).stem if demo else "type0", types, demo)]
+        if not types:
+            raise ValueError("a GraspModel needs at least one grasp type")
+        check_names([t.name for t in types])
+        self.types = types
         self.features = features
         self.learn_settings = learn_settings
-        self.demo = demo
 
     # -- properties
+    @property
+    def synthesizer(self) -> "_core.GraspSynthesizer":
+        """The first grasp type's synthesiser (the only one of a single-demonstration model)."""
+        return self.types[0].synthesizer
+
+    @property
+    def demo(self) -> str | None:
+        """The first grasp type's demonstration file."""
+        return self.types[0].demo
+
+    @property
+    def type_names(self) -> list[str]:
+        return [t.name for t in self.types]
+
     @property
     def method(self) -> str:
         return self.synthesizer.method
@@ -78,16 +118,20 @@ class GraspModel:
 
     @property
     def contact_links(self) -> list[str]:
-        return [m.link_name for m in self.synthesizer.contact_models]
+        """The links with a contact model, in any type (in order of first appearance)."""
+        return list(dict.fromkeys(n for t in self.types for n in t.contact_links))
 
     def __repr__(self):
-        return f"GraspModel(method={self.method!r}, hand={self.hand_path.name!r}, contact links={self.contact_links})"
+        return (
+            f"GraspModel(method={self.method!r}, hand={self.hand_path.name!r}, types={self.type_names}, "
+            f"contact links={self.contact_links})"
+        )
 
     # -- learning
     @classmethod
     def learn(
         cls,
-        demo: str | Path | Demonstration,
+        demo,
         method: str = "gmm",
         *,
         n_components: int = _L.n_components,
@@ -102,7 +146,11 @@ class GraspModel:
         seed: int = _L.seed,
         config: dict | None = None,
     ) -> "GraspModel":
-        """Learns from one demonstration (a demonstration file or object)."""
+        """Learns from one demonstration (a file, "name=file" or a Demonstration) or a list of them: each
+        demonstration is one grasp type, named by the name given or else its file's stem, with its own
+        contact and configuration models. All demonstrations must be of the same hand (ValueError
+        otherwise). A model of several types also stores each type's log L_ref, what its demonstrated
+        grasp scores on its own demonstration cloud (see graspmix.model.grasp_types)."""
         check_method(method)
         _check_learn_numbers(
             n_components=n_components,
@@ -128,72 +176,37 @@ class GraspModel:
             min_points,
             seed,
         )
-        d = demo if isinstance(demo, Demonstration) else Demonstration.load(demo)
-        hand = _core.Hand.from_urdf(str(check_input_file(d.hand_path, "hand")))
         feats = FeatureSettings(voxel_size=voxel_size, radius=radius)
-        surface, _ = feats.surface(d.cloud, remove_plane=False, seed=seed)
-        models = _core.learn_contact_models(
-            hand,
-            d.T_world_wrist,
-            d.grasp_joints,
-            surface.frames,
-            surface.curvatures,
-            _density_factory(method, s),
-            _contact_settings(s),
-        )
         cfg_settings = config_settings(config or {})
-        cfg = _core.ConfigModel(
-            hand.joints_array(d.pregrasp_joints), hand.joints_array(d.grasp_joints), hand.joint_limits, cfg_settings
-        )
-        learn_settings = {
-            "n_components": n_components,
-            "kde_position_bandwidth": kde_position_bandwidth,
-            "kde_orientation_bandwidth": kde_orientation_bandwidth,
-            "kde_feature_bandwidth": kde_feature_bandwidth,
-            "max_distance": max_distance,
-            "contact_lambda": contact_lambda,
-            "min_points": min_points,
-            "seed": seed,
-            "config": config_dict(cfg_settings),
-        }
-        return cls(
-            hand,
-            d.hand_path,
-            _core.GraspSynthesizer(hand, models, cfg),
-            feats,
-            learn_settings,
-            str(d.source) if d.source else None,
-        )
+        types, hand, hand_path = _learn_types(demo, method, s, feats, cfg_settings)
+        learn_settings = dict(dataclasses.asdict(s), config=config_dict(cfg_settings))
+        return cls(hand, hand_path, types, feats, learn_settings)
 
     # -- persistence
     def save(self, path: str | Path) -> None:
+        """Writes the model file (format graspmix.model/2: the shared hand, features and settings, and a
+        "types" list, each with its name, demonstration, log_reference, config_model and contact_models)."""
         path = check_output_path(path, "model file")
         base = path.resolve().parent
-        cfg = self.synthesizer.config_model
         data = {
             "format": MODEL_FORMAT,
             "method": self.method,
             "hand": relative_path(self.hand_path, base),
-            "demonstration": relative_path(Path(self.demo), base) if self.demo else None,
             "features": {"voxel_size": self.features.voxel_size, "radius": self.features.radius},
             "learn_settings": self.learn_settings,
-            "config_model": {
-                "pregrasp": cfg.pregrasp.tolist(),
-                "grasp": cfg.grasp.tolist(),
-                "settings": config_dict(cfg.settings),
-            },
-            "contact_models": [
-                {"link": m.link_name, "n_points": m.n_points, "density": density_to_json(m.density)}
-                for m in self.synthesizer.contact_models
-            ],
+            "types": [type_to_json(t, base) for t in self.types],
         }
         path.write_text(json.dumps(data) + "\n")
 
     @classmethod
     def load(cls, path: str | Path) -> "GraspModel":
+        """Reads a model file: graspmix.model/2 (grasp types), or graspmix.model/1 (one demonstration: a model
+        of one type, named after its demonstration file's stem)."""
         path = check_path_text(path, "model")
-        data = read_document(path, MODEL_FORMAT)
-        check_method(require_field(data, "method", path, str))
+        old = read_json(path, "model").get("format") == MODEL_FORMAT_V1
+        data = read_document(path, MODEL_FORMAT_V1 if old else MODEL_FORMAT)
+        method = require_field(data, "method", path, str)
+        check_method(method)
         base = path.resolve().parent
         hand_path = resolve_path(require_field(data, "hand", path, str), base)
         hand = _core.Hand.from_urdf(str(check_input_file(hand_path, "hand")))
@@ -202,17 +215,13 @@ class GraspModel:
             voxel_size=float(f.get("voxel_size", FeatureSettings.voxel_size)),
             radius=float(f.get("radius", FeatureSettings.radius)),
         )
-        models = _load_contact_models(data, hand, hand_path, path)
-        cfg = _load_config_model(require_field(data, "config_model", path, dict), hand, path)
-        demo = data.get("demonstration")
-        return cls(
-            hand,
-            hand_path,
-            _core.GraspSynthesizer(hand, models, cfg),
-            feats,
-            data.get("learn_settings", {}),
-            str(resolve_path(demo, base)) if demo else None,
-        )
+        if old:
+            demo = data.get("demonstration")
+            entries = [dict(data, name=Path(demo).stem if demo else "type0")]
+        else:
+            entries = require_field(data, "types", path, list)
+        types = [type_from_json(e, hand, hand_path, method, path, e["name"]) for e in entries]
+        return cls(hand, hand_path, types, feats, data.get("learn_settings", {}))
 
     # -- synthesis
     def synthesize(
@@ -241,6 +250,7 @@ class GraspModel:
         table_clearance: float = _S.table_clearance,
         target="all",
         annealing: dict | None = None,
+        types=None,
     ) -> GraspSet:
         """Grasps on a scene or object cloud: a path (PCD/PLY/npy) or an (N, 3) array of points.
 
@@ -254,10 +264,16 @@ class GraspModel:
         are dropped); approach_axis: prefer wrists whose approach axis points along it (e.g. (0, 0, -1) for
         top grasps); reachable(wrists, joints) -> bool array: the hard reachability test; experts: more
         experts (graspmix.expert(...) or graspmix._core.Expert objects); annealing: AnnealingSettings fields
-        to change. The other settings and their defaults (collision: "surface" or "occupancy"):
-        SynthesisOptions."""
-        # Every keyword but the cloud, plane, viewpoints, target, experts and annealing is a SynthesisOptions field.
+        to change; types: the grasp types to sample (names, a list or "a,b"; default all: see
+        GraspModel.types; an unknown name is a ValueError listing the model's). Every type samples and
+        optimises as many grasps as one would, and all are ranked together by log L - log L_ref of their
+        type (graspmix.model.grasp_types: the score each type's demonstrated grasp reaches on its own
+        demonstration cloud; a model of one type has no such term), each grasp recording its "type". The
+        other settings and their defaults (collision: "surface" or "occupancy"): SynthesisOptions."""
+        # Every keyword but the cloud, plane, viewpoints, target, experts, annealing and types is a SynthesisOptions
+        # field.
         opts = _synthesis_options(locals())
+        chosen = select_types(self.types, types)
         t0 = time.perf_counter()
         # Phase 1: the scene (support plane, objects) and the targets.
         points, name, file_viewpoints = load_points(cloud)
@@ -276,6 +292,7 @@ class GraspModel:
             reachable=reachable,
             experts=experts,
             cloud=(points, viewpoints),
+            types=chosen,
         )
         timing = dict(out.timing)
         timing["segmentation"] = t_segment
@@ -361,6 +378,40 @@ def _synthesis_options(args: dict) -> SynthesisOptions:
     return SynthesisOptions(**v)
 
 
+def _learn_types(demos, method: str, s: LearnSettings, feats: FeatureSettings, cfg_settings) -> tuple:
+    """(types, hand, hand path) learnt from one demonstration or a list of them (see GraspModel.learn)."""
+    specs = list(demos) if isinstance(demos, (list, tuple)) else [demos]
+    if not specs:
+        raise ValueError("no demonstration to learn from")
+    named = [parse_demo_spec(x) for x in specs]
+    loaded = [d if isinstance(d, Demonstration) else Demonstration.load(d) for _, d in named]
+    names = [n or default_type_name(d, i) for i, ((n, _), d) in enumerate(zip(named, loaded))]
+    check_names(names)
+    hands = [_core.Hand.from_urdf(str(check_input_file(d.hand_path, "hand"))) for d in loaded]
+    check_same_hand(hands, loaded)
+    hand = hands[0]
+    types = []
+    for name, d in zip(names, loaded):
+        surface, _ = feats.surface(d.cloud, remove_plane=False, seed=s.seed)
+        models = _core.learn_contact_models(
+            hand,
+            d.T_world_wrist,
+            d.grasp_joints,
+            surface.frames,
+            surface.curvatures,
+            _density_factory(method, s),
+            _contact_settings(s),
+        )
+        cfg = _core.ConfigModel(
+            hand.joints_array(d.pregrasp_joints), hand.joints_array(d.grasp_joints), hand.joint_limits, cfg_settings
+        )
+        synthesizer = _core.GraspSynthesizer(hand, models, cfg)
+        # One type needs no reference: its ranking and scores stay those of a single-demonstration model.
+        ref = log_reference(hand, synthesizer, d, surface, s.seed) if len(loaded) > 1 else 0.0
+        types.append(GraspType(name, synthesizer, str(d.source) if d.source else None, ref))
+    return types, hand, loaded[0].hand_path
+
+
 def _density_factory(method: str, s: LearnSettings) -> Callable:
     if method == "gmm":
         return lambda: _core.PoseMixture(n_components=s.n_components, seed=s.seed)
@@ -377,37 +428,7 @@ def _contact_settings(s: LearnSettings) -> "_core.ContactSettings":
     return contact
 
 
-def _load_contact_models(data: dict, hand, hand_path: Path, path: Path) -> list:
-    models = []
-    for i, entry in enumerate(require_field(data, "contact_models", path, list)):
-        where = f"{path}: contact model {i}"
-        link_name = entry.get("link")
-        if link_name not in hand.link_names:
-            raise ValueError(
-                f"{where}: link {link_name!r} is not a link of hand '{hand_path.name}' "
-                f"(links: {', '.join(hand.link_names)}); was the model learnt for another hand?"
-            )
-        density = density_from_json(entry.get("density", {}), where)
-        if density.kind != data["method"]:
-            raise ValueError(f"{where}: a {density.kind} density in a {data['method']} model")
-        models.append(_core.ContactModel(hand.link_index(link_name), link_name, density, int(entry.get("n_points", 0))))
-    return models
-
-
-def _load_config_model(c: dict, hand, path: Path) -> "_core.ConfigModel":
-    try:
-        return _core.ConfigModel(
-            np.asarray(c["pregrasp"], float),
-            np.asarray(c["grasp"], float),
-            hand.joint_limits,
-            config_settings(c.get("settings", {})),
-        )
-    except KeyError as e:
-        raise ValueError(f"{path}: config_model misses {e}") from None
-    except ValueError as e:
-        raise ValueError(f"{path}: config_model: {e} (was the model learnt for another hand?)") from None
-
-
 def learn(demo, method: str = "gmm", **kwargs) -> GraspModel:
-    """Learns a GraspModel from one demonstration file (see GraspModel.learn for the settings)."""
+    """Learns a GraspModel from one demonstration file or a list of them, one grasp type each (see
+    GraspModel.learn for the names and settings)."""
     return GraspModel.learn(demo, method, **kwargs)

@@ -36,7 +36,7 @@ STAGE_LABELS = {
 class Grasp(MutableMapping):
     """One grasp in the world frame (the cloud's): the wrist pose [x, y, z, qx, qy, qz, qw], the pre-grasp
     and grasp joints (name -> value), and, for a synthesised grasp, its rank (1 = best), log-likelihood,
-    whether annealing moved it, the object of the scene it is on, and every expert's log value ("collision", "config", "pregrasp_clear",
+    whether annealing moved it, the object of the scene it is on, its grasp type, and every expert's log value ("collision", "config", "pregrasp_clear",
     "contact/<link>", constraint names). Fields a newer writer adds are kept in `extra`.
 
     What a robot stack needs (graspmix.model.grasp_frames; GraspSet fills them in from its hand):
@@ -52,6 +52,7 @@ class Grasp(MutableMapping):
     optimised: bool | None = None
     experts: dict | None = None
     object: dict | None = None  # the segmented object it is on: {"index": i, "centroid": [x, y, z]}
+    type: str | None = None  # the grasp type (the model's demonstration) it was sampled from
     T_world_wrist_matrix: list | None = None  # 4x4 homogeneous matrix of T_world_wrist
     T_world_tcp: list | None = None  # [x, y, z, qx, qy, qz, qw]
     approach: list | None = None  # (3,) world
@@ -71,6 +72,7 @@ class Grasp(MutableMapping):
         "optimised",
         "experts",
         "object",  # added after the first release's keys, so their order stays what it was
+        "type",  # the grasp type (after "object": both came after the first release)
         *FRAME_KEYS,  # what a robot stack needs (grasp_frames), after them
     )
 

@@ -2,10 +2,11 @@
 (graspmix.segment_scene), grasps are sampled on the target objects only, and the collision expert sees
 every object and the table, so that a grasp on one object never goes through its neighbour.
 
-Each target object gets a synthesis of its own (its own query densities: a mixture fitted over several
-objects would spread its few components between them), with the same model, settings and seed; the
-grasps of all targets are then ranked together by their log-likelihood, which is comparable between
-objects because the model and every expert are the same. One expert is added in a scene of several
+Each target object gets a synthesis of its own per grasp type of the model (its own query densities: a
+mixture fitted over several objects would spread its few components between them), with the same
+settings and seed; the grasps of all targets are then ranked together by their log-likelihood, which is
+comparable between objects because the model and every expert are the same (between grasp types, by
+each type's reference score: graspmix.model.grasp_types). One expert is added in a scene of several
 objects: "clear_of_neighbours", hard, rejects a grasp whose hand, at the grasp or at its pre-grasp,
 holds a point of another object (the paper's collision expert is soft: a finger 1 cm inside a neighbour
 costs about 20 nats, less than the spread of the contact terms, and Bullet then starts in collision).
@@ -20,6 +21,7 @@ import numpy as np
 from .. import _core
 from ..perception import Scene, segment_scene
 from .experts import collision_expert, constraint_experts, expert, occupancy_map
+from .grasp_types import REFERENCE_EXPERT
 from .grasps import STAGES, grasps_from_result
 from .settings import FeatureSettings, SynthesisOptions
 
@@ -62,15 +64,16 @@ def object_surface(scene: Scene, index: int, features: FeatureSettings):
     return _core.compute_surface_features(scene.points[rows], radius=features.radius, viewpoints=vp)
 
 
-def clear_of_neighbours(model, scene: Scene, target: int, opts: SynthesisOptions):
+def clear_of_neighbours(model, scene: Scene, target: int, opts: SynthesisOptions, config=None):
     """The hard expert that keeps a grasp on `target` out of every other object of the scene, at the grasp
-    and at its pre-grasp (where the hand starts); None in a scene of one object."""
+    and at its pre-grasp (where the hand starts, by `config`: a grasp type's ConfigModel, default the
+    model's first); None in a scene of one object."""
     others = scene.labels != target
     if not np.any(others):
         return None
     points = scene.points[others]
     collision = collision_expert(model.hand, points, None, opts)
-    config = model.synthesizer.config_model
+    config = model.synthesizer.config_model if config is None else config
 
     def free(wrists, joints):
         pre = np.array([config.pregrasp_for(q) for q in joints]).reshape(np.shape(joints))
@@ -102,10 +105,14 @@ def synthesize_targets(
     reachable,
     experts,
     cloud=None,
+    types=None,
 ) -> SceneSynthesis:
     """Runs the model's synthesiser on every target object against the whole scene and ranks all grasps.
     cloud: (points, viewpoints) of the whole input cloud, table included: with collision="occupancy" the
-    scene's OccupancyMap is built from it once and shared by every target (its time: timing["occupancy"])."""
+    scene's OccupancyMap is built from it once and shared by every target (its time: timing["occupancy"]).
+    types: the model's grasp types to sample (default all); each samples n_samples grasps of its own and
+    optimises its own best, so a synthesis of T types costs about T times one type's (the stage times are
+    sums over types and targets)."""
     timing = dict.fromkeys(STAGES, 0.0)
     occupancy = None
     if opts.collision == "occupancy":
@@ -117,24 +124,30 @@ def synthesize_targets(
     shared = constraint_experts(
         model.hand, scene.points, scene.plane, opts, approach_axis=approach_axis, reachable=reachable, experts=experts
     )
+    types = model.types if types is None else types
     grasps, surfaces, evaluations, rejected = [], [], 0, 0
     for i in targets:
         surface = object_surface(scene, i, model.features)
-        neighbours = clear_of_neighbours(model, scene, i, opts)
-        extra = shared + ([] if neighbours is None else [neighbours])
-        res = model.synthesizer.synthesize(surface.frames, surface.curvatures, collision, extra, settings)
         on = {"index": int(i), "centroid": [float(x) for x in scene.objects[i].centroid]}
-        for g in grasps_from_result(res, model.hand):
-            g["object"] = on
-            grasps.append(g)
-        stage_times = dict(res.timing)
-        for k in STAGES:
-            timing[k] += stage_times[k]
+        for t in types:
+            neighbours = clear_of_neighbours(model, scene, i, opts, t.synthesizer.config_model)
+            extra = shared + ([] if neighbours is None else [neighbours])
+            res = t.synthesizer.synthesize(surface.frames, surface.curvatures, collision, extra, settings)
+            for g in grasps_from_result(res, model.hand):
+                g["object"] = on
+                g.type = t.name
+                if len(model.types) > 1:  # scores of several types made comparable (model.grasp_types)
+                    g.experts[REFERENCE_EXPERT] = -t.log_reference
+                    g.log_likelihood -= t.log_reference
+                grasps.append(g)
+            stage_times = dict(res.timing)
+            for k in STAGES:
+                timing[k] += stage_times[k]
+            evaluations += res.evaluations
+            rejected += res.rejected
         surfaces.append(surface)
-        evaluations += res.evaluations
-        rejected += res.rejected
-    if len(targets) > 1:
-        grasps.sort(key=lambda g: -g.log_likelihood)  # stable: equal scores keep the targets' order
+    if len(targets) > 1 or len(types) > 1:
+        grasps.sort(key=lambda g: -g.log_likelihood)  # stable: equal scores keep the targets' and types' order
         for rank, g in enumerate(grasps, start=1):
             g.rank = rank
     surface = surfaces[0] if len(surfaces) == 1 else SurfaceUnion.of(surfaces)

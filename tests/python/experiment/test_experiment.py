@@ -497,3 +497,15 @@ def test_full_closing_holds_what_the_learnt_closing_misses():
     assert not sim.execute(obj, g, object_pose=pose).success
     r = sim.execute(obj, g, object_pose=pose, **ex.CLOSING["full"])
     assert r.success, r.reason
+
+
+def test_model_option_replaces_the_bundled_model_of_its_method(capsys):
+    from graspmix.cli.experiment_commands import _protocol
+
+    model = graspmix.data_path("models", "box_mug_side_wsg50_gmm.json")
+    parse = cli.build_parser().parse_args
+    p = _protocol(parse(["experiment", "--out", "x", "--model", str(model), "--methods", "gmm,kde"]))
+    assert p.model_path("gmm") == model.resolve() and p.model_path("kde") == graspmix.default_model_path("kde")
+    assert p.to_json()["models"]["gmm"]["file"] == model.name
+    with pytest.raises(cli.common.CliError, match="is a gmm model, not one of --methods kde"):
+        _protocol(parse(["experiment", "--out", "x", "--model", str(model), "--methods", "kde"]))

@@ -58,8 +58,8 @@ def test_synthesised_grasps_are_grasps_in_the_old_layout(tmp_path):
     grasps = model.synthesize(graspmix.data_path("mug.pcd"), n_samples=30, optimise=False, seed=0)
     best = grasps.best()
     assert isinstance(best, Grasp) and best.rank == 1
-    # The old layout, then the object it is on and what a robot stack needs.
-    assert list(best) == [*OLD_ENTRY, "object", *FRAME_KEYS]
+    # The old layout, then the object it is on, its grasp type and what a robot stack needs.
+    assert list(best) == [*OLD_ENTRY, "object", "type", *FRAME_KEYS]
     assert len(best["T_world_wrist"]) == 7 and all(type(x) is float for x in best["T_world_wrist"])
     assert set(best["experts"]) >= {"collision", "config", "pregrasp_clear", "kinematic"}
     # grasps.json: the same entries, read back as dictionaries sorted by rank.

@@ -11,6 +11,7 @@ import graspmix
 import numpy as np
 import pytest
 from graspmix.cli.main import main
+from graspmix.model.grasp_frames import FRAME_KEYS
 from graspmix.model.grasp_types import REFERENCE_EXPERT
 
 BOX, MUG = graspmix.data_path("demos", "box_wsg50.json"), graspmix.data_path("demos", "mug_side_wsg50.json")
@@ -104,7 +105,7 @@ def test_save_load_round_trip_and_grasps_json(two, tmp_path):
     assert summary(a, 50) == summary(b, 50)
     a.save(tmp_path / "grasps.json")
     entry = json.loads((tmp_path / "grasps.json").read_text())["grasps"][0]
-    assert list(entry)[-2:] == ["object", "type"] and entry["type"] == a.best().type
+    assert list(entry)[-2 - len(FRAME_KEYS) :] == ["object", "type", *FRAME_KEYS] and entry["type"] == a.best().type
 
 
 def test_old_model_files_load_as_one_type_and_synthesise_as_before():

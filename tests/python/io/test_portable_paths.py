@@ -64,7 +64,7 @@ def test_model_with_its_own_hand_moves(tmp_path):
     model.hand_path = a / "hand.urdf"
     model.save(a / "model.json")
     doc = json.loads((a / "model.json").read_text())
-    assert doc["hand"] == "hand.urdf" and doc["demonstration"] == "package://graspmix/demos/box_wsg50.json"
+    assert doc["hand"] == "hand.urdf" and doc["types"][0]["demonstration"] == "package://graspmix/demos/box_wsg50.json"
     b = move(tmp_path)
     loaded = GraspModel.load(b / "model.json")
     assert loaded.hand_path.samefile(b / "hand.urdf")

@@ -264,14 +264,11 @@ class GraspModel:
         are dropped); approach_axis: prefer wrists whose approach axis points along it (e.g. (0, 0, -1) for
         top grasps); reachable(wrists, joints) -> bool array: the hard reachability test; experts: more
         experts (graspmix.expert(...) or graspmix._core.Expert objects); annealing: AnnealingSettings fields
-        to change; types: the grasp types to sample (names, a list or "a,b"; default all: see
-        GraspModel.types; an unknown name is a ValueError listing the model's). Every type samples and
-        optimises as many grasps as one would, and all are ranked together by log L - log L_ref of their
-        type (graspmix.model.grasp_types: the score each type's demonstrated grasp reaches on its own
-        demonstration cloud; a model of one type has no such term), each grasp recording its "type". The
-        other settings and their defaults (collision: "surface" or "occupancy"): SynthesisOptions."""
-        # Every keyword but the cloud, plane, viewpoints, target, experts, annealing and types is a SynthesisOptions
-        # field.
+        to change; types: the grasp types to sample (names, a list or "a,b"; default all), each sampling and
+        optimising as many grasps as one would, all ranked together by log L - log L_ref of their type
+        (graspmix.model.grasp_types), each grasp recording its "type". The other settings and their
+        defaults (collision: "surface" or "occupancy"): SynthesisOptions."""
+        # Every keyword but the cloud, plane, viewpoints, target, experts, annealing and types: SynthesisOptions.
         opts = _synthesis_options(locals())
         chosen = select_types(self.types, types)
         t0 = time.perf_counter()
@@ -294,24 +291,11 @@ class GraspModel:
             cloud=(points, viewpoints),
             types=chosen,
         )
-        timing = dict(out.timing)
-        timing["segmentation"] = t_segment
-        timing["total"] = time.perf_counter() - t0
-        # Features: everything before the synthesiser's own stages (the segmentation, i.e. the clean-up, included).
-        timing["features"] = timing["total"] - sum(out.timing.values())
+        timing = _stage_times(out.timing, t_segment, time.perf_counter() - t0)
         return GraspSet(
-            out.grasps,
-            self.hand_path,
-            self.method,
-            name,
-            timing,
-            out.surface,
-            scene.plane,
-            out.evaluations,
-            out.rejected,
-            scene=scene,
-            targets=targets,
-        )
+            out.grasps, self.hand_path, self.method, name, timing, out.surface, scene.plane, out.evaluations,
+            out.rejected, scene=scene, targets=targets,
+        )  # fmt: skip
 
     def _synthesis_settings(self, opts: SynthesisOptions, annealing: dict | None) -> "_core.SynthesisSettings":
         if annealing is not None and not isinstance(annealing, dict):
@@ -333,6 +317,16 @@ class GraspModel:
             setattr(a, k, v)
         s.annealing = a
         return s
+
+
+def _stage_times(synthesis: dict, segmentation: float, total: float) -> dict:
+    """A synthesis' stage times with the segmentation, the total and the features: everything before the
+    synthesiser's own stages (the segmentation, i.e. the clean-up, included)."""
+    timing = dict(synthesis)
+    timing["segmentation"] = segmentation
+    timing["total"] = total
+    timing["features"] = total - sum(synthesis.values())
+    return timing
 
 
 def checked_plane(plane):

@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 
 from .. import _core
-from .plots import pyplot
+from .plots import cube_axes, pyplot
 
 
 def hand_triangles(hand, T_world_wrist, joints) -> list:
@@ -45,13 +45,7 @@ def plot_demonstration(demo, path: str | Path, *, max_points: int = 8000, seed: 
             ax.add_collection3d(Poly3DCollection(tris, facecolor="none", edgecolor="tab:orange", linewidths=0.2))
         for tris in grasp:
             ax.add_collection3d(Poly3DCollection(tris, alpha=0.6, facecolor="tab:blue", edgecolor="none"))
-        for setter, c in zip((ax.set_xlim, ax.set_ylim, ax.set_zlim), centre):
-            setter(c - half, c + half)
-        ax.set_box_aspect((1, 1, 1))
-        ax.view_init(elev=elev, azim=azim)
-        ax.set_xlabel("x (m)")
-        ax.set_ylabel("y (m)")
-        ax.set_zlabel("z (m)")
+        cube_axes(ax, centre, half, (elev, azim))
 
     def fmt(joints: dict) -> str:
         return ", ".join(f"{k}={v:.3f}" for k, v in joints.items())

@@ -8,7 +8,7 @@ from scipy.spatial.transform import Rotation
 
 from .. import _core
 from ..model.hands import describe_hand
-from .plots import pyplot
+from .plots import cube_axes, pyplot
 
 MAX_TRIANGLES = 4000  # per link: a mesh with more is drawn with an even subset of its triangles
 AXIS_COLOURS = ("tab:red", "tab:green", "tab:blue")  # x, y, z of the wrist frame
@@ -38,12 +38,7 @@ def plot_hand(urdf, path, *, title: str | None = None) -> dict:
                 colour = "0.6" if name == info["wrist"] else f"C{i % 10}"
                 ax.add_collection3d(Poly3DCollection(v[t], facecolor=colour, edgecolor="k", linewidths=0.1, alpha=0.5))
         _frame(ax, span * 0.6, info["approach_axis"])
-        for setter, c in zip((ax.set_xlim, ax.set_ylim, ax.set_zlim), centre):
-            setter(c - span, c + span)
-        ax.set_box_aspect((1, 1, 1))
-        ax.set_xlabel("x [m]")
-        ax.set_ylabel("y [m]")
-        ax.set_zlabel("z [m]")
+        cube_axes(ax, centre, span)
         width = info["opening_width"]
         text = f", opening {1000 * width[limit] + 0.0:.1f} mm" if width else ""
         joints = ", ".join(f"{n}={v:.3g}" for n, v in zip(hand.joint_names, lim[:, col]))

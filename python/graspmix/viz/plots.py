@@ -22,6 +22,19 @@ def pyplot():
     return plt
 
 
+def cube_axes(ax, centre, half: float, view: tuple | None = None) -> None:
+    """A 3D axes as a cube of half-width `half` (m) around `centre`, labelled in metres, seen from
+    view = (elevation, azimuth) in degrees (None: matplotlib's default)."""
+    for setter, c in zip((ax.set_xlim, ax.set_ylim, ax.set_zlim), centre):
+        setter(c - half, c + half)
+    ax.set_box_aspect((1, 1, 1))
+    if view is not None:
+        ax.view_init(elev=view[0], azim=view[1])
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
+    ax.set_zlabel("z (m)")
+
+
 def plot_surface_features(
     surface, path, *, max_points: int = 20000, seed: int = 0, title: str | None = None, normals: int = 0
 ):
@@ -216,13 +229,7 @@ def plot_grasps(
                 )
             if d.tcps[k] is not None:
                 ax.scatter(*d.tcps[k], s=12, c="k")
-        for setter, c in zip((ax.set_xlim, ax.set_ylim, ax.set_zlim), centre):
-            setter(c - span, c + span)
-        ax.set_box_aspect((1, 1, 1))
-        ax.view_init(elev=elev, azim=azim)
-        ax.set_xlabel("x (m)")
-        ax.set_ylabel("y (m)")
-        ax.set_zlabel("z (m)")
+        cube_axes(ax, centre, span, (elev, azim))
     labels = ", ".join(f"{lab} ({COLOURS[k % len(COLOURS)].split(':')[1]})" for k, lab in enumerate(d.labels))
     fig.suptitle((title + "\n" if title else "") + labels, fontsize=9)
     fig.tight_layout()

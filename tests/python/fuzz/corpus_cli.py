@@ -5,7 +5,7 @@ outputs are checked when the command line is parsed)."""
 
 from __future__ import annotations
 
-from cases import BOX_URDF, MUG, cli, dumps, grasps_doc, run_folder
+from cases import BOX_URDF, DATA, MUG, cli, dumps, grasps_doc, run_folder
 
 LONG = "n" * 300  # a file name over 255 bytes
 NOT_UTF8 = "\udcff.json"  # what Python makes of the bytes b"\xff.json" in argv (surrogateescape)
@@ -30,6 +30,7 @@ BASE = {
     ),
     "execute": ("execute", "--object", BOX_URDF, "--grasps", "{tmp}/grasps.json"),
     "plot": ("plot", "--grasps", "{tmp}/grasps.json", "--png", "{tmp}/p.png"),
+    "hand": ("hand", "--urdf", str(DATA / "hands" / "wsg50.urdf")),
     "experiment": ("experiment", "--preset", "smoke", "--out", "{out}"),
     "benchmark": ("benchmark", "--limit", "1", "--out", "{out}"),
 }
@@ -195,6 +196,8 @@ def output_cases():
         ("demo", "--cloud-out", "c.pcd"),
         ("features", "--plot", "p.png"),
         ("plot", "--html", "p.html"),
+        ("hand", "--png", "p.png"),
+        ("demo", "--png", "p.png"),
     ):
         cases.append(
             cli(
@@ -226,7 +229,9 @@ def input_cases():
         ("demo", "--object"),
         ("demo", "--hand"),
         ("experiment", "--objects"),
+        ("experiment", "--model"),
         ("benchmark", "--objects"),
+        ("hand", "--urdf"),
     ]
     cases = []
     for i, (cmd, opt) in enumerate(opts):

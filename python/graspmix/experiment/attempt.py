@@ -9,6 +9,7 @@ import time
 from typing import Callable, Iterable
 
 from ..model import GraspModel
+from ..model.grasp_types import REFERENCE_EXPERT
 from ..sim import execute, rest_pose
 from ..sim.acquisition import Acquisition, acquire
 from .protocol import CLOSING, CONDITIONS, SUPPORT_PLANE, Protocol, protocol_from_json
@@ -85,6 +86,15 @@ def _failed(row: dict, error: Exception, t_synthesis: float) -> dict:
     return row
 
 
+def _executed_grasp(best) -> dict:
+    """The executed grasp as the log keeps it: its pose and joints, and its type when the model has several
+    (a one-type model's rows stay those of a single-demonstration model)."""
+    entry = best.to_dict(execution_only=True)
+    if REFERENCE_EXPERT in (best.experts or {}):
+        entry["type"] = best.type
+    return entry
+
+
 def _executed(row: dict, grasps, result, t_exec: float) -> dict:
     best, tm = grasps.best(), grasps.timing
     row.update(
@@ -93,7 +103,7 @@ def _executed(row: dict, grasps, result, t_exec: float) -> dict:
         lift_height=float(result.lift_height),
         contact_count=int(result.contact_count),
         log_likelihood=float(best["log_likelihood"]),
-        grasp=json.dumps(best.to_dict(execution_only=True), separators=(",", ":")),
+        grasp=json.dumps(_executed_grasp(best), separators=(",", ":")),
         evaluations=int(grasps.evaluations),
         rejected=int(grasps.rejected),
         t_features=tm["features"],

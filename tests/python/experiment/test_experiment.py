@@ -15,6 +15,7 @@ import numpy as np
 import pytest
 from graspmix import cli, sim
 from graspmix import experiment as ex
+from graspmix.experiment.log import read_rows
 from graspmix.experiment.stats import mean_ci, paired_ttest
 from scipy import stats as sps
 
@@ -509,3 +510,19 @@ def test_model_option_replaces_the_bundled_model_of_its_method(capsys):
     assert p.to_json()["models"]["gmm"]["file"] == model.name
     with pytest.raises(cli.common.CliError, match="is a gmm model, not one of --methods kde"):
         _protocol(parse(["experiment", "--out", "x", "--model", str(model), "--methods", "kde"]))
+
+
+def test_the_log_names_the_executed_grasp_type_of_a_model_of_several(tmp_path):
+    """A model of several grasp types logs which type was executed; the bundled one-type model's rows keep
+    the old grasp entry (pose and joints only)."""
+    objs = tmp_path / "objects.txt"
+    objs.write_text("cube_small.urdf\n")
+    rows = {}
+    for name, model in (("two", graspmix.data_path("models", "box_mug_side_wsg50_gmm.json")), ("one", None)):
+        argv = ["experiment", "--out", str(tmp_path / name), "--objects", str(objs), "--trials", "1"]
+        argv += ["--conditions", "A", "--methods", "gmm", "--quiet"]
+        assert cli.main(argv + (["--model", str(model)] if model else [])) == 0
+        rows[name] = read_rows(tmp_path / name / ex.CSV_NAME)[0]
+    two, one = (json.loads(rows[n]["grasp"]) for n in ("two", "one"))
+    assert two["type"] in {"box_wsg50", "mug_side_wsg50"}
+    assert list(one) == ["T_world_wrist", "pregrasp_joints", "grasp_joints"]

@@ -9,7 +9,7 @@ from pathlib import Path
 from ..io import SUMMARY_FORMAT, read_document, read_objects_file, test_objects
 from ..io.checks import MAX_SAMPLES
 from ..model.settings import METHODS, SynthesisOptions
-from .common import CliError, input_path, int_in, output_folder, seed, split_list
+from .common import CliError, float_in, input_path, int_in, output_folder, seed, split_list
 
 
 def _protocol(args):
@@ -20,13 +20,6 @@ def _protocol(args):
     objects = read_objects_file(args.objects) if args.objects else None
     if args.jobs < 1:
         raise CliError(f"--jobs must be at least 1, got {args.jobs}")
-    models = None
-    if args.model:
-        from ..model import GraspModel
-
-        models = {GraspModel.load(args.model).method: str(Path(args.model).resolve())}
-        if methods is not None and not set(models) & set(methods):
-            raise CliError(f"--model {args.model} is a {next(iter(models))} model, not one of --methods {args.methods}")
     return Protocol.preset(
         args.preset,
         objects=objects,
@@ -35,8 +28,26 @@ def _protocol(args):
         methods=methods,
         seed=args.seed,
         closing=args.closing,
-        models=models,
+        models=_models(args.model or [], methods),
+        query_components=args.query_components,
+        pixel_noise_std=args.pixel_noise,
+        depth_noise_std=args.depth_noise,
     )
+
+
+def _models(paths: list, methods) -> dict | None:
+    """--model files (repeatable, one per method) as method -> absolute path."""
+    from ..model import GraspModel
+
+    models = {}
+    for path in paths:
+        method = GraspModel.load(path).method
+        if method in models:
+            raise CliError(f"--model: two {method} models given ({models[method]} and {path})")
+        if methods is not None and method not in methods:
+            raise CliError(f"--model {path} is a {method} model, not one of --methods {','.join(methods)}")
+        models[method] = str(Path(path).resolve())
+    return models or None
 
 
 def run_options(args: argparse.Namespace) -> dict:
@@ -107,17 +118,42 @@ def cmd_benchmark(args: argparse.Namespace) -> int:
     return 0
 
 
-def add_parsers(sub) -> None:
-    s = sub.add_parser(
-        "experiment", help="the paper's experiment: conditions A-D, GMM vs KDE, success rates, t-tests, runtimes"
-    )
-    s.add_argument(
-        "--out",
-        type=output_folder,
-        required=True,
-        help="run folder (e.g. runs/NAME): attempts.csv, protocol.json, summary.json, "
-        "report.md/html; running again into it resumes",
-    )
+def _vary(text: str) -> tuple:
+    """--vary NAME=V1,V2,...: a sweep parameter and its values (ints for counts, else floats)."""
+    from ..experiment.sweep import PARAMETERS
+
+    name, sep, values = text.partition("=")
+    if not sep or name not in PARAMETERS:
+        raise argparse.ArgumentTypeError(
+            f"expected NAME=V1,V2,... with NAME one of {', '.join(PARAMETERS)}, got {text!r}"
+        )
+    cast = int if name in ("n_components", "query_components", "query_samples", "n_samples") else float
+    try:
+        return name, [cast(v) for v in values.split(",") if v.strip()]
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"--vary {name}: expected {cast.__name__} values, got {values!r}") from None
+
+
+def cmd_sweep(args: argparse.Namespace) -> int:
+    from ..experiment.sweep import SWEEP_NAME, Sweep, run_sweep
+
+    if not args.vary:
+        raise CliError("give at least one --vary NAME=V1,V2,...")
+    params = dict(args.vary)
+    if len(params) != len(args.vary):
+        raise CliError("--vary: a parameter is given twice")
+    sweep = Sweep(_protocol(args), params)
+    result = run_sweep(sweep, args.out, **run_options(args))
+    for name, entry in result["parameters"].items():
+        for m, me in entry["methods"].items():
+            cells = ", ".join(f"{p['value']:g}: {100 * p['mean']:.1f}%" for p in me["points"])
+            print(f"{name} ({m}, default {entry['default']:g}): {cells}; best {me['best']:g}")
+    print(f"wrote {Path(args.out) / SWEEP_NAME} and {Path(args.out) / 'sweep.png'}")
+    return 0
+
+
+def _add_run_options(s) -> None:
+    """The options the experiment and the sweep share: the protocol's and how to run it."""
     s.add_argument(
         "--preset",
         choices=["smoke", "paper"],
@@ -135,7 +171,24 @@ def add_parsers(sub) -> None:
     s.add_argument(
         "--model",
         type=input_path,
-        help="a learnt model file (graspmix_cli learn): it replaces the bundled model of its method (gmm or kde)",
+        action="append",
+        help="a learnt model file (graspmix_cli learn): it replaces the bundled model of its method (gmm or kde); "
+        "give it twice for both methods",
+    )
+    s.add_argument(
+        "--query-components",
+        type=int_in(1, MAX_SAMPLES),
+        help=f"K_Q of GMM's query densities (default {SynthesisOptions.query_components})",
+    )
+    s.add_argument(
+        "--pixel-noise",
+        type=float_in(0.0),
+        help="sigma_p of the noise model, pixels (default: the paper's; 0: depth noise only)",
+    )
+    s.add_argument(
+        "--depth-noise",
+        type=float_in(0.0),
+        help="sigma_d of the noise model, m (default: the paper's; 0: lateral shift only)",
     )
     s.add_argument("--seed", type=seed, default=None, help="base of every derived seed (default 0)")
     s.add_argument(
@@ -154,7 +207,39 @@ def add_parsers(sub) -> None:
     )
     s.add_argument("--ray-address", help="address of a running Ray cluster (default: start a local one)")
     s.add_argument("--quiet", action="store_true", help="no progress bar")
+
+
+def add_parsers(sub) -> None:
+    s = sub.add_parser(
+        "experiment", help="the paper's experiment: conditions A-D, GMM vs KDE, success rates, t-tests, runtimes"
+    )
+    s.add_argument(
+        "--out",
+        type=output_folder,
+        required=True,
+        help="run folder (e.g. runs/NAME): attempts.csv, protocol.json, summary.json, "
+        "report.md/html; running again into it resumes",
+    )
+    _add_run_options(s)
     s.set_defaults(func=cmd_experiment)
+
+    s = sub.add_parser(
+        "sweep",
+        help="success against each method's own settings, varied one at a time on a development list of objects",
+    )
+    s.add_argument(
+        "--out", type=output_folder, required=True, help="sweep folder: one experiment folder a value, sweep.json/png"
+    )
+    s.add_argument(
+        "--vary",
+        type=_vary,
+        action="append",
+        help="NAME=V1,V2,...: a setting and its values (repeat for more settings); names: n_components, "
+        "kde_position_bandwidth, kde_orientation_bandwidth, kde_feature_bandwidth, query_components, "
+        "query_samples, n_samples, pixel_noise_std, depth_noise_std",
+    )
+    _add_run_options(s)
+    s.set_defaults(func=cmd_sweep)
 
     s = sub.add_parser("report", help="rebuild summary.json and report.md/html of an experiment folder from its CSV")
     s.add_argument("run", type=input_path, help="the experiment folder")

@@ -49,7 +49,16 @@ def cmd_demo(args: argparse.Namespace) -> int:
 def cmd_learn(args: argparse.Namespace) -> int:
     t0 = time.perf_counter()
     demos = args.demo or [str(data_path("demos", "box_wsg50.json"))]
-    model = learn(demos, args.method, n_components=args.components, seed=args.seed, max_distance=args.max_distance)
+    model = learn(
+        demos,
+        args.method,
+        n_components=args.components,
+        kde_position_bandwidth=args.kde_position_bandwidth,
+        kde_orientation_bandwidth=args.kde_orientation_bandwidth,
+        kde_feature_bandwidth=args.kde_feature_bandwidth,
+        seed=args.seed,
+        max_distance=args.max_distance,
+    )
     model.save(args.out)
     print(f"learnt a {model.method} model of {len(model.types)} grasp type(s) in {time.perf_counter() - t0:.2f} s")
     for t in model.types:
@@ -142,6 +151,7 @@ def cmd_synthesize(args: argparse.Namespace) -> int:
         remove_plane=not args.no_plane,
         approach_axis=axis,
         query_samples=args.query_samples,
+        query_components=args.query_components,
         collision=args.collision,
         types=args.types,
     )
@@ -222,6 +232,24 @@ def _add_learn(sub) -> None:
         help="K of the contact mixtures (GMM)",
     )
     s.add_argument(
+        "--kde-position-bandwidth",
+        type=float_in(gt=0.0),
+        default=LearnSettings.kde_position_bandwidth,
+        help=f"m: std of KDE's position kernels ({LearnSettings.kde_position_bandwidth})",
+    )
+    s.add_argument(
+        "--kde-orientation-bandwidth",
+        type=float_in(gt=0.0),
+        default=LearnSettings.kde_orientation_bandwidth,
+        help=f"rad: std of KDE's rotation kernels ({LearnSettings.kde_orientation_bandwidth})",
+    )
+    s.add_argument(
+        "--kde-feature-bandwidth",
+        type=float_in(gt=0.0),
+        default=LearnSettings.kde_feature_bandwidth,
+        help=f"std of KDE's curvature kernels ({LearnSettings.kde_feature_bandwidth})",
+    )
+    s.add_argument(
         "--max-distance",
         type=float_in(gt=0.0),
         default=LearnSettings.max_distance,
@@ -267,6 +295,12 @@ def _add_synthesize(sub) -> None:
         type=int_in(1, MAX_SAMPLES),
         default=o.query_samples,
         help="samples per link for the query densities",
+    )
+    s.add_argument(
+        "--query-components",
+        type=int_in(1, MAX_SAMPLES),
+        default=o.query_components,
+        help=f"K_Q of GMM's query densities ({o.query_components})",
     )
     s.add_argument(
         "--approach-axis", help="prefer wrists approaching along this world axis, e.g. 0,0,-1 for top grasps"

@@ -51,6 +51,7 @@ def synthesize_on(model: GraspModel, acq: Acquisition, p: Protocol, seed: int, o
         plane=list(SUPPORT_PLANE),
         viewpoints=acq.viewpoints,
         query_samples=p.query_samples,
+        query_components=p.query_components,
         table_clearance=p.min_height,
         annealing={"iterations": p.annealing_iterations, "initial_temperature": p.initial_temperature},
     )
@@ -161,7 +162,9 @@ def run_unit(protocol: dict, unit: tuple, todo: Iterable[tuple] | None = None) -
     acq_seed = p.acquisition_seed(obj, trial)
     keys = _unit_order(p, keys, acq_seed)
     t0 = time.perf_counter()
-    acq = acquire(obj, noise=noise, seed=acq_seed, postprocess=crop_above_plane(p.min_height))
+    acq = acquire(
+        obj, noise=noise, seed=acq_seed, settings=p.acquisition_settings(), postprocess=crop_above_plane(p.min_height)
+    )
     t_acq = time.perf_counter() - t0
     pose = rest_pose(obj)
     return [

@@ -13,9 +13,11 @@ from ..io import PROTOCOL_FORMAT, read_document, resolve_object, sha256_file, te
 from ..io.checks import MAX_ITERATIONS, MAX_SAMPLES, check_float, check_int, check_seed, quote
 from ..model import default_model_path
 from ..model.settings import METHODS, SynthesisOptions
+from ..sim.acquisition import AcquisitionSettings
 from ..sim.execution import CLOSING  # how an executed grasp closes: one definition for every caller
 
 _ANNEALING = _core.AnnealingSettings()  # the C++ defaults, the single source
+_ACQUISITION = AcquisitionSettings()
 
 PROTOCOL_NAME = "protocol.json"
 
@@ -61,6 +63,11 @@ class Protocol:
     annealing_iterations: int = _ANNEALING.iterations  # the paper's 100
     initial_temperature: float = _ANNEALING.initial_temperature  # the paper's 1.0, linear decay
     query_samples: int = SynthesisOptions.query_samples  # N_Q samples per link for the query densities
+    query_components: int = SynthesisOptions.query_components  # K_Q of GMM's query densities
+    # The noise model of the conditions with noise (eq:noise_model): sigma_p, the lateral shift in pixels, and
+    # sigma_d, the depth noise in metres; setting one to 0 leaves the other part alone.
+    pixel_noise_std: float = _ACQUISITION.pixel_noise_std
+    depth_noise_std: float = _ACQUISITION.depth_noise_std
     # m: points at most this high above the support plane z = 0 are the table: the acquisition's clean-up
     # drops them and the synthesis is given the same table clearance.
     min_height: float = SynthesisOptions.table_clearance
@@ -89,6 +96,9 @@ class Protocol:
         self._validate_lists()
         for name in ("n_samples", "n_optimise", "query_samples"):
             check_int(getattr(self, name), name, 1, MAX_SAMPLES)
+        check_int(self.query_components, "query_components", 1, self.query_samples)
+        check_float(self.pixel_noise_std, "pixel_noise_std", 0.0)
+        check_float(self.depth_noise_std, "depth_noise_std", 0.0)
         check_int(self.annealing_iterations, "annealing_iterations", 1, MAX_ITERATIONS)
         check_float(self.initial_temperature, "initial_temperature", gt=0.0)
         check_float(self.min_height, "min_height")
@@ -150,6 +160,10 @@ class Protocol:
         }
         d["condition_definitions"] = {c: dataclasses.asdict(CONDITIONS[c]) for c in self.conditions}
         return d
+
+    def acquisition_settings(self) -> AcquisitionSettings:
+        """The cameras and the noise model of the acquisitions (the cameras are always the default ring)."""
+        return AcquisitionSettings(pixel_noise_std=self.pixel_noise_std, depth_noise_std=self.depth_noise_std)
 
     # -- the work
     def units(self) -> list[tuple[str, int, bool]]:

@@ -240,6 +240,7 @@ class GraspModel:
         reachable: Callable | None = None,
         experts: Iterable = (),
         query_samples: int = _S.query_samples,
+        query_components: int = _S.query_components,
         kinematic: bool = _S.kinematic,
         clear_pregrasp: bool = _S.clear_pregrasp,
         collision_beta: float = _S.collision_beta,
@@ -304,7 +305,7 @@ class GraspModel:
         s.n_samples, s.n_optimise, s.optimise, s.seed = opts.n_samples, opts.n_optimise, opts.optimise, opts.seed
         s.clear_pregrasp = opts.clear_pregrasp
         q = s.query
-        q.n_samples = opts.query_samples
+        q.n_samples, q.n_components = opts.query_samples, opts.query_components
         q.kde_bandwidths = (
             self.learn_settings.get("kde_position_bandwidth", _L.kde_position_bandwidth),
             self.learn_settings.get("kde_orientation_bandwidth", _L.kde_orientation_bandwidth),
@@ -363,6 +364,11 @@ def _synthesis_options(args: dict) -> SynthesisOptions:
     check_int(v["n_samples"], "n_samples", 1, MAX_SAMPLES)
     check_int(v["n_optimise"], "n_optimise", 0, MAX_SAMPLES)
     check_int(v["query_samples"], "query_samples", 1, MAX_SAMPLES)
+    check_int(v["query_components"], "query_components", 1, MAX_COMPONENTS)
+    if v["query_components"] > v["query_samples"]:
+        raise ValueError(
+            f"query_components ({v['query_components']}) must not exceed query_samples ({v['query_samples']})"
+        )
     check_seed(v["seed"])
     for name in ("approach_concentration", "collision_beta", "contact_tolerance", "collision_inside_weight"):
         check_float(v[name], name, 0.0)

@@ -95,6 +95,7 @@ class SynthesisOptions:
     remove_plane: bool = _SCENE.remove_plane  # find and remove the support plane by RANSAC
     approach_concentration: float = _AXIS.concentration  # log E = concentration (cos - 1)
     query_samples: int = _SYNTHESIS.query.n_samples  # N_Q samples per link for the query densities
+    query_components: int = _SYNTHESIS.query.n_components  # K_Q of the GMM query densities (KDE: unused)
     kinematic: bool = True
     clear_pregrasp: bool = _SYNTHESIS.clear_pregrasp
     collision_beta: float = _COLLISION.beta  # 1/m: log W = -beta * depth

@@ -1,0 +1,179 @@
+"""How sensitive each method's success is to its own settings: one experiment per setting value, varied one at
+a time around the defaults, on a development list of objects (never the objects a result is reported on).
+
+    sweep = Sweep(Protocol(objects=dev, trials=3, conditions=["A", "B"]),
+                  {"n_components": [1, 2, 3], "kde_position_bandwidth": [0.0025, 0.005, 0.01]})
+    result = run_sweep(sweep, "runs/sweep", jobs=2)     # sweep.json, sweep.png; one experiment folder a value
+
+A learning setting (K of GMM's contact mixtures, KDE's kernel bandwidths) gets a model learnt from the
+protocol's demonstration with that value (the bundled box demonstration unless the protocol names models); a
+synthesis or acquisition setting (K_Q, N_Q, the noise model...) is a field of the protocol. Each parameter
+runs only for the methods it belongs to; the defaults run once, for every method. All variants share the
+protocol's seeds, so their differences are paired (the same clouds and synthesis seeds).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+from dataclasses import dataclass
+from pathlib import Path
+
+from ..io import data_path
+from ..io.checks import MAX_COMPONENTS, check_float, check_int, quote
+from ..model.settings import METHOD_LABELS, METHODS, LearnSettings
+from .protocol import CONDITIONS, Protocol
+from .stats import clustered_rate
+
+SWEEP_NAME = "sweep.json"
+DEFAULTS = "defaults"
+DEMONSTRATION = ("demos", "box_wsg50.json")  # the bundled models' demonstration (scripts/make_example_data.py)
+
+# What each sweepable setting belongs to: (methods it changes, "learn" or "protocol").
+PARAMETERS = {
+    "n_components": (("gmm",), "learn"),
+    "kde_position_bandwidth": (("kde",), "learn"),
+    "kde_orientation_bandwidth": (("kde",), "learn"),
+    "kde_feature_bandwidth": (("kde",), "learn"),
+    "query_components": (("gmm",), "protocol"),
+    "query_samples": (METHODS, "protocol"),
+    "n_samples": (METHODS, "protocol"),
+    "pixel_noise_std": (METHODS, "protocol"),
+    "depth_noise_std": (METHODS, "protocol"),
+}
+
+
+@dataclass
+class Sweep:
+    base: Protocol  # the objects (a development list), trials, conditions and methods; its values are the defaults
+    parameters: dict  # name -> values, each varied alone with every other setting at its default
+
+    def __post_init__(self):
+        if not isinstance(self.parameters, dict) or not self.parameters:
+            raise ValueError("a sweep needs at least one parameter with values")
+        for name, values in self.parameters.items():
+            if name not in PARAMETERS:
+                raise ValueError(f"unknown sweep parameter {quote(name)} (known: {', '.join(PARAMETERS)})")
+            if not isinstance(values, (list, tuple)) or not values:
+                raise ValueError(f"sweep parameter {name}: no values")
+            if not set(PARAMETERS[name][0]) & set(self.base.methods):
+                raise ValueError(f"sweep parameter {name} belongs to {','.join(PARAMETERS[name][0])}, not run here")
+            for v in values:
+                self.variant_protocol(name, v, Path("."), check_only=True)  # bad values fail before any work
+
+    def default_value(self, name: str):
+        methods, kind = PARAMETERS[name]
+        return getattr(LearnSettings, name) if kind == "learn" else getattr(self.base, name)
+
+    def variants(self) -> list[tuple[str, object]]:
+        """(parameter, value) pairs to run, the defaults first as (DEFAULTS, None); a value equal to the
+        default is the defaults' run."""
+        out = [(DEFAULTS, None)]
+        for name, values in self.parameters.items():
+            out += [(name, v) for v in values if v != self.default_value(name)]
+        return out
+
+    def variant_protocol(self, name: str, value, models_dir: Path, check_only: bool = False) -> Protocol:
+        """The protocol of one variant: its methods, and its protocol field or its learnt model."""
+        if name == DEFAULTS:
+            return self.base
+        methods, kind = PARAMETERS[name]
+        run_methods = [m for m in self.base.methods if m in methods]
+        if kind == "protocol":
+            return dataclasses.replace(self.base, methods=run_methods, **{name: value})
+        if name == "n_components":
+            check_int(value, name, 1, MAX_COMPONENTS)
+        else:
+            check_float(value, name, gt=0.0)
+        if check_only:
+            return self.base
+        from ..model import GraspModel
+
+        models = dict(self.base.models)
+        for m in run_methods:
+            path = models_dir / f"{m}_{name}={value}.json"
+            if not path.is_file():
+                GraspModel.learn(str(self._demonstration()), m, **{name: value}).save(path)
+            models[m] = str(path.resolve())
+        return dataclasses.replace(self.base, methods=run_methods, models=models)
+
+    def _demonstration(self) -> Path:
+        if self.base.models:
+            raise ValueError("a sweep of learning settings learns from the bundled demonstration: give no models")
+        return data_path(*DEMONSTRATION)
+
+
+def variant_folder(name: str, value) -> str:
+    return DEFAULTS if name == DEFAULTS else f"{name}={value}"
+
+
+def run_sweep(sweep: Sweep, out: str | Path, **run_options) -> dict:
+    """Runs (or resumes) every variant's experiment into out/<parameter>=<value>/ and writes out/sweep.json
+    and out/sweep.png; returns the sweep.json content. run_options: experiment.run's keywords."""
+    from .runner import run
+
+    out = Path(out)
+    (out / "models").mkdir(parents=True, exist_ok=True)
+    variants = sweep.variants()
+    for i, (name, value) in enumerate(variants):
+        if run_options.get("progress", True):
+            print(f"sweep {i + 1}/{len(variants)}: {variant_folder(name, value)}", flush=True)
+        run(sweep.variant_protocol(name, value, out / "models"), out / variant_folder(name, value), **run_options)
+    result = summarize_sweep(sweep, out)
+    (out / SWEEP_NAME).write_text(json.dumps(result, indent=1) + "\n")
+    from ..viz.sweep import plot_sweep
+
+    plot_sweep(result, out / "sweep.png")
+    return result
+
+
+def _rates(run_dir: Path, conditions, methods) -> dict:
+    """condition -> method -> {rate, ci_low, ci_high, successes, attempts} from an experiment's CSV: the
+    objects are the clusters of the interval (an object's trials are not independent)."""
+    from .log import read_rows
+
+    rows = read_rows(run_dir / "attempts.csv")
+    out = {}
+    for c in conditions:
+        for m in methods:
+            per_obj: dict = {}
+            for r in rows:
+                if r["condition"] == c and r["method"] == m:
+                    s, n = per_obj.get(r["object"], (0, 0))
+                    per_obj[r["object"]] = (s + int(r["success"]), n + 1)
+            if per_obj:
+                ci = clustered_rate([v[0] for v in per_obj.values()], [v[1] for v in per_obj.values()])
+                out.setdefault(c, {})[m] = dict(
+                    rate=ci.rate, ci_low=ci.low, ci_high=ci.high, successes=ci.successes, attempts=ci.trials
+                )
+    return out
+
+
+def summarize_sweep(sweep: Sweep, out: Path) -> dict:
+    """Per parameter and method: each value's success per condition (with the defaults' run at the default
+    value), and the value with the highest mean success over the conditions (ties: the default)."""
+    conds, base = sweep.base.conditions, sweep.base.methods
+    default_rates = _rates(out / DEFAULTS, conds, base)
+    params = {}
+    for name, values in sweep.parameters.items():
+        methods = [m for m in base if m in PARAMETERS[name][0]]
+        default = sweep.default_value(name)
+        entry = {"default": default, "methods": {}}
+        for m in methods:
+            points = []
+            for v in sorted(set(values) | {default}):
+                folder = out / variant_folder(DEFAULTS if v == default else name, v)
+                rates = default_rates if v == default else _rates(folder, conds, [m])
+                per_cond = {c: rates[c][m] for c in conds if c in rates and m in rates[c]}
+                mean = sum(e["rate"] for e in per_cond.values()) / max(len(per_cond), 1)
+                points.append({"value": v, "mean": mean, "conditions": per_cond})
+            best = max(points, key=lambda p: (round(p["mean"], 9), p["value"] == default))
+            entry["methods"][m] = {"points": points, "best": best["value"]}
+        params[name] = entry
+    return {
+        "objects": list(sweep.base.objects),
+        "trials": sweep.base.trials,
+        "conditions": {c: CONDITIONS[c].description for c in conds},
+        "methods": {m: METHOD_LABELS[m] for m in base},
+        "parameters": params,
+    }

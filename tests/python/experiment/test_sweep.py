@@ -1,0 +1,123 @@
+"""The protocol's noise parts and K_Q, and the settings sweep: variants, learnt models, sweep.json, bad input."""
+
+import json
+
+import graspmix
+import numpy as np
+import pytest
+from graspmix import cli
+from graspmix import experiment as ex
+from graspmix.experiment.sweep import DEFAULTS, Sweep, run_sweep
+from graspmix.sim.acquisition import acquire
+
+
+def test_the_noise_parts_reach_the_acquisition():
+    """sigma_p = 0 leaves the depth noise alone (every pixel keeps its depth plus N(0, sigma_d)); sigma_d = 0
+    the lateral shift alone (every noisy depth is a depth of the clean image)."""
+    clean = acquire("cube_small.urdf", noise=False, seed=5)
+    depth_only = ex.Protocol(objects=["cube_small.urdf"], pixel_noise_std=0.0).acquisition_settings()
+    lateral_only = ex.Protocol(objects=["cube_small.urdf"], depth_noise_std=0.0).acquisition_settings()
+    d = acquire("cube_small.urdf", noise=True, seed=5, settings=depth_only)
+    lat = acquire("cube_small.urdf", noise=True, seed=5, settings=lateral_only)
+    for c, dn, ln in zip(clean.depth_images, d.depth_images, lat.depth_images):
+        finite = np.isfinite(c)
+        assert np.all(np.isfinite(dn) == finite)
+        residual = dn[finite] - c[finite]
+        assert residual.std() == pytest.approx(depth_only.depth_noise_std, rel=0.05)
+        assert abs(residual.mean()) < 1e-4
+        ok = np.isfinite(ln)
+        assert np.all(np.isin(ln[ok], c[np.isfinite(c)]))
+        assert np.any(ln[ok] != c[ok])  # the shift moved some edges
+
+
+def test_protocol_rejects_bad_noise_and_query_components():
+    for kw, match in (
+        (dict(pixel_noise_std=-1.0), "pixel_noise_std"),
+        (dict(depth_noise_std=float("nan")), "depth_noise_std"),
+        (dict(query_components=0), "query_components"),
+        (dict(query_components=600, query_samples=500), "query_components"),
+    ):
+        with pytest.raises(ValueError, match=match):
+            ex.Protocol(objects=["cube_small.urdf"], **kw)
+
+
+def test_query_components_change_gmm_and_not_kde():
+    """K_Q shapes GMM's query densities; KDE's have no components, so its grasps stay the same."""
+    cloud = graspmix.data_path("mug.pcd")
+    kw = dict(n_samples=40, n_optimise=2, seed=3)
+    for method, same in (("gmm", False), ("kde", True)):
+        model = graspmix.GraspModel.load(graspmix.default_model_path(method))
+        a = model.synthesize(cloud, query_components=1, **kw).grasps
+        b = model.synthesize(cloud, query_components=8, **kw).grasps
+        poses = [np.array([g["T_world_wrist"] for g in x]) for x in (a, b)]
+        assert (poses[0].shape == poses[1].shape and np.allclose(*poses)) == same, method
+    with pytest.raises(ValueError, match="query_components"):
+        model.synthesize(cloud, query_components=50, query_samples=20, **kw)
+
+
+def base_protocol(**kw):
+    p = dict(objects=["cube_small.urdf"], trials=1, conditions=["C"], methods=["gmm"], n_samples=30)
+    p.update(kw)
+    return ex.Protocol(**p)
+
+
+def test_sweep_variants_and_bad_input():
+    s = Sweep(base_protocol(methods=["gmm", "kde"]), {"n_components": [1, 2, 3], "kde_position_bandwidth": [0.01]})
+    assert s.variants() == [
+        (DEFAULTS, None),
+        ("n_components", 1),
+        ("n_components", 3),
+        ("kde_position_bandwidth", 0.01),
+    ]
+    for params, match in (
+        ({"colour": [1]}, "unknown sweep parameter"),
+        ({"n_components": []}, "no values"),
+        ({"n_components": [0]}, "n_components"),
+        ({"kde_feature_bandwidth": [-0.1]}, "kde_feature_bandwidth"),
+        ({"query_components": [1000]}, "query_components"),
+        ({"pixel_noise_std": [float("nan")]}, "pixel_noise_std"),
+    ):
+        with pytest.raises(ValueError, match=match):
+            Sweep(base_protocol(methods=["gmm", "kde"]), params)
+    with pytest.raises(ValueError, match="belongs to kde"):
+        Sweep(base_protocol(), {"kde_position_bandwidth": [0.01]})
+    with pytest.raises(ValueError, match="at least one parameter"):
+        Sweep(base_protocol(), {})
+
+
+def test_a_small_sweep_learns_models_runs_each_value_and_summarises(tmp_path):
+    s = Sweep(base_protocol(), {"n_components": [1, 2], "query_components": [2]})
+    res = run_sweep(s, tmp_path / "sw", jobs=1, progress=False)
+    assert sorted(p.name for p in (tmp_path / "sw").iterdir() if p.is_dir()) == [
+        DEFAULTS, "models", "n_components=1", "query_components=2"
+    ]  # fmt: skip
+    learnt = graspmix.GraspModel.load(tmp_path / "sw" / "models" / "gmm_n_components=1.json")
+    assert learnt.learn_settings["n_components"] == 1
+    proto = json.loads((tmp_path / "sw" / "query_components=2" / ex.PROTOCOL_NAME).read_text())["protocol"]
+    assert proto["query_components"] == 2 and proto["methods"] == ["gmm"]
+    entry = res["parameters"]["n_components"]
+    assert entry["default"] == 2 and [p["value"] for p in entry["methods"]["gmm"]["points"]] == [1, 2]
+    for p in entry["methods"]["gmm"]["points"]:
+        c = p["conditions"]["C"]
+        assert c["attempts"] == 1 and c["rate"] in (0.0, 1.0) and c["ci_low"] <= c["rate"] <= c["ci_high"]
+    assert entry["methods"]["gmm"]["best"] in (1, 2)
+    assert json.loads((tmp_path / "sw" / "sweep.json").read_text()) == res
+    assert (tmp_path / "sw" / "sweep.png").stat().st_size > 0
+    again = run_sweep(s, tmp_path / "sw", jobs=1, progress=False)  # resumes: nothing left to run
+    assert again == res
+
+
+@pytest.mark.parametrize(
+    "argv, match",
+    [
+        (["--vary", "colour=1,2"], "expected NAME=V1,V2"),
+        (["--vary", "n_components=a"], "expected int values"),
+        ([], "at least one --vary"),
+        (["--vary", "n_components=1", "--vary", "n_components=2"], "given twice"),
+        (["--vary", "kde_position_bandwidth=0.01", "--methods", "gmm"], "belongs to kde"),
+    ],
+)
+def test_sweep_cli_bad_input(tmp_path, capsys, argv, match):
+    assert cli.main(["sweep", "--out", str(tmp_path / "s"), "--preset", "smoke", *argv]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert match in err[-1]

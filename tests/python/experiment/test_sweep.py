@@ -121,3 +121,41 @@ def test_sweep_cli_bad_input(tmp_path, capsys, argv, match):
     assert cli.main(["sweep", "--out", str(tmp_path / "s"), "--preset", "smoke", *argv]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert match in err[-1]
+
+
+# ---- comparisons across runs -------------------------------------------------------------------
+
+
+def synthetic_rows(success: np.ndarray, condition="A", method="gmm", reasons=None):
+    """Rows of a (trials, objects) success matrix."""
+    rows = []
+    for t in range(success.shape[0]):
+        for o in range(success.shape[1]):
+            s = int(success[t, o])
+            reason = (reasons or {}).get((t, o), "success" if s else "not held")
+            rows.append(dict(object=f"o{o}", trial=t, condition=condition, method=method, success=s, reason=reason))
+    return rows
+
+
+def test_differences_are_the_paired_tests_over_trials_and_objects():
+    from graspmix.experiment.compare import cell, difference, outcome_shares
+    from scipy import stats as sps
+
+    rng = np.random.default_rng(4)
+    a_m = (rng.random((6, 9)) < 0.8).astype(int)
+    b_m = (rng.random((6, 9)) < 0.6).astype(int)
+    a = cell(synthetic_rows(a_m), "A", "gmm")
+    b = cell(synthetic_rows(b_m, reasons={(0, 0): "start in collision"}), "A", "gmm")
+    d = difference(a, b)
+    assert d.difference == pytest.approx(a_m.mean() - b_m.mean())
+    assert d.trials["p"] == pytest.approx(sps.ttest_rel(a_m.mean(1), b_m.mean(1)).pvalue)
+    assert d.objects["p"] == pytest.approx(sps.ttest_rel(a_m.mean(0), b_m.mean(0)).pvalue)
+    shares = outcome_shares(b)
+    assert sum(shares.values()) == pytest.approx(1.0) and shares["success"] == pytest.approx(b_m.mean())
+    assert "start in collision" in shares or b_m[0, 0] == 1
+    with pytest.raises(ValueError, match="not paired"):
+        difference(a, cell(synthetic_rows(b_m[:, :5]), "A", "gmm"))
+    with pytest.raises(ValueError, match="attempts missing"):
+        cell(synthetic_rows(a_m)[1:], "A", "gmm")
+    with pytest.raises(ValueError, match="no attempts"):
+        cell(synthetic_rows(a_m), "B", "gmm")

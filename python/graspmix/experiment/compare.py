@@ -1,0 +1,80 @@
+"""Comparisons across experiment runs that share objects, trials and seeds: one setting varied at a time.
+
+A cell is (run folder, condition, method). Two cells compare by the paper's test (a two-tailed paired t-test
+over the trials of the per-trial success rates, scipy.stats.ttest_rel) and, since the objects are the larger
+sample, by a paired t-test over the objects of their success rates averaged over the trials. Runs of one
+protocol but for one setting (`graspmix_cli experiment --pixel-noise 0`, a model learnt with other settings)
+share the acquisition and synthesis seeds, so the pairs differ in that setting alone.
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from dataclasses import asdict, dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .log import CSV_NAME, read_rows
+from .stats import paired_ttest
+
+
+@dataclass(frozen=True)
+class Cell:
+    """The successes of one condition and method in a run: (trials, objects) 0/1, and the outcome counts."""
+
+    success: np.ndarray
+    objects: tuple
+    reasons: dict
+
+    @property
+    def rate(self) -> float:
+        return float(self.success.mean())
+
+
+def load_rows(run_dir: str | Path) -> list[dict]:
+    return read_rows(Path(run_dir) / CSV_NAME)
+
+
+def cell(rows: list[dict], condition: str, method: str) -> Cell:
+    """The (trials, objects) success matrix of a condition and method; ValueError if an attempt is missing
+    (a comparison of incomplete runs would pair unlike things)."""
+    sel = [r for r in rows if r["condition"] == condition and r["method"] == method]
+    if not sel:
+        raise ValueError(f"no attempts of condition {condition} and method {method}")
+    objects = tuple(sorted({r["object"] for r in sel}))
+    trials = sorted({r["trial"] for r in sel})
+    m = np.full((len(trials), len(objects)), -1, dtype=int)
+    oi, ti = {o: i for i, o in enumerate(objects)}, {t: i for i, t in enumerate(trials)}
+    for r in sel:
+        m[ti[r["trial"]], oi[r["object"]]] = int(r["success"])
+    if np.any(m < 0):
+        raise ValueError(f"condition {condition}, method {method}: {int(np.sum(m < 0))} attempts missing")
+    return Cell(m, objects, dict(Counter(r["reason"] for r in sel)))
+
+
+@dataclass(frozen=True)
+class Difference:
+    """a - b in success rate (fraction): the paper's test over trials and the test over objects."""
+
+    difference: float
+    trials: dict  # PairedTTest over the trials' rates
+    objects: dict  # PairedTTest over the objects' rates (mean over trials)
+
+    def to_dict(self) -> dict:
+        return asdict(self)
+
+
+def difference(a: Cell, b: Cell) -> Difference:
+    """a - b, paired by trial and by object; the cells must cover the same objects and trials."""
+    if a.objects != b.objects or a.success.shape != b.success.shape:
+        raise ValueError("the two cells cover different objects or trials: not paired")
+    by_trial = paired_ttest(a.success.mean(axis=1), b.success.mean(axis=1)).to_dict()
+    by_object = paired_ttest(a.success.mean(axis=0), b.success.mean(axis=0)).to_dict()
+    return Difference(a.rate - b.rate, by_trial, by_object)
+
+
+def outcome_shares(c: Cell) -> dict:
+    """reason -> share of the cell's attempts."""
+    n = c.success.size
+    return {k: v / n for k, v in sorted(c.reasons.items(), key=lambda kv: -kv[1])}

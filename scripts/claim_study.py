@@ -1,0 +1,144 @@
+#!/usr/bin/env python3
+"""Renders the tables of docs/paper-claim.md from the runs in results/, between markers
+
+    <!-- NAME:begin -->
+    <!-- NAME:end -->
+
+(NAME: claim, sweep, fair, noise, failures), so the page's numbers come from runs, never from a hand.
+
+    python scripts/claim_study.py [--results results] [--doc docs/paper-claim.md]
+
+Reads results/paper (the paper protocol), results/noise-study/{lateral-only,depth-only} (conditions B, D with
+one part of the noise model), results/sweep/sweep.json (the settings sweep on the development objects) and,
+if present, results/paper-fair (the paper protocol with the settings the sweep chose).
+"""
+
+from __future__ import annotations
+
+import argparse
+import gzip
+import json
+import re
+import sys
+import tempfile
+from pathlib import Path
+
+from graspmix.experiment.compare import Cell, cell, difference, outcome_shares
+from graspmix.experiment.log import read_rows
+from graspmix.experiment.report import findings_table, md_table
+
+NOISE_RUNS = {"lateral only": "noise-study/lateral-only", "depth only": "noise-study/depth-only"}
+REASONS = ("success", "start in collision", "no contact", "not held", "slipped")
+
+
+def rows_of(run: Path) -> list[dict]:
+    """attempts.csv of a run folder, or its gzipped copy (results/ keeps them gzipped)."""
+    if (run / "attempts.csv").is_file():
+        return read_rows(run / "attempts.csv")
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "attempts.csv"
+        path.write_bytes(gzip.decompress((run / "attempts.csv.gz").read_bytes()))
+        return read_rows(path)
+
+
+def pct(x: float) -> str:
+    return f"{100 * x:.1f}%"
+
+
+def diff_text(d) -> str:
+    t, o = d.trials, d.objects
+    return f"{100 * d.difference:+.1f} (p {t['p']:.2g} / {o['p']:.2g})"
+
+
+def claim_block(results: Path) -> str:
+    s = json.loads((results / "paper" / "summary.json").read_text())
+    return md_table(findings_table(s))
+
+
+def noise_block(results: Path) -> str:
+    """Per noise setting and optimisation: each method's success, GMM - KDE, and each method's cost of the
+    noise against the same trials without noise (paired; p over trials / over objects)."""
+    paper = rows_of(results / "paper")
+    runs = {"none": (paper, "A", "C"), "lateral + depth (the paper's)": (paper, "B", "D")}
+    for label, folder in NOISE_RUNS.items():
+        if (results / folder).is_dir():
+            runs[label] = (rows_of(results / folder), "B", "D")
+    out = [["noise", "optimisation", "GMM", "KDE", "GMM - KDE, points (p trials / objects)",
+            "GMM: noise cost", "KDE: noise cost"]]  # fmt: skip
+    for opt, k in (("with", 1), ("without", 2)):
+        base = {m: cell(paper, "A" if k == 1 else "C", m) for m in ("gmm", "kde")}
+        for label, entry in runs.items():
+            rows, cond = entry[0], entry[k]
+            c = {m: cell(rows, cond, m) for m in ("gmm", "kde")}
+            cost = ["" if label == "none" else diff_text(difference(c[m], base[m])) for m in ("gmm", "kde")]
+            out.append([label, opt, pct(c["gmm"].rate), pct(c["kde"].rate),
+                        diff_text(difference(c["gmm"], c["kde"])), *cost])  # fmt: skip
+    return md_table(out)
+
+
+def failures_block(results: Path) -> str:
+    """Outcome shares per noise setting (with optimisation) and method."""
+    paper = rows_of(results / "paper")
+    runs = {"none (A)": (paper, "A"), "the paper's (B)": (paper, "B")}
+    for label, folder in NOISE_RUNS.items():
+        if (results / folder).is_dir():
+            runs[f"{label} (B)"] = (rows_of(results / folder), "B")
+    cells: dict[tuple, Cell] = {}
+    reasons: list[str] = list(REASONS)
+    for label, (rows, cond) in runs.items():
+        for m in ("gmm", "kde"):
+            cells[(label, m)] = cell(rows, cond, m)
+            reasons += [r for r in cells[(label, m)].reasons if r not in reasons]
+    reasons = [r for r in reasons if any(r in c.reasons for c in cells.values())]
+    out = [["noise", "method", *reasons]]
+    for (label, m), c in cells.items():
+        sh = outcome_shares(c)
+        out.append([label, m.upper(), *(pct(sh.get(r, 0.0)) for r in reasons)])
+    return md_table(out)
+
+
+def sweep_block(results: Path) -> str:
+    s = json.loads((results / "sweep" / "sweep.json").read_text())
+    out = [["setting", "method", "default", "success per value (mean of the conditions)", "best on dev"]]
+    for name, e in s["parameters"].items():
+        for m, me in e["methods"].items():
+            vals = ", ".join(f"{p['value']:g}: {100 * p['mean']:.1f}%" for p in me["points"])
+            out.append([name, m.upper(), f"{e['default']:g}", vals, f"{me['best']:g}"])
+    head = (
+        f"{len(s['objects'])} development objects x {s['trials']} trials x conditions "
+        f"{','.join(s['conditions'])}; each value run with every other setting at its default.\n\n"
+    )
+    return head + md_table(out)
+
+
+def fair_block(results: Path) -> str:
+    path = results / "paper-fair" / "summary.json"
+    if not path.is_file():
+        return "(no run with other settings: the sweep chose the defaults for both methods)"
+    return md_table(findings_table(json.loads(path.read_text())))
+
+
+BLOCKS = {"claim": claim_block, "sweep": sweep_block, "fair": fair_block, "noise": noise_block,
+          "failures": failures_block}  # fmt: skip
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--results", type=Path, default=Path("results"))
+    ap.add_argument("--doc", type=Path, default=Path("docs/paper-claim.md"))
+    args = ap.parse_args()
+    text = args.doc.read_text()
+    for name, render in BLOCKS.items():
+        pattern = re.compile(rf"(<!-- {name}:begin -->\n).*?(<!-- {name}:end -->)", re.S)
+        if not pattern.search(text):
+            print(f"{args.doc}: no {name} markers", file=sys.stderr)
+            return 2
+        block = render(args.results)
+        text = pattern.sub(lambda m: m.group(1) + block + "\n" + m.group(2), text)
+    args.doc.write_text(text)
+    print(f"wrote {args.doc}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

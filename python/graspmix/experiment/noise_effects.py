@@ -44,6 +44,7 @@ TOP_FRACTION = 0.1  # the share of points whose weight top_weight_fraction sums
 SPREAD_SAMPLES = 500  # poses drawn from each query density to measure its spread
 MEASURES = (
     "effective_fraction",  # exp(entropy of M_i(r) over the points) / points
+    "effective_points",  # exp(entropy of M_i(r) over the points): noise adds points, so the count too
     "top10_weight",  # the share of M_i(r)'s weight on the top 10% of points
     "jitter_mean",  # rad, the jitter angle's mean weighted by M_i(r)
     "jitter_undetermined",  # the share of M_i(r)'s weight on points with jitter angle > pi/2
@@ -231,6 +232,7 @@ def model_measures(model: GraspModel, surface, settings, seed: int, spread_seed:
         w = normalised_weights(logm)
         out[link] = {
             "effective_fraction": effective_fraction(w),
+            "effective_points": effective_number(w),
             "top10_weight": top_weight_fraction(w),
             "jitter_mean": float(w @ angles),
             "jitter_undetermined": float(w[angles > math.pi / 2].sum()),

@@ -15,6 +15,7 @@ SURFACE_LABELS = {
 }
 MEASURE_LABELS = {
     "effective_fraction": "M_i(r): effective points / points",
+    "effective_points": "M_i(r): effective points exp(H)",
     "top10_weight": "M_i(r): weight on top 10% points",
     "jitter_mean": "M_i(r)-weighted jitter angle (rad)",
     "jitter_undetermined": "M_i(r) weight with jitter > pi/2",
@@ -85,7 +86,7 @@ def plot_measures(result: dict, path) -> None:
     summary = result["summary"]
     settings = result["settings"]
     methods = result["methods"]
-    fig, axes = plt.subplots(3, 4, figsize=(16, 10.5))
+    fig, axes = plt.subplots(4, 4, figsize=(16, 13))
     for ax, k in zip(axes.ravel(), MEASURES):
         for j, m in enumerate(methods):
             x = np.arange(len(settings)) + (j - (len(methods) - 1) / 2) * 0.15

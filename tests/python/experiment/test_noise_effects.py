@@ -146,6 +146,7 @@ def test_one_object_study_in_range_and_repeatable(protocol, models, tmp_path):
             assert set(mm["links"]) == {c.link_name for c in models[m].synthesizer.contact_models}
             for v in mm["links"].values():
                 assert 0 < v["effective_fraction"] <= 1
+                assert v["effective_points"] == pytest.approx(v["effective_fraction"] * u["n_surface"])
                 assert 0.1 - 1e-9 <= v["top10_weight"] <= 1
                 assert 0 <= v["jitter_mean"] <= math.pi and 0 <= v["jitter_undetermined"] <= 1
                 assert v["query_spread"] > 0 and v["query_means_spread"] >= 0

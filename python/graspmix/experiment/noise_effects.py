@@ -57,7 +57,8 @@ MEASURES = (
 # log10 of k1, k2 (dimensionless PCL curvatures; a synthetic flat face gives ~1e-11): smaller go in the first bin.
 LOG_CURVATURE_BINS = np.linspace(-12.0, 0.0, 97)
 FLAT_K1 = 1e-3  # query points with k1 below this count as flat (flat_fraction)
-JITTER_BINS = np.linspace(0.0, math.pi, 37)
+# log10 of the jitter angle (rad): it spans pi exp(-100) ~ 1e-43 to pi; smaller than 1e-8 rad go in the first bin.
+LOG_JITTER_BINS = np.linspace(-8.0, math.log10(math.pi), 69)
 
 
 # ---- measures of one weight vector / cloud -------------------------------------------------------------------
@@ -283,7 +284,7 @@ class Histograms:
     the M_i(r)-weighted jitter angle per setting and method (each unit and link weighs 1)."""
 
     def __init__(self, settings, methods):
-        n_k, n_j = len(LOG_CURVATURE_BINS) - 1, len(JITTER_BINS) - 1
+        n_k, n_j = len(LOG_CURVATURE_BINS) - 1, len(LOG_JITTER_BINS) - 1
         self.k = {s: np.zeros((2, n_k)) for s in settings}
         self.jitter = {s: {m: np.zeros(n_j) for m in methods} for s in settings}
 
@@ -293,12 +294,13 @@ class Histograms:
             self.k[setting][i] += np.histogram(k[:, i], LOG_CURVATURE_BINS)[0] / len(k)
 
     def add_jitter(self, setting: str, method: str, angles, weights) -> None:
-        self.jitter[setting][method] += np.histogram(angles, JITTER_BINS, weights=weights)[0]
+        a = np.clip(np.log10(np.maximum(angles, 1e-300)), LOG_JITTER_BINS[0], LOG_JITTER_BINS[-1] - 1e-12)
+        self.jitter[setting][method] += np.histogram(a, LOG_JITTER_BINS, weights=weights)[0]
 
     def to_json(self) -> dict:
         return {
             "log10_curvature_bins": LOG_CURVATURE_BINS.tolist(),
-            "jitter_bins": JITTER_BINS.tolist(),
+            "log10_jitter_bins": LOG_JITTER_BINS.tolist(),
             "k1": {s: v[0].tolist() for s, v in self.k.items()},
             "k2": {s: v[1].tolist() for s, v in self.k.items()},
             "jitter": {s: {m: v.tolist() for m, v in d.items()} for s, d in self.jitter.items()},

@@ -61,7 +61,7 @@ def plot_jitter(result: dict, path) -> None:
 
     plt = pyplot()
     h = result["histograms"]
-    bins = np.asarray(h["jitter_bins"])
+    bins = np.asarray(h["log10_jitter_bins"])
     centres = (bins[:-1] + bins[1:]) / 2
     methods = result["methods"]
     fig, axes = plt.subplots(1, len(methods), figsize=(5.5 * len(methods), 4), squeeze=False)
@@ -70,7 +70,9 @@ def plot_jitter(result: dict, path) -> None:
             c = np.asarray(d[m])
             ax.step(centres, c / max(c.sum(), 1e-300), where="mid", color=SETTING_COLOURS.get(s), label=s)
         ax.set_title(f"{m.upper()}: jitter angle weighted by M_i(r)")
-        ax.set_xlabel("pi exp(-s ((k1 - k2) / k1)^2) (rad)")
+        ax.set_xlabel(f"log10 of pi exp(-s ((k1 - k2) / k1)^2) (rad; first bin: <= 1e{bins[1]:.3g})")
+        ax.axvline(np.log10(np.pi / 2), color="grey", lw=0.8, ls=":")  # beyond: the heading is mostly undetermined
+        ax.set_yscale("log")
         ax.set_ylabel("share of weight")
         ax.legend(fontsize=8)
     fig.tight_layout()
@@ -86,7 +88,7 @@ def plot_measures(result: dict, path) -> None:
     summary = result["summary"]
     settings = result["settings"]
     methods = result["methods"]
-    fig, axes = plt.subplots(4, 4, figsize=(16, 13))
+    fig, axes = plt.subplots(3, 4, figsize=(16, 10.5))
     for ax, k in zip(axes.ravel(), MEASURES):
         for j, m in enumerate(methods):
             x = np.arange(len(settings)) + (j - (len(methods) - 1) / 2) * 0.15
@@ -141,20 +143,36 @@ EFFECTS_FORMAT = "graspmix.noise_effects/1"
 
 
 def write_outputs(result: dict, demo: dict, out, provenance: dict) -> list:
-    """out/effects.json (the summary, histograms and per-unit rows) and the three figures; returns the paths."""
+    """out/effects.json (the summary and histograms), the three figures and out/units.json (the per-unit
+    rows); returns the paths."""
     import json
     from pathlib import Path
 
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    doc = {"format": EFFECTS_FORMAT, "provenance": provenance, **result}
+    doc = {"format": EFFECTS_FORMAT, "provenance": provenance, **{k: v for k, v in result.items() if k != "units"}}
     doc["demonstration_contacts"] = {
         link: {"n": int(len(w)), "weighted_median_k": [weighted_median(r[:, i], w) for i in range(2)]}
         for link, (r, w) in demo.items()
     }
     paths = [out / "effects.json", out / "features.png", out / "jitter.png", out / "measures.png"]
     paths[0].write_text(json.dumps(doc, indent=1) + "\n")
+    # The per-unit rows (object, trial, setting; per method and link every measure): compact, beside it.
+    units = {"format": EFFECTS_FORMAT, "provenance": provenance, "units": _rounded(result["units"])}
+    paths.append(out / "units.json")
+    paths[-1].write_text(json.dumps(units, separators=(",", ":")) + "\n")
     plot_features(result, demo, paths[1])
     plot_jitter(result, paths[2])
     plot_measures(result, paths[3])
     return paths
+
+
+def _rounded(x):
+    """Floats to 6 significant digits, in nested lists and dicts."""
+    if isinstance(x, float):
+        return float(f"{x:.6g}")
+    if isinstance(x, dict):
+        return {k: _rounded(v) for k, v in x.items()}
+    if isinstance(x, list):
+        return [_rounded(v) for v in x]
+    return x

@@ -210,6 +210,8 @@ def _add_run_options(s) -> None:
 
 
 def add_parsers(sub) -> None:
+    from ..experiment.sweep import PARAMETERS
+
     s = sub.add_parser(
         "experiment", help="the paper's experiment: conditions A-D, GMM vs KDE, success rates, t-tests, runtimes"
     )
@@ -234,9 +236,7 @@ def add_parsers(sub) -> None:
         "--vary",
         type=_vary,
         action="append",
-        help="NAME=V1,V2,...: a setting and its values (repeat for more settings); names: n_components, "
-        "kde_position_bandwidth, kde_orientation_bandwidth, kde_feature_bandwidth, query_components, "
-        "query_samples, n_samples, pixel_noise_std, depth_noise_std",
+        help="NAME=V1,V2,...: a setting and its values (repeat for more settings); names: " + ", ".join(PARAMETERS),
     )
     _add_run_options(s)
     s.set_defaults(func=cmd_sweep)

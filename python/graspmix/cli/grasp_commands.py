@@ -56,6 +56,7 @@ def cmd_learn(args: argparse.Namespace) -> int:
         kde_position_bandwidth=args.kde_position_bandwidth,
         kde_orientation_bandwidth=args.kde_orientation_bandwidth,
         kde_feature_bandwidth=args.kde_feature_bandwidth,
+        gmm_reg_covar=args.gmm_reg_covar,
         seed=args.seed,
         max_distance=args.max_distance,
     )
@@ -248,6 +249,12 @@ def _add_learn(sub) -> None:
         type=float_in(gt=0.0),
         default=LearnSettings.kde_feature_bandwidth,
         help=f"std of KDE's curvature kernels ({LearnSettings.kde_feature_bandwidth})",
+    )
+    s.add_argument(
+        "--gmm-reg-covar",
+        type=float_in(gt=0.0),
+        default=LearnSettings.gmm_reg_covar,
+        help=f"added to every covariance diagonal of GMM's contact mixtures ({LearnSettings.gmm_reg_covar:g})",
     )
     s.add_argument(
         "--max-distance",

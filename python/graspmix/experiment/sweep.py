@@ -32,6 +32,7 @@ DEMONSTRATION = ("demos", "box_wsg50.json")  # the bundled models' demonstration
 # What each sweepable setting belongs to: (methods it changes, "learn" or "protocol").
 PARAMETERS = {
     "n_components": (("gmm",), "learn"),
+    "gmm_reg_covar": (("gmm",), "learn"),
     "kde_position_bandwidth": (("kde",), "learn"),
     "kde_orientation_bandwidth": (("kde",), "learn"),
     "kde_feature_bandwidth": (("kde",), "learn"),

@@ -90,6 +90,7 @@ _LEARN_SETTINGS = Obj(
         "kde_position_bandwidth": _POSITIVE,
         "kde_orientation_bandwidth": _POSITIVE,
         "kde_feature_bandwidth": _POSITIVE,
+        "gmm_reg_covar": _POSITIVE,
         "max_distance": _POSITIVE,
         "contact_lambda": _POSITIVE,
         "min_points": _COUNT,

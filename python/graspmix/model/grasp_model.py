@@ -138,6 +138,7 @@ class GraspModel:
         kde_position_bandwidth: float = _L.kde_position_bandwidth,
         kde_orientation_bandwidth: float = _L.kde_orientation_bandwidth,
         kde_feature_bandwidth: float = _L.kde_feature_bandwidth,
+        gmm_reg_covar: float = _L.gmm_reg_covar,
         max_distance: float = _L.max_distance,
         contact_lambda: float = _L.contact_lambda,
         min_points: int = _L.min_points,
@@ -157,6 +158,7 @@ class GraspModel:
             kde_position_bandwidth=kde_position_bandwidth,
             kde_orientation_bandwidth=kde_orientation_bandwidth,
             kde_feature_bandwidth=kde_feature_bandwidth,
+            gmm_reg_covar=gmm_reg_covar,
             max_distance=max_distance,
             contact_lambda=contact_lambda,
             min_points=min_points,
@@ -175,6 +177,7 @@ class GraspModel:
             contact_lambda,
             min_points,
             seed,
+            gmm_reg_covar,
         )
         feats = FeatureSettings(voxel_size=voxel_size, radius=radius)
         cfg_settings = config_settings(config or {})
@@ -349,6 +352,7 @@ def _check_learn_numbers(**v) -> None:
         "kde_position_bandwidth",
         "kde_orientation_bandwidth",
         "kde_feature_bandwidth",
+        "gmm_reg_covar",
         "max_distance",
         "contact_lambda",
         "radius",
@@ -414,7 +418,7 @@ def _learn_types(demos, method: str, s: LearnSettings, feats: FeatureSettings, c
 
 def _density_factory(method: str, s: LearnSettings) -> Callable:
     if method == "gmm":
-        return lambda: _core.PoseMixture(n_components=s.n_components, seed=s.seed)
+        return lambda: _core.PoseMixture(n_components=s.n_components, seed=s.seed, reg_covar=s.gmm_reg_covar)
     return lambda: _core.PoseKDE(
         position_bandwidth=s.kde_position_bandwidth,
         orientation_bandwidth=s.kde_orientation_bandwidth,

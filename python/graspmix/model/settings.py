@@ -82,6 +82,9 @@ class LearnSettings:
     contact_lambda: float = _CONTACT.lambda_  # 1/m^2: contact weight exp(-lambda d^2)
     min_points: int = _CONTACT.min_points  # fewest contacts for a link to get a model
     seed: int = 0
+    # added to every covariance diagonal of GMM's contact mixtures (units of the data squared: m^2, rad^2,
+    # curvature^2); it bounds how sharp a component can be, e.g. on the exactly flat faces of a rendered box
+    gmm_reg_covar: float = _POSE_MIXTURE.reg_covar
 
 
 @dataclass

@@ -159,3 +159,17 @@ def test_differences_are_the_paired_tests_over_trials_and_objects():
         cell(synthetic_rows(a_m)[1:], "A", "gmm")
     with pytest.raises(ValueError, match="no attempts"):
         cell(synthetic_rows(a_m), "B", "gmm")
+
+
+def test_gmm_reg_covar_bounds_every_variance_of_the_contact_mixtures(tmp_path):
+    demo = str(graspmix.data_path("demos", "box_wsg50.json"))
+    for reg in (1e-6, 2.5e-5):
+        model = graspmix.GraspModel.learn(demo, "gmm", gmm_reg_covar=reg)
+        model.save(tmp_path / "m.json")
+        saved = json.loads((tmp_path / "m.json").read_text())
+        assert saved["learn_settings"]["gmm_reg_covar"] == reg
+        for cm in saved["types"][0]["contact_models"]:
+            for cov in cm["density"]["covariances"]:
+                assert np.min(np.diag(np.asarray(cov))) >= reg * (1 - 1e-9)
+    with pytest.raises(ValueError, match="gmm_reg_covar"):
+        graspmix.GraspModel.learn(demo, "gmm", gmm_reg_covar=0.0)

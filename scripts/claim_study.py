@@ -134,7 +134,7 @@ def main() -> int:
             print(f"{args.doc}: no {name} markers", file=sys.stderr)
             return 2
         block = render(args.results)
-        text = pattern.sub(lambda m: m.group(1) + block + "\n" + m.group(2), text)
+        text = pattern.sub(lambda m, b=block: m.group(1) + b + "\n" + m.group(2), text)
     args.doc.write_text(text)
     print(f"wrote {args.doc}")
     return 0

@@ -150,9 +150,16 @@ def _rates(run_dir: Path, conditions, methods) -> dict:
     return out
 
 
+def _best(points: list, default):
+    """The value of the highest mean success (rounded to 1e-9, so float noise does not decide); ties: the
+    default, then the first."""
+    return max(points, key=lambda p: (round(p["mean"], 9), p["value"] == default))["value"]
+
+
 def summarize_sweep(sweep: Sweep, out: Path) -> dict:
     """Per parameter and method: each value's success per condition (with the defaults' run at the default
-    value), and the value with the highest mean success over the conditions (ties: the default)."""
+    value), and the value with the highest mean success over the conditions (ties: the default); for a
+    setting both methods share (N_Q, the noise), also the best of the two methods' mean ("best_shared")."""
     conds, base = sweep.base.conditions, sweep.base.methods
     default_rates = _rates(out / DEFAULTS, conds, base)
     params = {}
@@ -168,8 +175,14 @@ def summarize_sweep(sweep: Sweep, out: Path) -> dict:
                 per_cond = {c: rates[c][m] for c in conds if c in rates and m in rates[c]}
                 mean = sum(e["rate"] for e in per_cond.values()) / max(len(per_cond), 1)
                 points.append({"value": v, "mean": mean, "conditions": per_cond})
-            best = max(points, key=lambda p: (round(p["mean"], 9), p["value"] == default))
-            entry["methods"][m] = {"points": points, "best": best["value"]}
+            entry["methods"][m] = {"points": points, "best": _best(points, default)}
+        if len(methods) > 1:  # a setting both methods share: the best of their mean
+            per_value = [p["value"] for p in entry["methods"][methods[0]]["points"]]
+            means = [
+                {"value": v, "mean": sum(entry["methods"][m]["points"][i]["mean"] for m in methods) / len(methods)}
+                for i, v in enumerate(per_value)
+            ]
+            entry["best_shared"] = _best(means, default)
         params[name] = entry
     return {
         "objects": list(sweep.base.objects),

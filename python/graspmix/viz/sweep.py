@@ -52,7 +52,7 @@ def plot_sweep(result: dict, path: str | Path) -> None:
         ax.axis("off")
     for r in range(rows):
         axes[r][0].set_ylabel("success (%)")
-    handles, labels = {}, {}
+    handles = {}
     for ax in axes.flat:
         for h, lab in zip(*ax.get_legend_handles_labels()):
             handles.setdefault(lab, h)

@@ -4,7 +4,7 @@
     <!-- NAME:begin -->
     <!-- NAME:end -->
 
-(NAME: claim, sweep, fair, noise, failures), so the page's numbers come from runs, never from a hand.
+(NAME: claim, sweep, fair, noise, failures, changes), so the page's numbers come from runs, never from a hand.
 
     python scripts/claim_study.py [--results results] [--doc docs/paper-claim.md]
 
@@ -23,12 +23,12 @@ import sys
 import tempfile
 from pathlib import Path
 
-from graspmix.experiment.compare import Cell, cell, difference, outcome_shares
+from graspmix.experiment.compare import Cell, cell, difference, outcome_change, outcome_shares
 from graspmix.experiment.log import read_rows
 from graspmix.experiment.report import findings_table, md_table
 
 NOISE_RUNS = {"lateral only": "noise-study/lateral-only", "depth only": "noise-study/depth-only"}
-REASONS = ("success", "start in collision", "no contact", "not held", "slipped")
+REASONS = ("success", "start in collision", "no contact", "not held")
 
 
 def rows_of(run: Path) -> list[dict]:
@@ -97,6 +97,27 @@ def failures_block(results: Path) -> str:
     return md_table(out)
 
 
+def changes_block(results: Path) -> str:
+    """Per method and noise setting (with optimisation), each failure class against no noise over the same
+    attempts: its share without and with the noise, and the exact McNemar test of the attempts that changed."""
+    paper = rows_of(results / "paper")
+    runs = {"the paper's": (paper, "B")}
+    for label, folder in NOISE_RUNS.items():
+        if (results / folder).is_dir():
+            runs[label] = (rows_of(results / folder), "B")
+    out = [["method", "noise", *(f"{r}: none -> noise (p)" for r in REASONS[1:])]]
+    for m in ("gmm", "kde"):
+        base = cell(paper, "A", m)
+        for label, (rows, cond) in runs.items():
+            c = cell(rows, cond, m)
+            cells = []
+            for r in REASONS[1:]:
+                ch = outcome_change(base, c, r)
+                cells.append(f"{pct(ch.share_a)} -> {pct(ch.share_b)} ({ch.p:.2g})")
+            out.append([m.upper(), label, *cells])
+    return md_table(out)
+
+
 def sweep_block(results: Path) -> str:
     s = json.loads((results / "sweep" / "sweep.json").read_text())
     out = [["setting", "method", "default", "success per value (mean of the conditions)", "best on dev"]]
@@ -119,7 +140,7 @@ def fair_block(results: Path) -> str:
 
 
 BLOCKS = {"claim": claim_block, "sweep": sweep_block, "fair": fair_block, "noise": noise_block,
-          "failures": failures_block}  # fmt: skip
+          "failures": failures_block, "changes": changes_block}  # fmt: skip
 
 
 def main() -> int:

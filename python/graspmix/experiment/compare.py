@@ -21,11 +21,13 @@ from .stats import paired_ttest
 
 @dataclass(frozen=True)
 class Cell:
-    """The successes of one condition and method in a run: (trials, objects) 0/1, and the outcome counts."""
+    """The successes of one condition and method in a run: (trials, objects) 0/1, the outcome counts, and
+    each attempt's outcome (trials, objects) as text."""
 
     success: np.ndarray
     objects: tuple
     reasons: dict
+    outcomes: np.ndarray
 
     @property
     def rate(self) -> float:
@@ -45,12 +47,14 @@ def cell(rows: list[dict], condition: str, method: str) -> Cell:
     objects = tuple(sorted({r["object"] for r in sel}))
     trials = sorted({r["trial"] for r in sel})
     m = np.full((len(trials), len(objects)), -1, dtype=int)
+    outcomes = np.full(m.shape, "", dtype=object)
     oi, ti = {o: i for i, o in enumerate(objects)}, {t: i for i, t in enumerate(trials)}
     for r in sel:
         m[ti[r["trial"]], oi[r["object"]]] = int(r["success"])
+        outcomes[ti[r["trial"]], oi[r["object"]]] = r["reason"]
     if np.any(m < 0):
         raise ValueError(f"condition {condition}, method {method}: {int(np.sum(m < 0))} attempts missing")
-    return Cell(m, objects, dict(Counter(r["reason"] for r in sel)))
+    return Cell(m, objects, dict(Counter(r["reason"] for r in sel)), outcomes)
 
 
 @dataclass(frozen=True)
@@ -78,3 +82,28 @@ def outcome_shares(c: Cell) -> dict:
     """reason -> share of the cell's attempts."""
     n = c.success.size
     return {k: v / n for k, v in sorted(c.reasons.items(), key=lambda kv: -kv[1])}
+
+
+@dataclass(frozen=True)
+class OutcomeChange:
+    """How often an outcome happens in a and in b over the same attempts, and the exact McNemar test of the
+    discordant pairs (two-sided binomial test of only_a against only_a + only_b at 1/2)."""
+
+    outcome: str
+    share_a: float
+    share_b: float
+    only_a: int
+    only_b: int
+    p: float
+
+
+def outcome_change(a: Cell, b: Cell, outcome: str) -> OutcomeChange:
+    """Paired by (trial, object): the attempts ending in `outcome` in a but not in b, and the reverse."""
+    from scipy.stats import binomtest
+
+    if a.objects != b.objects or a.outcomes.shape != b.outcomes.shape:
+        raise ValueError("the two cells cover different objects or trials: not paired")
+    ia, ib = a.outcomes == outcome, b.outcomes == outcome
+    only_a, only_b = int(np.sum(ia & ~ib)), int(np.sum(ib & ~ia))
+    p = 1.0 if only_a + only_b == 0 else float(binomtest(only_a, only_a + only_b, 0.5).pvalue)
+    return OutcomeChange(outcome, float(ia.mean()), float(ib.mean()), only_a, only_b, p)

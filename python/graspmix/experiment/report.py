@@ -25,7 +25,7 @@ from ..model.grasps import STAGE_LABELS, STAGES
 from ..model.settings import METHOD_LABELS, METHODS
 from ..viz.experiment import plot_runtime, plot_success
 from .log import CSV_NAME, read_rows
-from .protocol import CONDITIONS, load_protocol
+from .protocol import CONDITIONS, Protocol, load_protocol
 from .stats import mean_ci, paired_ttest
 
 REASONS = ("success", "not held", "no contact", "start in collision", "synthesis failed")
@@ -261,6 +261,15 @@ def _html_table(rows: list[list[str]]) -> str:
     return f"<table><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
 
 
+def _noise_text(proto: dict) -> str:
+    """The noise model of the conditions with noise: sigma_p and sigma_d (protocols before they were settings:
+    the paper's, which the defaults are)."""
+    sp = proto.get("pixel_noise_std", Protocol.pixel_noise_std)
+    sd = proto.get("depth_noise_std", Protocol.depth_noise_std)
+    parts = "" if sp > 0 and sd > 0 else (" (depth noise only)" if sd > 0 else " (lateral shift only)")
+    return f"Noise model (conditions with noise): sigma_p = {sp:g} px, sigma_d = {1000 * sd:g} mm{parts}. "
+
+
 def _blocks(summary: dict) -> list[tuple]:
     prov, proto = summary["provenance"], summary["protocol"]
     att = summary["attempts"]
@@ -282,7 +291,7 @@ def _blocks(summary: dict) -> list[tuple]:
                 else "with the simulation's default closing (just past the synthesised grasp joints). "
             )
             + f"Clouds: 4 cameras, points within {1000 * proto['min_height']:.0f} mm of the support plane "
-            f"dropped, the same for both methods. graspmix "
+            f"dropped, the same for both methods. {_noise_text(proto)}graspmix "
             f"{prov.get('graspmix', '?')}, commit {prov.get('commit') or 'unknown'}.",
         ),
     ]

@@ -173,3 +173,19 @@ def test_gmm_reg_covar_bounds_every_variance_of_the_contact_mixtures(tmp_path):
                 assert np.min(np.diag(np.asarray(cov))) >= reg * (1 - 1e-9)
     with pytest.raises(ValueError, match="gmm_reg_covar"):
         graspmix.GraspModel.learn(demo, "gmm", gmm_reg_covar=0.0)
+
+
+def test_outcome_change_is_the_exact_mcnemar_test():
+    from graspmix.experiment.compare import cell, outcome_change
+    from scipy.stats import binomtest
+
+    ok = np.ones((2, 10), dtype=int)
+    a_reasons = {(0, o): "start in collision" for o in range(7)}  # 7 in a
+    b_reasons = {(0, 0): "start in collision", (1, 3): "start in collision"}  # 1 shared, 1 only in b
+    a = cell(synthetic_rows(ok * 0, method="kde", reasons=a_reasons), "A", "kde")
+    b = cell(synthetic_rows(ok * 0, method="kde", reasons=b_reasons), "A", "kde")
+    ch = outcome_change(a, b, "start in collision")
+    assert (ch.only_a, ch.only_b) == (6, 1)
+    assert (ch.share_a, ch.share_b) == (pytest.approx(7 / 20), pytest.approx(2 / 20))
+    assert ch.p == pytest.approx(binomtest(6, 7, 0.5).pvalue)
+    assert outcome_change(a, a, "start in collision").p == 1.0

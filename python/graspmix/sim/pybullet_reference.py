@@ -6,6 +6,7 @@ from __future__ import annotations
 import math
 import tempfile
 import xml.etree.ElementTree as ET
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Mapping
 
@@ -168,14 +169,13 @@ def _run_protocol(p, kw: dict, s: SimSettings, plane: int, body: int, hid: int, 
     return finish("success" if n > 0 and rise >= s.success_fraction * s.lift_height else "not held", n)
 
 
-def execute_pybullet(
-    obj, grasp: Mapping, *, hand=None, object_pose=None, settings: SimSettings | None = None, **overrides
-) -> dict:
-    """The same protocol as execute, in pybullet (DIRECT) with the same URDFs: the reference for the
-    agreement test. Returns {success, reason, lift_height, contact_count, start_penetration, steps}."""
+@contextmanager
+def _world(obj, grasp: Mapping, hand, object_pose, settings: SimSettings | None):
+    """A pybullet world (DIRECT) with the plane, the object at its pose and the hand at the grasp's wrist and
+    pre-grasp: yields (pybullet, kw, settings, plane, body, hand id, joints, drives); disconnects after."""
     import pybullet as p
 
-    s = make_settings(settings, **overrides)
+    s = make_settings(settings)
     h = load_hand(hand)
     o = load_object(obj)
     wrist, pre, fin = grasp_arrays(h, grasp)
@@ -185,6 +185,34 @@ def execute_pybullet(
         kw = {"physicsClientId": cid}
         plane, body, hid = _load_world(p, kw, s, h, o, pose, wrist)
         joints, drives = _hand_drives(p, kw, s, h, hid, pre, fin)
-        return _run_protocol(p, kw, s, plane, body, hid, joints["graspmix_lift"], drives)
+        yield p, kw, s, plane, body, hid, joints, drives
     finally:
         p.disconnect(cid)
+
+
+def execute_pybullet(
+    obj, grasp: Mapping, *, hand=None, object_pose=None, settings: SimSettings | None = None, **overrides
+) -> dict:
+    """The same protocol as execute, in pybullet (DIRECT) with the same URDFs: the reference for the
+    agreement test. Returns {success, reason, lift_height, contact_count, start_penetration, steps}."""
+    with _world(obj, grasp, hand, object_pose, make_settings(settings, **overrides)) as w:
+        p, kw, s, plane, body, hid, joints, drives = w
+        return _run_protocol(p, kw, s, plane, body, hid, joints["graspmix_lift"], drives)
+
+
+def start_penetrations(
+    obj, grasp: Mapping, *, hand=None, object_pose=None, settings: SimSettings | None = None
+) -> dict[tuple[str, str], float]:
+    """What a grasp's start (the hand at its pre-grasp) penetrates, in pybullet with the same URDFs as
+    execute_pybullet: {(what, link): deepest penetration in m} for every hand link deeper than the settings'
+    start_penetration, `what` being "object" or "plane"; empty when the grasp starts clear."""
+    with _world(obj, grasp, hand, object_pose, settings) as w:
+        p, kw, s, plane, body, hid = w[:6]
+        p.performCollisionDetection(**kw)
+        out: dict[tuple[str, str], float] = {}
+        for c in p.getContactPoints(bodyA=hid, **kw):
+            if -c[8] > s.start_penetration and c[2] in (body, plane):
+                link = p.getJointInfo(hid, c[3], **kw)[12].decode() if c[3] >= 0 else "base"
+                key = ("object" if c[2] == body else "plane", link)
+                out[key] = max(out.get(key, 0.0), -c[8])
+        return out

@@ -226,3 +226,17 @@ def test_test_object_list():
     assert not any(Path(p).name.startswith(("cube", "block")) for p in listed)
     for p in listed[::10]:
         assert sim.load_object(p).mass > 0
+
+
+def test_start_penetrations_name_the_links_and_depths():
+    """cube_small (5 cm): a wide top grasp starts clear; fingers opened less than the cube is wide start inside
+    it; fingertips 1 cm below the plane start 1 cm deep in it (pybullet's depth, to its margin)."""
+    from graspmix.sim.pybullet_reference import start_penetrations
+
+    assert start_penetrations("cube_small.urdf", sim.top_grasp((0, 0), 0.05, 0.0)) == {}
+    inside = start_penetrations("cube_small.urdf", sim.top_grasp((0, 0), 0.01, 0.0))
+    assert {k for k in inside if k[0] == "object"} >= {("object", "finger_left"), ("object", "finger_right")}
+    below = start_penetrations("cube_small.urdf", sim.top_grasp((0, 0), 0.05, 0.0, tip_height=-0.01))
+    assert set(below) == {("plane", "finger_left"), ("plane", "finger_right")}
+    for depth in below.values():
+        assert depth == pytest.approx(0.01, abs=0.002)

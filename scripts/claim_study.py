@@ -4,7 +4,7 @@
     <!-- NAME:begin -->
     <!-- NAME:end -->
 
-(NAME: claim, sweep, fair, noise, failures, changes, starts), so the page's numbers come from runs, never from a hand.
+(NAME: claim, sweep, fair, noise, failures, changes, starts, closing), so the page's numbers come from runs, never from a hand.
 
     python scripts/claim_study.py [--results results] [--doc docs/paper-claim.md]
 
@@ -175,8 +175,26 @@ def fair_block(results: Path) -> str:
     )
 
 
+def closing_block(results: Path) -> str:
+    """The paper protocol with --closing learnt: the paper's settings, and each method's chosen settings."""
+    out = []
+    for folder, what in (
+        ("paper-learnt-closing", "the paper's settings"),
+        ("paper-fair-learnt-closing", "the chosen settings"),
+    ):
+        path = results / folder / "summary.json"
+        if path.is_file():
+            commit = json.loads(path.read_text())["provenance"].get("commit", "?")[:7]
+            out.append(
+                f"`results/{folder}` ({what}, commit `{commit}`):\n\n"
+                + md_table(findings_table(json.loads(path.read_text())))
+            )
+    return "\n\n".join(out) or "(no run with --closing learnt)"
+
+
 BLOCKS = {"claim": claim_block, "sweep": sweep_block, "fair": fair_block, "noise": noise_block,
-          "failures": failures_block, "changes": changes_block, "starts": starts_block}  # fmt: skip
+          "failures": failures_block, "changes": changes_block, "starts": starts_block,
+          "closing": closing_block}  # fmt: skip
 
 
 def main() -> int:

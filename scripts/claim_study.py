@@ -118,6 +118,12 @@ def changes_block(results: Path) -> str:
     return md_table(out)
 
 
+def approach_z(wrist) -> float:
+    """The world z of the wrist's approach axis (its +z; -1: straight down) of a pose [x, y, z, qx, qy, qz, qw]."""
+    x, y = wrist[3], wrist[4]
+    return 1.0 - 2.0 * (x * x + y * y)
+
+
 def starts_block(results: Path) -> str:
     """What the grasps that started in collision penetrate (pybullet at the pre-grasp, the same URDFs): per
     run, condition and method, the attempts per (object or plane, link) and the median depth."""
@@ -129,7 +135,8 @@ def starts_block(results: Path) -> str:
     for label, folder in NOISE_RUNS.items():
         if (results / folder).is_dir():
             runs.append((f"{label} (B)", rows_of(results / folder), "B"))
-    out = [["noise", "method", "started in collision", "what the hand penetrates: attempts (median depth)"]]
+    out = [["noise", "method", "started in collision", "approach axis z (median)",
+            "what the hand penetrates: attempts (median depth)"]]  # fmt: skip
     for label, rows, cond in runs:
         for m in ("gmm", "kde"):
             sel = [
@@ -143,7 +150,9 @@ def starts_block(results: Path) -> str:
                 f"{what} / {link}: {len(d)} ({1000 * float(np.median(d)):.1f} mm)"
                 for (what, link), d in sorted(depths.items(), key=lambda kv: -len(kv[1]))
             ]
-            out.append([label, m.upper(), str(len(sel)), "; ".join(parts)])
+            approach = [approach_z(json.loads(r["grasp"])["T_world_wrist"]) for r in sel]
+            az = f"{float(np.median(approach)):+.2f}" if approach else ""
+            out.append([label, m.upper(), str(len(sel)), az, "; ".join(parts)])
     return md_table(out)
 
 

@@ -65,6 +65,7 @@ def noise_block(results: Path) -> str:
             runs[label] = (rows_of(results / folder), "B", "D")
     out = [["noise", "optimisation", "GMM", "KDE", "GMM - KDE, points (p trials / objects)",
             "GMM: noise cost", "KDE: noise cost"]]  # fmt: skip
+    figure = []
     for opt, k in (("with", 1), ("without", 2)):
         base = {m: cell(paper, "A" if k == 1 else "C", m) for m in ("gmm", "kde")}
         for label, entry in runs.items():
@@ -73,7 +74,41 @@ def noise_block(results: Path) -> str:
             cost = ["" if label == "none" else diff_text(difference(c[m], base[m])) for m in ("gmm", "kde")]
             out.append([label, opt, pct(c["gmm"].rate), pct(c["kde"].rate),
                         diff_text(difference(c["gmm"], c["kde"])), *cost])  # fmt: skip
-    return md_table(out)
+            figure.append((label, opt, c))
+    plot_noise_parts(figure, results / "noise-study" / "noise_parts.png")
+    return md_table(out) + "\n\n![success per noise setting](../results/noise-study/noise_parts.png)"
+
+
+def plot_noise_parts(cells: list, path: Path) -> None:
+    """Success per noise setting, with and without optimisation, per method: the mean over the trials with the
+    95% interval over the objects (each object's success averaged over its trials)."""
+    import numpy as np
+    from graspmix.experiment.stats import mean_ci
+    from graspmix.viz.experiment import COLOURS
+    from graspmix.viz.plots import pyplot
+
+    plt = pyplot()
+    fig, axes = plt.subplots(1, 2, figsize=(10, 3.6), sharey=True)
+    for ax, opt in zip(axes, ("with", "without")):
+        entries = [(label, c) for label, o, c in cells if o == opt]
+        for i, (_, c) in enumerate(entries):
+            for j, m in enumerate(("gmm", "kde")):
+                ci = mean_ci(c[m].success.mean(axis=0))
+                x = i + (j - 0.5) * 0.35
+                ax.bar(x, 100 * ci.mean, 0.33, color=COLOURS[m], label=m.upper() if i == 0 else None)
+                ax.errorbar(x, 100 * ci.mean, yerr=[[100 * (ci.mean - ci.low)], [100 * (ci.high - ci.mean)]],
+                            color="k", capsize=3, lw=1)  # fmt: skip
+        ax.set_xticks(np.arange(len(entries)))
+        ax.set_xticklabels([label.replace(" (the paper's)", "\n(the paper's)") for label, _ in entries], fontsize=8)
+        ax.set_title(f"{opt} optimisation", fontsize=10)
+        ax.set_ylim(50, 100)
+        ax.grid(axis="y", alpha=0.3)
+    axes[0].set_ylabel("success (%), 95% CI over objects")
+    axes[0].legend(loc="lower left")
+    fig.suptitle("The noise model taken apart: 60 test objects x 10 trials per bar", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
 
 
 def failures_block(results: Path) -> str:

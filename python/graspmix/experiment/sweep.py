@@ -59,6 +59,8 @@ class Sweep:
                 raise ValueError(f"sweep parameter {name}: no values")
             if not set(PARAMETERS[name][0]) & set(self.base.methods):
                 raise ValueError(f"sweep parameter {name} belongs to {','.join(PARAMETERS[name][0])}, not run here")
+            if PARAMETERS[name][1] == "learn" and self.base.models:
+                raise ValueError(f"sweep parameter {name} learns from the bundled demonstration: give no models")
             for v in values:
                 self.variant_protocol(name, v, Path("."), check_only=True)  # bad values fail before any work
 
@@ -94,14 +96,9 @@ class Sweep:
         for m in run_methods:
             path = models_dir / f"{m}_{name}={value}.json"
             if not path.is_file():
-                GraspModel.learn(str(self._demonstration()), m, **{name: value}).save(path)
+                GraspModel.learn(str(data_path(*DEMONSTRATION)), m, **{name: value}).save(path)
             models[m] = str(path.resolve())
         return dataclasses.replace(self.base, methods=run_methods, models=models)
-
-    def _demonstration(self) -> Path:
-        if self.base.models:
-            raise ValueError("a sweep of learning settings learns from the bundled demonstration: give no models")
-        return data_path(*DEMONSTRATION)
 
 
 def variant_folder(name: str, value) -> str:

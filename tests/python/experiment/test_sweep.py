@@ -83,6 +83,8 @@ def test_sweep_variants_and_bad_input():
         Sweep(base_protocol(), {"kde_position_bandwidth": [0.01]})
     with pytest.raises(ValueError, match="at least one parameter"):
         Sweep(base_protocol(), {})
+    with pytest.raises(ValueError, match="give no models"):
+        Sweep(base_protocol(models={"gmm": str(graspmix.default_model_path("gmm"))}), {"n_components": [3]})
 
 
 def test_a_small_sweep_learns_models_runs_each_value_and_summarises(tmp_path):

@@ -1,0 +1,330 @@
+"""The whole path from a scene cloud (table included) to ranked grasps, GMM vs KDE, models loaded once (issue 15).
+
+    python benchmarks/bench_realtime.py [--repeats 5] [--quick] [--seed 0] [--cache DIR] [--no-noise]
+
+Scene clouds are made by the project's own simulated cameras (graspmix.sim.scenes.make_scene, "packed",
+and graspmix.sim.scene_camera.acquire_scene, as `graspmix_cli scene` + `graspmix_cli acquire --scene` do;
+seeded, the depth noise model on unless --no-noise): single-object scenes (objects of
+data/objects/clutter_dev.txt) seen by the ring of four cameras and by the one scene camera, several-object
+scenes (5 objects, one view), and the bundled data/mug.pcd. In one process, for each method,
+GraspModel.synthesize(cloud, viewpoints=..., target="largest") is called once to warm up and then --repeats
+times; printed per scene kind: the median and 90th percentile of every stage of GraspSet.timing and of the
+whole call (time.perf_counter around it), and the KDE/GMM ratio of the medians.
+
+Then: the CLI's wall time (`graspmix_cli synthesize --cloud data/mug.pcd`, a subprocess, median) and the
+wall time of `python -c "import graspmix"` (median); and the scaling of the GMM path with the raw cloud size
+(5k points of a single-object scene cloud around the object, and 20k, 80k and 300k by jittered copies of them) and with n_samples
+(200, 1000, 5000), flagging a stage whose time grows by more than 1.5 times the size ratio (against the
+first size and the previous one). Figures only:
+nothing here asserts a time. Issue 15's targets: GMM < 20 ms (single object), < 40 ms (5 objects);
+KDE/GMM >= 5; CLI < 250 ms.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import graspmix
+import numpy as np
+from graspmix.io import data_path, load_points
+
+# GraspSet.timing's "features" is the total less the synthesiser's own stages (query, sampling, optimisation):
+# the segmentation, the features and whatever is timed by no stage (e.g. the conversion of every sample to a
+# Python grasp). "feat+other" (derived here) is it without the segmentation; "outside" (derived) is the whole
+# call's time less the total (what synthesize does after its timer stops: building the GraspSet).
+STAGES = ["segmentation", "features", "feat+other", "query", "sampling", "optimisation", "total", "outside"]
+SIZES = (5_000, 20_000, 80_000, 300_000)
+SAMPLES = (200, 1000, 5000)
+JITTER = 0.0005  # m: the standard deviation of the jitter of an upsampled copy
+GROWTH_FLAG = 1.5  # a stage is flagged when its time ratio exceeds this times the size ratio
+METHODS = ("gmm", "kde")
+
+
+# -- the clouds
+
+
+def _acquire(spec, views: int, noise: bool, seed: int, cameras=None) -> tuple[np.ndarray, np.ndarray]:
+    from graspmix.sim import scene_camera
+
+    acq = scene_camera.acquire_scene(spec, views=views, noise=noise, seed=seed, keep="scene", cameras=cameras)
+    return np.ascontiguousarray(acq.points), np.ascontiguousarray(acq.viewpoints)
+
+
+def _cached(cache: Path | None, key: str, make) -> tuple[np.ndarray, np.ndarray]:
+    """(points, viewpoints) from cache/key.npz when there, else made (and stored when a cache is given)."""
+    path = cache / f"{key}.npz" if cache is not None else None
+    if path is not None and path.exists():
+        with np.load(path) as f:
+            return f["points"], f["viewpoints"]
+    points, viewpoints = make()
+    if path is not None:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        np.savez_compressed(path, points=points, viewpoints=viewpoints)
+    return points, viewpoints
+
+
+def make_clouds(args) -> dict[str, list[tuple[str, np.ndarray, np.ndarray]]]:
+    """{scene kind: [(name, points, viewpoints)]}: single-object scenes by 4 views and by 1 view,
+    5-object scenes by 1 view, the bundled mug."""
+    from graspmix.sim import scenes
+
+    n_single, n_multi = (1, 1) if args.quick else (3, 2)
+    dev = data_path("objects", "clutter_dev.txt")
+    tag = "noise" if args.noise else "clean"
+    kinds: dict[str, list] = {"single object, 4 views": [], "single object, 1 view": [], "5 objects, 1 view": []}
+    for i, obj in enumerate(scenes.choose_objects(dev, n_single, args.seed)):
+        seed = args.seed + i
+        spec = None
+
+        def spec_of(obj=obj, seed=seed):
+            nonlocal spec
+            spec = spec or scenes.make_scene([obj], "packed", seed)
+            return spec
+
+        name = Path(obj).parent.name or Path(obj).stem
+        for views, kind in ((4, "single object, 4 views"), (1, "single object, 1 view")):
+            key = f"single-{Path(obj).stem}-s{seed}-v{views}-{tag}"
+            pts, vp = _cached(args.cache, key, lambda v=views, s=seed: _acquire(spec_of(), v, args.noise, s))
+            kinds[kind].append((f"{name} (seed {seed})", pts, vp))
+    for i in range(n_multi):
+        seed = args.seed + 100 + i
+        objs = scenes.choose_objects(dev, 5, seed)
+        key = f"multi5-s{seed}-v1-{tag}"
+        pts, vp = _cached(
+            args.cache, key, lambda o=objs, s=seed: _acquire(scenes.make_scene(o, "packed", s), 1, args.noise, s)
+        )
+        kinds["5 objects, 1 view"].append((f"5 objects (seed {seed})", pts, vp))
+    points, _, viewpoints = load_points(data_path("mug.pcd"))
+    kinds["mug.pcd"] = [("data/mug.pcd", np.asarray(points), viewpoints)]
+    return kinds
+
+
+# -- timing
+
+
+def time_synthesis(model, points, viewpoints, repeats: int, seed: int, **kw) -> tuple[dict, object]:
+    """{stage: [seconds per repeat]} (GraspSet.timing's stages and "whole", the perf_counter around the call)
+    after one warm-up call; and the last GraspSet."""
+    model.synthesize(points, viewpoints=viewpoints, target="largest", seed=seed, **kw)
+    times: dict[str, list[float]] = {}
+    grasps = None
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        grasps = model.synthesize(points, viewpoints=viewpoints, target="largest", seed=seed, **kw)
+        whole = time.perf_counter() - t0
+        timing = dict(grasps.timing)
+        if "features" in timing and "segmentation" in timing:
+            timing["feat+other"] = timing["features"] - timing["segmentation"]
+        if "total" in timing:
+            timing["outside"] = whole - timing["total"]
+        for stage, t in {**timing, "whole": whole}.items():
+            times.setdefault(stage, []).append(float(t))
+    return times, grasps
+
+
+def p90(values) -> float:
+    return float(np.percentile(values, 90))
+
+
+def stage_names(times: dict) -> list[str]:
+    """STAGES in order, any other stage the GraspSet reports after them, then "whole"."""
+    extra = sorted(s for s in times if s not in STAGES and s != "whole")
+    return [s for s in STAGES if s in times] + extra + ["whole"]
+
+
+def print_kind(kind: str, per_method: dict, counts: list[str]) -> None:
+    """One scene kind: median and p90 (over all its clouds and repeats) per stage and method, KDE/GMM."""
+    print(f"\n## {kind}: {'; '.join(counts)}")
+    print(f"{'stage':<14} {'GMM med':>9} {'GMM p90':>9} {'KDE med':>9} {'KDE p90':>9} {'KDE/GMM':>8}   (ms)")
+    for s in stage_names(per_method["gmm"]):
+        g, k = per_method["gmm"].get(s, []), per_method["kde"].get(s, [])
+        if not g or not k:
+            continue
+        mg, mk = statistics.median(g), statistics.median(k)
+        ratio = f"{mk / mg:8.2f}" if mg > 0 else f"{'-':>8}"
+        print(f"{s:<14} {mg * 1e3:9.1f} {p90(g) * 1e3:9.1f} {mk * 1e3:9.1f} {p90(k) * 1e3:9.1f} {ratio}")
+
+
+def bench_scenes(models: dict, kinds: dict, args) -> dict:
+    """Times both methods on every cloud; prints each kind; returns {kind: {method: {stage: [s]}}}."""
+    results = {}
+    for kind, clouds in kinds.items():
+        per_method = {m: {} for m in models}
+        counts = []
+        for name, points, viewpoints in clouds:
+            surface = {}
+            for method, model in models.items():
+                times, grasps = time_synthesis(model, points, viewpoints, args.repeats, args.seed)
+                for s, v in times.items():
+                    per_method[method].setdefault(s, []).extend(v)
+                surface[method] = (len(grasps.surface.points), len(grasps.grasps))
+            counts.append(
+                f"{name} {len(points)} raw / {surface['gmm'][0]} surface pts, "
+                f"{surface['gmm'][1]}/{surface['kde'][1]} grasps"
+            )
+        print_kind(kind, per_method, counts)
+        results[kind] = per_method
+    return results
+
+
+def print_summary(results: dict) -> None:
+    """Whole-call medians per kind against issue 15's targets."""
+    print("\n## whole call (perf_counter), median per scene kind (issue 15 targets: GMM < 20 ms single object,")
+    print("## < 40 ms for 5 objects; KDE/GMM >= 5)")
+    print(f"{'scene kind':<26} {'GMM (ms)':>9} {'KDE (ms)':>9} {'KDE/GMM':>8}")
+    for kind, per_method in results.items():
+        mg, mk = (statistics.median(per_method[m]["whole"]) for m in METHODS)
+        print(f"{kind:<26} {mg * 1e3:9.1f} {mk * 1e3:9.1f} {mk / mg:8.2f}")
+
+
+# -- processes
+
+
+def _wall(cmd: list[str], n: int, cwd: str) -> tuple[list[float], int]:
+    """Wall times of n runs of cmd (a subprocess each) and the last return code."""
+    walls, rc = [], 0
+    for _ in range(n):
+        t0 = time.perf_counter()
+        rc = subprocess.run(cmd, cwd=cwd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL).returncode
+        walls.append(time.perf_counter() - t0)
+    return walls, rc
+
+
+def _cli_command() -> list[str]:
+    """The graspmix_cli entry point beside this interpreter (not a shell shim in front of it), else -m."""
+    script = Path(sys.executable).parent / "graspmix_cli"
+    return [str(script)] if script.exists() else [sys.executable, "-m", "graspmix.cli"]
+
+
+def bench_processes(n: int) -> None:
+    mug = str(data_path("mug.pcd"))
+    print(f"\n## processes (median of {n} runs, wall time; this interpreter's environment, PYTHONPATH included)")
+    with tempfile.TemporaryDirectory() as tmp:
+        cli = _cli_command()
+        walls, rc = _wall([*cli, "synthesize", "--cloud", mug, "--out", "grasps.json"], n, tmp)
+        print(
+            f"graspmix_cli synthesize --cloud data/mug.pcd  median {statistics.median(walls) * 1e3:7.0f} ms "
+            f"(min {min(walls) * 1e3:.0f}, max {max(walls) * 1e3:.0f}; exit {rc}; target < 250 ms)"
+        )
+        walls, rc = _wall([sys.executable, "-c", "import graspmix"], n, tmp)
+        print(
+            f'python -c "import graspmix"                   median {statistics.median(walls) * 1e3:7.0f} ms '
+            f"(min {min(walls) * 1e3:.0f}, max {max(walls) * 1e3:.0f}; exit {rc})"
+        )
+        walls, rc = _wall([sys.executable, "-c", "pass"], n, tmp)
+        print(f'python -c "pass"                               median {statistics.median(walls) * 1e3:7.0f} ms')
+
+
+# -- scaling
+
+
+def print_scaling(label: str, sizes: list[int], rows: list[dict], unit: str) -> None:
+    """Per stage: median ms and microseconds per unit at each size; flags a time ratio > GROWTH_FLAG x the size
+    ratio, against the first size and against the previous one."""
+    stages = stage_names(rows[0])
+    print(f"{label:<14}" + "".join(f"{n:>12}" for n in sizes) + "   flag (vs the first and the previous size)")
+    for s in stages:
+        med = [statistics.median(r.get(s, [0.0])) for r in rows]
+        cells = "".join(f"{t * 1e3:>9.1f} ms" for t in med)
+        per = "".join(f"{t * 1e6 / n:>9.2f} us" for t, n in zip(med, sizes))
+        flags = [
+            f"x{med[i] / med[j]:.1f} for x{sizes[i] / sizes[j]:.1f} ({sizes[j]}->{sizes[i]})"
+            for i in range(1, len(sizes))
+            for j in sorted({0, i - 1})
+            if med[j] > 0 and med[i] / med[j] > GROWTH_FLAG * sizes[i] / sizes[j]
+        ]
+        print(f"{s:<14}{cells}   {'SUPERLINEAR ' + ', '.join(flags) if flags else ''}")
+        print(f"{'  per ' + unit:<14}{per}")
+
+
+def upsampled(points, viewpoints, n: int, seed: int) -> tuple[np.ndarray, np.ndarray]:
+    """The SIZES[0] points nearest (in x, y) the centre of the points 1 cm above the table (the object and
+    a ring of table), then jittered copies of them (N(0, JITTER) per coordinate) up to n points."""
+    centre = points[points[:, 2] > 0.01, :2].mean(axis=0)
+    rows = np.argsort(np.linalg.norm(points[:, :2] - centre, axis=1))[: SIZES[0]]
+    base, vp = points[rows], viewpoints[rows]
+    rng = np.random.default_rng(seed)
+    copies = [base] + [base + rng.normal(0.0, JITTER, base.shape) for _ in range(math.ceil(n / len(base)) - 1)]
+    return np.vstack(copies)[:n], np.vstack([vp] * len(copies))[:n]
+
+
+def bench_scaling(model, args) -> None:
+    """The GMM path against the raw cloud size (a crop of the first single-object scene's one-view cloud,
+    upsampled by jittered copies) and against n_samples (the whole one-view cloud of that scene)."""
+    from graspmix.sim import scenes
+
+    obj = scenes.choose_objects(data_path("objects", "clutter_dev.txt"), 1, args.seed)[0]
+    key = f"single-{Path(obj).stem}-s{args.seed}-v1-{'noise' if args.noise else 'clean'}"
+    scene_points, scene_viewpoints = _cached(
+        args.cache, key, lambda: _acquire(scenes.make_scene([obj], "packed", args.seed), 1, args.noise, args.seed)
+    )
+    sizes = SIZES[::2] if args.quick else SIZES
+    rows, raw, surface = [], [], []
+    for n in sizes:
+        points, viewpoints = upsampled(scene_points, scene_viewpoints, n, args.seed)
+        times, grasps = time_synthesis(model, points, viewpoints, args.repeats, args.seed)
+        rows.append(times)
+        raw.append(len(points))
+        surface.append(len(grasps.surface.points))
+    print(f"\n## scaling with the raw cloud size (GMM, {obj}, one view, {SIZES[0]} points around the object and")
+    print(f"## jittered copies (sigma {JITTER * 1e3:g} mm); surface points after segmentation:")
+    print(f"## {', '.join(map(str, surface))})")
+    print_scaling("raw points", raw, rows, "raw pt")
+    samples = SAMPLES[:2] if args.quick else SAMPLES
+    points, viewpoints = scene_points, scene_viewpoints
+    rows = [time_synthesis(model, points, viewpoints, args.repeats, args.seed, n_samples=n)[0] for n in samples]
+    print(f"\n## scaling with n_samples (GMM, the same scene, {len(points)} raw points; n_optimise fixed)")
+    print_scaling("n_samples", list(samples), rows, "sample")
+
+
+# -- main
+
+
+def machine(label: str) -> str:
+    load = ", ".join(f"{v:.2f}" for v in os.getloadavg())
+    return f"{label}: load average (1, 5, 15 min) {load}"
+
+
+def main() -> None:
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--repeats", type=int, default=5, help="timed calls per cloud and method (after one warm-up)")
+    p.add_argument("--quick", action="store_true", help="one repeat, fewer clouds and sizes (a smoke run)")
+    p.add_argument("--seed", type=int, default=0, help="seed of the scenes, the noise and the synthesis")
+    p.add_argument("--cache", type=Path, help="folder to keep the rendered clouds in (.npz) between runs")
+    p.add_argument("--no-noise", dest="noise", action="store_false", help="render without the depth noise model")
+    p.add_argument("--process-runs", type=int, default=5, help="subprocess runs for the CLI and import times")
+    args = p.parse_args()
+    if args.repeats < 1:
+        raise ValueError(f"--repeats must be >= 1, got {args.repeats}")
+    if args.quick:
+        args.repeats, args.process_runs = 1, 2
+    t_start = time.perf_counter()
+    affinity = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else "?"
+    print(
+        f"OMP_NUM_THREADS={os.environ.get('OMP_NUM_THREADS', '(unset)')}  os.cpu_count()={os.cpu_count()}  "
+        f"usable cpus={affinity}  repeats={args.repeats}  seed={args.seed}  noise={'on' if args.noise else 'off'}"
+    )
+    print(machine("start"))
+    models = {m: graspmix.GraspModel.load(graspmix.default_model_path(m)) for m in METHODS}
+    t0 = time.perf_counter()
+    kinds = make_clouds(args)
+    print(f"clouds made (or read from the cache) in {time.perf_counter() - t0:.1f} s")
+    results = bench_scenes(models, kinds, args)
+    print_summary(results)
+    bench_processes(args.process_runs)
+    bench_scaling(models["gmm"], args)
+    print()
+    print(machine("end"))
+    print(f"benchmark wall time {time.perf_counter() - t_start:.0f} s")
+
+
+if __name__ == "__main__":
+    main()

@@ -4,7 +4,6 @@ mesh triangles) posed by forward kinematics, the wrist frame's axes and the appr
 from __future__ import annotations
 
 import numpy as np
-from scipy.spatial.transform import Rotation
 
 from .. import _core
 from ..model.hands import describe_hand
@@ -52,6 +51,8 @@ def plot_hand(urdf, path, *, title: str | None = None) -> dict:
 
 def _posed(hand, meshes: dict, q: np.ndarray) -> dict:
     """link -> (vertices in the wrist frame, triangles) at configuration q."""
+    from scipy.spatial.transform import Rotation  # here, not at import: scipy.spatial costs `import graspmix` 0.5 s
+
     poses = hand.fk(np.array([0, 0, 0, 0, 0, 0, 1.0]), q)
     out = {}
     for pose, name in zip(poses, hand.link_names):

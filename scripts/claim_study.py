@@ -16,6 +16,7 @@ if present, results/paper-fair (the paper protocol with the settings the sweep c
 from __future__ import annotations
 
 import argparse
+import functools
 import gzip
 import json
 import re
@@ -23,14 +24,18 @@ import sys
 import tempfile
 from pathlib import Path
 
+import numpy as np
 from graspmix.experiment.compare import Cell, cell, difference, outcome_change, outcome_shares
 from graspmix.experiment.log import read_rows
 from graspmix.experiment.report import findings_table, md_table
+from graspmix.model.grasp_frames import rotation_matrices
+from graspmix.model.hands import APPROACH_AXIS
 
 NOISE_RUNS = {"lateral only": "noise-study/lateral-only", "depth only": "noise-study/depth-only"}
 REASONS = ("success", "start in collision", "no contact", "not held")
 
 
+@functools.lru_cache(maxsize=None)
 def rows_of(run: Path) -> list[dict]:
     """attempts.csv of a run folder, or its gzipped copy (results/ keeps them gzipped)."""
     if (run / "attempts.csv").is_file():
@@ -39,6 +44,11 @@ def rows_of(run: Path) -> list[dict]:
         path = Path(tmp) / "attempts.csv"
         path.write_bytes(gzip.decompress((run / "attempts.csv.gz").read_bytes()))
         return read_rows(path)
+
+
+def noise_runs(results: Path) -> dict:
+    """label -> rows of the runs with one part of the noise model (conditions B, D), those that exist."""
+    return {label: rows_of(results / f) for label, f in NOISE_RUNS.items() if (results / f).is_dir()}
 
 
 def pct(x: float) -> str:
@@ -60,9 +70,7 @@ def noise_block(results: Path) -> str:
     noise against the same trials without noise (paired; p over trials / over objects)."""
     paper = rows_of(results / "paper")
     runs = {"none": (paper, "A", "C"), "lateral + depth (the paper's)": (paper, "B", "D")}
-    for label, folder in NOISE_RUNS.items():
-        if (results / folder).is_dir():
-            runs[label] = (rows_of(results / folder), "B", "D")
+    runs.update({label: (rows, "B", "D") for label, rows in noise_runs(results).items()})
     out = [["noise", "optimisation", "GMM", "KDE", "GMM - KDE, points (p trials / objects)",
             "GMM: noise cost", "KDE: noise cost"]]  # fmt: skip
     figure = []
@@ -82,7 +90,6 @@ def noise_block(results: Path) -> str:
 def plot_noise_parts(cells: list, path: Path) -> None:
     """Success per noise setting, with and without optimisation, per method: the mean over the trials with the
     95% interval over the objects (each object's success averaged over its trials)."""
-    import numpy as np
     from graspmix.experiment.stats import mean_ci
     from graspmix.viz.experiment import COLOURS
     from graspmix.viz.plots import pyplot
@@ -115,9 +122,7 @@ def failures_block(results: Path) -> str:
     """Outcome shares per noise setting (with optimisation) and method."""
     paper = rows_of(results / "paper")
     runs = {"none (A)": (paper, "A"), "the paper's (B)": (paper, "B")}
-    for label, folder in NOISE_RUNS.items():
-        if (results / folder).is_dir():
-            runs[f"{label} (B)"] = (rows_of(results / folder), "B")
+    runs.update({f"{label} (B)": (rows, "B") for label, rows in noise_runs(results).items()})
     cells: dict[tuple, Cell] = {}
     reasons: list[str] = list(REASONS)
     for label, (rows, cond) in runs.items():
@@ -137,9 +142,7 @@ def changes_block(results: Path) -> str:
     attempts: its share without and with the noise, and the exact McNemar test of the attempts that changed."""
     paper = rows_of(results / "paper")
     runs = {"the paper's": (paper, "B")}
-    for label, folder in NOISE_RUNS.items():
-        if (results / folder).is_dir():
-            runs[label] = (rows_of(results / folder), "B")
+    runs.update({label: (rows, "B") for label, rows in noise_runs(results).items()})
     out = [["method", "noise", *(f"{r}: none -> noise (p)" for r in REASONS[1:])]]
     for m in ("gmm", "kde"):
         base = cell(paper, "A", m)
@@ -154,22 +157,18 @@ def changes_block(results: Path) -> str:
 
 
 def approach_z(wrist) -> float:
-    """The world z of the wrist's approach axis (its +z; -1: straight down) of a pose [x, y, z, qx, qy, qz, qw]."""
-    x, y = wrist[3], wrist[4]
-    return 1.0 - 2.0 * (x * x + y * y)
+    """The world z of the wrist's approach axis (-1: straight down) of a pose [x, y, z, qx, qy, qz, qw]."""
+    return float((rotation_matrices(np.asarray(wrist[3:])[None])[0] @ APPROACH_AXIS)[2])
 
 
 def starts_block(results: Path) -> str:
     """What the grasps that started in collision penetrate (pybullet at the pre-grasp, the same URDFs): per
     run, condition and method, the attempts per (object or plane, link) and the median depth."""
-    import numpy as np
     from graspmix.sim.pybullet_reference import start_penetrations
 
     paper = rows_of(results / "paper")
     runs = [("none (A)", paper, "A"), ("the paper's (B)", paper, "B")]
-    for label, folder in NOISE_RUNS.items():
-        if (results / folder).is_dir():
-            runs.append((f"{label} (B)", rows_of(results / folder), "B"))
+    runs += [(f"{label} (B)", rows, "B") for label, rows in noise_runs(results).items()]
     out = [["noise", "method", "started in collision", "approach axis z (median)",
             "what the hand penetrates: attempts (median depth)"]]  # fmt: skip
     for label, rows, cond in runs:

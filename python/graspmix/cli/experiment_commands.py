@@ -120,14 +120,14 @@ def cmd_benchmark(args: argparse.Namespace) -> int:
 
 def _vary(text: str) -> tuple:
     """--vary NAME=V1,V2,...: a sweep parameter and its values (ints for counts, else floats)."""
-    from ..experiment.sweep import PARAMETERS
+    from ..experiment.sweep import PARAMETERS, parameter_type
 
     name, sep, values = text.partition("=")
     if not sep or name not in PARAMETERS:
         raise argparse.ArgumentTypeError(
             f"expected NAME=V1,V2,... with NAME one of {', '.join(PARAMETERS)}, got {text!r}"
         )
-    cast = int if name in ("n_components", "query_components", "query_samples", "n_samples") else float
+    cast = parameter_type(name)
     try:
         return name, [cast(v) for v in values.split(",") if v.strip()]
     except ValueError:

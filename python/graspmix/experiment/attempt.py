@@ -39,21 +39,37 @@ def crop_above_plane(min_height: float) -> Callable:
     return cleanup
 
 
-def synthesize_on(model: GraspModel, acq: Acquisition, p: Protocol, seed: int, optimise: bool):
-    """The synthesis of one attempt on an acquired cloud (the known support plane, the cameras' positions)."""
-    return model.synthesize(
-        acq.points,
+def synthesis_keywords(p: Protocol, seed: int, optimise: bool) -> dict:
+    """GraspModel.synthesize's keywords for one attempt but the cloud and its viewpoints: the protocol's
+    settings, the known support plane."""
+    return dict(
         n_samples=p.n_samples,
         n_optimise=p.n_optimise,
         optimise=optimise,
         seed=seed,
         remove_plane=False,
         plane=list(SUPPORT_PLANE),
-        viewpoints=acq.viewpoints,
         query_samples=p.query_samples,
         query_components=p.query_components,
         table_clearance=p.min_height,
         annealing={"iterations": p.annealing_iterations, "initial_temperature": p.initial_temperature},
+    )
+
+
+def synthesize_on(model: GraspModel, acq: Acquisition, p: Protocol, seed: int, optimise: bool):
+    """The synthesis of one attempt on an acquired cloud (the known support plane, the cameras' positions)."""
+    return model.synthesize(acq.points, viewpoints=acq.viewpoints, **synthesis_keywords(p, seed, optimise))
+
+
+def acquire_unit(p: Protocol, obj: str, trial: int, noise: bool) -> Acquisition:
+    """The cloud of one (object, trial, noise) unit: the protocol's cameras, noise model and seed, the table
+    cropped (crop_above_plane)."""
+    return acquire(
+        obj,
+        noise=noise,
+        seed=p.acquisition_seed(obj, trial),
+        settings=p.acquisition_settings(),
+        postprocess=crop_above_plane(p.min_height),
     )
 
 
@@ -162,9 +178,7 @@ def run_unit(protocol: dict, unit: tuple, todo: Iterable[tuple] | None = None) -
     acq_seed = p.acquisition_seed(obj, trial)
     keys = _unit_order(p, keys, acq_seed)
     t0 = time.perf_counter()
-    acq = acquire(
-        obj, noise=noise, seed=acq_seed, settings=p.acquisition_settings(), postprocess=crop_above_plane(p.min_height)
-    )
+    acq = acquire_unit(p, obj, trial, noise)
     t_acq = time.perf_counter() - t0
     pose = rest_pose(obj)
     return [

@@ -26,11 +26,10 @@ from ..model import GraspModel
 from ..model.demonstration import Demonstration
 from ..model.scene_synthesis import object_surface, segment_query
 from ..model.settings import SynthesisOptions
-from ..sim.acquisition import AcquisitionSettings, acquire
-from .attempt import crop_above_plane
+from .attempt import acquire_unit, synthesis_keywords
 from .protocol import SUPPORT_PLANE, Protocol, derive_seed
 
-_FULL = AcquisitionSettings()  # the paper's sigma_p (px) and sigma_d (m), the single source
+_FULL = Protocol  # its defaults: the paper's sigma_p (px) and sigma_d (m), read from AcquisitionSettings
 # setting -> (pixel_noise_std, depth_noise_std), None: the noise model off (the experiment's clean clouds).
 NOISE_SETTINGS = {
     "clean": None,
@@ -137,32 +136,19 @@ def check_setting(setting: str) -> None:
 
 
 def acquire_setting(p: Protocol, obj: str, trial: int, setting: str, stds: tuple | None = None):
-    """The object's cloud as the experiment acquires it (its seed and crop), under a noise setting; stds
-    (pixel, depth) overrides the setting's standard deviations (for tests)."""
+    """The object's cloud as the experiment acquires it (attempt.acquire_unit: its seed and crop), under a noise
+    setting; stds (pixel, depth) overrides the setting's standard deviations (for tests)."""
     check_setting(setting)
     stds = NOISE_SETTINGS[setting] if stds is None else stds
-    settings = AcquisitionSettings()
     if stds is not None:
-        settings = dataclasses.replace(settings, pixel_noise_std=stds[0], depth_noise_std=stds[1])
-    return acquire(
-        obj,
-        noise=stds is not None,
-        seed=p.acquisition_seed(obj, trial),
-        settings=settings,
-        postprocess=crop_above_plane(p.min_height),
-    )
+        p = dataclasses.replace(p, pixel_noise_std=stds[0], depth_noise_std=stds[1])
+    return acquire_unit(p, obj, trial, noise=stds is not None)
 
 
 def synthesis_options(p: Protocol, seed: int) -> SynthesisOptions:
-    """The options experiment.attempt.synthesize_on gives GraspModel.synthesize."""
-    return SynthesisOptions(
-        n_samples=p.n_samples,
-        n_optimise=p.n_optimise,
-        seed=seed,
-        remove_plane=False,
-        query_samples=p.query_samples,
-        table_clearance=p.min_height,
-    )
+    """The options experiment.attempt.synthesize_on gives GraspModel.synthesize (attempt.synthesis_keywords)."""
+    fields = {f.name for f in dataclasses.fields(SynthesisOptions)}
+    return SynthesisOptions(**{k: v for k, v in synthesis_keywords(p, seed, True).items() if k in fields})
 
 
 @dataclass

@@ -19,8 +19,10 @@ import json
 from dataclasses import dataclass
 from pathlib import Path
 
+import numpy as np
+
 from ..io import data_path
-from ..io.checks import MAX_COMPONENTS, check_float, check_int, quote
+from ..io.checks import quote
 from ..model.settings import METHOD_LABELS, METHODS, LearnSettings
 from .protocol import CONDITIONS, Protocol
 from .stats import clustered_rate
@@ -42,6 +44,12 @@ PARAMETERS = {
     "pixel_noise_std": (METHODS, "protocol"),
     "depth_noise_std": (METHODS, "protocol"),
 }
+
+
+def parameter_type(name: str) -> type:
+    """int or float: the type of the setting's default (counts are ints)."""
+    owner = LearnSettings if PARAMETERS[name][1] == "learn" else Protocol
+    return int if isinstance(getattr(owner, name), int) else float
 
 
 @dataclass
@@ -84,13 +92,11 @@ class Sweep:
         run_methods = [m for m in self.base.methods if m in methods]
         if kind == "protocol":
             return dataclasses.replace(self.base, methods=run_methods, **{name: value})
-        if name == "n_components":
-            check_int(value, name, 1, MAX_COMPONENTS)
-        else:
-            check_float(value, name, gt=0.0)
+        from ..model.grasp_model import GraspModel, check_learn_numbers
+
+        check_learn_numbers(**{name: value})
         if check_only:
             return self.base
-        from ..model import GraspModel
 
         models = dict(self.base.models)
         for m in run_methods:
@@ -128,19 +134,15 @@ def run_sweep(sweep: Sweep, out: str | Path, **run_options) -> dict:
 def _rates(run_dir: Path, conditions, methods) -> dict:
     """condition -> method -> {rate, ci_low, ci_high, successes, attempts} from an experiment's CSV: the
     objects are the clusters of the interval (an object's trials are not independent)."""
-    from .log import read_rows
+    from .compare import cell, load_rows
 
-    rows = read_rows(run_dir / "attempts.csv")
+    rows = load_rows(run_dir)
     out = {}
     for c in conditions:
         for m in methods:
-            per_obj: dict = {}
-            for r in rows:
-                if r["condition"] == c and r["method"] == m:
-                    s, n = per_obj.get(r["object"], (0, 0))
-                    per_obj[r["object"]] = (s + int(r["success"]), n + 1)
-            if per_obj:
-                ci = clustered_rate([v[0] for v in per_obj.values()], [v[1] for v in per_obj.values()])
+            if any(r["condition"] == c and r["method"] == m for r in rows):
+                success = cell(rows, c, m).success
+                ci = clustered_rate(success.sum(axis=0), np.full(success.shape[1], success.shape[0]))
                 out.setdefault(c, {})[m] = dict(
                     rate=ci.rate, ci_low=ci.low, ci_high=ci.high, successes=ci.successes, attempts=ci.trials
                 )

@@ -153,7 +153,7 @@ class GraspModel:
         otherwise). A model of several types also stores each type's log L_ref, what its demonstrated
         grasp scores on its own demonstration cloud (see graspmix.model.grasp_types)."""
         check_method(method)
-        _check_learn_numbers(
+        check_learn_numbers(
             n_components=n_components,
             kde_position_bandwidth=kde_position_bandwidth,
             kde_orientation_bandwidth=kde_orientation_bandwidth,
@@ -169,15 +169,15 @@ class GraspModel:
         if config is not None and not isinstance(config, dict):
             raise ValueError(f"config must be a dict of configuration-model settings, got {type(config).__name__}")
         s = LearnSettings(
-            n_components,
-            kde_position_bandwidth,
-            kde_orientation_bandwidth,
-            kde_feature_bandwidth,
-            max_distance,
-            contact_lambda,
-            min_points,
-            seed,
-            gmm_reg_covar,
+            n_components=n_components,
+            kde_position_bandwidth=kde_position_bandwidth,
+            kde_orientation_bandwidth=kde_orientation_bandwidth,
+            kde_feature_bandwidth=kde_feature_bandwidth,
+            max_distance=max_distance,
+            contact_lambda=contact_lambda,
+            min_points=min_points,
+            seed=seed,
+            gmm_reg_covar=gmm_reg_covar,
         )
         feats = FeatureSettings(voxel_size=voxel_size, radius=radius)
         cfg_settings = config_settings(config or {})
@@ -343,12 +343,11 @@ def checked_plane(plane):
     return plane
 
 
-def _check_learn_numbers(**v) -> None:
-    """learn()'s numbers, bounded before they reach a C++ cast (ValueError naming the keyword)."""
-    check_int(v["n_components"], "n_components", 1, MAX_COMPONENTS)
-    check_int(v["min_points"], "min_points", 1, 2**31 - 1)
-    check_seed(v["seed"])
-    for name in (
+def check_learn_numbers(**v) -> None:
+    """learn()'s numbers given (any of its keywords), bounded before they reach a C++ cast (ValueError naming the
+    keyword)."""
+    ints = {"n_components": MAX_COMPONENTS, "min_points": 2**31 - 1}
+    positive = (
         "kde_position_bandwidth",
         "kde_orientation_bandwidth",
         "kde_feature_bandwidth",
@@ -356,9 +355,18 @@ def _check_learn_numbers(**v) -> None:
         "max_distance",
         "contact_lambda",
         "radius",
-    ):
-        check_float(v[name], name, gt=0.0)
-    check_float(v["voxel_size"], "voxel_size", 0.0)
+    )
+    for name, value in v.items():
+        if name in ints:
+            check_int(value, name, 1, ints[name])
+        elif name == "seed":
+            check_seed(value)
+        elif name in positive:
+            check_float(value, name, gt=0.0)
+        elif name == "voxel_size":
+            check_float(value, name, 0.0)
+        else:
+            raise ValueError(f"unknown learning setting {name!r}")
 
 
 def _synthesis_options(args: dict) -> SynthesisOptions:

@@ -11,9 +11,9 @@ repeats; OMP_NUM_THREADS bounds the threads (the batched calls are OpenMP-parall
 import argparse
 import os
 import time
-from pathlib import Path
 
 import graspmix
+from graspmix.io import data_path
 import numpy as np
 from scipy.spatial.transform import Rotation
 
@@ -66,7 +66,7 @@ def main():
     args = ap.parse_args()
     rng = np.random.default_rng(args.seed)
 
-    hand = graspmix.Hand.from_urdf(Path(graspmix.__file__).parent / "data" / "hands" / "wsg50.urdf")
+    hand = graspmix.Hand.from_urdf(data_path("hands", "wsg50.urdf"))
     cloud = mug_cloud(args.points, rng)
     wrists = wrists_around(args.hands, rng)
     joints = rng.uniform(0.0, 0.055, (args.hands, 1))

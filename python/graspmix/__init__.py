@@ -14,17 +14,11 @@ layers, each importing only from the ones before it:
 The module paths graspmix.acquisition, .demo, .plots, .report and .stats are deprecated aliases.
 """
 
+import importlib as _importlib
+
 import numpy as _np
 
-from . import (
-    _core,
-    acquisition,  # noqa: E402  (deprecated alias of graspmix.sim.acquisition)
-    io,
-    model,
-    perception,
-    sim,
-    viz,
-)
+from . import _core, io, model, perception
 from ._core import (
     # contact models, configuration model, experts, synthesis
     AxisAlignmentExpert,
@@ -77,9 +71,26 @@ from .model import (
     learn,
 )
 from .perception import Scene, segment_scene
-from .viz import plot_grasps, plot_grasps_html
 
-__version__ = io.package_version()
+# Loaded on first use (PEP 562), so that `import graspmix` and a command that needs neither pictures nor the
+# simulator do not pay for matplotlib, pybullet and their modules: the layers above the model, the deprecated
+# module aliases, the two plotting functions re-exported here and the version (importlib.metadata).
+_LAZY_MODULES = {"sim", "viz", "experiment", "clutter", "cli", "acquisition", "demo", "plots", "report", "stats"}
+_LAZY_NAMES = {"plot_grasps": "viz", "plot_grasps_html": "viz"}
+
+
+def __getattr__(name: str):
+    if name in _LAZY_MODULES:
+        return _importlib.import_module(f"{__name__}.{name}")
+    if name in _LAZY_NAMES:
+        return getattr(_importlib.import_module(f"{__name__}.{_LAZY_NAMES[name]}"), name)
+    if name == "__version__":
+        return io.package_version()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(set(globals()) | _LAZY_MODULES | set(_LAZY_NAMES) | {"__version__"})
 
 
 def _rowwise(fn, *arrays):
@@ -109,4 +120,8 @@ def pose_inverse(a):
     return _rowwise(_core.pose_inverse, a)
 
 
-__all__ = [name for name in dir() if not name.startswith("_") and name not in ("annotations",)]
+__all__ = sorted(
+    {name for name in globals() if not name.startswith("_") and name not in ("annotations",)}
+    | {"sim", "viz", "acquisition"}
+    | set(_LAZY_NAMES)
+)

@@ -5,13 +5,13 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from ..clutter.protocol import ClutterProtocol
 from .common import input_path, int_in, output_folder, seed, split_list
 from .experiment_commands import run_options
 
 
 def _protocol(args):
     from ..clutter import MODES, PLANNERS
+    from ..clutter.protocol import ClutterProtocol
 
     return ClutterProtocol(
         object_list=args.object_list or "",
@@ -22,7 +22,7 @@ def _protocol(args):
         views=args.views,
         noise=args.noise,
         closing=args.closing,
-        max_attempts=args.max_attempts,
+        max_attempts=ClutterProtocol.max_attempts if args.max_attempts is None else args.max_attempts,
         seed=args.seed,
     )
 
@@ -51,6 +51,9 @@ def cmd_clutter(args: argparse.Namespace) -> int:
     return 0
 
 
+COMMANDS = ("clutter",)  # the subcommands add_parsers adds (main builds only the group of the one run)
+
+
 def add_parsers(sub) -> None:
     from ..clutter.protocol import ROUNDS
 
@@ -74,8 +77,7 @@ def add_parsers(sub) -> None:
     s.add_argument(
         "--max-attempts",
         type=int_in(-1, 10_000),
-        default=ClutterProtocol.max_attempts,
-        help="attempts per scene at most (default -1: objects + 2; 0: no cap, VGN's rules alone)",
+        help="attempts per scene at most (default: the protocol's, -1: objects + 2; 0: no cap, VGN's rules alone)",
     )
     s.add_argument("--seed", type=seed, default=0, help="base of every derived seed (default 0)")
     s.add_argument("--jobs", type=int_in(1, 1024), default=1, help="parallel worker processes (or Ray tasks)")

@@ -170,6 +170,13 @@ def cmd_features(args: argparse.Namespace) -> int:
     return 0
 
 
+COMMANDS = (
+    "info",
+    "fit-gmm",
+    "features",
+)  # the subcommands add_parsers adds (main builds only the group of the one run)
+
+
 def add_parsers(sub) -> None:
     s = sub.add_parser("info", help="versions of graspmix and every linked library")
     s.set_defaults(func=cmd_info)

@@ -176,6 +176,13 @@ def cmd_synthesize(args: argparse.Namespace) -> int:
     return 0
 
 
+COMMANDS = (
+    "demo",
+    "learn",
+    "synthesize",
+)  # the subcommands add_parsers adds (main builds only the group of the one run)
+
+
 def add_parsers(sub) -> None:
     _add_demo(sub)
     _add_learn(sub)
@@ -183,7 +190,7 @@ def add_parsers(sub) -> None:
 
 
 def _add_demo(sub) -> None:
-    from ..sim.demonstration import DEMO_GRIP_FORCE, DEMO_MAX_STEPS
+    from ..model.demonstration import DEMO_GRIP_FORCE, DEMO_MAX_STEPS
 
     s = sub.add_parser("demo", help="record a demonstrated grasp in simulation (pybullet) as a demonstration file")
     s.add_argument(

@@ -8,6 +8,8 @@ import json
 
 from .common import CliError, input_path, output_file
 
+COMMANDS = ("hand",)  # the subcommands add_parsers adds (main builds only the group of the one run)
+
 
 def add_parsers(sub) -> None:
     s = sub.add_parser("hand", help="links, joints, frames and opening of a hand URDF; --png draws it at its limits")

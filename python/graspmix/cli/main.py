@@ -23,31 +23,49 @@ from . import (
 from .common import CliError, OneLineParser, report_error
 
 
-def build_parser() -> argparse.ArgumentParser:
+class _VersionAction(argparse.Action):
+    """argparse's "version" action with the version looked up when asked (importlib.metadata costs an import
+    that every other command would pay)."""
+
+    def __init__(self, option_strings, dest=argparse.SUPPRESS, default=argparse.SUPPRESS, help=None):
+        super().__init__(option_strings=option_strings, dest=dest, default=default, nargs=0, help=help)
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        parser.exit(message=f"graspmix {package_version()}\n")
+
+
+GROUPS = (
+    core_commands,
+    segment_commands,
+    grasp_commands,
+    plot_commands,
+    hand_commands,
+    sim_commands,
+    scene_commands,
+    experiment_commands,
+    clutter_commands,
+)
+
+
+def build_parser(command: str | None = None) -> argparse.ArgumentParser:
+    """The command line's parser: every subcommand's, or with `command` (a subcommand's name) only that of
+    its group, so that a command does not import what the other commands' options need (their defaults
+    come from the layers above the model: the simulator, the experiment)."""
     p = OneLineParser(prog="graspmix_cli", description=__doc__.splitlines()[0])
-    p.add_argument("--version", action="version", version=f"graspmix {package_version()}")
+    p.add_argument("--version", action=_VersionAction, help="print graspmix's version and exit")
     sub = p.add_subparsers(dest="command", required=True, parser_class=OneLineParser)
-    for commands in (
-        core_commands,
-        segment_commands,
-        grasp_commands,
-        plot_commands,
-        hand_commands,
-        sim_commands,
-        scene_commands,
-        experiment_commands,
-        clutter_commands,
-    ):
+    for commands in [g for g in GROUPS if command in g.COMMANDS] or GROUPS:
         commands.add_parsers(sub)
     return p
 
 
 def main(argv: list[str] | None = None) -> int:
+    words = list(sys.argv[1:] if argv is None else argv)
     try:
-        args = build_parser().parse_args(argv)
+        args = build_parser(next((w for w in words if not w.startswith("-")), None)).parse_args(argv)
     except SystemExit as e:  # a bad option (one line already printed, status 2), or --help / --version
         return e.code if isinstance(e.code, int) else 2
-    args.argv = list(sys.argv[1:] if argv is None else argv)
+    args.argv = words
     try:
         return args.func(args)
     except BrokenPipeError:  # the reader went away (e.g. `| head`): nothing more to say

@@ -24,6 +24,9 @@ def cmd_plot(args: argparse.Namespace) -> int:
     return 0
 
 
+COMMANDS = ("plot",)  # the subcommands add_parsers adds (main builds only the group of the one run)
+
+
 def add_parsers(sub) -> None:
     s = sub.add_parser("plot", help="draw a grasps file: the cloud, the table and the best grasps' hands")
     s.add_argument("--grasps", type=input_path, required=True, help="grasps file (.json, graspmix.grasps/1)")

@@ -34,6 +34,9 @@ def cmd_scene(args: argparse.Namespace) -> int:
     return 0
 
 
+COMMANDS = ("scene",)  # the subcommands add_parsers adds (main builds only the group of the one run)
+
+
 def add_parsers(sub) -> None:
     s = sub.add_parser("scene", help="build a scene of several objects on the table (pile or packed) in Bullet")
     s.add_argument("--objects", type=int_in(1, 100), required=True, help="how many objects to draw")

@@ -66,6 +66,9 @@ def cmd_segment(args) -> int:
     return 0
 
 
+COMMANDS = ("segment",)  # the subcommands add_parsers adds (main builds only the group of the one run)
+
+
 def add_parsers(sub) -> None:
     s = sub.add_parser("segment", help="the support plane and the objects of a scene cloud (.pcd/.ply/.npy)")
     s.add_argument("--cloud", type=input_path, required=True, help="the scene cloud (.pcd, .ply, or .npy (N, 3))")

@@ -122,6 +122,9 @@ def _add_scene_source(s, what: str) -> None:
     g.add_argument("--scene", type=input_path, help="a scene file (graspmix_cli scene; format graspmix.scene/1)")
 
 
+COMMANDS = ("acquire", "execute")  # the subcommands add_parsers adds (main builds only the group of the one run)
+
+
 def add_parsers(sub) -> None:
     s = sub.add_parser("acquire", help="a point cloud of an object or a scene as simulated depth cameras see it")
     _add_scene_source(s, "at its rest pose at the origin")

@@ -12,6 +12,10 @@ from .. import _core
 from ..io import DEMO_FORMAT, read_document, relative_path, require_field, resolve_path
 from ..io.checks import check_input_file, check_output_path, check_path_text
 
+# How graspmix.sim.demonstration records one (here so the command line's defaults need no simulator).
+DEMO_GRIP_FORCE = 20.0  # N (N m): the demonstrating hand's motor force limit (execution's SimSettings: 40)
+DEMO_MAX_STEPS = 2000  # simulation steps (240 Hz) the closing fingers get to come to rest
+
 
 @dataclass
 class Demonstration:

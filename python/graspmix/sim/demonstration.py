@@ -22,10 +22,9 @@ import numpy as np
 from .. import _core
 from ..io.checks import MAX_ITERATIONS, check_float, check_input_file, check_int, check_seed
 from ..model import Demonstration
+from ..model.demonstration import DEMO_GRIP_FORCE, DEMO_MAX_STEPS
 from .acquisition import AcquisitionSettings, Scene, acquire
 
-DEMO_GRIP_FORCE = 20.0  # N (N m): the demonstrating hand's motor force limit (execution's SimSettings: 40)
-DEMO_MAX_STEPS = 2000  # simulation steps (240 Hz) the closing fingers get to come to rest
 PENETRATION_TOLERANCE = 1e-3  # m: a pre-grasp link deeper than this in the object or the table is refused
 OBJECT_PUSHED = 0.01  # m: an object that moved further while the hand closed was pushed, not grasped
 # A mimic joint is a mechanical linkage, not a second motor: its motor (MIMIC_STIFFNESS times the grip force)

@@ -26,6 +26,42 @@ ExpertList to_experts(const py::object& obj) {
   return out;
 }
 
+/// Rows of a per-grasp vector field stacked into an (N, k) array (k from the first grasp; all are equal).
+template <typename Get>
+RowMatrixXd stack_rows(const std::vector<Grasp>& grasps, Get get) {
+  const Eigen::Index k = grasps.empty() ? 0 : get(grasps.front()).size();
+  RowMatrixXd out(static_cast<Eigen::Index>(grasps.size()), k);
+  for (std::size_t i = 0; i < grasps.size(); ++i) out.row(static_cast<Eigen::Index>(i)) = get(grasps[i]).transpose();
+  return out;
+}
+
+py::dict grasp_columns(const SynthesisResult& r) {
+  const auto n = static_cast<Eigen::Index>(r.grasps.size());
+  Eigen::VectorXd ll(n), wc(n), cc(n), wp(n);
+  py::array_t<bool> optimised(n);
+  auto opt = optimised.mutable_unchecked<1>();
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Grasp& g = r.grasps[static_cast<std::size_t>(i)];
+    ll[i] = g.log_likelihood;
+    wc[i] = g.log_collision;
+    cc[i] = g.log_config;
+    wp[i] = g.log_pregrasp;
+    opt(i) = g.optimised;
+  }
+  py::dict d;
+  d["T_world_wrist"] = stack_rows(r.grasps, [](const Grasp& g) -> Eigen::VectorXd { return g.T_world_wrist; });
+  d["joints"] = stack_rows(r.grasps, [](const Grasp& g) -> const Eigen::VectorXd& { return g.joints; });
+  d["pregrasp"] = stack_rows(r.grasps, [](const Grasp& g) -> const Eigen::VectorXd& { return g.pregrasp; });
+  d["log_likelihood"] = ll;
+  d["log_collision"] = wc;
+  d["log_config"] = cc;
+  d["log_pregrasp"] = wp;
+  d["log_contact"] = stack_rows(r.grasps, [](const Grasp& g) -> const Eigen::VectorXd& { return g.log_contact; });
+  d["log_experts"] = stack_rows(r.grasps, [](const Grasp& g) -> const Eigen::VectorXd& { return g.log_experts; });
+  d["optimised"] = optimised;
+  return d;
+}
+
 }  // namespace
 
 void bind_synthesis(py::module_& m) {
@@ -112,7 +148,10 @@ void bind_synthesis(py::module_& m) {
       .def_readonly("expert_names", &SynthesisResult::expert_names)
       .def_readonly("evaluations", &SynthesisResult::evaluations, "grasps scored in all")
       .def_readonly("rejected", &SynthesisResult::rejected, "samples a hard constraint rejected")
-      .def_readonly("timing", &SynthesisResult::timing, "SynthesisTiming (dict(result.timing) still works)");
+      .def_readonly("timing", &SynthesisResult::timing, "SynthesisTiming (dict(result.timing) still works)")
+      .def("columns", &grasp_columns,
+           "The grasps' fields as arrays, one row a grasp (best first): {Grasp key: (N,) or (N, k)}; what "
+           "result.grasps gives one grasp at a time, without a Python object per grasp and field");
 
   auto evaluation = py::class_<Evaluation>(m, "Evaluation", "log L and its terms for a batch of grasps.")
                         .def_readonly("total", &Evaluation::total, "(N,) log L")

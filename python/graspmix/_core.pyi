@@ -2483,6 +2483,10 @@ class SynthesisResult:
     """
     Grasps best first, with diagnostics.
     """
+    def columns(self) -> dict:
+        """
+        The grasps' fields as arrays, one row a grasp (best first): {Grasp key: (N,) or (N, k)}; what result.grasps gives one grasp at a time, without a Python object per grasp and field
+        """
     @property
     def contact_links(self) -> list[str]:
         ...

@@ -144,28 +144,35 @@ class Grasp(MutableMapping):
 
 
 def grasps_from_result(result, hand) -> list[Grasp]:
-    """The Grasps of a C++ synthesis result, best first, with every expert's log value by name."""
+    """The Grasps of a C++ synthesis result, best first, with every expert's log value by name (read from
+    result.columns(): one array a field, turned into Python numbers in bulk)."""
+    c = {k: v.tolist() for k, v in result.columns().items()}
+    names = sorted(enumerate(hand.joint_names), key=lambda j: j[1])  # by name, as Hand.joints_dict orders them
+    expert_names = [f"contact/{n}" for n in result.contact_links] + list(result.expert_names)
     grasps = []
-    for rank, g in enumerate(result.grasps, start=1):
-        experts = {"collision": g["log_collision"], "config": g["log_config"], "pregrasp_clear": g["log_pregrasp"]}
-        experts.update({f"contact/{n}": float(v) for n, v in zip(result.contact_links, g["log_contact"])})
-        experts.update({n: float(v) for n, v in zip(result.expert_names, g["log_experts"])})
+    for i, wrist in enumerate(c["T_world_wrist"]):
+        experts = {
+            "collision": c["log_collision"][i],
+            "config": c["log_config"][i],
+            "pregrasp_clear": c["log_pregrasp"][i],
+        }
+        experts.update(zip(expert_names, c["log_contact"][i] + c["log_experts"][i]))
         grasps.append(
             Grasp(
-                T_world_wrist=[float(x) for x in g["T_world_wrist"]],
-                pregrasp_joints=hand.joints_dict(g["pregrasp"]),
-                grasp_joints=hand.joints_dict(g["joints"]),
-                rank=rank,
-                log_likelihood=float(g["log_likelihood"]),
-                optimised=bool(g["optimised"]),
-                experts={k: float(v) for k, v in experts.items()},
+                T_world_wrist=wrist,
+                pregrasp_joints={n: c["pregrasp"][i][j] for j, n in names},
+                grasp_joints={n: c["joints"][i][j] for j, n in names},
+                rank=i + 1,
+                log_likelihood=c["log_likelihood"][i],
+                optimised=c["optimised"][i],
+                experts=experts,
             )
         )
     return grasps
 
 
 # The grasp pictures are drawn by graspmix.viz, a higher layer: it registers its drawing function here when
-# it is imported (``import graspmix`` does), so this layer needs nothing from it.
+# it is imported (GraspSet.plot imports it when it has not been), so this layer needs nothing from it.
 _PLOTTER: list = []
 
 

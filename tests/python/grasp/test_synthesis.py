@@ -134,6 +134,22 @@ def test_same_seed_same_grasps_and_the_seed_matters(gmm):
     assert lls == sorted(lls, reverse=True)
 
 
+def test_result_columns_hold_each_grasps_fields(gmm):
+    """SynthesisResult.columns() (what GraspModel.synthesize reads) against the per-grasp objects."""
+    surface = graspmix.compute_surface_features(graspmix.io.load_points(graspmix.data_path("mug.pcd"))[0])
+    collision = graspmix.CollisionExpert(gmm.hand, surface.points)
+    settings = graspmix.SynthesisSettings()
+    settings.n_samples, settings.n_optimise, settings.seed = 40, 3, 5
+    res = gmm.synthesizer.synthesize(surface.frames, surface.curvatures, collision, [], settings)
+    cols = res.columns()
+    assert len(cols["log_likelihood"]) == len(res.grasps) > 0
+    for key in ("T_world_wrist", "joints", "pregrasp", "log_contact", "log_experts"):
+        assert np.array_equal(cols[key], np.array([np.asarray(g[key]) for g in res.grasps]).reshape(cols[key].shape))
+    for key in ("log_likelihood", "log_collision", "log_config", "log_pregrasp", "optimised"):
+        assert np.array_equal(cols[key], np.array([g[key] for g in res.grasps]), equal_nan=True)
+    assert cols["optimised"].dtype == bool and 0 < cols["optimised"].sum() <= 3
+
+
 def test_save_and_load_give_the_same_model(model, tmp_path, novel_clouds):
     path = tmp_path / "model.json"
     model.save(path)

@@ -4,11 +4,18 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <numeric>
 #include <random>
 #include <stdexcept>
 #include <vector>
 
+#include <pcl/filters/statistical_outlier_removal.h>
+#include <pcl/filters/voxel_grid.h>
+#include <pcl/search/kdtree.h>
+#include <pcl/segmentation/extract_clusters.h>
+
 #include "graspmix/perception/scene.hpp"
+#include "perception/cloud_filters.hpp"
 
 using namespace graspmix;
 
@@ -176,6 +183,122 @@ TEST(Scene, VoxelCentroidsAndSourcesMatchABruteForceGrid) {
         EXPECT_EQ(r.sources[j], best) << "kind " << kind << " seed " << seed << " centroid " << j;
         EXPECT_EQ(r.indices[j], -1);
       }
+    }
+  }
+}
+
+// The one-pass voxel grid against pcl::VoxelGrid on random clouds (clustered, so voxels hold many points
+// in an unsorted order): the same centroids bit for bit, in the same order, and every point's voxel is
+// the centroid of the cell PCL puts it in (its getCentroidIndex with the leaf layout saved).
+TEST(VoxelGrid, MatchesPclVoxelGridExactly) {
+  std::mt19937_64 rng(7);
+  std::normal_distribution<float> g(0.0f, 1.0f);
+  for (const float leaf : {0.003f, 0.01f, 0.05f}) {
+    detail::Cloud::Ptr cloud(new detail::Cloud);
+    for (int c = 0; c < 20; ++c) {
+      const pcl::PointXYZ mid(0.3f * g(rng), 0.3f * g(rng), 0.7f + 0.1f * g(rng));
+      for (int i = 0; i < 2000; ++i)
+        cloud->push_back(pcl::PointXYZ(mid.x + 0.02f * g(rng), mid.y + 0.02f * g(rng), mid.z + 0.02f * g(rng)));
+    }
+    pcl::VoxelGrid<pcl::PointXYZ> grid;
+    grid.setLeafSize(leaf, leaf, leaf);
+    grid.setSaveLeafLayout(true);
+    grid.setInputCloud(cloud);
+    detail::Cloud pcl_out;
+    grid.filter(pcl_out);
+    const detail::VoxelCells mine = detail::voxel_grid(*cloud, leaf);
+    ASSERT_EQ(mine.centroids->size(), pcl_out.size());
+    for (std::size_t k = 0; k < pcl_out.size(); ++k) {
+      EXPECT_EQ((*mine.centroids)[k].x, pcl_out[k].x);
+      EXPECT_EQ((*mine.centroids)[k].y, pcl_out[k].y);
+      EXPECT_EQ((*mine.centroids)[k].z, pcl_out[k].z);
+    }
+    ASSERT_EQ(mine.voxel_of_point.size(), cloud->size());
+    for (std::size_t i = 0; i < cloud->size(); ++i)
+      ASSERT_EQ(mine.voxel_of_point[i], grid.getCentroidIndex((*cloud)[i])) << "point " << i << " leaf " << leaf;
+  }
+}
+
+TEST(VoxelGrid, RefusesAGridPastThirtyTwoBitIndices) {
+  detail::Cloud cloud;
+  cloud.push_back(pcl::PointXYZ(0, 0, 0));
+  cloud.push_back(pcl::PointXYZ(100, 100, 100));  // 1e5 cells per axis at 1 mm
+  EXPECT_THROW(detail::voxel_grid(cloud, 0.001f), std::invalid_argument);
+}
+
+namespace {
+
+/// Blobs of points (3 mm spacing, Gaussian) with sparse noise around them: clusters that touch, apart, and
+/// single points; outliers of every degree.
+detail::Cloud::Ptr blobs(std::uint64_t seed, int n_blobs, int per_blob, int n_noise) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<float> g(0.0f, 1.0f);
+  std::uniform_real_distribution<float> u(-0.5f, 0.5f);
+  detail::Cloud::Ptr cloud(new detail::Cloud);
+  for (int c = 0; c < n_blobs; ++c) {
+    const pcl::PointXYZ mid(0.2f * g(rng), 0.2f * g(rng), 0.2f * g(rng));
+    for (int i = 0; i < per_blob; ++i)
+      cloud->push_back(pcl::PointXYZ(mid.x + 0.01f * g(rng), mid.y + 0.01f * g(rng), mid.z + 0.01f * g(rng)));
+  }
+  for (int i = 0; i < n_noise; ++i) cloud->push_back(pcl::PointXYZ(u(rng), u(rng), u(rng)));
+  std::shuffle(cloud->begin(), cloud->end(), rng);
+  return cloud;
+}
+
+}  // namespace
+
+// The grid's Euclidean clusters against pcl::EuclideanClusterExtraction with a kd-tree: the same clusters.
+TEST(EuclideanClusters, MatchPclExtraction) {
+  for (const std::uint64_t seed : {1u, 2u, 3u}) {
+    const detail::Cloud::Ptr cloud = blobs(seed, 12, 400, 3000);
+    for (const double tol : {0.002, 0.006, 0.02}) {
+      pcl::EuclideanClusterExtraction<pcl::PointXYZ> ec;
+      ec.setClusterTolerance(tol);
+      ec.setMinClusterSize(1);
+      ec.setMaxClusterSize(std::numeric_limits<int>::max());
+      ec.setSearchMethod(pcl::search::KdTree<pcl::PointXYZ>::Ptr(new pcl::search::KdTree<pcl::PointXYZ>));
+      ec.setInputCloud(cloud);
+      std::vector<pcl::PointIndices> found;
+      ec.extract(found);
+      std::vector<std::vector<int>> expected;
+      for (const auto& f : found) {
+        expected.emplace_back(f.indices.begin(), f.indices.end());
+        std::sort(expected.back().begin(), expected.back().end());
+      }
+      std::sort(expected.begin(), expected.end());
+      const std::vector<std::vector<int>> mine = detail::euclidean_clusters(cloud, tol);
+      for (std::size_t c = 1; c < mine.size(); ++c) EXPECT_LT(mine[c - 1].front(), mine[c].front());
+      EXPECT_GT(mine.size(), 12u);
+      EXPECT_EQ(mine, expected) << "seed " << seed << " tolerance " << tol;
+    }
+  }
+}
+
+// A far stray point makes the grid too large: PCL's own extraction answers, the same clusters.
+TEST(EuclideanClusters, FarStrayPointFallsBackToPcl) {
+  detail::Cloud::Ptr cloud = blobs(4, 3, 200, 0);
+  cloud->push_back(pcl::PointXYZ(1e5f, 0.0f, 0.0f));
+  const auto mine = detail::euclidean_clusters(cloud, 0.006);
+  std::size_t n = 0;
+  for (const auto& c : mine) n += c.size();
+  EXPECT_EQ(n, cloud->size());
+  EXPECT_EQ(mine.back(), std::vector<int>{static_cast<int>(cloud->size()) - 1});
+}
+
+// The statistical filter against pcl::StatisticalOutlierRemoval, below and above the parallel threshold.
+TEST(StatisticalInliers, MatchPclFilter) {
+  for (const int per_blob : {100, 1500}) {
+    const detail::Cloud::Ptr cloud = blobs(5, 8, per_blob, per_blob);
+    for (const int k : {5, 20}) {
+      pcl::StatisticalOutlierRemoval<pcl::PointXYZ> sor;
+      sor.setMeanK(k);
+      sor.setStddevMulThresh(2.0);
+      sor.setInputCloud(cloud);
+      pcl::Indices expected;
+      sor.filter(expected);
+      const pcl::Indices mine = detail::statistical_inliers(cloud, k, 2.0);
+      EXPECT_LT(mine.size(), cloud->size());
+      EXPECT_EQ(mine, expected) << per_blob << " per blob, k " << k;
     }
   }
 }

@@ -34,13 +34,18 @@ std::vector<std::vector<int>> euclidean_clusters(const Cloud::ConstPtr& cloud, d
 
 /// The dominant plane of `cloud` by RANSAC seeded with `seed` (inlier threshold `distance`, at most
 /// `iterations`), refitted by least squares on its inliers and normalised ((a, b, c) unit), with the
-/// inliers of the refined plane. False if RANSAC finds no model.
+/// inliers of the refined plane. False if RANSAC finds no model. PCL's RANSAC and plane model, with the
+/// model's point tests (count, selection) in a cheaper form that passes the same points (bit for bit:
+/// cloud_filters.cpp is built without floating-point contraction).
 bool fit_plane(const Cloud::ConstPtr& cloud, double distance, int iterations, std::uint64_t seed,
                Eigen::VectorXf& coeffs, pcl::Indices& inliers);
 
+/// fit_plane's point tests on their own (what its plane model counts and selects for a hypothesis).
+std::size_t count_within_plane(const Cloud::ConstPtr& cloud, const Eigen::VectorXf& coeffs, double threshold);
+pcl::Indices select_within_plane(const Cloud::ConstPtr& cloud, const Eigen::VectorXf& coeffs, double threshold);
+
 /// Indices of the points PCL's StatisticalOutlierRemoval keeps (mean distance to the k nearest within
-/// mean + std_ratio * std over the cloud): its arithmetic and its kd-tree, the searches on 2+ threads
-/// for a large cloud (the same result on any number).
+/// mean + std_ratio * std over the cloud).
 pcl::Indices statistical_inliers(const Cloud::ConstPtr& cloud, int k, double std_ratio);
 
 }  // namespace graspmix::detail

@@ -9,8 +9,9 @@
 #include <stdexcept>
 #include <vector>
 
-#include <pcl/filters/statistical_outlier_removal.h>
 #include <pcl/filters/voxel_grid.h>
+#include <pcl/sample_consensus/ransac.h>
+#include <pcl/sample_consensus/sac_model_plane.h>
 #include <pcl/search/kdtree.h>
 #include <pcl/segmentation/extract_clusters.h>
 
@@ -285,20 +286,93 @@ TEST(EuclideanClusters, FarStrayPointFallsBackToPcl) {
   EXPECT_EQ(mine.back(), std::vector<int>{static_cast<int>(cloud->size()) - 1});
 }
 
-// The statistical filter against pcl::StatisticalOutlierRemoval, below and above the parallel threshold.
-TEST(StatisticalInliers, MatchPclFilter) {
-  for (const int per_blob : {100, 1500}) {
-    const detail::Cloud::Ptr cloud = blobs(5, 8, per_blob, per_blob);
-    for (const int k : {5, 20}) {
-      pcl::StatisticalOutlierRemoval<pcl::PointXYZ> sor;
-      sor.setMeanK(k);
-      sor.setStddevMulThresh(2.0);
-      sor.setInputCloud(cloud);
-      pcl::Indices expected;
-      sor.filter(expected);
-      const pcl::Indices mine = detail::statistical_inliers(cloud, k, 2.0);
-      EXPECT_LT(mine.size(), cloud->size());
-      EXPECT_EQ(mine, expected) << per_blob << " per blob, k " << k;
+namespace {
+
+/// fit_plane as PCL's own classes compute it (their count and selection): the reference.
+struct PclPlane : pcl::SampleConsensusModelPlane<pcl::PointXYZ> {
+  PclPlane(const detail::Cloud::ConstPtr& c, unsigned seed) : pcl::SampleConsensusModelPlane<pcl::PointXYZ>(c) {
+    rng_alg_.seed(seed);
+  }
+};
+struct PclRansac : pcl::RandomSampleConsensus<pcl::PointXYZ> {
+  PclRansac(const pcl::SampleConsensusModel<pcl::PointXYZ>::Ptr& m, double t, unsigned seed)
+      : pcl::RandomSampleConsensus<pcl::PointXYZ>(m, t) {
+    rng_->base().seed(seed);
+    threads_ = -1;
+  }
+};
+
+bool pcl_fit_plane(const detail::Cloud::ConstPtr& cloud, double distance, int iterations, std::uint64_t seed,
+                   Eigen::VectorXf& coeffs, pcl::Indices& inliers) {
+  const auto folded = static_cast<unsigned>((seed ^ (seed >> 32)) & 0xffffffffu);
+  PclPlane::Ptr model(new PclPlane(cloud, folded));
+  PclRansac ransac(model, distance, folded ^ 0x9e3779b9u);
+  ransac.setMaxIterations(iterations);
+  if (!ransac.computeModel()) return false;
+  ransac.getInliers(inliers);
+  ransac.getModelCoefficients(coeffs);
+  Eigen::VectorXf refined = coeffs;
+  model->optimizeModelCoefficients(inliers, coeffs, refined);
+  if (refined.allFinite() && refined.head<3>().norm() > 0) coeffs = refined;
+  coeffs /= coeffs.head<3>().norm();
+  model->selectWithinDistance(coeffs, distance, inliers);
+  return true;
+}
+
+}  // namespace
+
+// fit_plane's cheaper point test: the same plane and inliers as PCL's own RANSAC and plane model, on a tilted
+// noisy plane with clutter and on a cloud with no dominant plane (every iteration runs).
+TEST(FitPlane, MatchesPclRansac) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<float> u(-0.5f, 0.5f);
+  std::normal_distribution<float> g(0.0f, 0.002f);
+  const Eigen::Vector3f n = Eigen::Vector3f(0.1f, -0.2f, 1.0f).normalized();
+  const Eigen::Vector3f a = n.unitOrthogonal(), b = n.cross(a);
+  for (const int size : {5000, 60000}) {
+    for (const bool planar : {true, false}) {
+      detail::Cloud::Ptr cloud(new detail::Cloud);
+      for (int i = 0; i < size; ++i) {
+        const Eigen::Vector3f p = planar && i % 5 != 0 ? Eigen::Vector3f(u(rng) * a + u(rng) * b + g(rng) * n)
+                                                       : Eigen::Vector3f(u(rng), u(rng), u(rng));
+        cloud->push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
+      }
+      Eigen::VectorXf mine, ref;
+      pcl::Indices mine_in, ref_in;
+      ASSERT_TRUE(detail::fit_plane(cloud, 0.005, 200, 3, mine, mine_in));
+      ASSERT_TRUE(pcl_fit_plane(cloud, 0.005, 200, 3, ref, ref_in));
+      EXPECT_EQ(mine, ref) << size << " points, planar " << planar;
+      EXPECT_EQ(mine_in, ref_in) << size << " points, planar " << planar;
+      if (planar) EXPECT_GT(std::abs(mine.head<3>().dot(n)), 0.999f);
     }
+  }
+}
+
+// The point test on its own, against PCL's countWithinDistance, with every point within a few float roundings
+// of the threshold (an other order of the dot product's sums passes other points here).
+TEST(FitPlane, PointTestPassesThePointsPclPasses) {
+  std::mt19937_64 rng(12);
+  std::uniform_real_distribution<float> u(-0.5f, 0.5f);
+  const Eigen::Vector3f n = Eigen::Vector3f(0.3f, -0.2f, 1.0f).normalized(), o(0.7f, 0.2f, -0.3f);
+  const double threshold = 0.005;
+  detail::Cloud::Ptr cloud(new detail::Cloud);
+  for (int i = 0; i < 50000; ++i) {
+    Eigen::Vector3f b(u(rng), u(rng), 0.0f);
+    b -= n * n.dot(b);
+    const float t = static_cast<float>(threshold) * (1.0f + static_cast<float>(i % 41 - 20) * 1.2e-7f);
+    const Eigen::Vector3f p = o + b + (i % 2 ? t : -t) * n;
+    cloud->push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
+  }
+  pcl::SampleConsensusModelPlane<pcl::PointXYZ> pcl_model(cloud);
+  for (int h = 0; h < 50; ++h) {
+    const Eigen::Vector3f m = (n + 1e-4f * Eigen::Vector3f(u(rng), u(rng), u(rng))).normalized();
+    Eigen::VectorXf coeffs(4);
+    coeffs << m.x(), m.y(), m.z(), -m.dot(o) + 1e-5f * u(rng);
+    pcl::Indices expected;
+    pcl_model.selectWithinDistance(coeffs, threshold, expected);
+    ASSERT_GT(expected.size(), 1000u);
+    ASSERT_LT(expected.size(), cloud->size() - 1000u);
+    EXPECT_EQ(detail::count_within_plane(cloud, coeffs, threshold), pcl_model.countWithinDistance(coeffs, threshold));
+    EXPECT_EQ(detail::select_within_plane(cloud, coeffs, threshold), expected);
   }
 }

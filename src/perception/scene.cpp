@@ -10,10 +10,8 @@
 
 #include <pcl/common/common.h>
 #include <pcl/filters/crop_box.h>
-#include <pcl/filters/voxel_grid.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
-#include <boost/sort/spreadsort/integer_sort.hpp>
 
 #include "cloud_filters.hpp"
 #include "graspmix/core/plane.hpp"
@@ -109,44 +107,22 @@ void check_voxel_count(const Cloud& cloud, double voxel) {
   }
 }
 
-/// The voxel of every point of `cloud` as the centroid's row in the output of `grid` (after its filter ran):
-/// the grid's own cell index of each point (its public grid coordinates, box minimum and multipliers), and
-/// PCL writes one centroid per occupied cell in increasing cell index, so the k-th distinct index is the
-/// k-th centroid. Its leaf layout (setSaveLeafLayout) would answer the same but allocates an int for every
-/// cell of the bounding box, up to 2^31 of them for a scene with a stray far point.
-std::vector<int> voxel_of_points(const pcl::VoxelGrid<pcl::PointXYZ>& grid, const Cloud& cloud, std::size_t n_voxels) {
-  const Eigen::Vector3i lo = grid.getMinBoxCoordinates(), mul = grid.getDivisionMultiplier();
-  std::vector<std::uint64_t> keyed(cloud.size());  // cell index << 32 | point: sorted, a voxel's points by row
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    const auto& p = cloud[i];
-    const auto cell = static_cast<std::uint32_t>((grid.getGridCoordinates(p.x, p.y, p.z) - lo).dot(mul));
-    keyed[i] = (static_cast<std::uint64_t>(cell) << 32) | static_cast<std::uint32_t>(i);
-  }
-  boost::sort::spreadsort::integer_sort(keyed.begin(), keyed.end());
-  std::vector<int> voxel(cloud.size());
-  std::size_t k = 0;
-  for (std::size_t j = 0; j < keyed.size(); ++j) {
-    if (j > 0 && (keyed[j] >> 32) != (keyed[j - 1] >> 32)) ++k;
-    voxel[keyed[j] & 0xffffffffu] = static_cast<int>(k);
-  }
-  if (k + 1 != n_voxels) throw std::logic_error("prepare_cloud: the voxel grid's cells do not match its centroids");
-  return voxel;
-}
-
 /// Voxel centroids (pcl::VoxelGrid's): no point keeps an input row (origin -1); `source` follows each
 /// centroid to the member of its voxel nearest to it (squared distance in float, as a FLANN search would
 /// measure it; on a tie the lowest row), so per-point data survive the averaging. Linear: one integer sort
-/// (as PCL's own), no search tree.
+/// (as PCL's own, which yields each point's voxel too), no search tree.
 Cloud::Ptr voxel_down(const Cloud::Ptr& cloud, const SceneSettings& s, Rows& rows) {
   check_voxel_count(*cloud, s.voxel_size);
-  pcl::VoxelGrid<pcl::PointXYZ> grid;
-  grid.setLeafSize(static_cast<float>(s.voxel_size), static_cast<float>(s.voxel_size),
-                   static_cast<float>(s.voxel_size));
-  grid.setInputCloud(cloud);
-  Cloud::Ptr down(new Cloud);
-  grid.filter(*down);
+  detail::VoxelCells cells;
+  try {
+    cells = detail::voxel_grid(*cloud, static_cast<float>(s.voxel_size));
+  } catch (const std::invalid_argument&) {  // float rounding past check_voxel_count's figure: the same refusal
+    bad("the cloud is too large for a voxel grid of " + std::to_string(s.voxel_size) +
+        " m (more cells than 32-bit indices hold); crop the cloud or use a larger voxel_size");
+  }
+  const Cloud::Ptr& down = cells.centroids;
   if (down->empty()) bad("the voxel grid returned no point (voxel_size too small for the cloud's extent?)");
-  const std::vector<int> voxel = voxel_of_points(grid, *cloud, down->size());
+  const std::vector<int>& voxel = cells.voxel_of_point;
   std::vector<int> nearest(down->size(), -1);
   std::vector<float> best(down->size(), std::numeric_limits<float>::infinity());
   for (std::size_t i = 0; i < cloud->size(); ++i) {  // rows in increasing order: strict < keeps the lowest

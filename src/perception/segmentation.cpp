@@ -10,8 +10,6 @@
 #include <string>
 #include <vector>
 
-#include <pcl/search/kdtree.h>
-#include <pcl/segmentation/extract_clusters.h>
 #include <Eigen/Geometry>
 
 #include "cloud_filters.hpp"
@@ -238,23 +236,14 @@ Extraction extract(const Vec3Array& P, const Eigen::Vector4d* plane, const Segme
   }
   lap.add_to(times.outliers);
   if (rows.empty()) return e;
-  pcl::search::KdTree<pcl::PointXYZ>::Ptr tree(new pcl::search::KdTree<pcl::PointXYZ>);
-  pcl::EuclideanClusterExtraction<pcl::PointXYZ> ec;
-  ec.setClusterTolerance(s.cluster_tolerance);
-  ec.setMinClusterSize(1);  // every cluster comes back, so the dropped ones can be counted
-  ec.setMaxClusterSize(std::numeric_limits<int>::max());
-  ec.setSearchMethod(tree);
-  ec.setInputCloud(cloud);
-  std::vector<pcl::PointIndices> found;
-  ec.extract(found);
-  for (const auto& f : found) {
-    const auto n = static_cast<int>(f.indices.size());
+  for (const auto& f : detail::euclidean_clusters(cloud, s.cluster_tolerance)) {
+    const auto n = static_cast<int>(f.size());
     if (n < s.min_cluster_size || (s.max_cluster_size > 0 && n > s.max_cluster_size)) {
-      e.n_small += f.indices.size();
+      e.n_small += f.size();
       continue;
     }
     std::vector<int> g;
-    for (const auto i : f.indices) g.push_back(rows[static_cast<std::size_t>(i)]);
+    for (const auto i : f) g.push_back(rows[static_cast<std::size_t>(i)]);
     std::sort(g.begin(), g.end());
     e.groups.push_back(std::move(g));
   }

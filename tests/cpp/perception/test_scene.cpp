@@ -4,11 +4,19 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <numeric>
 #include <random>
 #include <stdexcept>
 #include <vector>
 
+#include <pcl/filters/voxel_grid.h>
+#include <pcl/sample_consensus/ransac.h>
+#include <pcl/sample_consensus/sac_model_plane.h>
+#include <pcl/search/kdtree.h>
+#include <pcl/segmentation/extract_clusters.h>
+
 #include "graspmix/perception/scene.hpp"
+#include "perception/cloud_filters.hpp"
 
 using namespace graspmix;
 
@@ -177,5 +185,194 @@ TEST(Scene, VoxelCentroidsAndSourcesMatchABruteForceGrid) {
         EXPECT_EQ(r.indices[j], -1);
       }
     }
+  }
+}
+
+// The one-pass voxel grid against pcl::VoxelGrid on random clouds (clustered, so voxels hold many points
+// in an unsorted order): the same centroids bit for bit, in the same order, and every point's voxel is
+// the centroid of the cell PCL puts it in (its getCentroidIndex with the leaf layout saved).
+TEST(VoxelGrid, MatchesPclVoxelGridExactly) {
+  std::mt19937_64 rng(7);
+  std::normal_distribution<float> g(0.0f, 1.0f);
+  for (const float leaf : {0.003f, 0.01f, 0.05f}) {
+    detail::Cloud::Ptr cloud(new detail::Cloud);
+    for (int c = 0; c < 20; ++c) {
+      const pcl::PointXYZ mid(0.3f * g(rng), 0.3f * g(rng), 0.7f + 0.1f * g(rng));
+      for (int i = 0; i < 2000; ++i)
+        cloud->push_back(pcl::PointXYZ(mid.x + 0.02f * g(rng), mid.y + 0.02f * g(rng), mid.z + 0.02f * g(rng)));
+    }
+    pcl::VoxelGrid<pcl::PointXYZ> grid;
+    grid.setLeafSize(leaf, leaf, leaf);
+    grid.setSaveLeafLayout(true);
+    grid.setInputCloud(cloud);
+    detail::Cloud pcl_out;
+    grid.filter(pcl_out);
+    const detail::VoxelCells mine = detail::voxel_grid(*cloud, leaf);
+    ASSERT_EQ(mine.centroids->size(), pcl_out.size());
+    for (std::size_t k = 0; k < pcl_out.size(); ++k) {
+      EXPECT_EQ((*mine.centroids)[k].x, pcl_out[k].x);
+      EXPECT_EQ((*mine.centroids)[k].y, pcl_out[k].y);
+      EXPECT_EQ((*mine.centroids)[k].z, pcl_out[k].z);
+    }
+    ASSERT_EQ(mine.voxel_of_point.size(), cloud->size());
+    for (std::size_t i = 0; i < cloud->size(); ++i)
+      ASSERT_EQ(mine.voxel_of_point[i], grid.getCentroidIndex((*cloud)[i])) << "point " << i << " leaf " << leaf;
+  }
+}
+
+TEST(VoxelGrid, RefusesAGridPastThirtyTwoBitIndices) {
+  detail::Cloud cloud;
+  cloud.push_back(pcl::PointXYZ(0, 0, 0));
+  cloud.push_back(pcl::PointXYZ(100, 100, 100));  // 1e5 cells per axis at 1 mm
+  EXPECT_THROW(detail::voxel_grid(cloud, 0.001f), std::invalid_argument);
+}
+
+namespace {
+
+/// Blobs of points (3 mm spacing, Gaussian) with sparse noise around them: clusters that touch, apart, and
+/// single points; outliers of every degree.
+detail::Cloud::Ptr blobs(std::uint64_t seed, int n_blobs, int per_blob, int n_noise) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<float> g(0.0f, 1.0f);
+  std::uniform_real_distribution<float> u(-0.5f, 0.5f);
+  detail::Cloud::Ptr cloud(new detail::Cloud);
+  for (int c = 0; c < n_blobs; ++c) {
+    const pcl::PointXYZ mid(0.2f * g(rng), 0.2f * g(rng), 0.2f * g(rng));
+    for (int i = 0; i < per_blob; ++i)
+      cloud->push_back(pcl::PointXYZ(mid.x + 0.01f * g(rng), mid.y + 0.01f * g(rng), mid.z + 0.01f * g(rng)));
+  }
+  for (int i = 0; i < n_noise; ++i) cloud->push_back(pcl::PointXYZ(u(rng), u(rng), u(rng)));
+  std::shuffle(cloud->begin(), cloud->end(), rng);
+  return cloud;
+}
+
+}  // namespace
+
+// The grid's Euclidean clusters against pcl::EuclideanClusterExtraction with a kd-tree: the same clusters.
+TEST(EuclideanClusters, MatchPclExtraction) {
+  for (const std::uint64_t seed : {1u, 2u, 3u}) {
+    const detail::Cloud::Ptr cloud = blobs(seed, 12, 400, 3000);
+    for (const double tol : {0.002, 0.006, 0.02}) {
+      pcl::EuclideanClusterExtraction<pcl::PointXYZ> ec;
+      ec.setClusterTolerance(tol);
+      ec.setMinClusterSize(1);
+      ec.setMaxClusterSize(std::numeric_limits<int>::max());
+      ec.setSearchMethod(pcl::search::KdTree<pcl::PointXYZ>::Ptr(new pcl::search::KdTree<pcl::PointXYZ>));
+      ec.setInputCloud(cloud);
+      std::vector<pcl::PointIndices> found;
+      ec.extract(found);
+      std::vector<std::vector<int>> expected;
+      for (const auto& f : found) {
+        expected.emplace_back(f.indices.begin(), f.indices.end());
+        std::sort(expected.back().begin(), expected.back().end());
+      }
+      std::sort(expected.begin(), expected.end());
+      const std::vector<std::vector<int>> mine = detail::euclidean_clusters(cloud, tol);
+      for (std::size_t c = 1; c < mine.size(); ++c) EXPECT_LT(mine[c - 1].front(), mine[c].front());
+      EXPECT_GT(mine.size(), 12u);
+      EXPECT_EQ(mine, expected) << "seed " << seed << " tolerance " << tol;
+    }
+  }
+}
+
+// A far stray point makes the grid too large: PCL's own extraction answers, the same clusters.
+TEST(EuclideanClusters, FarStrayPointFallsBackToPcl) {
+  detail::Cloud::Ptr cloud = blobs(4, 3, 200, 0);
+  cloud->push_back(pcl::PointXYZ(1e5f, 0.0f, 0.0f));
+  const auto mine = detail::euclidean_clusters(cloud, 0.006);
+  std::size_t n = 0;
+  for (const auto& c : mine) n += c.size();
+  EXPECT_EQ(n, cloud->size());
+  EXPECT_EQ(mine.back(), std::vector<int>{static_cast<int>(cloud->size()) - 1});
+}
+
+namespace {
+
+/// fit_plane as PCL's own classes compute it (their count and selection): the reference.
+struct PclPlane : pcl::SampleConsensusModelPlane<pcl::PointXYZ> {
+  PclPlane(const detail::Cloud::ConstPtr& c, unsigned seed) : pcl::SampleConsensusModelPlane<pcl::PointXYZ>(c) {
+    rng_alg_.seed(seed);
+  }
+};
+struct PclRansac : pcl::RandomSampleConsensus<pcl::PointXYZ> {
+  PclRansac(const pcl::SampleConsensusModel<pcl::PointXYZ>::Ptr& m, double t, unsigned seed)
+      : pcl::RandomSampleConsensus<pcl::PointXYZ>(m, t) {
+    rng_->base().seed(seed);
+    threads_ = -1;
+  }
+};
+
+bool pcl_fit_plane(const detail::Cloud::ConstPtr& cloud, double distance, int iterations, std::uint64_t seed,
+                   Eigen::VectorXf& coeffs, pcl::Indices& inliers) {
+  const auto folded = static_cast<unsigned>((seed ^ (seed >> 32)) & 0xffffffffu);
+  PclPlane::Ptr model(new PclPlane(cloud, folded));
+  PclRansac ransac(model, distance, folded ^ 0x9e3779b9u);
+  ransac.setMaxIterations(iterations);
+  if (!ransac.computeModel()) return false;
+  ransac.getInliers(inliers);
+  ransac.getModelCoefficients(coeffs);
+  Eigen::VectorXf refined = coeffs;
+  model->optimizeModelCoefficients(inliers, coeffs, refined);
+  if (refined.allFinite() && refined.head<3>().norm() > 0) coeffs = refined;
+  coeffs /= coeffs.head<3>().norm();
+  model->selectWithinDistance(coeffs, distance, inliers);
+  return true;
+}
+
+}  // namespace
+
+// fit_plane's cheaper point test: the same plane and inliers as PCL's own RANSAC and plane model, on a tilted
+// noisy plane with clutter and on a cloud with no dominant plane (every iteration runs).
+TEST(FitPlane, MatchesPclRansac) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<float> u(-0.5f, 0.5f);
+  std::normal_distribution<float> g(0.0f, 0.002f);
+  const Eigen::Vector3f n = Eigen::Vector3f(0.1f, -0.2f, 1.0f).normalized();
+  const Eigen::Vector3f a = n.unitOrthogonal(), b = n.cross(a);
+  for (const int size : {5000, 60000}) {
+    for (const bool planar : {true, false}) {
+      detail::Cloud::Ptr cloud(new detail::Cloud);
+      for (int i = 0; i < size; ++i) {
+        const Eigen::Vector3f p = planar && i % 5 != 0 ? Eigen::Vector3f(u(rng) * a + u(rng) * b + g(rng) * n)
+                                                       : Eigen::Vector3f(u(rng), u(rng), u(rng));
+        cloud->push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
+      }
+      Eigen::VectorXf mine, ref;
+      pcl::Indices mine_in, ref_in;
+      ASSERT_TRUE(detail::fit_plane(cloud, 0.005, 200, 3, mine, mine_in));
+      ASSERT_TRUE(pcl_fit_plane(cloud, 0.005, 200, 3, ref, ref_in));
+      EXPECT_EQ(mine, ref) << size << " points, planar " << planar;
+      EXPECT_EQ(mine_in, ref_in) << size << " points, planar " << planar;
+      if (planar) EXPECT_GT(std::abs(mine.head<3>().dot(n)), 0.999f);
+    }
+  }
+}
+
+// The point test on its own, against PCL's countWithinDistance, with every point within a few float roundings
+// of the threshold (an other order of the dot product's sums passes other points here).
+TEST(FitPlane, PointTestPassesThePointsPclPasses) {
+  std::mt19937_64 rng(12);
+  std::uniform_real_distribution<float> u(-0.5f, 0.5f);
+  const Eigen::Vector3f n = Eigen::Vector3f(0.3f, -0.2f, 1.0f).normalized(), o(0.7f, 0.2f, -0.3f);
+  const double threshold = 0.005;
+  detail::Cloud::Ptr cloud(new detail::Cloud);
+  for (int i = 0; i < 50000; ++i) {
+    Eigen::Vector3f b(u(rng), u(rng), 0.0f);
+    b -= n * n.dot(b);
+    const float t = static_cast<float>(threshold) * (1.0f + static_cast<float>(i % 41 - 20) * 1.2e-7f);
+    const Eigen::Vector3f p = o + b + (i % 2 ? t : -t) * n;
+    cloud->push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
+  }
+  pcl::SampleConsensusModelPlane<pcl::PointXYZ> pcl_model(cloud);
+  for (int h = 0; h < 50; ++h) {
+    const Eigen::Vector3f m = (n + 1e-4f * Eigen::Vector3f(u(rng), u(rng), u(rng))).normalized();
+    Eigen::VectorXf coeffs(4);
+    coeffs << m.x(), m.y(), m.z(), -m.dot(o) + 1e-5f * u(rng);
+    pcl::Indices expected;
+    pcl_model.selectWithinDistance(coeffs, threshold, expected);
+    ASSERT_GT(expected.size(), 1000u);
+    ASSERT_LT(expected.size(), cloud->size() - 1000u);
+    EXPECT_EQ(detail::count_within_plane(cloud, coeffs, threshold), pcl_model.countWithinDistance(coeffs, threshold));
+    EXPECT_EQ(detail::select_within_plane(cloud, coeffs, threshold), expected);
   }
 }

@@ -13,8 +13,8 @@ import os
 import time
 
 import graspmix
-from graspmix.io import data_path
 import numpy as np
+from graspmix.io import data_path
 from scipy.spatial.transform import Rotation
 
 

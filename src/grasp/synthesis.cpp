@@ -7,6 +7,7 @@
 #include <numeric>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <typeinfo>
 
 #include "graspmix/core/frame_jitter.hpp"
@@ -209,12 +210,14 @@ Evaluation GraspSynthesizer::evaluate(const std::vector<QueryDensity>& query, co
       contact.col(l) = query[l].density->log_density(P, RowMatrixXd(m, 0));
     }
     const Eigen::VectorXd config = config_.log_density(q);
-    const Eigen::VectorXd coll = collision.evaluate_batch(w, q).log_w;
-    Eigen::VectorXd pre_w = Eigen::VectorXd::Zero(m);
+    Eigen::VectorXd coll, pre_w = Eigen::VectorXd::Zero(m);
     if (clear_pregrasp) {
       RowMatrixXd pre(m, q.cols());
       for (Eigen::Index k = 0; k < m; ++k) pre.row(k) = config_.pregrasp_for(q.row(k).transpose()).transpose();
-      pre_w = collision.evaluate_batch(w, pre).log_w;
+      // One pass: the links the pre-grasp leaves in place (the palm) are scored once.
+      std::tie(coll, pre_w) = collision.log_w_pair(w, q, pre);
+    } else {
+      coll = collision.evaluate_batch(w, q).log_w;
     }
     for (Eigen::Index k = 0; k < m; ++k) {
       const Eigen::Index i = alive[k];

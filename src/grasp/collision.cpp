@@ -271,12 +271,28 @@ void cloud_term(const CollisionExpert::Index& ix, const CollisionExpert::Shapes:
   // A box's points inside it by more than r need no distance: it is minus their largest excess (the same
   // arithmetic as signed_distance's).
   const bool box = sh.src->type == ShapeType::Box;
-  // Order-free: a maximum and a count.
+  const bool point_box = box && r == 0.0 && tol >= 0.0;  // then depth > tol implies inside: depth = -excess
+  // Order-free: a maximum and a count (kept in locals: the points could alias the outputs).
+  double best = deepest;
+  int count = 0;
   for (std::int64_t x = c0[0]; x <= c1[0]; ++x)
     for (std::int64_t y = c0[1]; y <= c1[1]; ++y) {
+      const auto [b0, e0] = ix.grid.z_run(x, y, c0[2], c1[2]);
+      if (b0 == e0) continue;  // no point under the world box in this column: no need to cut it
       std::int64_t z0, z1;
       if (!columns.column(x, y, c0[2], c1[2], z0, z1)) continue;
       const auto [b, e] = ix.grid.z_run(x, y, z0, z1);
+      if (point_box) {
+        // A box against points: depth = -excess inside; branch-free (the same values as below).
+        for (Eigen::Index i = b; i < e; ++i) {
+          const Eigen::Vector3d p = R.transpose() * (ix.grid.point(static_cast<int>(i)) - t);
+          const double depth = -(p.cwiseAbs() - sh.half).maxCoeff();
+          const bool in = depth > tol;
+          count += in;
+          best = std::max(best, in ? depth : best);
+        }
+        continue;
+      }
       for (Eigen::Index i = b; i < e; ++i) {
         const Eigen::Vector3d p = R.transpose() * (ix.grid.point(static_cast<int>(i)) - t);
         // Cheap rejection against the local box before the exact distance.
@@ -284,11 +300,13 @@ void cloud_term(const CollisionExpert::Index& ix, const CollisionExpert::Shapes:
         if (excess >= r) continue;
         const double depth = r - (box && excess < 0 ? excess : signed_distance(*sh.src, p));
         if (depth > tol) {
-          ++inside;
-          deepest = std::max(deepest, depth);
+          ++count;
+          best = std::max(best, depth);
         }
       }
     }
+  deepest = best;
+  inside += count;
 }
 
 /// The plane's P_l term of one shape posed at T (0 when clear): boxes by FCL's own formula, other shapes by

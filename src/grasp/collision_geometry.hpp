@@ -101,7 +101,7 @@ class BoxColumns {
 /// FCL's penetration depth of a box posed at T against the half-space {n . x <= d} (boxHalfspaceIntersect,
 /// the same formula): negative when clear.
 inline double box_halfspace_depth(const Eigen::Vector3d& side, const Eigen::Isometry3d& T, const Eigen::Vector3d& n,
-                           double d) {
+                                  double d) {
   const Eigen::Vector3d Q = T.linear().transpose() * n;
   const Eigen::Vector3d B(std::abs(Q[0] * side[0]), std::abs(Q[1] * side[1]), std::abs(Q[2] * side[2]));
   return 0.5 * (B[0] + B[1] + B[2]) - (n.dot(T.translation()) - d);

@@ -392,8 +392,10 @@ CollisionBatchResult CollisionExpert::evaluate_batch(const Eigen::Ref<const Pose
   out.collision_free.resize(n);
   // Small batches (annealing scores ~10 hands at a time) stay on one thread: waking a team costs more
   // than it saves, and its spinning threads stall badly on a loaded machine.
-  const Eigen::Index N =
-      hand_->fk_each(T_world_wrist, q, 64, [&](Eigen::Index i, const Eigen::VectorXd&, const Eigen::Isometry3d* poses) {
+  // A plane alone (the kinematic expert's test) is a fraction of a microsecond per hand: large batches only.
+  const Eigen::Index parallel_from = index_->grid.size() == 0 && !occupancy_ ? 4096 : 64;
+  const Eigen::Index N = hand_->fk_each(
+      T_world_wrist, q, parallel_from, [&](Eigen::Index i, const Eigen::VectorXd&, const Eigen::Isometry3d* poses) {
         std::vector<int> inside(static_cast<size_t>(L), 0);
         Eigen::VectorXd cd = Eigen::VectorXd::Zero(L), pd = Eigen::VectorXd::Zero(L);
         evaluate_into(poses, cd.data(), pd.data(), inside.data());

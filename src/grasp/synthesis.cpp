@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <numeric>
 #include <stdexcept>
@@ -101,7 +102,8 @@ std::vector<QueryDensity> GraspSynthesizer::query_densities(const Eigen::Ref<con
   require_finite(frames, "query densities: frames");
   require_finite(features, "query densities: features");
   std::uniform_real_distribution<double> uni(-1.0, 1.0);
-  std::vector<QueryDensity> out;
+  std::vector<PoseArray> samples;
+  std::vector<std::shared_ptr<PoseDensity>> densities;
   for (const ContactModel& m : contact_models_) {
     // Importance resampling: surface points in proportion to M_i(r).
     auto pick = distribution_from_logs(m.density->feature_log_density(features));
@@ -121,12 +123,27 @@ std::vector<QueryDensity> GraspSynthesizer::query_densities(const Eigen::Ref<con
       }
     }
     const PoseArray u = m.density->sample(r, rng);
-    const PoseArray samples = pose_multiply(v, u);  // s = v o u
+    samples.push_back(pose_multiply(v, u));  // s = v o u
     QueryDensityOfKind kind(s, rng);
     m.density->accept(kind);
-    const std::shared_ptr<PoseDensity> q = std::move(kind.density);
-    q->fit(samples, RowMatrixXd(s.n_samples, 0), {});
-    out.push_back({m.link, m.link_name, std::move(q)});
+    densities.push_back(std::move(kind.density));
+  }
+  // The fits draw from their own seeds (drawn above, in link order): one thread per link, the same densities.
+  const int n_links = static_cast<int>(densities.size());
+  std::vector<std::exception_ptr> errors(densities.size());
+#pragma omp parallel for schedule(dynamic, 1) if (n_links > 1)
+  for (int l = 0; l < n_links; ++l) {
+    try {
+      densities[l]->fit(samples[l], RowMatrixXd(s.n_samples, 0), {});
+    } catch (...) {
+      errors[l] = std::current_exception();  // rethrown below, outside the threads
+    }
+  }
+  for (const std::exception_ptr& e : errors)
+    if (e) std::rethrow_exception(e);
+  std::vector<QueryDensity> out;
+  for (size_t l = 0; l < densities.size(); ++l) {
+    out.push_back({contact_models_[l].link, contact_models_[l].link_name, std::move(densities[l])});
   }
   return out;
 }

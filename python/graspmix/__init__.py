@@ -15,10 +15,17 @@ The module paths graspmix.acquisition, .demo, .plots, .report and .stats are dep
 """
 
 import importlib as _importlib
+import os as _os
 
-import numpy as _np
+# OpenMP threads that spin while they wait for work stall badly when other jobs share the cores (a batch of
+# 200 grasps took 50-300 ms instead of 3-10 ms on a loaded 2-core machine): the core waits passively unless
+# the user chose a policy. libgomp reads it when it loads, with _core below.
+if "OMP_WAIT_POLICY" not in _os.environ and "GOMP_SPINCOUNT" not in _os.environ:
+    _os.environ["OMP_WAIT_POLICY"] = "PASSIVE"
 
-from . import _core, io, model, perception
+import numpy as _np  # noqa: E402
+
+from . import _core, io, model, perception  # noqa: E402
 from ._core import (
     # contact models, configuration model, experts, synthesis
     AxisAlignmentExpert,

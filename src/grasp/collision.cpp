@@ -19,10 +19,15 @@
 #include <fcl/narrowphase/collision_result.h>
 
 #include "core/uniform_grid.hpp"
+#include "grasp/collision_geometry.hpp"
 #include "graspmix/core/plane.hpp"
 #include "graspmix/core/se3.hpp"
 
 namespace graspmix {
+
+using detail::box_halfspace_depth;
+using detail::BoxColumns;
+using detail::signed_distance;
 
 /// The cloud's points in a grid over their bounding box [lo, hi].
 struct CollisionExpert::Index {
@@ -49,31 +54,6 @@ struct CollisionExpert::Shapes {
 };
 
 namespace {
-
-/// Signed distance from p (shape frame) to the shape's surface, negative inside.
-inline double signed_distance(const CollisionShape& s, const Eigen::Vector3d& p) {
-  switch (s.type) {
-    case ShapeType::Box: {
-      const Eigen::Vector3d q = p.cwiseAbs() - 0.5 * s.size;
-      return q.cwiseMax(0.0).norm() + std::min(q.maxCoeff(), 0.0);
-    }
-    case ShapeType::Cylinder: {
-      const Eigen::Vector2d d(std::hypot(p.x(), p.y()) - s.size.x(), std::abs(p.z()) - 0.5 * s.size.y());
-      return d.cwiseMax(0.0).norm() + std::min(d.maxCoeff(), 0.0);
-    }
-    case ShapeType::Sphere:
-      return p.norm() - s.size.x();
-    case ShapeType::Mesh: {
-      const RowMatrixXd& P = *s.hull_planes;
-      double best = -std::numeric_limits<double>::infinity();
-      for (Eigen::Index f = 0; f < P.rows(); ++f) {
-        best = std::max(best, P(f, 0) * p.x() + P(f, 1) * p.y() + P(f, 2) * p.z() - P(f, 3));
-      }
-      return best;
-    }
-  }
-  return std::numeric_limits<double>::infinity();
-}
 
 std::shared_ptr<fcl::CollisionGeometryd> make_fcl_geometry(const CollisionShape& s) {
   switch (s.type) {
@@ -273,22 +253,98 @@ void CollisionExpert::Shapes::sample_interiors(double h) {
 Eigen::Index CollisionExpert::n_points() const { return index_->grid.size(); }
 double CollisionExpert::cell_size() const { return index_->grid.cell_size(); }
 
-void CollisionExpert::evaluate_into(const Eigen::Isometry3d* link_poses, double* cloud_depth, double* plane_depth,
-                                    int* points_inside) const {
-  const Index& ix = *index_;
-  const double r = settings_.point_radius;
-  const double tol = settings_.contact_tolerance;
-  const Eigen::Index N = ix.grid.size();
-  for (const Shapes::Shape& sh : shapes_->shapes) {
-    const Eigen::Isometry3d T = link_poses[sh.link] * sh.src->T_link_shape;
-    const Eigen::Matrix3d& R = T.linear();
-    const Eigen::Vector3d t = T.translation();
-    const Eigen::Vector3d centre = T * sh.centre;
-    const Eigen::Vector3d half = R.cwiseAbs() * sh.half;
+namespace {
 
+/// The surface model's D_l term of one shape posed at T: the deepest penetrating point (into `deepest`, a
+/// running maximum) and their count (added to `inside`).
+void cloud_term(const CollisionExpert::Index& ix, const CollisionExpert::Shapes::Shape& sh, const Eigen::Isometry3d& T,
+                double r, double tol, double& deepest, int& inside) {
+  const Eigen::Matrix3d& R = T.linear();
+  const Eigen::Vector3d t = T.translation();
+  const Eigen::Vector3d centre = T * sh.centre;
+  const Eigen::Vector3d half = R.cwiseAbs() * sh.half;
+  // The cells under the shape's world box (grown by r), each column cut to the cells its oriented box meets.
+  const Eigen::Vector3d lo = (centre - half).array() - r, hi = (centre + half).array() + r;
+  if (!((lo.array() <= ix.hi.array()).all() && (hi.array() >= ix.lo.array()).all())) return;
+  const detail::UniformGrid::Cell c0 = ix.grid.cell_of(lo), c1 = ix.grid.cell_of(hi);
+  const BoxColumns columns(ix.lo, ix.grid.cell_size(), centre, R, sh.half, r);
+  // A box's points inside it by more than r need no distance: it is minus their largest excess (the same
+  // arithmetic as signed_distance's).
+  const bool box = sh.src->type == ShapeType::Box;
+  const bool point_box = box && r == 0.0 && tol >= 0.0;  // then depth > tol implies inside: depth = -excess
+  // Order-free: a maximum and a count (kept in locals: the points could alias the outputs).
+  double best = deepest;
+  int count = 0;
+  for (std::int64_t x = c0[0]; x <= c1[0]; ++x)
+    for (std::int64_t y = c0[1]; y <= c1[1]; ++y) {
+      const auto [b0, e0] = ix.grid.z_run(x, y, c0[2], c1[2]);
+      if (b0 == e0) continue;  // no point under the world box in this column: no need to cut it
+      std::int64_t z0, z1;
+      if (!columns.column(x, y, c0[2], c1[2], z0, z1)) continue;
+      const auto [b, e] = ix.grid.z_run(x, y, z0, z1);
+      if (point_box) {
+        // A box against points: depth = -excess inside; branch-free (the same values as below).
+        for (Eigen::Index i = b; i < e; ++i) {
+          const Eigen::Vector3d p = R.transpose() * (ix.grid.point(static_cast<int>(i)) - t);
+          const double depth = -(p.cwiseAbs() - sh.half).maxCoeff();
+          const bool in = depth > tol;
+          count += in;
+          best = std::max(best, in ? depth : best);
+        }
+        continue;
+      }
+      for (Eigen::Index i = b; i < e; ++i) {
+        const Eigen::Vector3d p = R.transpose() * (ix.grid.point(static_cast<int>(i)) - t);
+        // Cheap rejection against the local box before the exact distance.
+        const double excess = ((p - sh.centre).cwiseAbs() - sh.half).maxCoeff();
+        if (excess >= r) continue;
+        const double depth = r - (box && excess < 0 ? excess : signed_distance(*sh.src, p));
+        if (depth > tol) {
+          ++count;
+          best = std::max(best, depth);
+        }
+      }
+    }
+  deepest = best;
+  inside += count;
+}
+
+/// The plane's P_l term of one shape posed at T (0 when clear): boxes by FCL's own formula, other shapes by
+/// FCL when their bounding box reaches below the raised plane.
+double plane_term(const CollisionExpert::Shapes& shapes, const CollisionExpert::Shapes::Shape& sh,
+                  const Eigen::Isometry3d& T, const Eigen::Vector4d& plane, double plane_margin) {
+  const fcl::Halfspaced& hs = *shapes.halfspace;
+  if (sh.src->type == ShapeType::Box) {
+    const double depth = box_halfspace_depth(sh.src->size, T, hs.n, hs.d);
+    return depth >= 0 ? depth : 0.0;
+  }
+  const Eigen::Vector3d n = plane.head<3>();
+  // Skip FCL when even the shape's bounding box clears the raised plane.
+  const Eigen::Vector3d centre = T * sh.centre;
+  const Eigen::Vector3d half = T.linear().cwiseAbs() * sh.half;
+  const double lowest = n.dot(centre) + plane[3] - half.dot(n.cwiseAbs());
+  if (!(lowest < plane_margin && sh.fcl_geometry)) return 0.0;
+  fcl::CollisionRequestd request(1, true);
+  fcl::CollisionResultd result;
+  fcl::collide(sh.fcl_geometry.get(), fcl::Transform3d(T.matrix()), &hs, fcl::Transform3d::Identity(), request, result);
+  // FCL's sign convention for half-space contacts differs between shape pairs; the depth is its magnitude.
+  return result.isCollision() ? std::abs(result.getContact(0).penetration_depth) : 0.0;
+}
+
+}  // namespace
+
+void CollisionExpert::evaluate_into(const Eigen::Isometry3d* link_poses, double* cloud_depth, double* plane_depth,
+                                    int* points_inside, const bool* skip) const {
+  const double tol = settings_.contact_tolerance;
+  const Eigen::Index N = index_->grid.size();
+  for (const Shapes::Shape& sh : shapes_->shapes) {
+    if (skip && skip[sh.link]) continue;
+    const Eigen::Isometry3d T = link_poses[sh.link] * sh.src->T_link_shape;
     // Occupancy: the shape's volume in blocked cells, when its world box meets the map's region.
     if (occupancy_) {
       const OccupancyMap& map = *occupancy_;
+      const Eigen::Vector3d centre = T * sh.centre;
+      const Eigen::Vector3d half = T.linear().cwiseAbs() * sh.half;
       if (((centre - half).array() <= map.region_max().array()).all() &&
           ((centre + half).array() >= map.region_min().array()).all()) {
         cloud_depth[sh.link] +=
@@ -296,45 +352,10 @@ void CollisionExpert::evaluate_into(const Eigen::Isometry3d* link_poses, double*
             settings_.reference_area;
       }
     }
-    // Cloud: the points in the cells under the shape's world box (grown by r).
-    if (N > 0) {
-      const Eigen::Vector3d lo = (centre - half).array() - r, hi = (centre + half).array() + r;
-      if ((lo.array() <= ix.hi.array()).all() && (hi.array() >= ix.lo.array()).all()) {
-        const detail::UniformGrid::Cell c0 = ix.grid.cell_of(lo), c1 = ix.grid.cell_of(hi);
-        double deepest = cloud_depth[sh.link];
-        int inside = 0;
-        // Order-free: a maximum and a count.
-        ix.grid.for_each_in_cells(c0, c1, [&](int i) {
-          const Eigen::Vector3d p = R.transpose() * (ix.grid.point(i) - t);
-          // Cheap rejection against the local box before the exact distance.
-          if (((p - sh.centre).cwiseAbs() - sh.half).maxCoeff() >= r) return;
-          const double depth = r - signed_distance(*sh.src, p);
-          if (depth > tol) {
-            ++inside;
-            deepest = std::max(deepest, depth);
-          }
-        });
-        cloud_depth[sh.link] = deepest;
-        points_inside[sh.link] += inside;
-      }
-    }
-
-    // Plane: skip FCL when even the shape's bounding box clears the raised plane.
+    if (N > 0) cloud_term(*index_, sh, T, settings_.point_radius, tol, cloud_depth[sh.link], points_inside[sh.link]);
     if (plane_) {
-      const Eigen::Vector3d n = plane_->head<3>();
-      const double lowest = n.dot(centre) + (*plane_)[3] - half.dot(n.cwiseAbs());
-      if (lowest < settings_.plane_margin && sh.fcl_geometry) {
-        fcl::CollisionRequestd request(1, true);
-        fcl::CollisionResultd result;
-        fcl::collide(sh.fcl_geometry.get(), fcl::Transform3d(T.matrix()), shapes_->halfspace.get(),
-                     fcl::Transform3d::Identity(), request, result);
-        if (result.isCollision()) {
-          // FCL's sign convention for half-space contacts differs between shape pairs; the depth is
-          // its magnitude.
-          const double depth = std::abs(result.getContact(0).penetration_depth);
-          if (depth > tol) plane_depth[sh.link] = std::max(plane_depth[sh.link], depth);
-        }
-      }
+      const double depth = plane_term(*shapes_, sh, T, *plane_, settings_.plane_margin);
+      if (depth > tol) plane_depth[sh.link] = std::max(plane_depth[sh.link], depth);
     }
   }
 }
@@ -371,8 +392,10 @@ CollisionBatchResult CollisionExpert::evaluate_batch(const Eigen::Ref<const Pose
   out.collision_free.resize(n);
   // Small batches (annealing scores ~10 hands at a time) stay on one thread: waking a team costs more
   // than it saves, and its spinning threads stall badly on a loaded machine.
-  const Eigen::Index N =
-      hand_->fk_each(T_world_wrist, q, 64, [&](Eigen::Index i, const Eigen::VectorXd&, const Eigen::Isometry3d* poses) {
+  // A plane alone (the kinematic expert's test) is a fraction of a microsecond per hand: large batches only.
+  const Eigen::Index parallel_from = index_->grid.size() == 0 && !occupancy_ ? 4096 : 64;
+  const Eigen::Index N = hand_->fk_each(
+      T_world_wrist, q, parallel_from, [&](Eigen::Index i, const Eigen::VectorXd&, const Eigen::Isometry3d* poses) {
         std::vector<int> inside(static_cast<size_t>(L), 0);
         Eigen::VectorXd cd = Eigen::VectorXd::Zero(L), pd = Eigen::VectorXd::Zero(L);
         evaluate_into(poses, cd.data(), pd.data(), inside.data());
@@ -392,6 +415,36 @@ CollisionBatchResult CollisionExpert::evaluate_batch(const Eigen::Ref<const Pose
     out.w.conservativeResize(N);
     out.collision_free.conservativeResize(N);
   }
+  return out;
+}
+
+std::pair<Eigen::VectorXd, Eigen::VectorXd> CollisionExpert::log_w_pair(const Eigen::Ref<const PoseArray>& wrists,
+                                                                        const Eigen::Ref<const RowMatrixXd>& q,
+                                                                        const Eigen::Ref<const RowMatrixXd>& q2) const {
+  const Eigen::Index n = wrists.rows();
+  if (q.rows() != n || q2.rows() != n || q2.cols() != hand_->n_dofs()) {
+    throw std::invalid_argument("log_w_pair: wrists, q and q2 must have the same rows, q2 one column per joint");
+  }
+  const int L = hand_->n_links();
+  std::pair<Eigen::VectorXd, Eigen::VectorXd> out{Eigen::VectorXd(n), Eigen::VectorXd(n)};
+  hand_->fk_each(wrists, q, 64, [&](Eigen::Index i, const Eigen::VectorXd&, const Eigen::Isometry3d* poses) {
+    std::vector<int> inside(static_cast<size_t>(L), 0);
+    Eigen::VectorXd cd = Eigen::VectorXd::Zero(L), pd = Eigen::VectorXd::Zero(L);
+    evaluate_into(poses, cd.data(), pd.data(), inside.data());
+    const double w = settings_.inside_weight;
+    out.first[i] = -settings_.beta * (cd.sum() + pd.sum() + w * std::accumulate(inside.begin(), inside.end(), 0));
+    // The second configuration: a link posed exactly as in the first (the palm) keeps its terms.
+    std::vector<Eigen::Isometry3d> poses2(static_cast<size_t>(L));
+    const Eigen::VectorXd qi2 = q2.row(i).transpose();
+    hand_->fk_into(pose_from_vector(wrists.row(i).transpose()), qi2.data(), poses2.data());
+    std::unique_ptr<bool[]> same(new bool[static_cast<size_t>(L)]);
+    for (int l = 0; l < L; ++l) {
+      same[l] = poses2[l].matrix() == poses[l].matrix();
+      if (!same[l]) cd[l] = pd[l] = inside[l] = 0;
+    }
+    evaluate_into(poses2.data(), cd.data(), pd.data(), inside.data(), same.get());
+    out.second[i] = -settings_.beta * (cd.sum() + pd.sum() + w * std::accumulate(inside.begin(), inside.end(), 0));
+  });
   return out;
 }
 

@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <numeric>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <typeinfo>
 
 #include "graspmix/core/frame_jitter.hpp"
@@ -100,7 +102,8 @@ std::vector<QueryDensity> GraspSynthesizer::query_densities(const Eigen::Ref<con
   require_finite(frames, "query densities: frames");
   require_finite(features, "query densities: features");
   std::uniform_real_distribution<double> uni(-1.0, 1.0);
-  std::vector<QueryDensity> out;
+  std::vector<PoseArray> samples;
+  std::vector<std::shared_ptr<PoseDensity>> densities;
   for (const ContactModel& m : contact_models_) {
     // Importance resampling: surface points in proportion to M_i(r).
     auto pick = distribution_from_logs(m.density->feature_log_density(features));
@@ -120,12 +123,27 @@ std::vector<QueryDensity> GraspSynthesizer::query_densities(const Eigen::Ref<con
       }
     }
     const PoseArray u = m.density->sample(r, rng);
-    const PoseArray samples = pose_multiply(v, u);  // s = v o u
+    samples.push_back(pose_multiply(v, u));  // s = v o u
     QueryDensityOfKind kind(s, rng);
     m.density->accept(kind);
-    const std::shared_ptr<PoseDensity> q = std::move(kind.density);
-    q->fit(samples, RowMatrixXd(s.n_samples, 0), {});
-    out.push_back({m.link, m.link_name, std::move(q)});
+    densities.push_back(std::move(kind.density));
+  }
+  // The fits draw from their own seeds (drawn above, in link order): one thread per link, the same densities.
+  const int n_links = static_cast<int>(densities.size());
+  std::vector<std::exception_ptr> errors(densities.size());
+#pragma omp parallel for schedule(dynamic, 1) if (n_links > 1)
+  for (int l = 0; l < n_links; ++l) {
+    try {
+      densities[l]->fit(samples[l], RowMatrixXd(s.n_samples, 0), {});
+    } catch (...) {
+      errors[l] = std::current_exception();  // rethrown below, outside the threads
+    }
+  }
+  for (const std::exception_ptr& e : errors)
+    if (e) std::rethrow_exception(e);
+  std::vector<QueryDensity> out;
+  for (size_t l = 0; l < densities.size(); ++l) {
+    out.push_back({contact_models_[l].link, contact_models_[l].link_name, std::move(densities[l])});
   }
   return out;
 }
@@ -209,12 +227,14 @@ Evaluation GraspSynthesizer::evaluate(const std::vector<QueryDensity>& query, co
       contact.col(l) = query[l].density->log_density(P, RowMatrixXd(m, 0));
     }
     const Eigen::VectorXd config = config_.log_density(q);
-    const Eigen::VectorXd coll = collision.evaluate_batch(w, q).log_w;
-    Eigen::VectorXd pre_w = Eigen::VectorXd::Zero(m);
+    Eigen::VectorXd coll, pre_w = Eigen::VectorXd::Zero(m);
     if (clear_pregrasp) {
       RowMatrixXd pre(m, q.cols());
       for (Eigen::Index k = 0; k < m; ++k) pre.row(k) = config_.pregrasp_for(q.row(k).transpose()).transpose();
-      pre_w = collision.evaluate_batch(w, pre).log_w;
+      // One pass: the links the pre-grasp leaves in place (the palm) are scored once.
+      std::tie(coll, pre_w) = collision.log_w_pair(w, q, pre);
+    } else {
+      coll = collision.evaluate_batch(w, q).log_w;
     }
     for (Eigen::Index k = 0; k < m; ++k) {
       const Eigen::Index i = alive[k];

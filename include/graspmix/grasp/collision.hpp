@@ -44,6 +44,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -131,6 +132,13 @@ class CollisionExpert {
   CollisionBatchResult evaluate_batch(const Eigen::Ref<const PoseArray>& T_world_wrist,
                                       const Eigen::Ref<const RowMatrixXd>& q) const;
 
+  /// log W of the same wrists (N, 7) at two configurations q and q2 (N, n_dofs each; e.g. a grasp and its
+  /// pre-grasp), equal to evaluate_batch's log_w of each: links posed identically by both (the palm) are
+  /// evaluated once. Parallel (OpenMP).
+  std::pair<Eigen::VectorXd, Eigen::VectorXd> log_w_pair(const Eigen::Ref<const PoseArray>& wrists,
+                                                         const Eigen::Ref<const RowMatrixXd>& q,
+                                                         const Eigen::Ref<const RowMatrixXd>& q2) const;
+
   const Hand& hand() const { return *hand_; }
   const CollisionSettings& settings() const { return settings_; }
   bool has_plane() const { return plane_.has_value(); }
@@ -145,8 +153,10 @@ class CollisionExpert {
   struct Shapes;  ///< per-shape FCL geometry and bounds (defined in src/)
 
  private:
-  void evaluate_into(const Eigen::Isometry3d* link_poses, double* cloud_depth, double* plane_depth,
-                     int* points_inside) const;
+  /// Adds the terms of the links posed at link_poses (all, or those with skip[l] false) into the per-link
+  /// outputs.
+  void evaluate_into(const Eigen::Isometry3d* link_poses, double* cloud_depth, double* plane_depth, int* points_inside,
+                     const bool* skip = nullptr) const;
 
   std::shared_ptr<const Hand> hand_;
   CollisionSettings settings_;

@@ -340,3 +340,120 @@ TEST(CollisionOccupancy, ModelNamesAndBadInput) {
   s.reference_area = 0.0;
   EXPECT_THROW(CollisionExpert(finger(), box_seen_all_round(), box_surface(), std::nullopt, s), std::invalid_argument);
 }
+
+namespace {
+
+// A hand of every shape kind, offset and rotated in its links: a long flat palm box (rotated about z and
+// off its link's origin), a finger with two boxes on a prismatic joint, a sphere and a cylinder on a
+// revolute one.
+const char* kMixedHand = R"(<robot name="mixed">
+  <link name="palm"><collision><origin xyz="0.01 -0.005 0.03" rpy="0 0 0.4"/><geometry><box size="0.146 0.05 0.0725"/></geometry></collision></link>
+  <link name="finger">
+    <collision><origin xyz="-0.0115 0 0.0445"/><geometry><box size="0.023 0.03 0.073"/></geometry></collision>
+    <collision><origin xyz="-0.012 0 0.012" rpy="0.2 0 0"/><geometry><box size="0.018 0.03 0.024"/></geometry></collision>
+  </link>
+  <link name="knob">
+    <collision><origin xyz="0 0.02 0"/><geometry><sphere radius="0.012"/></geometry></collision>
+    <collision><origin xyz="0 -0.02 0.01" rpy="0.7 0.3 0"/><geometry><cylinder radius="0.01" length="0.05"/></geometry></collision>
+  </link>
+  <joint name="slide" type="prismatic"><parent link="palm"/><child link="finger"/><origin xyz="0 0 0.07"/><axis xyz="1 0 0"/><limit lower="-0.06" upper="0.06" effort="1" velocity="1"/></joint>
+  <joint name="turn" type="revolute"><parent link="palm"/><child link="knob"/><origin xyz="0.05 0 0.08"/><axis xyz="0 1 0"/><limit lower="-1.5" upper="1.5" effort="1" velocity="1"/></joint>
+</robot>)";
+
+/// Brute-force signed distance (shape frame), from the shapes' definitions.
+double reference_distance(const graspmix::CollisionShape& s, const Eigen::Vector3d& p) {
+  using graspmix::ShapeType;
+  if (s.type == ShapeType::Sphere) return p.norm() - s.size.x();
+  Eigen::Vector3d q;
+  if (s.type == ShapeType::Box) {
+    q = p.cwiseAbs() - 0.5 * s.size;
+  } else {  // cylinder: radial and axial excess, with a zero third
+    q = Eigen::Vector3d(std::sqrt(p.x() * p.x() + p.y() * p.y()) - s.size.x(), std::abs(p.z()) - 0.5 * s.size.y(),
+                        -1e300);
+  }
+  const double outside =
+      std::sqrt(std::pow(std::max(q[0], 0.0), 2) + std::pow(std::max(q[1], 0.0), 2) + std::pow(std::max(q[2], 0.0), 2));
+  return q.maxCoeff() > 0 ? outside : q.maxCoeff();
+}
+
+/// Brute-force depth of the lowest point of a shape posed at T below the plane n . x + d = margin.
+double reference_plane_depth(const graspmix::CollisionShape& s, const Eigen::Isometry3d& T, const Eigen::Vector4d& pl,
+                             double margin) {
+  using graspmix::ShapeType;
+  const Eigen::Vector3d n = pl.head<3>();
+  const Eigen::Matrix3d& R = T.linear();
+  double reach = 0;  // how far the shape reaches from its centre along -n
+  if (s.type == ShapeType::Sphere) reach = s.size.x();
+  if (s.type == ShapeType::Box) {
+    for (int k = 0; k < 3; ++k) reach += 0.5 * s.size[k] * std::abs(n.dot(R.col(k)));
+  }
+  if (s.type == ShapeType::Cylinder) {
+    const double c = std::abs(n.dot(R.col(2)));
+    reach = 0.5 * s.size.y() * c + s.size.x() * std::sqrt(std::max(0.0, 1 - c * c));
+  }
+  return margin - (n.dot(T.translation()) + pl[3] - reach);
+}
+
+}  // namespace
+
+TEST(Collision, ColumnCullingAndPlaneFormulaMatchBruteForceOnRandomHands) {
+  // A mug-like cloud (a cylinder's side and top, 4000 points) on a tilted table; random hands around it, over
+  // automatic and fine grids and point radii: every term equals a brute force over all points and shapes.
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> U(0, 1);
+  Vec3Array cloud(4000, 3);
+  for (Eigen::Index i = 0; i < cloud.rows(); ++i) {
+    const double a = 2 * M_PI * U(rng), top = i % 5 == 0, rr = top ? 0.04 * std::sqrt(U(rng)) : 0.04;
+    cloud.row(i) << rr * std::cos(a), rr * std::sin(a), top ? 0.12 : 0.12 * U(rng);
+  }
+  Eigen::Vector4d plane(0.05, -0.03, 1, 0.002);
+  plane /= plane.head<3>().norm();
+  const auto hand = std::make_shared<Hand>(Hand::from_urdf_string(kMixedHand, "."));
+  const int N = 300;
+  graspmix::PoseArray W(N, 7);
+  graspmix::RowMatrixXd Q(N, 2), Q2(N, 2);
+  for (int i = 0; i < N; ++i) {
+    Eigen::Vector4d qv(U(rng) - 0.5, U(rng) - 0.5, U(rng) - 0.5, U(rng) - 0.5);
+    qv.normalize();
+    W.row(i) << 0.16 * (U(rng) - 0.5), 0.16 * (U(rng) - 0.5), 0.16 * U(rng) - 0.02, qv[0], qv[1], qv[2], qv[3];
+    Q.row(i) << 0.12 * (U(rng) - 0.5), 3 * (U(rng) - 0.5);
+    Q2.row(i) << 0.12 * (U(rng) - 0.5), Q(i, 1);  // the knob stays put: its terms are reused by log_w_pair
+  }
+  for (const double cell : {0.0, 0.003}) {
+    for (const double radius : {0.0, 0.002}) {
+      CollisionSettings s;
+      s.cell_size = cell;
+      s.point_radius = radius;
+      s.plane_margin = 0.001;
+      const CollisionExpert expert(hand, cloud, plane, s);
+      const auto batch = expert.evaluate_batch(W, Q);
+      int hits = 0;
+      for (int i = 0; i < N; ++i) {
+        const auto poses = hand->fk(graspmix::pose_from_vector(W.row(i).transpose()), Q.row(i).transpose());
+        for (int l = 0; l < hand->n_links(); ++l) {
+          double deepest = 0, below = 0;
+          for (const auto& sh : hand->links()[l].collisions) {
+            const Eigen::Isometry3d T = poses[l] * sh.T_link_shape;
+            for (Eigen::Index p = 0; p < cloud.rows(); ++p) {
+              const double d = radius - reference_distance(sh, T.inverse() * Eigen::Vector3d(cloud.row(p).transpose()));
+              if (d > s.contact_tolerance) deepest = std::max(deepest, d);
+            }
+            const double pd = reference_plane_depth(sh, T, plane, s.plane_margin);
+            if (pd > s.contact_tolerance) below = std::max(below, pd);
+          }
+          EXPECT_NEAR(batch.cloud_depth(i, l), deepest, 1e-9) << i << " " << l << " cell " << cell;
+          EXPECT_NEAR(batch.plane_depth(i, l), below, 1e-9) << i << " " << l << " cell " << cell;
+          hits += deepest > 0;
+        }
+      }
+      EXPECT_GT(hits, N / 5);
+      // The pair equals two batches, exactly.
+      const auto [w1, w2] = expert.log_w_pair(W, Q, Q2);
+      const auto batch2 = expert.evaluate_batch(W, Q2);
+      for (int i = 0; i < N; ++i) {
+        EXPECT_EQ(w1[i], batch.log_w[i]);
+        EXPECT_EQ(w2[i], batch2.log_w[i]);
+      }
+    }
+  }
+}

@@ -404,6 +404,19 @@ void bind_experts(py::module_& m) {
             settings_doc<AxisAlignmentSettings>())
                .c_str());
 
+  py::class_<CollisionFreeExpert, Expert, std::shared_ptr<CollisionFreeExpert>>(
+      m, "CollisionFreeExpert",
+      "Hard: the hand touches none of a CollisionExpert's cloud and plane at the grasp (and, given a "
+      "ConfigModel, at its pre-grasp).")
+      .def(py::init([](std::shared_ptr<CollisionExpert> collision, const std::optional<ConfigModel>& config,
+                       std::string name) {
+             if (!collision) throw py::value_error("CollisionFreeExpert: collision must be a CollisionExpert");
+             return std::make_shared<CollisionFreeExpert>(std::move(collision), config, std::move(name));
+           }),
+           py::arg("collision"), py::arg("pregrasp_config") = py::none(), py::arg("name") = "collision_free",
+           "collision: the CollisionExpert of what to keep clear of; pregrasp_config: a ConfigModel whose "
+           "pregrasp_for(q) gives each grasp's pre-grasp, checked too (None: the grasp only).");
+
   py::class_<FunctionExpert, Expert, std::shared_ptr<FunctionExpert>>(
       m, "FunctionExpert", "A user expert: fn(wrists (N,7), joints (N,D)) -> log E (N,), called once per batch.")
       .def(py::init([](std::string name, const py::function& fn) {

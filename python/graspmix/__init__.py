@@ -34,6 +34,7 @@ from ._core import (
     # hands and the collision expert
     CollisionBatchResult,
     CollisionExpert,
+    CollisionFreeExpert,
     CollisionResult,
     ConfigModel,
     ConfigModelSettings,

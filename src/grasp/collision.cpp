@@ -418,12 +418,12 @@ CollisionBatchResult CollisionExpert::evaluate_batch(const Eigen::Ref<const Pose
   return out;
 }
 
-std::pair<Eigen::VectorXd, Eigen::VectorXd> CollisionExpert::log_w_pair(const Eigen::Ref<const PoseArray>& wrists,
-                                                                        const Eigen::Ref<const RowMatrixXd>& q,
-                                                                        const Eigen::Ref<const RowMatrixXd>& q2) const {
+std::pair<Eigen::VectorXd, Eigen::VectorXd> CollisionExpert::total_depth_pair(
+    const Eigen::Ref<const PoseArray>& wrists, const Eigen::Ref<const RowMatrixXd>& q,
+    const Eigen::Ref<const RowMatrixXd>& q2) const {
   const Eigen::Index n = wrists.rows();
   if (q.rows() != n || q2.rows() != n || q2.cols() != hand_->n_dofs()) {
-    throw std::invalid_argument("log_w_pair: wrists, q and q2 must have the same rows, q2 one column per joint");
+    throw std::invalid_argument("total_depth_pair: wrists, q and q2 must have the same rows, q2 one column per joint");
   }
   const int L = hand_->n_links();
   std::pair<Eigen::VectorXd, Eigen::VectorXd> out{Eigen::VectorXd(n), Eigen::VectorXd(n)};
@@ -432,7 +432,7 @@ std::pair<Eigen::VectorXd, Eigen::VectorXd> CollisionExpert::log_w_pair(const Ei
     Eigen::VectorXd cd = Eigen::VectorXd::Zero(L), pd = Eigen::VectorXd::Zero(L);
     evaluate_into(poses, cd.data(), pd.data(), inside.data());
     const double w = settings_.inside_weight;
-    out.first[i] = -settings_.beta * (cd.sum() + pd.sum() + w * std::accumulate(inside.begin(), inside.end(), 0));
+    out.first[i] = cd.sum() + pd.sum() + w * std::accumulate(inside.begin(), inside.end(), 0);
     // The second configuration: a link posed exactly as in the first (the palm) keeps its terms.
     std::vector<Eigen::Isometry3d> poses2(static_cast<size_t>(L));
     const Eigen::VectorXd qi2 = q2.row(i).transpose();
@@ -443,9 +443,18 @@ std::pair<Eigen::VectorXd, Eigen::VectorXd> CollisionExpert::log_w_pair(const Ei
       if (!same[l]) cd[l] = pd[l] = inside[l] = 0;
     }
     evaluate_into(poses2.data(), cd.data(), pd.data(), inside.data(), same.get());
-    out.second[i] = -settings_.beta * (cd.sum() + pd.sum() + w * std::accumulate(inside.begin(), inside.end(), 0));
+    out.second[i] = cd.sum() + pd.sum() + w * std::accumulate(inside.begin(), inside.end(), 0);
   });
   return out;
+}
+
+std::pair<Eigen::VectorXd, Eigen::VectorXd> CollisionExpert::log_w_pair(const Eigen::Ref<const PoseArray>& wrists,
+                                                                        const Eigen::Ref<const RowMatrixXd>& q,
+                                                                        const Eigen::Ref<const RowMatrixXd>& q2) const {
+  auto depth = total_depth_pair(wrists, q, q2);
+  depth.first *= -settings_.beta;
+  depth.second *= -settings_.beta;
+  return depth;
 }
 
 Eigen::VectorXd link_signed_distances(const Hand& hand, int link, const Eigen::Isometry3d& T_world_link,

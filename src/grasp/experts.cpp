@@ -41,6 +41,37 @@ KinematicFeasibilityExpert::KinematicFeasibilityExpert(std::shared_ptr<const Han
           }(),
           std::move(reachable)) {}
 
+CollisionFreeExpert::CollisionFreeExpert(std::shared_ptr<const CollisionExpert> collision,
+                                         std::optional<ConfigModel> pregrasp_config, std::string name)
+    : collision_(std::move(collision)), config_(std::move(pregrasp_config)), name_(std::move(name)) {
+  if (!collision_) throw std::invalid_argument("CollisionFreeExpert: no collision expert");
+  if (config_ && config_->dim() != collision_->hand().n_dofs()) {
+    throw std::invalid_argument("CollisionFreeExpert: the configuration model has " + std::to_string(config_->dim()) +
+                                " joints, the hand " + std::to_string(collision_->hand().n_dofs()));
+  }
+}
+
+Eigen::VectorXd CollisionFreeExpert::log_value(const GraspBatch& b) const {
+  const Eigen::Index n = b.wrists.rows();
+  if (b.joints.rows() != n || b.joints.cols() != collision_->hand().n_dofs()) {
+    throw std::invalid_argument(name_ + " expert: joints must be (" + std::to_string(n) + ", " +
+                                std::to_string(collision_->hand().n_dofs()) + ")");
+  }
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(n);
+  if (config_) {
+    RowMatrixXd pre(n, b.joints.cols());
+    for (Eigen::Index i = 0; i < n; ++i) pre.row(i) = config_->pregrasp_for(b.joints.row(i).transpose()).transpose();
+    const auto [grasp, pregrasp] = collision_->total_depth_pair(b.wrists, b.joints, pre);
+    for (Eigen::Index i = 0; i < n; ++i)
+      if (!(grasp[i] <= 0.0 && pregrasp[i] <= 0.0)) out[i] = kRejected;
+  } else {
+    const CollisionBatchResult r = collision_->evaluate_batch(b.wrists, b.joints);
+    for (Eigen::Index i = 0; i < n; ++i)
+      if (!r.collision_free[i]) out[i] = kRejected;
+  }
+  return out;
+}
+
 Eigen::VectorXd KinematicFeasibilityExpert::log_value(const GraspBatch& b) const {
   const Eigen::Index n = b.wrists.rows();
   if (b.joints.rows() != n || b.joints.cols() != hand_->n_dofs()) {

@@ -138,6 +138,10 @@ class CollisionExpert {
   std::pair<Eigen::VectorXd, Eigen::VectorXd> log_w_pair(const Eigen::Ref<const PoseArray>& wrists,
                                                          const Eigen::Ref<const RowMatrixXd>& q,
                                                          const Eigen::Ref<const RowMatrixXd>& q2) const;
+  /// The same pair as total depths (CollisionBatchResult::total_depth of each; 0 where collision-free).
+  std::pair<Eigen::VectorXd, Eigen::VectorXd> total_depth_pair(const Eigen::Ref<const PoseArray>& wrists,
+                                                               const Eigen::Ref<const RowMatrixXd>& q,
+                                                               const Eigen::Ref<const RowMatrixXd>& q2) const;
 
   const Hand& hand() const { return *hand_; }
   const CollisionSettings& settings() const { return settings_; }

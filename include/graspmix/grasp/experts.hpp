@@ -12,6 +12,7 @@
 
 #include "graspmix/core/types.hpp"
 #include "graspmix/grasp/collision.hpp"
+#include "graspmix/grasp/config_model.hpp"
 #include "graspmix/robot/hand.hpp"
 
 namespace graspmix {
@@ -90,6 +91,23 @@ class AxisAlignmentExpert : public Expert {
  private:
   Eigen::Vector3d world_axis_, hand_axis_;
   double concentration_;
+  std::string name_;
+};
+
+/// The hard expert that keeps the hand out of a collision expert's cloud and plane (e.g. a scene's other
+/// objects): log E = 0 where the hand touches none of them at the grasp and, given a configuration model, at
+/// the grasp's pre-grasp (ConfigModel::pregrasp_for; the links the pre-grasp leaves in place are scored
+/// once), -inf elsewhere. Collision-free is CollisionBatchResult::collision_free: total depth <= 0.
+class CollisionFreeExpert : public Expert {
+ public:
+  CollisionFreeExpert(std::shared_ptr<const CollisionExpert> collision, std::optional<ConfigModel> pregrasp_config,
+                      std::string name = "collision_free");
+  std::string name() const override { return name_; }
+  Eigen::VectorXd log_value(const GraspBatch& batch) const override;
+
+ private:
+  std::shared_ptr<const CollisionExpert> collision_;
+  std::optional<ConfigModel> config_;
   std::string name_;
 };
 

@@ -20,7 +20,7 @@ import numpy as np
 
 from .. import _core
 from ..perception import Scene, segment_scene
-from .experts import collision_expert, constraint_experts, expert, occupancy_map
+from .experts import collision_expert, constraint_experts, occupancy_map
 from .grasp_types import REFERENCE_EXPERT
 from .grasps import STAGES, grasps_from_result
 from .settings import FeatureSettings, SynthesisOptions
@@ -71,15 +71,9 @@ def clear_of_neighbours(model, scene: Scene, target: int, opts: SynthesisOptions
     others = scene.labels != target
     if not np.any(others):
         return None
-    points = scene.points[others]
-    collision = collision_expert(model.hand, points, None, opts)
+    collision = collision_expert(model.hand, scene.points[others], None, opts)
     config = model.synthesizer.config_model if config is None else config
-
-    def free(wrists, joints):
-        pre = np.array([config.pregrasp_for(q) for q in joints]).reshape(np.shape(joints))
-        return collision.collision_free(wrists, joints) & collision.collision_free(wrists, pre)
-
-    return expert("clear_of_neighbours", free, kind="hard")
+    return _core.CollisionFreeExpert(collision, config, name="clear_of_neighbours")
 
 
 @dataclass

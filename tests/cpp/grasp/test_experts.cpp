@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <limits>
 #include <memory>
+#include <random>
 
 #include <gtest/gtest.h>
 
@@ -78,4 +79,55 @@ TEST(Experts, FunctionExpertChecksWhatItGetsBack) {
   EXPECT_THROW(nan.log_value({w, q}), std::invalid_argument);
   const FunctionExpert size("size", [](const PoseArray&, const RowMatrixXd&) { return Eigen::VectorXd(3); });
   EXPECT_THROW(size.log_value({w, q}), std::invalid_argument);
+}
+
+TEST(Experts, CollisionFreeIsTheCollisionExpertsVerdictAtTheGraspAndItsPregrasp) {
+  const auto hand = wsg50();
+  // A 6 cm cube of points centred 5 cm above a table; hands placed all around it, about half touching.
+  Vec3Array cube(6 * 21 * 21, 3);
+  Eigen::Index k = 0;
+  for (int face = 0; face < 6; ++face)
+    for (int i = 0; i < 21; ++i)
+      for (int j = 0; j < 21; ++j) {
+        Eigen::Vector3d p;
+        const double u = -0.03 + 0.003 * i, v = -0.03 + 0.003 * j, s = face % 2 ? 0.03 : -0.03;
+        p << (face / 2 == 0 ? s : u), (face / 2 == 1 ? s : (face / 2 == 0 ? u : v)), (face / 2 == 2 ? s : v);
+        cube.row(k++) = (p + Eigen::Vector3d(0, 0, 0.05)).transpose();
+      }
+  const auto collision = std::make_shared<CollisionExpert>(hand, cube, Eigen::Vector4d(0, 0, 1, 0));
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1), open(0.0, 0.055);
+  const int n = 400;
+  PoseArray w(n, 7);
+  RowMatrixXd q(n, 1);
+  for (int i = 0; i < n; ++i) {
+    Eigen::Quaterniond r(u(rng), u(rng), u(rng), u(rng));
+    r.normalize();
+    const Eigen::Vector3d approach = r * Eigen::Vector3d::UnitZ();  // the palm's z points at the cube
+    const Eigen::Vector3d pos = Eigen::Vector3d(0, 0, 0.05) - approach * (0.15 + 0.08 * (u(rng) + 1) / 2);
+    w.row(i) << pos.x(), pos.y(), pos.z(), r.x(), r.y(), r.z(), r.w();
+    q(i, 0) = open(rng);
+  }
+  RowMatrixXd limits(1, 2);
+  limits << 0.0, 0.055;
+  const ConfigModel config(Eigen::VectorXd::Constant(1, 0.05), Eigen::VectorXd::Constant(1, 0.02), limits);
+  RowMatrixXd pre(n, 1);
+  for (int i = 0; i < n; ++i) pre.row(i) = config.pregrasp_for(q.row(i).transpose()).transpose();
+  const auto at_grasp = collision->evaluate_batch(w, q).collision_free;
+  const auto at_pre = collision->evaluate_batch(w, pre).collision_free;
+  const Eigen::VectorXd with_pre = CollisionFreeExpert(collision, config).log_value({w, q});
+  const Eigen::VectorXd grasp_only = CollisionFreeExpert(collision, std::nullopt).log_value({w, q});
+  int rejected = 0, only_by_pregrasp = 0;
+  for (int i = 0; i < n; ++i) {
+    EXPECT_EQ(with_pre[i], at_grasp[i] && at_pre[i] ? 0.0 : -std::numeric_limits<double>::infinity()) << i;
+    EXPECT_EQ(grasp_only[i], at_grasp[i] ? 0.0 : -std::numeric_limits<double>::infinity()) << i;
+    rejected += !(at_grasp[i] && at_pre[i]);
+    only_by_pregrasp += at_grasp[i] && !at_pre[i];
+  }
+  EXPECT_GT(rejected, n / 10);  // the cases are not all of one kind
+  EXPECT_LT(rejected, n - n / 10);
+  EXPECT_GT(only_by_pregrasp, 0);  // the opened hand is what hits
+  const RowMatrixXd two_joints = RowMatrixXd::Zero(n, 2);
+  EXPECT_THROW(CollisionFreeExpert(collision, config).log_value({w, two_joints}), std::invalid_argument);
+  EXPECT_THROW(CollisionFreeExpert(nullptr, config), std::invalid_argument);
 }

@@ -81,6 +81,30 @@ def test_matches_independent_numpy_depths(wsg):
         np.testing.assert_array_equal(expert.collision_free(wrists, joints), batch.collision_free)
 
 
+def test_collision_free_expert_is_the_numpy_verdict_at_grasp_and_pregrasp(wsg):
+    """CollisionFreeExpert (what keeps a grasp clear of a scene's other objects) against the numpy depths of the
+    hand at the grasp and at its pre-grasp (ConfigModel.pregrasp_for)."""
+    rng = np.random.default_rng(11)
+    cloud = box_surface([-0.03, -0.04, 0.0], [0.03, 0.04, 0.1], step=0.004)
+    collision = graspmix.CollisionExpert(wsg, cloud, contact_tolerance=EXACT)
+    config = graspmix.ConfigModel([0.05], [0.02], [[0.0, 0.055]])
+    n = 120
+    tilt = Rotation.from_rotvec(rng.normal(scale=0.4, size=(n, 3)))
+    wrists = np.c_[rng.uniform(-0.05, 0.05, (n, 2)), rng.uniform(-0.16, -0.06, n), tilt.as_quat()]
+    joints = rng.uniform(0.0, 0.055, (n, 1))
+    got = graspmix.CollisionFreeExpert(collision, config, name="clear").log_value(wrists, joints)
+    for i in range(n):
+        pre = config.pregrasp_for(joints[i])
+        free = not numpy_box_depths(wsg, wrists[i], joints[i], cloud).any()
+        free &= not numpy_box_depths(wsg, wrists[i], pre, cloud).any()
+        assert got[i] == (0.0 if free else -np.inf), i
+    assert 0.1 < np.mean(got == 0) < 0.9
+    with pytest.raises(ValueError, match="collision"):
+        graspmix.CollisionFreeExpert(None, config)
+    with pytest.raises(ValueError, match="joints"):
+        graspmix.CollisionFreeExpert(collision, graspmix.ConfigModel([0.05, 0.0], [0.02, 0.0], [[0, 1], [0, 1]]))
+
+
 def test_support_plane_blocks_a_hand_below_the_table(wsg):
     cloud = box_surface([-0.02, -0.02, 0.0], [0.02, 0.02, 0.1])
     # The plane's sign does not matter: it is oriented so that the cloud lies above it.

@@ -22,11 +22,17 @@ namespace {
 
 /// PCL's SAC classes seed their generators with 12345 (or the clock); these reseed them from the
 /// caller's seed so that RANSAC is both deterministic and under the caller's control.
-class SeededPlaneModel : public pcl::SampleConsensusModelPlane<pcl::PointXYZ> {
+class SeededStockPlaneModel : public pcl::SampleConsensusModelPlane<pcl::PointXYZ> {
  public:
-  SeededPlaneModel(const Cloud::ConstPtr& cloud, unsigned seed) : pcl::SampleConsensusModelPlane<pcl::PointXYZ>(cloud) {
+  SeededStockPlaneModel(const Cloud::ConstPtr& cloud, unsigned seed)
+      : pcl::SampleConsensusModelPlane<pcl::PointXYZ>(cloud) {
     rng_alg_.seed(seed);
   }
+};
+
+class SeededPlaneModel : public SeededStockPlaneModel {
+ public:
+  using SeededStockPlaneModel::SeededStockPlaneModel;
 
   // PCL's count and selection (countWithinDistanceStandard, selectWithinDistance: |coeffs . (p, 1)| <
   // threshold) with the dot product written out as the one PCL's build computes, Eigen's SSE reduction
@@ -214,9 +220,12 @@ VoxelCells voxel_grid(const Cloud& cloud, float leaf) {
   return out;
 }
 
-bool fit_plane(const Cloud::ConstPtr& cloud, double distance, int iterations, std::uint64_t seed,
-               Eigen::VectorXf& coeffs, pcl::Indices& inliers) {
-  SeededPlaneModel::Ptr model(new SeededPlaneModel(cloud, fold_seed(seed)));
+namespace {
+
+template <typename Model>
+bool fit_plane_with(const Cloud::ConstPtr& cloud, double distance, int iterations, std::uint64_t seed,
+                    Eigen::VectorXf& coeffs, pcl::Indices& inliers) {
+  typename Model::Ptr model(new Model(cloud, fold_seed(seed)));
   SeededRansac ransac(model, distance, fold_seed(seed) ^ 0x9e3779b9u);
   ransac.setMaxIterations(iterations);
   if (!ransac.computeModel()) return false;
@@ -228,6 +237,15 @@ bool fit_plane(const Cloud::ConstPtr& cloud, double distance, int iterations, st
   coeffs /= coeffs.head<3>().norm();
   model->selectWithinDistance(coeffs, distance, inliers);
   return true;
+}
+
+}  // namespace
+
+bool fit_plane(const Cloud::ConstPtr& cloud, double distance, int iterations, std::uint64_t seed,
+               Eigen::VectorXf& coeffs, pcl::Indices& inliers, PlaneTests tests) {
+  return tests == PlaneTests::Fast
+             ? fit_plane_with<SeededPlaneModel>(cloud, distance, iterations, seed, coeffs, inliers)
+             : fit_plane_with<SeededStockPlaneModel>(cloud, distance, iterations, seed, coeffs, inliers);
 }
 
 std::size_t count_within_plane(const Cloud::ConstPtr& cloud, const Eigen::VectorXf& coeffs, double threshold) {

@@ -32,13 +32,17 @@ VoxelCells voxel_grid(const Cloud& cloud, float leaf);
 /// cell tolerance and a union-find instead of a tree; PCL's own when the cloud spans too many cells.
 std::vector<std::vector<int>> euclidean_clusters(const Cloud::ConstPtr& cloud, double tolerance);
 
+/// The plane model's point tests (count, selection) fit_plane uses: Fast, a cheaper form that passes the same
+/// points (bit for bit: cloud_filters.cpp is built without floating-point contraction); Stock, PCL's own
+/// (the reference the tests hold Fast to).
+enum class PlaneTests { Fast, Stock };
+
 /// The dominant plane of `cloud` by RANSAC seeded with `seed` (inlier threshold `distance`, at most
 /// `iterations`), refitted by least squares on its inliers and normalised ((a, b, c) unit), with the
 /// inliers of the refined plane. False if RANSAC finds no model. PCL's RANSAC and plane model, with the
-/// model's point tests (count, selection) in a cheaper form that passes the same points (bit for bit:
-/// cloud_filters.cpp is built without floating-point contraction).
+/// model's point tests as `tests` says.
 bool fit_plane(const Cloud::ConstPtr& cloud, double distance, int iterations, std::uint64_t seed,
-               Eigen::VectorXf& coeffs, pcl::Indices& inliers);
+               Eigen::VectorXf& coeffs, pcl::Indices& inliers, PlaneTests tests = PlaneTests::Fast);
 
 /// fit_plane's point tests on their own (what its plane model counts and selects for a hypothesis).
 std::size_t count_within_plane(const Cloud::ConstPtr& cloud, const Eigen::VectorXf& coeffs, double threshold);

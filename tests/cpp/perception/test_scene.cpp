@@ -10,7 +10,6 @@
 #include <vector>
 
 #include <pcl/filters/voxel_grid.h>
-#include <pcl/sample_consensus/ransac.h>
 #include <pcl/sample_consensus/sac_model_plane.h>
 #include <pcl/search/kdtree.h>
 #include <pcl/segmentation/extract_clusters.h>
@@ -286,41 +285,6 @@ TEST(EuclideanClusters, FarStrayPointFallsBackToPcl) {
   EXPECT_EQ(mine.back(), std::vector<int>{static_cast<int>(cloud->size()) - 1});
 }
 
-namespace {
-
-/// fit_plane as PCL's own classes compute it (their count and selection): the reference.
-struct PclPlane : pcl::SampleConsensusModelPlane<pcl::PointXYZ> {
-  PclPlane(const detail::Cloud::ConstPtr& c, unsigned seed) : pcl::SampleConsensusModelPlane<pcl::PointXYZ>(c) {
-    rng_alg_.seed(seed);
-  }
-};
-struct PclRansac : pcl::RandomSampleConsensus<pcl::PointXYZ> {
-  PclRansac(const pcl::SampleConsensusModel<pcl::PointXYZ>::Ptr& m, double t, unsigned seed)
-      : pcl::RandomSampleConsensus<pcl::PointXYZ>(m, t) {
-    rng_->base().seed(seed);
-    threads_ = -1;
-  }
-};
-
-bool pcl_fit_plane(const detail::Cloud::ConstPtr& cloud, double distance, int iterations, std::uint64_t seed,
-                   Eigen::VectorXf& coeffs, pcl::Indices& inliers) {
-  const auto folded = static_cast<unsigned>((seed ^ (seed >> 32)) & 0xffffffffu);
-  PclPlane::Ptr model(new PclPlane(cloud, folded));
-  PclRansac ransac(model, distance, folded ^ 0x9e3779b9u);
-  ransac.setMaxIterations(iterations);
-  if (!ransac.computeModel()) return false;
-  ransac.getInliers(inliers);
-  ransac.getModelCoefficients(coeffs);
-  Eigen::VectorXf refined = coeffs;
-  model->optimizeModelCoefficients(inliers, coeffs, refined);
-  if (refined.allFinite() && refined.head<3>().norm() > 0) coeffs = refined;
-  coeffs /= coeffs.head<3>().norm();
-  model->selectWithinDistance(coeffs, distance, inliers);
-  return true;
-}
-
-}  // namespace
-
 // fit_plane's cheaper point test: the same plane and inliers as PCL's own RANSAC and plane model, on a tilted
 // noisy plane with clutter and on a cloud with no dominant plane (every iteration runs).
 TEST(FitPlane, MatchesPclRansac) {
@@ -340,10 +304,12 @@ TEST(FitPlane, MatchesPclRansac) {
       Eigen::VectorXf mine, ref;
       pcl::Indices mine_in, ref_in;
       ASSERT_TRUE(detail::fit_plane(cloud, 0.005, 200, 3, mine, mine_in));
-      ASSERT_TRUE(pcl_fit_plane(cloud, 0.005, 200, 3, ref, ref_in));
+      ASSERT_TRUE(detail::fit_plane(cloud, 0.005, 200, 3, ref, ref_in, detail::PlaneTests::Stock));
       EXPECT_EQ(mine, ref) << size << " points, planar " << planar;
       EXPECT_EQ(mine_in, ref_in) << size << " points, planar " << planar;
-      if (planar) EXPECT_GT(std::abs(mine.head<3>().dot(n)), 0.999f);
+      if (planar) {
+        EXPECT_GT(std::abs(mine.head<3>().dot(n)), 0.999f);
+      }
     }
   }
 }

@@ -309,6 +309,12 @@ void cloud_term(const CollisionExpert::Index& ix, const CollisionExpert::Shapes:
   inside += count;
 }
 
+/// The total of collision.hpp ("total = sum_l (D_l + P_l + inside_weight * n_l)") from its per-link terms.
+double total_depth(const Eigen::VectorXd& cloud_depth, const Eigen::VectorXd& plane_depth,
+                   const std::vector<int>& inside, double inside_weight) {
+  return cloud_depth.sum() + plane_depth.sum() + inside_weight * std::accumulate(inside.begin(), inside.end(), 0);
+}
+
 /// The plane's P_l term of one shape posed at T (0 when clear): boxes by FCL's own formula, other shapes by
 /// FCL when their bounding box reaches below the raised plane.
 double plane_term(const CollisionExpert::Shapes& shapes, const CollisionExpert::Shapes::Shape& sh,
@@ -394,19 +400,18 @@ CollisionBatchResult CollisionExpert::evaluate_batch(const Eigen::Ref<const Pose
   // than it saves, and its spinning threads stall badly on a loaded machine.
   // A plane alone (the kinematic expert's test) is a fraction of a microsecond per hand: large batches only.
   const Eigen::Index parallel_from = index_->grid.size() == 0 && !occupancy_ ? 4096 : 64;
-  const Eigen::Index N = hand_->fk_each(
-      T_world_wrist, q, parallel_from, [&](Eigen::Index i, const Eigen::VectorXd&, const Eigen::Isometry3d* poses) {
-        std::vector<int> inside(static_cast<size_t>(L), 0);
-        Eigen::VectorXd cd = Eigen::VectorXd::Zero(L), pd = Eigen::VectorXd::Zero(L);
-        evaluate_into(poses, cd.data(), pd.data(), inside.data());
-        out.cloud_depth.row(i) = cd.transpose();
-        out.plane_depth.row(i) = pd.transpose();
-        out.total_depth[i] =
-            cd.sum() + pd.sum() + settings_.inside_weight * std::accumulate(inside.begin(), inside.end(), 0);
-        out.log_w[i] = -settings_.beta * out.total_depth[i];
-        out.w[i] = std::exp(out.log_w[i]);
-        out.collision_free[i] = out.total_depth[i] <= 0.0;
-      });
+  const Eigen::Index N = hand_->fk_each(T_world_wrist, q, parallel_from,
+                                        [&](Eigen::Index i, const Eigen::VectorXd&, const Eigen::Isometry3d* poses) {
+                                          std::vector<int> inside(static_cast<size_t>(L), 0);
+                                          Eigen::VectorXd cd = Eigen::VectorXd::Zero(L), pd = Eigen::VectorXd::Zero(L);
+                                          evaluate_into(poses, cd.data(), pd.data(), inside.data());
+                                          out.cloud_depth.row(i) = cd.transpose();
+                                          out.plane_depth.row(i) = pd.transpose();
+                                          out.total_depth[i] = total_depth(cd, pd, inside, settings_.inside_weight);
+                                          out.log_w[i] = -settings_.beta * out.total_depth[i];
+                                          out.w[i] = std::exp(out.log_w[i]);
+                                          out.collision_free[i] = out.total_depth[i] <= 0.0;
+                                        });
   if (N != n) {  // an empty side broadcasts to no hands
     out.cloud_depth.conservativeResize(N, Eigen::NoChange);
     out.plane_depth.conservativeResize(N, Eigen::NoChange);
@@ -431,8 +436,7 @@ std::pair<Eigen::VectorXd, Eigen::VectorXd> CollisionExpert::total_depth_pair(
     std::vector<int> inside(static_cast<size_t>(L), 0);
     Eigen::VectorXd cd = Eigen::VectorXd::Zero(L), pd = Eigen::VectorXd::Zero(L);
     evaluate_into(poses, cd.data(), pd.data(), inside.data());
-    const double w = settings_.inside_weight;
-    out.first[i] = cd.sum() + pd.sum() + w * std::accumulate(inside.begin(), inside.end(), 0);
+    out.first[i] = total_depth(cd, pd, inside, settings_.inside_weight);
     // The second configuration: a link posed exactly as in the first (the palm) keeps its terms.
     std::vector<Eigen::Isometry3d> poses2(static_cast<size_t>(L));
     const Eigen::VectorXd qi2 = q2.row(i).transpose();
@@ -443,7 +447,7 @@ std::pair<Eigen::VectorXd, Eigen::VectorXd> CollisionExpert::total_depth_pair(
       if (!same[l]) cd[l] = pd[l] = inside[l] = 0;
     }
     evaluate_into(poses2.data(), cd.data(), pd.data(), inside.data(), same.get());
-    out.second[i] = cd.sum() + pd.sum() + w * std::accumulate(inside.begin(), inside.end(), 0);
+    out.second[i] = total_depth(cd, pd, inside, settings_.inside_weight);
   });
   return out;
 }

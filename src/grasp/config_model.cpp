@@ -90,4 +90,10 @@ Eigen::VectorXd ConfigModel::pregrasp_for(const Eigen::Ref<const Eigen::VectorXd
   return out;
 }
 
+RowMatrixXd ConfigModel::pregrasps_for(const Eigen::Ref<const RowMatrixXd>& q) const {
+  RowMatrixXd out(q.rows(), q.cols());
+  for (Eigen::Index i = 0; i < q.rows(); ++i) out.row(i) = pregrasp_for(q.row(i).transpose()).transpose();
+  return out;
+}
+
 }  // namespace graspmix

@@ -59,9 +59,7 @@ Eigen::VectorXd CollisionFreeExpert::log_value(const GraspBatch& b) const {
   }
   Eigen::VectorXd out = Eigen::VectorXd::Zero(n);
   if (config_) {
-    RowMatrixXd pre(n, b.joints.cols());
-    for (Eigen::Index i = 0; i < n; ++i) pre.row(i) = config_->pregrasp_for(b.joints.row(i).transpose()).transpose();
-    const auto [grasp, pregrasp] = collision_->total_depth_pair(b.wrists, b.joints, pre);
+    const auto [grasp, pregrasp] = collision_->total_depth_pair(b.wrists, b.joints, config_->pregrasps_for(b.joints));
     for (Eigen::Index i = 0; i < n; ++i)
       if (!(grasp[i] <= 0.0 && pregrasp[i] <= 0.0)) out[i] = kRejected;
   } else {

@@ -229,10 +229,8 @@ Evaluation GraspSynthesizer::evaluate(const std::vector<QueryDensity>& query, co
     const Eigen::VectorXd config = config_.log_density(q);
     Eigen::VectorXd coll, pre_w = Eigen::VectorXd::Zero(m);
     if (clear_pregrasp) {
-      RowMatrixXd pre(m, q.cols());
-      for (Eigen::Index k = 0; k < m; ++k) pre.row(k) = config_.pregrasp_for(q.row(k).transpose()).transpose();
       // One pass: the links the pre-grasp leaves in place (the palm) are scored once.
-      std::tie(coll, pre_w) = collision.log_w_pair(w, q, pre);
+      std::tie(coll, pre_w) = collision.log_w_pair(w, q, config_.pregrasps_for(q));
     } else {
       coll = collision.evaluate_batch(w, q).log_w;
     }

@@ -35,6 +35,8 @@ class ConfigModel {
   RowMatrixXd sample(int n, std::mt19937_64& rng) const;
   /// The pre-grasp that goes with grasp q: q opened by the demonstrated h_e - h_g, clamped to limits.
   Eigen::VectorXd pregrasp_for(const Eigen::Ref<const Eigen::VectorXd>& q) const;
+  /// pregrasp_for of every row of q (N, D).
+  RowMatrixXd pregrasps_for(const Eigen::Ref<const RowMatrixXd>& q) const;
 
   const Eigen::VectorXd& pregrasp() const { return pregrasp_; }
   const Eigen::VectorXd& grasp() const { return grasp_; }

@@ -51,7 +51,7 @@ def cmd_clutter(args: argparse.Namespace) -> int:
     return 0
 
 
-COMMANDS = ("clutter",)  # the subcommands add_parsers adds (main builds only the group of the one run)
+COMMANDS = ("clutter",)
 
 
 def add_parsers(sub) -> None:

@@ -170,11 +170,7 @@ def cmd_features(args: argparse.Namespace) -> int:
     return 0
 
 
-COMMANDS = (
-    "info",
-    "fit-gmm",
-    "features",
-)  # the subcommands add_parsers adds (main builds only the group of the one run)
+COMMANDS = ("info", "fit-gmm", "features")
 
 
 def add_parsers(sub) -> None:

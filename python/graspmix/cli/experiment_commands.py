@@ -209,12 +209,7 @@ def _add_run_options(s) -> None:
     s.add_argument("--quiet", action="store_true", help="no progress bar")
 
 
-COMMANDS = (
-    "experiment",
-    "sweep",
-    "report",
-    "benchmark",
-)  # the subcommands add_parsers adds (main builds only the group of the one run)
+COMMANDS = ("experiment", "sweep", "report", "benchmark")
 
 
 def add_parsers(sub) -> None:

@@ -176,11 +176,7 @@ def cmd_synthesize(args: argparse.Namespace) -> int:
     return 0
 
 
-COMMANDS = (
-    "demo",
-    "learn",
-    "synthesize",
-)  # the subcommands add_parsers adds (main builds only the group of the one run)
+COMMANDS = ("demo", "learn", "synthesize")
 
 
 def add_parsers(sub) -> None:

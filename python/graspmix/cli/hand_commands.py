@@ -8,7 +8,7 @@ import json
 
 from .common import CliError, input_path, output_file
 
-COMMANDS = ("hand",)  # the subcommands add_parsers adds (main builds only the group of the one run)
+COMMANDS = ("hand",)
 
 
 def add_parsers(sub) -> None:

@@ -34,6 +34,8 @@ class _VersionAction(argparse.Action):
         parser.exit(message=f"graspmix {package_version()}\n")
 
 
+# The command modules; each lists in COMMANDS the subcommands its add_parsers adds (tests/python/package/
+# test_imports.py holds them to it), so that build_parser can build one group's alone.
 GROUPS = (
     core_commands,
     segment_commands,

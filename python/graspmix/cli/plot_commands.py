@@ -24,7 +24,7 @@ def cmd_plot(args: argparse.Namespace) -> int:
     return 0
 
 
-COMMANDS = ("plot",)  # the subcommands add_parsers adds (main builds only the group of the one run)
+COMMANDS = ("plot",)
 
 
 def add_parsers(sub) -> None:

@@ -34,7 +34,7 @@ def cmd_scene(args: argparse.Namespace) -> int:
     return 0
 
 
-COMMANDS = ("scene",)  # the subcommands add_parsers adds (main builds only the group of the one run)
+COMMANDS = ("scene",)
 
 
 def add_parsers(sub) -> None:

@@ -66,7 +66,7 @@ def cmd_segment(args) -> int:
     return 0
 
 
-COMMANDS = ("segment",)  # the subcommands add_parsers adds (main builds only the group of the one run)
+COMMANDS = ("segment",)
 
 
 def add_parsers(sub) -> None:

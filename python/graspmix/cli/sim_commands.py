@@ -122,7 +122,7 @@ def _add_scene_source(s, what: str) -> None:
     g.add_argument("--scene", type=input_path, help="a scene file (graspmix_cli scene; format graspmix.scene/1)")
 
 
-COMMANDS = ("acquire", "execute")  # the subcommands add_parsers adds (main builds only the group of the one run)
+COMMANDS = ("acquire", "execute")
 
 
 def add_parsers(sub) -> None:

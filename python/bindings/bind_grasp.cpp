@@ -3,6 +3,7 @@
 #include <pybind11/functional.h>
 
 #include "common.hpp"
+#include "graspmix/grasp/approach.hpp"
 #include "graspmix/grasp/collision.hpp"
 #include "graspmix/grasp/config_model.hpp"
 #include "graspmix/grasp/contact_model.hpp"
@@ -416,6 +417,35 @@ void bind_experts(py::module_& m) {
            py::arg("collision"), py::arg("pregrasp_config") = py::none(), py::arg("name") = "collision_free",
            "collision: the CollisionExpert of what to keep clear of; pregrasp_config: a ConfigModel whose "
            "pregrasp_for(q) gives each grasp's pre-grasp, checked too (None: the grasp only).");
+
+  SettingsClass<ClearApproachSettings>(m, "ClearApproachSettings", "The hard clear-approach expert.")
+      .field("stand_off", &ClearApproachSettings::stand_off,
+             "m: the hand starts this far back along its approach axis from the pre-grasp (>= 0)")
+      .field("step", &ClearApproachSettings::step, "m: the path is checked at poses this far apart (> 0)")
+      .property(
+          "hand_axis", [](const ClearApproachSettings& s) { return Eigen::Vector3d(s.hand_axis); },
+          [](ClearApproachSettings& s, const py::object& v) { s.hand_axis = to_vector(v, "hand_axis", 3); },
+          "(3,) the approach axis in the wrist frame (the WSG 50's palm z)")
+      .field("name", &ClearApproachSettings::name, "the key of its term in a grasp's experts table")
+      .done();
+
+  py::class_<ClearApproachExpert, Expert, std::shared_ptr<ClearApproachExpert>>(
+      m, "ClearApproachExpert",
+      "Hard: the open hand (each grasp's pre-grasp) moves along its approach axis from the stand-off to the "
+      "pre-grasp without touching the CollisionExpert's scene and plane.")
+      .def(py::init([](std::shared_ptr<CollisionExpert> collision, const ConfigModel& config,
+                       const py::object& settings, const py::kwargs& kw) {
+             if (!collision) throw py::value_error("ClearApproachExpert: collision must be a CollisionExpert");
+             const ClearApproachSettings s = settings_from<ClearApproachSettings>(settings, kw, "ClearApproachExpert");
+             return std::make_shared<ClearApproachExpert>(std::move(collision), config, s);
+           }),
+           py::arg("collision"), py::arg("config"), py::kw_only(), py::arg("settings") = py::none(),
+           ("collision: the CollisionExpert of the scene; config: the ConfigModel whose pregrasp_for(q) is the "
+            "open hand.\n" +
+            settings_doc<ClearApproachSettings>())
+               .c_str())
+      .def_property_readonly("offsets", &ClearApproachExpert::offsets,
+                             "m: the distances back along the axis at which the open hand is checked");
 
   py::class_<FunctionExpert, Expert, std::shared_ptr<FunctionExpert>>(
       m, "FunctionExpert", "A user expert: fn(wrists (N,7), joints (N,D)) -> log E (N,), called once per batch.")

@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AnnealingSettings', 'AxisAlignmentExpert', 'AxisAlignmentSettings', 'CloudData', 'CollisionBatchResult', 'CollisionExpert', 'CollisionFreeExpert', 'CollisionResult', 'CollisionSettings', 'ConfigModel', 'ConfigModelSettings', 'ContactData', 'ContactModel', 'ContactSettings', 'Evaluation', 'Expert', 'FunctionExpert', 'GaussianMixture', 'GmmSettings', 'Grasp', 'GraspSynthesizer', 'Hand', 'HandLoadSettings', 'KdeSettings', 'KinematicFeasibilityExpert', 'KinematicFeasibilitySettings', 'OccupancyMap', 'OccupancySettings', 'PlaneCandidate', 'PoseDensity', 'PoseKDE', 'PoseMixture', 'QueryDensity', 'QuerySettings', 'SceneObject', 'SceneResult', 'SceneSettings', 'SceneSimResult', 'Segmentation', 'SegmentationSettings', 'SettleResult', 'SimObject', 'SimResult', 'SimSettings', 'SurfaceCloud', 'SurfaceFeatureSettings', 'SynthesisResult', 'SynthesisSettings', 'SynthesisTiming', 'build_info', 'compute_surface_features', 'contact_data', 'learn_contact_models', 'load_cloud', 'load_mesh', 'log_vmf_s3_normaliser', 'orient_plane', 'pose_inverse', 'pose_multiply', 'prepare_cloud', 'quat_exp', 'quat_log', 'save_cloud', 'segment_scene', 'sim_execute', 'sim_execute_scene', 'sim_settle_scene']
+__all__: list[str] = ['AnnealingSettings', 'AxisAlignmentExpert', 'AxisAlignmentSettings', 'ClearApproachExpert', 'ClearApproachSettings', 'CloudData', 'CollisionBatchResult', 'CollisionExpert', 'CollisionFreeExpert', 'CollisionResult', 'CollisionSettings', 'ConfigModel', 'ConfigModelSettings', 'ContactData', 'ContactModel', 'ContactSettings', 'Evaluation', 'Expert', 'FunctionExpert', 'GaussianMixture', 'GmmSettings', 'Grasp', 'GraspSynthesizer', 'Hand', 'HandLoadSettings', 'KdeSettings', 'KinematicFeasibilityExpert', 'KinematicFeasibilitySettings', 'OccupancyMap', 'OccupancySettings', 'PlaneCandidate', 'PoseDensity', 'PoseKDE', 'PoseMixture', 'QueryDensity', 'QuerySettings', 'SceneObject', 'SceneResult', 'SceneSettings', 'SceneSimResult', 'Segmentation', 'SegmentationSettings', 'SettleResult', 'SimObject', 'SimResult', 'SimSettings', 'SurfaceCloud', 'SurfaceFeatureSettings', 'SynthesisResult', 'SynthesisSettings', 'SynthesisTiming', 'build_info', 'compute_surface_features', 'contact_data', 'learn_contact_models', 'load_cloud', 'load_mesh', 'log_vmf_s3_normaliser', 'orient_plane', 'pose_inverse', 'pose_multiply', 'prepare_cloud', 'quat_exp', 'quat_log', 'save_cloud', 'segment_scene', 'sim_execute', 'sim_execute_scene', 'sim_settle_scene']
 class GmmSettings:
     """
     How a GaussianMixture (or PoseMixture) is fitted by EM.
@@ -2103,6 +2103,92 @@ class CollisionFreeExpert(Expert):
     def __init__(self, collision: CollisionExpert, pregrasp_config: ConfigModel | None = None, name: str = 'collision_free') -> None:
         """
         collision: the CollisionExpert of what to keep clear of; pregrasp_config: a ConfigModel whose pregrasp_for(q) gives each grasp's pre-grasp, checked too (None: the grasp only).
+        """
+class ClearApproachSettings:
+    """
+    The hard clear-approach expert.
+    
+    Settings: settings= a ClearApproachSettings (None: its defaults), and/or its fields as keywords,
+    which override it (an unknown keyword is a ValueError):
+      stand_off = 0.1: m: the hand starts this far back along its approach axis from the pre-grasp (>= 0)
+      step = 0.02: m: the path is checked at poses this far apart (> 0)
+      hand_axis = array([0., 0., 1.]): (3,) the approach axis in the wrist frame (the WSG 50's palm z)
+      name = 'clear_approach': the key of its term in a grasp's experts table
+    """
+    __hash__: typing.ClassVar[None] = None
+    _fields: typing.ClassVar[tuple] = ('stand_off', 'step', 'hand_axis', 'name')
+    def __copy__(self) -> ClearApproachSettings:
+        ...
+    def __deepcopy__(self, memo: typing.Any) -> ClearApproachSettings:
+        ...
+    def __eq__(self, arg0: typing.Any) -> typing.Any:
+        ...
+    def __getstate__(self) -> dict:
+        ...
+    @typing.overload
+    def __init__(self) -> None:
+        """
+        The defaults: those of the default-constructed C++ struct.
+        """
+    @typing.overload
+    def __init__(self, **kwargs) -> None:
+        """
+        Keyword constructor: any of the fields (stand_off, step, hand_axis, name); the others keep their defaults.
+        """
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    @property
+    def hand_axis(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        """
+        (3,) the approach axis in the wrist frame (the WSG 50's palm z)
+        """
+    @hand_axis.setter
+    def hand_axis(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def name(self) -> str:
+        """
+        the key of its term in a grasp's experts table
+        """
+    @name.setter
+    def name(self, arg0: str) -> None:
+        ...
+    @property
+    def stand_off(self) -> float:
+        """
+        m: the hand starts this far back along its approach axis from the pre-grasp (>= 0)
+        """
+    @stand_off.setter
+    def stand_off(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def step(self) -> float:
+        """
+        m: the path is checked at poses this far apart (> 0)
+        """
+    @step.setter
+    def step(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class ClearApproachExpert(Expert):
+    """
+    Hard: the open hand (each grasp's pre-grasp) moves along its approach axis from the stand-off to the pre-grasp without touching the CollisionExpert's scene and plane.
+    """
+    def __init__(self, collision: CollisionExpert, config: ConfigModel, *, settings: typing.Any = None, **kwargs) -> None:
+        """
+        collision: the CollisionExpert of the scene; config: the ConfigModel whose pregrasp_for(q) is the open hand.
+        Settings: settings= a ClearApproachSettings (None: its defaults), and/or its fields as keywords,
+        which override it (an unknown keyword is a ValueError):
+          stand_off = 0.1: m: the hand starts this far back along its approach axis from the pre-grasp (>= 0)
+          step = 0.02: m: the path is checked at poses this far apart (> 0)
+          hand_axis = array([0., 0., 1.]): (3,) the approach axis in the wrist frame (the WSG 50's palm z)
+          name = 'clear_approach': the key of its term in a grasp's experts table
+        """
+    @property
+    def offsets(self) -> list[float]:
+        """
+        m: the distances back along the axis at which the open hand is checked
         """
 class FunctionExpert(Expert):
     """

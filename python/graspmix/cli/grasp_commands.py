@@ -154,6 +154,8 @@ def cmd_synthesize(args: argparse.Namespace) -> int:
         query_samples=args.query_samples,
         query_components=args.query_components,
         collision=args.collision,
+        clear_approach=not args.no_clear_approach,
+        stand_off=args.stand_off,
         types=args.types,
     )
     grasps.cloud = args.cloud
@@ -322,6 +324,18 @@ def _add_synthesize(sub) -> None:
         default=o.collision,
         help="the collision expert: surface (the cloud's points) or occupancy (what the cameras saw free; unseen "
         f"space is solid); default {o.collision}",
+    )
+    s.add_argument(
+        "--no-clear-approach",
+        action="store_true",
+        help="drop the hard clear-approach expert (the open hand reaches its pre-grasp along its approach axis "
+        "from the stand-off without touching anything)",
+    )
+    s.add_argument(
+        "--stand-off",
+        type=float_in(0.0),
+        default=o.stand_off,
+        help=f"m: where the clear approach starts, back along the approach axis ({o.stand_off:g})",
     )
     s.add_argument(
         "--target",

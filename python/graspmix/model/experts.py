@@ -69,6 +69,14 @@ def collision_expert(hand, points, plane, opts: SynthesisOptions, occupancy=None
     )
 
 
+def clear_approach_expert(collision, config, opts: SynthesisOptions):
+    """The hard clear-approach expert of one grasp type (its ConfigModel opens the hand) against the collision
+    expert's scene and plane; None when opts.clear_approach is off."""
+    if not opts.clear_approach:
+        return None
+    return _core.ClearApproachExpert(collision, config, stand_off=opts.stand_off)
+
+
 def constraint_experts(
     hand,
     points,

@@ -251,6 +251,8 @@ class GraspModel:
         collision_inside_weight: float = _S.collision_inside_weight,
         collision: str = _S.collision,
         occupancy_resolution: float = _S.occupancy_resolution,
+        clear_approach: bool = _S.clear_approach,
+        stand_off: float = _S.stand_off,
         table_clearance: float = _S.table_clearance,
         target="all",
         annealing: dict | None = None,
@@ -385,6 +387,7 @@ def _synthesis_options(args: dict) -> SynthesisOptions:
     for name in ("approach_concentration", "collision_beta", "contact_tolerance", "collision_inside_weight"):
         check_float(v[name], name, 0.0)
     check_float(v["occupancy_resolution"], "occupancy_resolution", gt=0.0)
+    check_float(v["stand_off"], "stand_off", 0.0)
     if v["collision"] not in COLLISION_MODELS:
         raise ValueError(f"collision must be one of {', '.join(COLLISION_MODELS)}, got {v['collision']!r}")
     return SynthesisOptions(**v)

@@ -20,7 +20,7 @@ import numpy as np
 
 from .. import _core
 from ..perception import Scene, segment_scene
-from .experts import collision_expert, constraint_experts, occupancy_map
+from .experts import clear_approach_expert, collision_expert, constraint_experts, occupancy_map
 from .grasp_types import REFERENCE_EXPERT
 from .grasps import STAGES, grasps_from_result
 from .settings import FeatureSettings, SynthesisOptions
@@ -124,8 +124,15 @@ def synthesize_targets(
         surface = object_surface(scene, i, model.features)
         on = {"index": int(i), "centroid": [float(x) for x in scene.objects[i].centroid]}
         for t in types:
-            neighbours = clear_of_neighbours(model, scene, i, opts, t.synthesizer.config_model)
-            extra = shared + ([] if neighbours is None else [neighbours])
+            config = t.synthesizer.config_model
+            extra = shared + [
+                e
+                for e in (
+                    clear_of_neighbours(model, scene, i, opts, config),
+                    clear_approach_expert(collision, config, opts),
+                )
+                if e is not None
+            ]
             res = t.synthesizer.synthesize(surface.frames, surface.curvatures, collision, extra, settings)
             for g in grasps_from_result(res, model.hand):
                 g["object"] = on

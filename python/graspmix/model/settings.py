@@ -22,6 +22,7 @@ _SYNTHESIS = _core.SynthesisSettings()
 _AXIS = _core.AxisAlignmentSettings()
 _COLLISION = _core.CollisionSettings()
 _OCCUPANCY = _core.OccupancySettings()
+_APPROACH = _core.ClearApproachSettings()
 
 METHODS = ("gmm", "kde")
 METHOD_LABELS = {"gmm": "GMM", "kde": "KDE"}
@@ -108,6 +109,10 @@ class SynthesisOptions:
     # saw (unseen space is solid) plus the points' depths (CollisionSettings.model).
     collision: str = _COLLISION.model
     occupancy_resolution: float = _OCCUPANCY.resolution  # m: the occupancy map's cell (OccupancySettings)
+    # the hard clear-approach expert: the open hand reaches its pre-grasp along its approach axis from stand_off
+    # (m) back without touching the scene or the table (ClearApproachSettings)
+    clear_approach: bool = True
+    stand_off: float = _APPROACH.stand_off
     # m: every point at most this far above the support plane (given or found), or below it, is dropped as
     # the table (SegmentationSettings.table_clearance; not the RANSAC inlier threshold plane_distance).
     table_clearance: float = _SEGMENTATION.table_clearance

@@ -75,7 +75,9 @@ def test_synthesis_with_the_occupancy_model(seen):
     kw = dict(viewpoints=acq.viewpoints, n_samples=40, n_optimise=1, seed=0)
     grasps = model.synthesize(acq.points, collision="occupancy", **kw)
     assert len(grasps) > 0 and grasps.timing["occupancy"] > 0
-    assert all(np.isfinite(g.log_likelihood) for g in grasps)
+    # The grasps the hard experts passed rank first; rejected samples fill up the rest (log L = -inf).
+    finite = [bool(np.isfinite(g.log_likelihood)) for g in grasps]
+    assert finite[0] and finite == sorted(finite, reverse=True)
     assert SynthesisOptions.collision == _core.CollisionSettings().model == "surface"
 
 
@@ -96,3 +98,45 @@ def test_bad_input_is_a_value_error(seen):
         _core.OccupancyMap(acq.points, c, scene.points)  # a camera inside the box
     with pytest.raises(ValueError, match="OccupancyMap"):
         _core.CollisionExpert(model.hand, scene.points, model="occupancy")
+
+
+def _approach_values(collision, config, wrists, stand_off):
+    e = _core.ClearApproachExpert(collision, config, stand_off=stand_off, hand_axis=(1, 0, 0))
+    return e.log_value(np.asarray(wrists, float), np.zeros((len(wrists), 1)))
+
+
+def test_a_clear_approach_must_keep_out_of_the_unseen_shadow(seen):
+    """The finger's approach axis is its x: it approaches a side face of the box along the face's inward normal.
+    From the seen side it backs off into space the camera saw free; from the hidden side into the shadow."""
+    _, scene, occ, c, _ = seen
+    finger = _core.Hand.from_urdf_string(FINGER, ".")
+    config = _core.ConfigModel([0.0], [0.0], finger.joint_limits)
+    occupancy = _core.CollisionExpert(finger, scene.points, scene.plane, occupancy=occ)
+    surface = _core.CollisionExpert(finger, scene.points, scene.plane)
+    half = SIZE[0] / 2
+    # 5 mm off the seen +x face, approaching along -x (rotation pi about z): the path runs to the camera.
+    front = [c[0] + half + 0.015, c[1], c[2], 0, 0, 1, 0]
+    # 5 mm off the hidden -x face, approaching along +x: the path runs through the shadow behind the box.
+    back = [c[0] - half - 0.015, c[1], c[2], 0, 0, 0, 1]
+    assert list(_approach_values(occupancy, config, [front], 0.10)) == [0.0]
+    assert list(_approach_values(occupancy, config, [back], 0.10)) == [-np.inf]
+    # The surface model sees no point behind the box: the path from behind is clear to it.
+    assert list(_approach_values(surface, config, [front, back], 0.10)) == [0.0, 0.0]
+    # Approaching the seen face from inside the box: the pre-grasp is clear, a path of 2 cm or more is not.
+    inside = [c[0] + half + 0.015, c[1], c[2], 0, 0, 0, 1]
+    for collision in (occupancy, surface):
+        assert list(_approach_values(collision, config, [inside], 0.0)) == [0.0]
+        assert list(_approach_values(collision, config, [inside], 0.02)) == [-np.inf]
+
+
+def test_clear_approach_bad_settings_are_value_errors(seen):
+    _, scene, _, _, _ = seen
+    model = graspmix.GraspModel.load(graspmix.default_model_path())
+    collision = _core.CollisionExpert(model.hand, scene.points, scene.plane)
+    config = model.synthesizer.config_model
+    with pytest.raises(ValueError, match="stand_off"):
+        _core.ClearApproachExpert(collision, config, stand_off=-0.01)
+    with pytest.raises(ValueError, match="step"):
+        _core.ClearApproachExpert(collision, config, step=0.0)
+    with pytest.raises(ValueError, match="stand_off"):
+        model.synthesize(scene.points, stand_off=-0.05)

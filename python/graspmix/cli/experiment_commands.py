@@ -8,6 +8,7 @@ from pathlib import Path
 
 from ..io import SUMMARY_FORMAT, read_document, read_objects_file, test_objects
 from ..io.checks import MAX_SAMPLES
+from ..model.experts import COLLISION_MODELS
 from ..model.settings import METHODS, SynthesisOptions
 from .common import CliError, float_in, input_path, int_in, output_folder, seed, split_list
 
@@ -32,6 +33,11 @@ def _protocol(args):
         query_components=args.query_components,
         pixel_noise_std=args.pixel_noise,
         depth_noise_std=args.depth_noise,
+        views=args.views,
+        cloud=args.cloud,
+        collision=args.collision,
+        clear_approach=args.clear_approach,
+        stand_off=args.stand_off,
     )
 
 
@@ -156,9 +162,10 @@ def _add_run_options(s) -> None:
     """The options the experiment and the sweep share: the protocol's and how to run it."""
     s.add_argument(
         "--preset",
-        choices=["smoke", "paper"],
+        choices=["smoke", "paper", "defaults"],
         default="paper",
-        help="paper: the 60 test objects, 10 trials (default); smoke: 3 objects, 2 trials",
+        help="paper: the 60 test objects, 10 trials, the paper's synthesis (default); smoke: 3 objects, 2 trials; "
+        "defaults: as paper with the library's synthesis defaults (collision model, clear approach)",
     )
     s.add_argument(
         "--objects",
@@ -190,6 +197,25 @@ def _add_run_options(s) -> None:
         type=float_in(0.0),
         help="sigma_d of the noise model, m (default: the paper's; 0: lateral shift only)",
     )
+    s.add_argument(
+        "--views", type=int_in(1, 64), help="cameras: a ring of n (the paper's 4), or 1 above the table (default 4)"
+    )
+    s.add_argument(
+        "--cloud",
+        choices=["object", "scene"],
+        help="what an acquisition keeps: the object's pixels, table cropped (the paper's), or every pixel "
+        "(default: the preset's)",
+    )
+    s.add_argument(
+        "--collision", choices=list(COLLISION_MODELS), help="the collision expert's model (default: the preset's)"
+    )
+    s.add_argument(
+        "--clear-approach",
+        action=argparse.BooleanOptionalAction,
+        default=None,
+        help="the hard clear-approach expert on or off (default: the preset's)",
+    )
+    s.add_argument("--stand-off", type=float_in(0.0), help="m: the clear approach's stand-off (default: the preset's)")
     s.add_argument("--seed", type=seed, default=None, help="base of every derived seed (default 0)")
     s.add_argument(
         "--closing",

@@ -52,6 +52,9 @@ def synthesis_keywords(p: Protocol, seed: int, optimise: bool) -> dict:
         query_samples=p.query_samples,
         query_components=p.query_components,
         table_clearance=p.min_height,
+        collision=p.collision,
+        clear_approach=p.clear_approach,
+        stand_off=p.stand_off,
         annealing={"iterations": p.annealing_iterations, "initial_temperature": p.initial_temperature},
     )
 
@@ -62,14 +65,14 @@ def synthesize_on(model: GraspModel, acq: Acquisition, p: Protocol, seed: int, o
 
 
 def acquire_unit(p: Protocol, obj: str, trial: int, noise: bool) -> Acquisition:
-    """The cloud of one (object, trial, noise) unit: the protocol's cameras, noise model and seed, the table
-    cropped (crop_above_plane)."""
+    """The cloud of one (object, trial, noise) unit: the protocol's cameras, noise model and seed; an object
+    cloud's table fringe cropped (crop_above_plane), a scene cloud whole (the synthesis drops the table)."""
     return acquire(
         obj,
         noise=noise,
         seed=p.acquisition_seed(obj, trial),
         settings=p.acquisition_settings(),
-        postprocess=crop_above_plane(p.min_height),
+        postprocess=crop_above_plane(p.min_height) if p.cloud == "object" else None,
     )
 
 

@@ -12,9 +12,11 @@ from .. import _core
 from ..io import PROTOCOL_FORMAT, read_document, resolve_object, sha256_file, test_objects
 from ..io.checks import MAX_ITERATIONS, MAX_SAMPLES, check_float, check_int, check_seed, quote
 from ..model import default_model_path
+from ..model.experts import COLLISION_MODELS
 from ..model.settings import METHODS, SynthesisOptions
 from ..sim.acquisition import AcquisitionSettings
 from ..sim.execution import CLOSING  # how an executed grasp closes: one definition for every caller
+from ..sim.scene_camera import scene_cameras
 
 _ANNEALING = _core.AnnealingSettings()  # the C++ defaults, the single source
 _ACQUISITION = AcquisitionSettings()
@@ -36,7 +38,14 @@ CONDITIONS = {
     "C": Condition("C", False, False, "no depth noise, no optimisation"),
     "D": Condition("D", True, False, "depth noise, no optimisation"),
 }
-PRESETS = ("smoke", "paper")
+PRESETS = ("smoke", "paper", "defaults")
+# The synthesis of the paper (and of runs recorded before these fields existed): the collision expert on the
+# cloud's points, none of the experts added since. The "defaults" preset runs the library's defaults instead.
+PAPER_SYNTHESIS = {"collision": "surface", "clear_approach": False, "cloud": "object"}
+# What an acquisition keeps: "object", the pixels that see the object with the table cropped (the paper's: a
+# segmented sensor); "scene", every pixel, the table too (what a depth camera gives: the synthesis finds the
+# object above the known table, and the table's rays show the occupancy model the free space around it).
+CLOUDS = ("object", "scene")
 # The smoke preset's objects: three of the test set with different shapes (a mug, a small block-like
 # part, an elongated part), so the smoke run exercises more than one kind of grasp.
 SMOKE_OBJECTS = 3
@@ -72,6 +81,13 @@ class Protocol:
     # drops them and the synthesis is given the same table clearance.
     min_height: float = SynthesisOptions.table_clearance
     closing: str = "full"  # how the executed grasp closes: see CLOSING
+    views: int = 4  # cameras: the paper's ring of 4 (n > 1: a ring of n), or 1: one camera above the table
+    cloud: str = "scene"  # what an acquisition keeps: see CLOUDS (the paper's: "object")
+    # The experts beyond the paper's (SynthesisOptions; the paper's values: PAPER_SYNTHESIS): the collision model
+    # ("surface" or "occupancy") and the hard clear-approach expert with its stand-off (m).
+    collision: str = SynthesisOptions.collision
+    clear_approach: bool = SynthesisOptions.clear_approach
+    stand_off: float = SynthesisOptions.stand_off
     seed: int = 0  # base of every derived seed
     models: dict = field(default_factory=dict)  # method -> model file; empty: the bundled box models
 
@@ -80,13 +96,16 @@ class Protocol:
 
     @classmethod
     def preset(cls, name: str, **overrides) -> "Protocol":
-        """ "paper": the 60 test objects, 10 trials, A-D, GMM and KDE. "smoke": the same with 3 objects and
-        2 trials (minutes, for tests and a first look)."""
+        """ "paper": the 60 test objects, 10 trials, A-D, GMM and KDE, the paper's synthesis (PAPER_SYNTHESIS).
+        "smoke": the same with 3 objects and 2 trials (minutes, for tests and a first look). "defaults": as
+        "paper" with the library's synthesis defaults (SynthesisOptions)."""
         if name not in PRESETS:
             raise ValueError(f"preset must be one of {', '.join(PRESETS)}, got {name!r}")
         objects = test_objects()
         if name == "smoke":
-            kw = dict(objects=objects[:SMOKE_OBJECTS], trials=2)
+            kw = dict(objects=objects[:SMOKE_OBJECTS], trials=2, **PAPER_SYNTHESIS)
+        elif name == "paper":
+            kw = dict(objects=objects, trials=10, **PAPER_SYNTHESIS)
         else:
             kw = dict(objects=objects, trials=10)
         kw.update({k: v for k, v in overrides.items() if v is not None})
@@ -103,6 +122,14 @@ class Protocol:
         check_float(self.initial_temperature, "initial_temperature", gt=0.0)
         check_float(self.min_height, "min_height")
         check_seed(self.seed)
+        if not isinstance(self.collision, str) or self.collision not in COLLISION_MODELS:
+            raise ValueError(f"collision must be one of {', '.join(COLLISION_MODELS)}, got {quote(self.collision)}")
+        if not isinstance(self.clear_approach, bool):
+            raise ValueError(f"clear_approach must be true or false, got {quote(self.clear_approach)}")
+        check_float(self.stand_off, "stand_off", 0.0)
+        check_int(self.views, "views", 1, 64)
+        if not isinstance(self.cloud, str) or self.cloud not in CLOUDS:
+            raise ValueError(f"cloud must be one of {', '.join(CLOUDS)}, got {quote(self.cloud)}")
         if not isinstance(self.closing, str) or self.closing not in CLOSING:
             raise ValueError(f"closing must be one of {', '.join(CLOSING)}, got {quote(self.closing)}")
         if not isinstance(self.models, dict):
@@ -162,8 +189,13 @@ class Protocol:
         return d
 
     def acquisition_settings(self) -> AcquisitionSettings:
-        """The cameras and the noise model of the acquisitions (the cameras are always the default ring)."""
-        return AcquisitionSettings(pixel_noise_std=self.pixel_noise_std, depth_noise_std=self.depth_noise_std)
+        """The cameras, the noise model and what the acquisitions keep."""
+        return AcquisitionSettings(
+            cameras=scene_cameras(self.views),
+            pixel_noise_std=self.pixel_noise_std,
+            depth_noise_std=self.depth_noise_std,
+            keep=self.cloud,
+        )
 
     # -- the work
     def units(self) -> list[tuple[str, int, bool]]:
@@ -190,7 +222,7 @@ PROTOCOL_FIELDS = [f.name for f in dataclasses.fields(Protocol)]
 
 def protocol_from_json(d: dict) -> Protocol:
     """The Protocol of a protocol.json's "protocol" entry (model paths are not in it: the defaults)."""
-    return Protocol(**{k: d[k] for k in PROTOCOL_FIELDS if k in d and k != "models"})
+    return Protocol(**{**PAPER_SYNTHESIS, **{k: d[k] for k in PROTOCOL_FIELDS if k in d and k != "models"}})
 
 
 def load_protocol(run_dir: str | Path) -> dict:

@@ -1,0 +1,58 @@
+"""The presets' synthesis settings: "paper" keeps the paper's (and a protocol.json written before the new experts
+existed reads as the paper's), "defaults" runs the library's; the new fields' bad values."""
+
+import dataclasses
+
+import pytest
+from graspmix import cli
+from graspmix import experiment as ex
+from graspmix.experiment.attempt import synthesis_keywords
+from graspmix.experiment.protocol import protocol_from_json
+from graspmix.model.settings import SynthesisOptions
+
+
+def test_paper_keeps_the_papers_synthesis_and_defaults_runs_the_librarys():
+    paper, smoke, defaults = (ex.Protocol.preset(n) for n in ("paper", "smoke", "defaults"))
+    for p in (paper, smoke):
+        assert (p.collision, p.clear_approach, p.cloud) == ("surface", False, "object")
+    assert defaults.objects == paper.objects and defaults.trials == paper.trials
+    assert defaults.collision == SynthesisOptions.collision
+    assert defaults.clear_approach == SynthesisOptions.clear_approach
+    assert defaults.stand_off == SynthesisOptions.stand_off
+    assert defaults.cloud == "scene"
+    # An override beats the preset.
+    assert ex.Protocol.preset("paper", collision="occupancy").collision == "occupancy"
+    # What reaches the synthesis.
+    kw = synthesis_keywords(paper, 0, True)
+    assert (kw["collision"], kw["clear_approach"]) == ("surface", False)
+    kw = synthesis_keywords(defaults, 0, True)
+    assert (kw["collision"], kw["clear_approach"], kw["stand_off"]) == (
+        SynthesisOptions.collision,
+        SynthesisOptions.clear_approach,
+        SynthesisOptions.stand_off,
+    )
+
+
+def test_a_protocol_json_without_the_new_fields_is_the_papers():
+    d = dataclasses.asdict(ex.Protocol.preset("paper"))
+    for k in ("collision", "clear_approach", "stand_off", "cloud", "views"):
+        d.pop(k)
+    p = protocol_from_json(d)
+    assert (p.collision, p.clear_approach, p.cloud, p.views) == ("surface", False, "object", 4)
+
+
+def test_bad_values_are_errors(capsys):
+    objs = ["cube_small.urdf"]
+    with pytest.raises(ValueError, match="collision"):
+        ex.Protocol(objects=objs, collision="voxels")
+    with pytest.raises(ValueError, match="clear_approach"):
+        ex.Protocol(objects=objs, clear_approach="yes")
+    with pytest.raises(ValueError, match="stand_off"):
+        ex.Protocol(objects=objs, stand_off=-0.01)
+    with pytest.raises(ValueError, match="views"):
+        ex.Protocol(objects=objs, views=0)
+    with pytest.raises(ValueError, match="cloud"):
+        ex.Protocol(objects=objs, cloud="depth")
+    assert cli.main(["experiment", "--out", "unused", "--stand-off", "-0.1"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "--stand-off" in err

@@ -465,6 +465,7 @@ void bind_grasp(py::module_& m) {
   bind_collision(m);
   bind_models(m);
   bind_experts(m);
+  bind_contact_quality(m);
   bind_synthesis(m);
 }
 

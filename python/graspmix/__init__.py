@@ -39,6 +39,8 @@ from ._core import (
     ConfigModel,
     ConfigModelSettings,
     ContactModel,
+    ContactQualityExpert,
+    ContactQualitySettings,
     ContactSettings,
     Expert,
     FunctionExpert,

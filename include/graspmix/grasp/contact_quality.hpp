@@ -1,0 +1,105 @@
+#pragma once
+// The contact-quality expert: would the grasp hold? The hand closes from the grasp's pre-grasp until each
+// finger meets the object's cloud, and the contacts found are scored by the antipodal test with Coulomb
+// friction (Nguyen 1988: two contacts whose line lies inside both friction cones give force closure).
+//
+// Closing. For a grasp (wrist, q) with pre-grasp p = ConfigModel::pregrasps_for(q), the joints move along
+//   q(t) = p + t (c - p),  t in [0, 1],
+// c being every joint pushed to its limit in the closing direction sign(q - p) (a joint with q == p stays;
+// one without a finite limit there closes as far past q as q lies from p). The finger links are the links
+// with collision geometry moved by a movable joint (the WSG 50's finger_left and finger_right). A finger's
+// contact time t_f is the first t at which an object point lies within contact_tolerance of (or inside) its
+// collision geometry:
+//   * a link moved by prismatic joints alone whose shapes are boxes (parallel grippers) translates linearly
+//     in t: t_f is found exactly per point, as the time the point enters the box grown by the tolerance on
+//     every side (a slab test; this is the signed-distance rule on faces and up to (sqrt(3) - 1) tolerance
+//     more generous at the box's corners);
+//   * any other link: closing_steps even steps of the signed distance (collision.hpp's shape rule, meshes
+//     as their hulls), then bisection in the step where the first point comes within the tolerance.
+// Only the points in the bounding box of the link's swept region (a grid over the cloud) are visited.
+// The contact patch is the points within 2 * contact_tolerance of the link at t_f (those the finger presses
+// once it squeezes by one more tolerance); the contact point is their mean, the contact normal the principal
+// axis of their normals (the normals' sign is not trusted), pointed back against the finger's motion.
+//
+// The measure, "antipodal friction-cone deviation". For two contacts c1, c2 with normal axes n1, n2:
+//   d = unit(c2 - c1),  theta_i = acos(|n_i . d|)  (0 when the line of the grasp is along the normal),
+//   log E = -concentration * sum_i max(0, theta_i - atan(friction)) - air_penalty * (fingers without contact).
+// With more than two contacts every pair is scored and the best pair counts (a pair inside its cones is
+// enough to hold); the Ferrari-Canny epsilon is not implemented. With fewer than two contacts only the air
+// term is charged. log E is finite and <= 0: a soft expert.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "graspmix/core/types.hpp"
+#include "graspmix/grasp/config_model.hpp"
+#include "graspmix/grasp/experts.hpp"
+#include "graspmix/robot/hand.hpp"
+
+namespace graspmix {
+
+struct ContactQualitySettings {
+  double friction = 0.5;  ///< Coulomb coefficient mu (> 0): the friction cone's half-angle is atan(mu)
+  /// nats per radian beyond the friction cone, per contact. 10: 0.1 rad (6 degrees) outside costs one nat,
+  /// a corner pinch (both contacts 45 degrees off the grasp line, 18 degrees outside a mu = 0.5 cone) about
+  /// 6.4 nats, a weight comparable to the collision expert's (1 nat per 0.5 mm) and the contact terms.
+  double concentration = 10.0;
+  /// nats per finger that closes on nothing: 5 is what 0.5 rad outside the cone costs, so a grasp holding
+  /// with one finger only ranks below any two-finger grasp short of a pinch.
+  double air_penalty = 5.0;
+  double contact_tolerance = 1e-3;       ///< m: points within this of a link's surface are in contact (>= 0)
+  int closing_steps = 16;                ///< steps of the closing motion before bisection (links that do not translate)
+  std::string name = "contact_quality";  ///< the key of its term in a grasp's experts table
+};
+
+/// The contacts of N grasps, F finger links each (ContactQualityExpert::finger_links() order).
+struct ContactQualityResult {
+  std::vector<int> links;      ///< (F) the finger links (indices into Hand::link_names())
+  RowMatrixXd t;               ///< (N, F) closing parameter of the first contact; NaN: the finger met nothing
+  RowMatrixXd joints;          ///< (N, F * D) the configuration q(t_f) at each finger's contact (NaN: none)
+  RowMatrixXd points;          ///< (N, F * 3) contact points (world; NaN: none)
+  RowMatrixXd normals;         ///< (N, F * 3) contact normal axes, unit, pointing towards the finger (NaN: none)
+  RowMatrixXd angles;          ///< (N, F) theta_f (rad) in the scored pair; NaN for fingers outside it
+  Eigen::MatrixXi patch_size;  ///< (N, F) points in each contact patch (0: no contact)
+  Eigen::VectorXd log_value;   ///< (N) log E
+};
+
+class ContactQualityExpert : public Expert {
+ public:
+  /// points, normals: (N, 3) the object's cloud and its surface normals (world frame; each normal is taken
+  /// as an axis, its sign ignored). config: the configuration model whose pregrasps_for(q) opens each grasp.
+  /// Throws std::invalid_argument for a null hand, a hand without finger links, a configuration model of
+  /// another dimension, points and normals of different shapes, non-finite values, zero normals, or bad
+  /// settings (friction <= 0, a negative concentration, penalty or tolerance, closing_steps < 1).
+  ContactQualityExpert(std::shared_ptr<const Hand> hand, const Eigen::Ref<const Vec3Array>& points,
+                       const Eigen::Ref<const Vec3Array>& normals, ConfigModel config,
+                       ContactQualitySettings settings = {});
+  ~ContactQualityExpert() override;
+
+  std::string name() const override { return settings_.name; }
+  /// log E for every grasp (N). Parallel (OpenMP) over grasps.
+  Eigen::VectorXd log_value(const GraspBatch& batch) const override;
+  /// The contacts and angles behind log_value: wrists (N, 7), joints (N, D). Parallel (OpenMP).
+  ContactQualityResult evaluate(const Eigen::Ref<const PoseArray>& wrists,
+                                const Eigen::Ref<const RowMatrixXd>& joints) const;
+
+  const Hand& hand() const { return *hand_; }
+  const std::vector<int>& finger_links() const { return fingers_; }
+  const ContactQualitySettings& settings() const { return settings_; }
+  const ConfigModel& config() const { return config_; }
+  Eigen::Index n_points() const;
+
+  struct Index;  ///< the cloud's grid and normals (defined in src/)
+
+ private:
+  std::shared_ptr<const Hand> hand_;
+  ConfigModel config_;
+  ContactQualitySettings settings_;
+  std::vector<int> fingers_;
+  std::vector<bool> translating_;  ///< per finger: moved by prismatic joints only, box shapes only
+  std::unique_ptr<const Index> index_;
+};
+
+}  // namespace graspmix

@@ -1,0 +1,112 @@
+// The contact-quality expert (grasp/contact_quality.hpp) and its settings and diagnostics; called by
+// bind_grasp after the Expert base class is bound.
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "common.hpp"
+#include "graspmix/grasp/contact_quality.hpp"
+#include "settings.hpp"
+
+namespace graspmix::py_bind {
+
+namespace {
+
+/// An (N, F * k) block as an (N, F, k) array.
+py::array_t<double> per_finger(const RowMatrixXd& m, Eigen::Index k) {
+  const Eigen::Index n = m.rows(), f = k > 0 ? m.cols() / k : 0;
+  py::array_t<double> out({static_cast<py::ssize_t>(n), static_cast<py::ssize_t>(f), static_cast<py::ssize_t>(k)});
+  std::copy(m.data(), m.data() + m.size(), out.mutable_data());
+  return out;
+}
+
+}  // namespace
+
+void bind_contact_quality(py::module_& m) {
+  SettingsClass<ContactQualitySettings>(m, "ContactQualitySettings",
+                                        "The contact-quality expert (antipodal friction-cone deviation).")
+      .field("friction", &ContactQualitySettings::friction,
+             "Coulomb coefficient mu (> 0): the friction cone's half-angle is atan(mu)")
+      .field("concentration", &ContactQualitySettings::concentration,
+             "nats per radian beyond the friction cone, per contact")
+      .field("air_penalty", &ContactQualitySettings::air_penalty, "nats per finger that closes on nothing")
+      .field("contact_tolerance", &ContactQualitySettings::contact_tolerance,
+             "m: points within this of a link's surface are in contact")
+      .field("closing_steps", &ContactQualitySettings::closing_steps,
+             "steps of the closing motion before bisection (links that do not translate)")
+      .field("name", &ContactQualitySettings::name, "the key of its term in a grasp's experts table")
+      .done();
+
+  py::class_<ContactQualityResult>(m, "ContactQualityResult",
+                                   "The contacts of N grasps, F finger links each (expert.finger_links order).")
+      .def_property_readonly(
+          "links", [](const ContactQualityResult& r) { return r.links; },
+          "(F,) the finger links (indices into Hand.link_names)")
+      .def_readonly("t", &ContactQualityResult::t, "(N, F) closing parameter of each first contact (NaN: none)")
+      .def_property_readonly(
+          "joints",
+          [](const ContactQualityResult& r) {
+            const auto f = static_cast<Eigen::Index>(r.links.size());
+            return per_finger(r.joints, f > 0 ? r.joints.cols() / f : 0);
+          },
+          "(N, F, D) the configuration at each finger's contact (NaN: none)")
+      .def_property_readonly(
+          "points", [](const ContactQualityResult& r) { return per_finger(r.points, 3); },
+          "(N, F, 3) contact points, world frame (NaN: none)")
+      .def_property_readonly(
+          "normals", [](const ContactQualityResult& r) { return per_finger(r.normals, 3); },
+          "(N, F, 3) contact normal axes, unit, pointing towards the finger (NaN: none)")
+      .def_readonly("angles", &ContactQualityResult::angles,
+                    "(N, F) angle (rad) between each contact's normal axis and the grasp line, in the scored pair")
+      .def_readonly("patch_size", &ContactQualityResult::patch_size, "(N, F) points in each contact patch")
+      .def_readonly("log_value", &ContactQualityResult::log_value, "(N,) log E");
+
+  py::class_<ContactQualityExpert, Expert, std::shared_ptr<ContactQualityExpert>>(
+      m, "ContactQualityExpert",
+      "Soft: close the hand from each grasp's pre-grasp until each finger meets the cloud, then\n"
+      "log E = -concentration * sum_i max(0, theta_i - atan(friction)) - air_penalty * (fingers on nothing),\n"
+      "theta_i the angle between contact i's normal axis and the line between the contacts\n"
+      "(include/graspmix/grasp/contact_quality.hpp).")
+      .def(py::init([](HandPtr hand, const py::object& points, const py::object& normals, const ConfigModel& config,
+                       const py::object& settings, const py::kwargs& kw) {
+             if (!hand) throw py::value_error("hand: expected a Hand, got None");
+             const ContactQualitySettings s =
+                 settings_from<ContactQualitySettings>(settings, kw, "ContactQualityExpert");
+             const Vec3Array P(to_matrix(points, "points", 3));
+             const Vec3Array N(to_matrix(normals, "normals", 3));
+             py::gil_scoped_release release;
+             return std::make_shared<ContactQualityExpert>(std::move(hand), P, N, config, s);
+           }),
+           py::arg("hand"), py::arg("points"), py::arg("normals"), py::arg("pregrasp_config"), py::kw_only(),
+           py::arg("settings") = py::none(),
+           ("hand: Hand; points, normals: (N, 3) the object's cloud and surface normals (world frame; a normal's\n"
+            "sign is ignored); pregrasp_config: a ConfigModel whose pregrasp_for(q) opens each grasp.\n" +
+            settings_doc<ContactQualitySettings>())
+               .c_str())
+      .def(
+          "evaluate",
+          [](const ContactQualityExpert& e, const py::object& wrists, const py::object& joints) {
+            const PoseArray w = to_poses(wrists, "wrists");
+            const RowMatrixXd q = to_matrix(joints, "joints", e.hand().n_dofs());
+            py::gil_scoped_release release;
+            return e.evaluate(w, q);
+          },
+          py::arg("wrists"), py::arg("joints"),
+          "The contacts, angles and log E of wrists (N, 7) and joints (N, D): a ContactQualityResult.")
+      .def_property_readonly("finger_links", &ContactQualityExpert::finger_links,
+                             "Indices (into Hand.link_names) of the links that close on the object.")
+      .def_property_readonly(
+          "finger_names",
+          [](const ContactQualityExpert& e) {
+            std::vector<std::string> out;
+            for (const int l : e.finger_links()) out.push_back(e.hand().link_names()[static_cast<size_t>(l)]);
+            return out;
+          },
+          "Names of the finger links.")
+      .def_property_readonly("n_points", &ContactQualityExpert::n_points)
+      .def_property_readonly(
+          "settings", [](const ContactQualityExpert& e) { return ContactQualitySettings(e.settings()); },
+          "The ContactQualitySettings it was built with (a copy).");
+}
+
+}  // namespace graspmix::py_bind

@@ -5,8 +5,9 @@
 //
 // Closing. For a grasp (wrist, q) with pre-grasp p = ConfigModel::pregrasps_for(q), the joints move along
 //   q(t) = p + t (c - p),  t in [0, 1],
-// c being every joint pushed to its limit in the closing direction sign(q - p) (a joint with q == p stays;
-// one without a finite limit there closes as far past q as q lies from p). The finger links are the links
+// c being every joint pushed to its limit in the closing direction sign(q - p), or, where q == p (a pre-grasp
+// clamped at a joint limit), the demonstration's sign(h_g - h_e) (a joint it does not move stays); a joint
+// without a finite limit there closes by max(|q - p|, |h_g - h_e|) past q. The finger links are the links
 // with collision geometry moved by a movable joint (the WSG 50's finger_left and finger_right). A finger's
 // contact time t_f is the first t at which an object point lies within contact_tolerance of (or inside) its
 // collision geometry:

@@ -117,6 +117,10 @@ TEST(ContactQuality, BoxAcrossParallelFacesHoldsAndContactsWhereTheGapIsItsWidth
   EXPECT_LT(r.normals(0, 0), 0.0);
   EXPECT_GT(r.normals(0, 3), 0.0);
   EXPECT_EQ(e.log_value({wrist(Eigen::Vector3d::Zero()), joint(0.015)})[0], r.log_value[0]);
+  // Fully open, the pre-grasp clamps to q itself: the hand still closes, the demonstration's way.
+  const ContactQualityResult open = e.evaluate(wrist(Eigen::Vector3d::Zero()), joint(0.055));
+  EXPECT_NEAR(open.log_value[0], 0.0, 1e-12);
+  for (int f = 0; f < 2; ++f) EXPECT_NEAR(open.t(0, f), (0.055 - 0.021) / 0.055, 1e-9) << f;
 }
 
 TEST(ContactQuality, SphereThroughItsCentreHoldsAndShallowGraspsFailPastTheCone) {

@@ -1,0 +1,323 @@
+#pragma once
+// The closing motion of the contact-quality expert, private to the library (grasp/contact_quality.cpp): the
+// cloud's grid, and each finger's first contact as the hand closes (include/graspmix/grasp/contact_quality.hpp
+// states the rule).
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+
+#include "core/uniform_grid.hpp"
+#include "grasp/collision_geometry.hpp"
+#include "graspmix/grasp/contact_quality.hpp"
+
+namespace graspmix {
+
+namespace closing {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+using Index = ContactQualityExpert::Index;
+
+/// The grid over the cloud's box: cells 1.5 times the side of one point's share of the box (a surface cloud
+/// then has several per cell; finer grids were slower on the bench's 2k-point mug, the columns' overhead
+/// outweighing the points they skip), at most 4 million cells.
+inline detail::UniformGrid cloud_grid(const Eigen::Ref<const Vec3Array>& P, const Eigen::Vector3d& lo,
+                                      const Eigen::Vector3d& hi) {
+  using Grid = detail::UniformGrid;
+  if (P.rows() == 0) return Grid(P, Eigen::Vector3d::Zero(), 1.0, {1, 1, 1}, Grid::Layout::Dense);
+  const Eigen::Vector3d ext = (hi - lo).cwiseMax(1e-6);
+  const Eigen::Vector3d thick = ext.cwiseMax(0.05 * ext.maxCoeff());
+  double h = std::max(std::cbrt(thick.prod() / static_cast<double>(P.rows())) * 1.5, 1e-4 * ext.maxCoeff());
+  auto dims_for = [&](double hh) { return ((ext / hh).array().floor().cast<int>() + 1).matrix().eval(); };
+  Eigen::Vector3i dims = dims_for(h);
+  while (static_cast<double>(dims[0]) * dims[1] * dims[2] > 4e6) dims = dims_for(h *= 1.5);
+  return Grid(P, lo, h, {dims[0], dims[1], dims[2]}, Grid::Layout::Dense);
+}
+
+}  // namespace closing
+
+struct ContactQualityExpert::Index {
+  Index(const Eigen::Ref<const Vec3Array>& points, const Eigen::Ref<const Vec3Array>& normals)
+      : lo(points.rows() > 0 ? Eigen::Vector3d(points.colwise().minCoeff().transpose()) : Eigen::Vector3d::Zero()),
+        hi(points.rows() > 0 ? Eigen::Vector3d(points.colwise().maxCoeff().transpose()) : Eigen::Vector3d::Zero()),
+        grid(closing::cloud_grid(points, lo, hi)),
+        normals(static_cast<size_t>(points.rows())) {
+    for (int i = 0; i < grid.size(); ++i) this->normals[static_cast<size_t>(i)] = normals.row(grid.row(i)).normalized();
+  }
+  Eigen::Vector3d lo, hi;  ///< the cloud's bounding box
+  detail::UniformGrid grid;
+  std::vector<Eigen::Vector3d> normals;  ///< unit, in the grid's canonical order
+};
+
+namespace closing {
+
+/// One finger's first contact.
+struct Contact {
+  double t = kNaN;
+  int patch = 0;  ///< points in the patch (0: no contact)
+  Eigen::Vector3d point = Eigen::Vector3d::Constant(kNaN), normal = Eigen::Vector3d::Constant(kNaN);
+  Eigen::Vector3d motion = Eigen::Vector3d::Zero();  ///< the contact point's displacement from t = 0 to t = 1
+};
+
+/// Per-thread storage reused across grasps.
+struct Scratch {
+  std::vector<Eigen::Isometry3d> poses0, poses1, poses;
+  Eigen::VectorXd q;
+  std::vector<int> cand;
+  struct Entry {
+    int i;
+    double lo, hi;
+  };
+  std::vector<Entry> entries;
+};
+
+/// A box of a translating link: a point x of the link frame at t = 0 is at Rt x + b - t e in the box's frame.
+struct Slab {
+  Eigen::Matrix3d Rt;
+  Eigen::Vector3d b, inv, half;  ///< inv = 1 / e per axis, 0 where the box does not move along it
+  bool aligned = false;          ///< Rt is the identity
+  /// The one axis the box moves along (-1: none or several), and (half + g) |inv| there for g = g1, g2.
+  int axis = -1;
+  double reach1 = 0.0, reach2 = 0.0;
+};
+
+/// The times in [0, 1] at which the point `a` (box frame, t = 0) lies within the box grown by g2: [lo2, hi2]
+/// (false when none), and the first time it lies within the box grown by g1 <= g2 (in1; inf when never).
+inline bool slab_times(const Slab& sl, const Eigen::Vector3d& a, double g1, double g2, double& lo2, double& hi2,
+                       double& in1) {
+  if (sl.axis >= 0) {  // the usual case (a finger moving along one of its box's axes), without branches per axis
+    const int m = sl.axis, u = (m + 1) % 3, v = (m + 2) % 3;
+    const double d = std::max(std::abs(a[u]) - sl.half[u], std::abs(a[v]) - sl.half[v]);
+    if (d > g2) return false;
+    const double c = a[m] * sl.inv[m];
+    lo2 = std::max(0.0, c - sl.reach2);
+    hi2 = std::min(1.0, c + sl.reach2);
+    if (lo2 > hi2) return false;
+    const double lo1 = std::max(0.0, c - sl.reach1);
+    in1 = d <= g1 && lo1 <= std::min(1.0, c + sl.reach1) ? lo1 : kInf;
+    return true;
+  }
+  lo2 = 0.0;
+  hi2 = 1.0;
+  double lo1 = 0.0, hi1 = 1.0;
+  for (int k = 0; k < 3; ++k) {
+    if (sl.inv[k] == 0.0) {
+      const double d = std::abs(a[k]) - sl.half[k];
+      if (d > g2) return false;
+      if (d > g1) hi1 = -1.0;
+      continue;
+    }
+    const double c = a[k] * sl.inv[k], w = std::abs(sl.half[k] * sl.inv[k]), g = std::abs(sl.inv[k]);
+    lo2 = std::max(lo2, c - w - g2 * g);
+    hi2 = std::min(hi2, c + w + g2 * g);
+    lo1 = std::max(lo1, c - w - g1 * g);
+    hi1 = std::min(hi1, c + w + g1 * g);
+  }
+  in1 = lo1 <= hi1 ? lo1 : kInf;
+  return lo2 <= hi2;
+}
+
+/// The cells of the grid under the box [lo, hi]; false when it misses the cloud's box.
+inline bool cells_under(const Index& ix, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
+                        detail::UniformGrid::Cell& c0, detail::UniformGrid::Cell& c1) {
+  if (ix.grid.size() == 0 || (lo.array() > ix.hi.array()).any() || (hi.array() < ix.lo.array()).any()) return false;
+  c0 = ix.grid.cell_of(lo);
+  c1 = ix.grid.cell_of(hi);
+  return true;
+}
+
+/// The contact point (the patch's mean) and normal axis (the principal axis of its normals, pointed against
+/// the motion) of the patch of canonical positions `patch`.
+inline void patch_contact(const Index& ix, const std::vector<int>& patch, Contact& c) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d M = Eigen::Matrix3d::Zero();
+  for (const int i : patch) {
+    sum += ix.grid.point(i);
+    M.noalias() += ix.normals[static_cast<size_t>(i)] * ix.normals[static_cast<size_t>(i)].transpose();
+  }
+  c.patch = static_cast<int>(patch.size());
+  c.point = sum / static_cast<double>(patch.size());
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+  eig.computeDirect(M);
+  c.normal = eig.eigenvectors().col(2).normalized();  // eigenvalues ascending
+  if (c.normal.dot(c.motion) > 0.0) c.normal = -c.normal;
+}
+
+/// The first contact of a link moved by prismatic joints alone, whose shapes are boxes: it translates by
+/// D = A1 - A0 over t in [0, 1], so each point's entry time into a grown box is one slab test. The sweep is
+/// cut into chunks half as long as the link is thick along it, visited in order until one holds a contact;
+/// only the grid's cells that can meet a chunk's swept box (in the link's frame) are visited.
+inline Contact translating_contact(const Index& ix, const LinkInfo& link, const Eigen::Isometry3d& A0,
+                                   const Eigen::Isometry3d& A1, double tol, Scratch& s) {
+  Contact c;
+  c.motion = A1.translation() - A0.translation();
+  const Eigen::Matrix3d Rt = A0.linear().transpose();
+  const Eigen::Vector3d o = A0.translation(), e = Rt * c.motion;  // the displacement in the link frame
+  // The boxes in their frames; lo, hi bound them grown by 2 tol in the link frame.
+  Slab slabs[8];
+  const int n_shapes = static_cast<int>(std::min<size_t>(link.collisions.size(), 8));
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(kInf), hi = -lo;
+  for (int k = 0; k < n_shapes; ++k) {
+    const CollisionShape& sh = link.collisions[static_cast<size_t>(k)];
+    Slab& sl = slabs[k];
+    sl.Rt = sh.T_link_shape.linear().transpose();
+    sl.b = -sl.Rt * sh.T_link_shape.translation();
+    const Eigen::Vector3d es = sl.Rt * e;
+    for (int a = 0; a < 3; ++a) sl.inv[a] = std::abs(es[a]) > 1e-12 * e.norm() ? 1.0 / es[a] : 0.0;
+    sl.half = 0.5 * sh.size;
+    sl.aligned = sl.Rt.isIdentity(0.0);
+    if ((sl.inv.array() != 0.0).count() == 1) {
+      sl.inv.cwiseAbs().maxCoeff(&sl.axis);
+      sl.reach1 = (sl.half[sl.axis] + tol) * std::abs(sl.inv[sl.axis]);
+      sl.reach2 = (sl.half[sl.axis] + 2.0 * tol) * std::abs(sl.inv[sl.axis]);
+    }
+    const Eigen::Vector3d ext = sh.T_link_shape.linear().cwiseAbs() * (sl.half.array() + 2.0 * tol).matrix();
+    lo = lo.cwiseMin(sh.T_link_shape.translation() - ext);
+    hi = hi.cwiseMax(sh.T_link_shape.translation() + ext);
+  }
+  const double thick = (hi - lo).dot(e.cwiseAbs()) / std::max(e.norm(), 1e-300);
+  const int chunks = std::clamp(static_cast<int>(std::ceil(e.norm() / (0.5 * thick))), 1, 32);
+  double first = kInf;
+  for (int j = 0; j < chunks && !(first <= 1.0); ++j) {
+    const double ta = static_cast<double>(j) / chunks, tb = static_cast<double>(j + 1) / chunks;
+    const Eigen::Vector3d slo = (lo + ta * e).cwiseMin(lo + tb * e), shi = (hi + ta * e).cwiseMax(hi + tb * e);
+    const Eigen::Vector3d mid = 0.5 * (slo + shi), half = 0.5 * (shi - slo), centre = A0 * mid;
+    const Eigen::Vector3d ext = A0.linear().cwiseAbs() * half;
+    detail::UniformGrid::Cell c0, c1;
+    if (!cells_under(ix, centre - ext, centre + ext, c0, c1)) continue;
+    const detail::BoxColumns columns(ix.lo, ix.grid.cell_size(), centre, A0.linear(), half, 0.0);
+    s.entries.clear();
+    for (std::int64_t x = c0[0]; x <= c1[0]; ++x) {
+      for (std::int64_t y = c0[1]; y <= c1[1]; ++y) {
+        std::int64_t z0, z1;
+        if (!columns.column(x, y, c0[2], c1[2], z0, z1)) continue;
+        const auto [b, end] = ix.grid.z_run(x, y, z0, z1);
+        for (Eigen::Index i = b; i < end; ++i) {
+          const Eigen::Vector3d a = Rt * (ix.grid.point(static_cast<int>(i)) - o);
+          if (((a - mid).cwiseAbs() - half).maxCoeff() > 0.0) continue;
+          for (int k = 0; k < n_shapes; ++k) {
+            double lo2, hi2, in1;
+            const Slab& sl = slabs[k];
+            const Eigen::Vector3d as = sl.aligned ? Eigen::Vector3d(a + sl.b) : Eigen::Vector3d(sl.Rt * a + sl.b);
+            if (!slab_times(sl, as, tol, 2.0 * tol, lo2, hi2, in1)) continue;
+            first = std::min(first, in1);
+            if (lo2 <= std::min(first, tb)) s.entries.push_back({static_cast<int>(i), lo2, hi2});
+          }
+        }
+      }
+    }
+    if (first > tb) first = kInf;  // entries after this chunk are found again, in order, by a later one
+  }
+  if (!(first <= 1.0)) return c;
+  c.t = first;
+  s.cand.clear();
+  for (const Scratch::Entry& en : s.entries) {
+    if (en.lo <= first && first <= en.hi && (s.cand.empty() || s.cand.back() != en.i)) s.cand.push_back(en.i);
+  }
+  patch_contact(ix, s.cand, c);
+  return c;
+}
+
+/// The smallest signed distance from the candidates to the link posed at A (its shapes' rule).
+inline double min_distance(const Index& ix, const LinkInfo& link, const Eigen::Isometry3d& A,
+                           const std::vector<int>& cand) {
+  double best = kInf;
+  for (const CollisionShape& sh : link.collisions) {
+    const Eigen::Isometry3d inv = (A * sh.T_link_shape).inverse();
+    for (const int i : cand) best = std::min(best, detail::signed_distance(sh, inv * ix.grid.point(i)));
+  }
+  return best;
+}
+
+/// The world box of a shape posed at T (its local box: boxes exactly, cylinders, spheres, mesh hulls bounded).
+inline void shape_box(const CollisionShape& sh, const Eigen::Isometry3d& T, Eigen::Vector3d& lo, Eigen::Vector3d& hi) {
+  Eigen::Vector3d half = Eigen::Vector3d::Zero(), centre = Eigen::Vector3d::Zero();
+  switch (sh.type) {
+    case ShapeType::Box:
+      half = 0.5 * sh.size;
+      break;
+    case ShapeType::Cylinder:
+      half = Eigen::Vector3d(sh.size.x(), sh.size.x(), 0.5 * sh.size.y());
+      break;
+    case ShapeType::Sphere:
+      half = Eigen::Vector3d::Constant(sh.size.x());
+      break;
+    case ShapeType::Mesh: {
+      const Vec3Array& V = sh.hull->vertices;
+      const Eigen::Vector3d vlo = V.colwise().minCoeff().transpose(), vhi = V.colwise().maxCoeff().transpose();
+      centre = 0.5 * (vlo + vhi);
+      half = 0.5 * (vhi - vlo);
+      break;
+    }
+  }
+  const Eigen::Vector3d c = T * centre, ext = T.linear().cwiseAbs() * half;
+  lo = lo.cwiseMin(c - ext);
+  hi = hi.cwiseMax(c + ext);
+}
+
+/// The first contact of any other link: closing_steps steps of the signed distance over the points under
+/// the swept box, then bisection in the first step that comes within the tolerance.
+inline Contact stepped_contact(const Hand& hand, const Index& ix, int l, const Eigen::Isometry3d& W,
+                               const Eigen::VectorXd& p, const Eigen::VectorXd& cl, double tol, int steps, Scratch& s) {
+  const LinkInfo& link = hand.links()[static_cast<size_t>(l)];
+  auto pose_at = [&](double t) {
+    s.q = p + t * (cl - p);
+    hand.fk_into(W, s.q.data(), s.poses.data());
+    return s.poses[static_cast<size_t>(l)];
+  };
+  std::vector<Eigen::Isometry3d> A(static_cast<size_t>(steps) + 1);
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(kInf), hi = -lo;
+  double stride = 0.0;  // how far a point of the link's boxes moves in one step, at most
+  for (int k = 0; k <= steps; ++k) {
+    A[static_cast<size_t>(k)] = pose_at(static_cast<double>(k) / steps);
+    for (const CollisionShape& sh : link.collisions) shape_box(sh, A[static_cast<size_t>(k)] * sh.T_link_shape, lo, hi);
+    if (k > 0) {
+      Eigen::Vector3d blo = Eigen::Vector3d::Constant(kInf), bhi = -blo;
+      for (const CollisionShape& sh : link.collisions) shape_box(sh, sh.T_link_shape, blo, bhi);
+      const Eigen::Isometry3d step = A[static_cast<size_t>(k) - 1].inverse() * A[static_cast<size_t>(k)];
+      const double reach = std::max(blo.norm(), bhi.norm());
+      stride =
+          std::max(stride, step.translation().norm() + (step.linear() - Eigen::Matrix3d::Identity()).norm() * reach);
+    }
+  }
+  Contact c;
+  c.motion = A.back().translation() - A.front().translation();
+  const Eigen::Vector3d grow = Eigen::Vector3d::Constant(2.0 * tol + stride);
+  detail::UniformGrid::Cell c0, c1;
+  if (!cells_under(ix, lo - grow, hi + grow, c0, c1)) return c;
+  s.cand.clear();
+  ix.grid.for_each_in_cells(c0, c1, [&](int i) { s.cand.push_back(i); });
+  int k = 0;
+  while (k <= steps && min_distance(ix, link, A[static_cast<size_t>(k)], s.cand) > tol) ++k;
+  if (k > steps) return c;
+  double a = k == 0 ? 0.0 : static_cast<double>(k - 1) / steps, b = static_cast<double>(k) / steps;
+  for (int it = 0; k > 0 && it < 30 && b - a > 1e-9; ++it) {
+    const double m = 0.5 * (a + b);
+    (min_distance(ix, link, pose_at(m), s.cand) > tol ? a : b) = m;
+  }
+  c.t = b;
+  const Eigen::Isometry3d At = pose_at(b);
+  std::vector<int> patch;
+  for (const CollisionShape& sh : link.collisions) {
+    const Eigen::Isometry3d inv = (At * sh.T_link_shape).inverse();
+    for (const int i : s.cand)
+      if (detail::signed_distance(sh, inv * ix.grid.point(i)) <= 2.0 * tol) patch.push_back(i);
+  }
+  std::sort(patch.begin(), patch.end());
+  patch.erase(std::unique(patch.begin(), patch.end()), patch.end());
+  // The contact point's own displacement over the closing (for the normal's orientation).
+  const Eigen::Vector3d x = At.inverse() * ix.grid.point(patch.front());
+  c.motion = A.back() * x - A.front() * x;
+  patch_contact(ix, patch, c);
+  return c;
+}
+
+}  // namespace closing
+
+}  // namespace graspmix

@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AnnealingSettings', 'AxisAlignmentExpert', 'AxisAlignmentSettings', 'ClearApproachExpert', 'ClearApproachSettings', 'CloudData', 'CollisionBatchResult', 'CollisionExpert', 'CollisionFreeExpert', 'CollisionResult', 'CollisionSettings', 'ConfigModel', 'ConfigModelSettings', 'ContactData', 'ContactModel', 'ContactSettings', 'Evaluation', 'Expert', 'FunctionExpert', 'GaussianMixture', 'GmmSettings', 'Grasp', 'GraspSynthesizer', 'Hand', 'HandLoadSettings', 'KdeSettings', 'KinematicFeasibilityExpert', 'KinematicFeasibilitySettings', 'OccupancyMap', 'OccupancySettings', 'PlaneCandidate', 'PoseDensity', 'PoseKDE', 'PoseMixture', 'QueryDensity', 'QuerySettings', 'SceneObject', 'SceneResult', 'SceneSettings', 'SceneSimResult', 'Segmentation', 'SegmentationSettings', 'SettleResult', 'SimObject', 'SimResult', 'SimSettings', 'SurfaceCloud', 'SurfaceFeatureSettings', 'SynthesisResult', 'SynthesisSettings', 'SynthesisTiming', 'build_info', 'compute_surface_features', 'contact_data', 'learn_contact_models', 'load_cloud', 'load_mesh', 'log_vmf_s3_normaliser', 'orient_plane', 'pose_inverse', 'pose_multiply', 'prepare_cloud', 'quat_exp', 'quat_log', 'save_cloud', 'segment_scene', 'sim_execute', 'sim_execute_scene', 'sim_settle_scene']
+__all__: list[str] = ['AnnealingSettings', 'AxisAlignmentExpert', 'AxisAlignmentSettings', 'ClearApproachExpert', 'ClearApproachSettings', 'CloudData', 'CollisionBatchResult', 'CollisionExpert', 'CollisionFreeExpert', 'CollisionResult', 'CollisionSettings', 'ConfigModel', 'ConfigModelSettings', 'ContactData', 'ContactModel', 'ContactQualityExpert', 'ContactQualityResult', 'ContactQualitySettings', 'ContactSettings', 'Evaluation', 'Expert', 'FunctionExpert', 'GaussianMixture', 'GmmSettings', 'Grasp', 'GraspSynthesizer', 'Hand', 'HandLoadSettings', 'KdeSettings', 'KinematicFeasibilityExpert', 'KinematicFeasibilitySettings', 'OccupancyMap', 'OccupancySettings', 'PlaneCandidate', 'PoseDensity', 'PoseKDE', 'PoseMixture', 'QueryDensity', 'QuerySettings', 'SceneObject', 'SceneResult', 'SceneSettings', 'SceneSimResult', 'Segmentation', 'SegmentationSettings', 'SettleResult', 'SimObject', 'SimResult', 'SimSettings', 'SurfaceCloud', 'SurfaceFeatureSettings', 'SynthesisResult', 'SynthesisSettings', 'SynthesisTiming', 'build_info', 'compute_surface_features', 'contact_data', 'learn_contact_models', 'load_cloud', 'load_mesh', 'log_vmf_s3_normaliser', 'orient_plane', 'pose_inverse', 'pose_multiply', 'prepare_cloud', 'quat_exp', 'quat_log', 'save_cloud', 'segment_scene', 'sim_execute', 'sim_execute_scene', 'sim_settle_scene']
 class GmmSettings:
     """
     How a GaussianMixture (or PoseMixture) is fitted by EM.
@@ -2196,6 +2196,177 @@ class FunctionExpert(Expert):
     """
     def __init__(self, name: str, fn: collections.abc.Callable) -> None:
         ...
+class ContactQualitySettings:
+    """
+    The contact-quality expert (antipodal friction-cone deviation).
+    
+    Settings: settings= a ContactQualitySettings (None: its defaults), and/or its fields as keywords,
+    which override it (an unknown keyword is a ValueError):
+      friction = 0.5: Coulomb coefficient mu (> 0): the friction cone's half-angle is atan(mu)
+      concentration = 10.0: nats per radian beyond the friction cone, per contact
+      air_penalty = 5.0: nats per finger that closes on nothing
+      contact_tolerance = 0.001: m: points within this of a link's surface are in contact
+      closing_steps = 16: steps of the closing motion before bisection (links that do not translate)
+      name = 'contact_quality': the key of its term in a grasp's experts table
+    """
+    __hash__: typing.ClassVar[None] = None
+    _fields: typing.ClassVar[tuple] = ('friction', 'concentration', 'air_penalty', 'contact_tolerance', 'closing_steps', 'name')
+    def __copy__(self) -> ContactQualitySettings:
+        ...
+    def __deepcopy__(self, memo: typing.Any) -> ContactQualitySettings:
+        ...
+    def __eq__(self, arg0: typing.Any) -> typing.Any:
+        ...
+    def __getstate__(self) -> dict:
+        ...
+    @typing.overload
+    def __init__(self) -> None:
+        """
+        The defaults: those of the default-constructed C++ struct.
+        """
+    @typing.overload
+    def __init__(self, **kwargs) -> None:
+        """
+        Keyword constructor: any of the fields (friction, concentration, air_penalty, contact_tolerance, closing_steps, name); the others keep their defaults.
+        """
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    @property
+    def air_penalty(self) -> float:
+        """
+        nats per finger that closes on nothing
+        """
+    @air_penalty.setter
+    def air_penalty(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def closing_steps(self) -> int:
+        """
+        steps of the closing motion before bisection (links that do not translate)
+        """
+    @closing_steps.setter
+    def closing_steps(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def concentration(self) -> float:
+        """
+        nats per radian beyond the friction cone, per contact
+        """
+    @concentration.setter
+    def concentration(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def contact_tolerance(self) -> float:
+        """
+        m: points within this of a link's surface are in contact
+        """
+    @contact_tolerance.setter
+    def contact_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def friction(self) -> float:
+        """
+        Coulomb coefficient mu (> 0): the friction cone's half-angle is atan(mu)
+        """
+    @friction.setter
+    def friction(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def name(self) -> str:
+        """
+        the key of its term in a grasp's experts table
+        """
+    @name.setter
+    def name(self, arg0: str) -> None:
+        ...
+class ContactQualityResult:
+    """
+    The contacts of N grasps, F finger links each (expert.finger_links order).
+    """
+    @property
+    def angles(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        """
+        (N, F) angle (rad) between each contact's normal axis and the grasp line, in the scored pair
+        """
+    @property
+    def joints(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        (N, F, D) the configuration at each finger's contact (NaN: none)
+        """
+    @property
+    def links(self) -> list[int]:
+        """
+        (F,) the finger links (indices into Hand.link_names)
+        """
+    @property
+    def log_value(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        (N,) log E
+        """
+    @property
+    def normals(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        (N, F, 3) contact normal axes, unit, pointing towards the finger (NaN: none)
+        """
+    @property
+    def patch_size(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, n]"]:
+        """
+        (N, F) points in each contact patch
+        """
+    @property
+    def points(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        (N, F, 3) contact points, world frame (NaN: none)
+        """
+    @property
+    def t(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        """
+        (N, F) closing parameter of each first contact (NaN: none)
+        """
+class ContactQualityExpert(Expert):
+    """
+    Soft: close the hand from each grasp's pre-grasp until each finger meets the cloud, then
+    log E = -concentration * sum_i max(0, theta_i - atan(friction)) - air_penalty * (fingers on nothing),
+    theta_i the angle between contact i's normal axis and the line between the contacts
+    (include/graspmix/grasp/contact_quality.hpp).
+    """
+    def __init__(self, hand: Hand, points: typing.Any, normals: typing.Any, pregrasp_config: ConfigModel, *, settings: typing.Any = None, **kwargs) -> None:
+        """
+        hand: Hand; points, normals: (N, 3) the object's cloud and surface normals (world frame; a normal's
+        sign is ignored); pregrasp_config: a ConfigModel whose pregrasp_for(q) opens each grasp.
+        Settings: settings= a ContactQualitySettings (None: its defaults), and/or its fields as keywords,
+        which override it (an unknown keyword is a ValueError):
+          friction = 0.5: Coulomb coefficient mu (> 0): the friction cone's half-angle is atan(mu)
+          concentration = 10.0: nats per radian beyond the friction cone, per contact
+          air_penalty = 5.0: nats per finger that closes on nothing
+          contact_tolerance = 0.001: m: points within this of a link's surface are in contact
+          closing_steps = 16: steps of the closing motion before bisection (links that do not translate)
+          name = 'contact_quality': the key of its term in a grasp's experts table
+        """
+    def evaluate(self, wrists: typing.Any, joints: typing.Any) -> ContactQualityResult:
+        """
+        The contacts, angles and log E of wrists (N, 7) and joints (N, D): a ContactQualityResult.
+        """
+    @property
+    def finger_links(self) -> list[int]:
+        """
+        Indices (into Hand.link_names) of the links that close on the object.
+        """
+    @property
+    def finger_names(self) -> list[str]:
+        """
+        Names of the finger links.
+        """
+    @property
+    def n_points(self) -> int:
+        ...
+    @property
+    def settings(self) -> ContactQualitySettings:
+        """
+        The ContactQualitySettings it was built with (a copy).
+        """
 class QuerySettings:
     """
     Contact query densities Q_i (eq:query_density_approx).

@@ -193,22 +193,41 @@ Evaluation GraspSynthesizer::evaluate(const std::vector<QueryDensity>& query, co
   }
   require_finite(joints, "evaluate: joints");
   Evaluation e;
-  // The experts first: a grasp a hard expert rejects costs nothing more (its other terms stay NaN,
-  // "not evaluated"), which keeps rejection sampling cheap.
-  e.log_experts.resize(n, experts.size());
-  const GraspBatch batch{wrists, joints};
-  for (size_t k = 0; k < experts.size(); ++k) {
-    const Eigen::VectorXd v = experts[k]->log_value(batch);
-    if (v.size() != n || v.array().isNaN().any() || (v.array() == std::numeric_limits<double>::infinity()).any()) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  // The experts first, in order, each on the grasps no expert before it rejected: a grasp a hard expert
+  // rejects costs nothing more (its later terms stay NaN, "not evaluated"), which keeps rejection sampling
+  // cheap and lets an expensive soft expert placed last see only the survivors.
+  e.log_experts = RowMatrixXd::Constant(n, static_cast<Eigen::Index>(experts.size()), nan);
+  e.total = Eigen::VectorXd::Zero(n);
+  std::vector<Eigen::Index> alive(static_cast<size_t>(n));
+  std::iota(alive.begin(), alive.end(), Eigen::Index{0});
+  for (size_t k = 0; k < experts.size() && !alive.empty(); ++k) {
+    const auto m = static_cast<Eigen::Index>(alive.size());
+    Eigen::VectorXd v;
+    if (m == n) {
+      v = experts[k]->log_value(GraspBatch{wrists, joints});
+    } else {
+      PoseArray w(m, 7);
+      RowMatrixXd q(m, joints.cols());
+      for (Eigen::Index j = 0; j < m; ++j) {
+        w.row(j) = wrists.row(alive[static_cast<size_t>(j)]);
+        q.row(j) = joints.row(alive[static_cast<size_t>(j)]);
+      }
+      v = experts[k]->log_value(GraspBatch{w, q});
+    }
+    if (v.size() != m || v.array().isNaN().any() || (v.array() == std::numeric_limits<double>::infinity()).any()) {
       throw std::invalid_argument("expert '" + experts[k]->name() +
                                   "' returned NaN, +inf or the wrong number of values");
     }
-    e.log_experts.col(k) = v;
+    std::vector<Eigen::Index> still;
+    for (Eigen::Index j = 0; j < m; ++j) {
+      const Eigen::Index i = alive[static_cast<size_t>(j)];
+      e.log_experts(i, static_cast<Eigen::Index>(k)) = v[j];
+      e.total[i] += v[j];
+      if (e.total[i] > -std::numeric_limits<double>::infinity()) still.push_back(i);
+    }
+    alive.swap(still);
   }
-  e.total = e.log_experts.rowwise().sum();
-  std::vector<Eigen::Index> alive;
-  for (Eigen::Index i = 0; i < n; ++i)
-    if (e.total[i] > -std::numeric_limits<double>::infinity()) alive.push_back(i);
   const Eigen::Index m = static_cast<Eigen::Index>(alive.size());
   PoseArray w(m, 7);
   RowMatrixXd q(m, joints.cols());
@@ -216,7 +235,6 @@ Evaluation GraspSynthesizer::evaluate(const std::vector<QueryDensity>& query, co
     w.row(k) = wrists.row(alive[k]);
     q.row(k) = joints.row(alive[k]);
   }
-  const double nan = std::numeric_limits<double>::quiet_NaN();
   e.log_contact = RowMatrixXd::Constant(n, query.size(), nan);
   e.log_config = e.log_collision = e.log_pregrasp = Eigen::VectorXd::Constant(n, nan);
   if (m > 0) {

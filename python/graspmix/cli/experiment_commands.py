@@ -38,6 +38,9 @@ def _protocol(args):
         collision=args.collision,
         clear_approach=args.clear_approach,
         stand_off=args.stand_off,
+        approach_clearance=args.approach_clearance,
+        contact_quality=args.contact_quality,
+        friction=args.friction,
     )
 
 
@@ -216,6 +219,18 @@ def _add_run_options(s) -> None:
         help="the hard clear-approach expert on or off (default: the preset's)",
     )
     s.add_argument("--stand-off", type=float_in(0.0), help="m: the clear approach's stand-off (default: the preset's)")
+    s.add_argument(
+        "--approach-clearance", type=float_in(0.0), help="m: the clear approach's clearance (default: the preset's)"
+    )
+    s.add_argument(
+        "--contact-quality",
+        action=argparse.BooleanOptionalAction,
+        default=None,
+        help="the soft contact-quality expert on or off (default: the preset's)",
+    )
+    s.add_argument(
+        "--friction", type=float_in(gt=0.0), help="the contact-quality test's friction (default: the preset's)"
+    )
     s.add_argument("--seed", type=seed, default=None, help="base of every derived seed (default 0)")
     s.add_argument(
         "--closing",

@@ -156,6 +156,9 @@ def cmd_synthesize(args: argparse.Namespace) -> int:
         collision=args.collision,
         clear_approach=not args.no_clear_approach,
         stand_off=args.stand_off,
+        approach_clearance=args.approach_clearance,
+        contact_quality=not args.no_contact_quality,
+        friction=args.friction,
         types=args.types,
     )
     grasps.cloud = args.cloud
@@ -336,6 +339,24 @@ def _add_synthesize(sub) -> None:
         type=float_in(0.0),
         default=o.stand_off,
         help=f"m: where the clear approach starts, back along the approach axis ({o.stand_off:g})",
+    )
+    s.add_argument(
+        "--approach-clearance",
+        type=float_in(0.0),
+        default=o.approach_clearance,
+        help=f"m: how far the open hand keeps from every point on its approach ({o.approach_clearance:g})",
+    )
+    s.add_argument(
+        "--no-contact-quality",
+        action="store_true",
+        help="drop the soft contact-quality expert (the fingers close from the pre-grasp onto the object; the "
+        "contacts are scored by the antipodal friction-cone test)",
+    )
+    s.add_argument(
+        "--friction",
+        type=float_in(gt=0.0),
+        default=o.friction,
+        help=f"Coulomb friction coefficient of the contact-quality test ({o.friction:g})",
     )
     s.add_argument(
         "--target",

@@ -55,6 +55,9 @@ def synthesis_keywords(p: Protocol, seed: int, optimise: bool) -> dict:
         collision=p.collision,
         clear_approach=p.clear_approach,
         stand_off=p.stand_off,
+        approach_clearance=p.approach_clearance,
+        contact_quality=p.contact_quality,
+        friction=p.friction,
         annealing={"iterations": p.annealing_iterations, "initial_temperature": p.initial_temperature},
     )
 

@@ -41,7 +41,7 @@ CONDITIONS = {
 PRESETS = ("smoke", "paper", "defaults")
 # The synthesis of the paper (and of runs recorded before these fields existed): the collision expert on the
 # cloud's points, none of the experts added since. The "defaults" preset runs the library's defaults instead.
-PAPER_SYNTHESIS = {"collision": "surface", "clear_approach": False, "cloud": "object"}
+PAPER_SYNTHESIS = {"collision": "surface", "clear_approach": False, "contact_quality": False, "cloud": "object"}
 # What an acquisition keeps: "object", the pixels that see the object with the table cropped (the paper's: a
 # segmented sensor); "scene", every pixel, the table too (what a depth camera gives: the synthesis finds the
 # object above the known table, and the table's rays show the occupancy model the free space around it).
@@ -84,10 +84,14 @@ class Protocol:
     views: int = 4  # cameras: the paper's ring of 4 (n > 1: a ring of n), or 1: one camera above the table
     cloud: str = "scene"  # what an acquisition keeps: see CLOUDS (the paper's: "object")
     # The experts beyond the paper's (SynthesisOptions; the paper's values: PAPER_SYNTHESIS): the collision model
-    # ("surface" or "occupancy") and the hard clear-approach expert with its stand-off (m).
+    # ("surface" or "occupancy"), the hard clear-approach expert with its stand-off and clearance (m), the contact-quality expert.
     collision: str = SynthesisOptions.collision
     clear_approach: bool = SynthesisOptions.clear_approach
     stand_off: float = SynthesisOptions.stand_off
+    approach_clearance: float = SynthesisOptions.approach_clearance
+    # the soft contact-quality expert and its Coulomb friction coefficient
+    contact_quality: bool = SynthesisOptions.contact_quality
+    friction: float = SynthesisOptions.friction
     seed: int = 0  # base of every derived seed
     models: dict = field(default_factory=dict)  # method -> model file; empty: the bundled box models
 
@@ -124,9 +128,12 @@ class Protocol:
         check_seed(self.seed)
         if not isinstance(self.collision, str) or self.collision not in COLLISION_MODELS:
             raise ValueError(f"collision must be one of {', '.join(COLLISION_MODELS)}, got {quote(self.collision)}")
-        if not isinstance(self.clear_approach, bool):
-            raise ValueError(f"clear_approach must be true or false, got {quote(self.clear_approach)}")
+        for name in ("clear_approach", "contact_quality"):
+            if not isinstance(getattr(self, name), bool):
+                raise ValueError(f"{name} must be true or false, got {quote(getattr(self, name))}")
         check_float(self.stand_off, "stand_off", 0.0)
+        check_float(self.approach_clearance, "approach_clearance", 0.0)
+        check_float(self.friction, "friction", gt=0.0)
         check_int(self.views, "views", 1, 64)
         if not isinstance(self.cloud, str) or self.cloud not in CLOUDS:
             raise ValueError(f"cloud must be one of {', '.join(CLOUDS)}, got {quote(self.cloud)}")

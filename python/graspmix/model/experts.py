@@ -55,9 +55,12 @@ def occupancy_map(points, viewpoints, objects, plane, opts: SynthesisOptions) ->
     return _core.OccupancyMap(points, viewpoints, objects, plane, resolution=opts.occupancy_resolution)
 
 
-def collision_expert(hand, points, plane, opts: SynthesisOptions, occupancy=None) -> "_core.CollisionExpert":
+def collision_expert(
+    hand, points, plane, opts: SynthesisOptions, occupancy=None, point_radius: float = 0.0
+) -> "_core.CollisionExpert":
     """W on the query cloud and the support plane (and, with an OccupancyMap, on the space the cameras did not
-    see free: the occupancy model); depths up to contact_tolerance are touching."""
+    see free: the occupancy model); depths up to contact_tolerance are touching; the points are balls of
+    point_radius (m)."""
     return _core.CollisionExpert(
         hand,
         points,
@@ -66,15 +69,32 @@ def collision_expert(hand, points, plane, opts: SynthesisOptions, occupancy=None
         beta=opts.collision_beta,
         contact_tolerance=opts.contact_tolerance,
         inside_weight=opts.collision_inside_weight,
+        point_radius=point_radius,
     )
 
 
-def clear_approach_expert(collision, config, opts: SynthesisOptions):
-    """The hard clear-approach expert of one grasp type (its ConfigModel opens the hand) against the collision
-    expert's scene and plane; None when opts.clear_approach is off."""
+def approach_collision(hand, scene, opts: SynthesisOptions, occupancy=None):
+    """What the clear approach keeps clear of: the scene's points as balls of opts.approach_clearance, its plane
+    and occupancy; None when opts.clear_approach is off."""
     if not opts.clear_approach:
         return None
+    return collision_expert(hand, scene.points, scene.plane, opts, occupancy, point_radius=opts.approach_clearance)
+
+
+def clear_approach_expert(collision, config, opts: SynthesisOptions):
+    """The hard clear-approach expert of one grasp type (its ConfigModel opens the hand) against `collision`
+    (approach_collision); None when there is none."""
+    if collision is None:
+        return None
     return _core.ClearApproachExpert(collision, config, stand_off=opts.stand_off)
+
+
+def contact_quality_expert(hand, surface, config, opts: SynthesisOptions):
+    """The soft contact-quality expert of one target object (its surface: points and normals) and grasp type (its
+    ConfigModel opens the hand); None when opts.contact_quality is off."""
+    if not opts.contact_quality:
+        return None
+    return _core.ContactQualityExpert(hand, surface.points, surface.normals, config, friction=opts.friction)
 
 
 def constraint_experts(

@@ -253,6 +253,9 @@ class GraspModel:
         occupancy_resolution: float = _S.occupancy_resolution,
         clear_approach: bool = _S.clear_approach,
         stand_off: float = _S.stand_off,
+        approach_clearance: float = _S.approach_clearance,
+        contact_quality: bool = _S.contact_quality,
+        friction: float = _S.friction,
         table_clearance: float = _S.table_clearance,
         target="all",
         annealing: dict | None = None,
@@ -388,6 +391,8 @@ def _synthesis_options(args: dict) -> SynthesisOptions:
         check_float(v[name], name, 0.0)
     check_float(v["occupancy_resolution"], "occupancy_resolution", gt=0.0)
     check_float(v["stand_off"], "stand_off", 0.0)
+    check_float(v["approach_clearance"], "approach_clearance", 0.0)
+    check_float(v["friction"], "friction", gt=0.0)
     if v["collision"] not in COLLISION_MODELS:
         raise ValueError(f"collision must be one of {', '.join(COLLISION_MODELS)}, got {v['collision']!r}")
     return SynthesisOptions(**v)

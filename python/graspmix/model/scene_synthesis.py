@@ -20,7 +20,14 @@ import numpy as np
 
 from .. import _core
 from ..perception import Scene, segment_scene
-from .experts import clear_approach_expert, collision_expert, constraint_experts, occupancy_map
+from .experts import (
+    approach_collision,
+    clear_approach_expert,
+    collision_expert,
+    constraint_experts,
+    contact_quality_expert,
+    occupancy_map,
+)
 from .grasp_types import REFERENCE_EXPERT
 from .grasps import STAGES, grasps_from_result
 from .settings import FeatureSettings, SynthesisOptions
@@ -114,6 +121,7 @@ def synthesize_targets(
         occupancy = occupancy_map(points, viewpoints, scene.points, scene.plane, opts)
         timing["occupancy"] = occupancy.stats["seconds"]
     collision = collision_expert(model.hand, scene.points, scene.plane, opts, occupancy)
+    approach = approach_collision(model.hand, scene, opts, occupancy)
     # The same for every target; each target adds its own neighbours' expert at the end.
     shared = constraint_experts(
         model.hand, scene.points, scene.plane, opts, approach_axis=approach_axis, reachable=reachable, experts=experts
@@ -125,14 +133,12 @@ def synthesize_targets(
         on = {"index": int(i), "centroid": [float(x) for x in scene.objects[i].centroid]}
         for t in types:
             config = t.synthesizer.config_model
-            extra = shared + [
-                e
-                for e in (
-                    clear_of_neighbours(model, scene, i, opts, config),
-                    clear_approach_expert(collision, config, opts),
-                )
-                if e is not None
-            ]
+            own = (
+                clear_of_neighbours(model, scene, i, opts, config),
+                clear_approach_expert(approach, config, opts),
+                contact_quality_expert(model.hand, surface, config, opts),
+            )
+            extra = shared + [e for e in own if e is not None]
             res = t.synthesizer.synthesize(surface.frames, surface.curvatures, collision, extra, settings)
             for g in grasps_from_result(res, model.hand):
                 g["object"] = on

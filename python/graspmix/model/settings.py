@@ -23,6 +23,7 @@ _AXIS = _core.AxisAlignmentSettings()
 _COLLISION = _core.CollisionSettings()
 _OCCUPANCY = _core.OccupancySettings()
 _APPROACH = _core.ClearApproachSettings()
+_QUALITY = _core.ContactQualitySettings()
 
 METHODS = ("gmm", "kde")
 METHOD_LABELS = {"gmm": "GMM", "kde": "KDE"}
@@ -113,6 +114,14 @@ class SynthesisOptions:
     # (m) back without touching the scene or the table (ClearApproachSettings)
     clear_approach: bool = True
     stand_off: float = _APPROACH.stand_off
+    # m: on its way the open hand keeps this far from every point (they are balls of this radius). The clean-up's
+    # points stand for 3 mm voxels: a hand clear of their centres by 1 mm (contact_tolerance) can still be
+    # 1-2 mm inside the surface they sample, which Bullet calls a start in collision (more than 2 mm).
+    approach_clearance: float = 0.002
+    # the soft contact-quality expert: the hand closes from the pre-grasp until each finger meets the object, the
+    # contacts scored by the antipodal friction-cone test with this Coulomb coefficient (ContactQualitySettings)
+    contact_quality: bool = True
+    friction: float = _QUALITY.friction
     # m: every point at most this far above the support plane (given or found), or below it, is dropped as
     # the table (SegmentationSettings.table_clearance; not the RANSAC inlier threshold plane_distance).
     table_clearance: float = _SEGMENTATION.table_clearance

@@ -14,11 +14,13 @@ from graspmix.model.settings import SynthesisOptions
 def test_paper_keeps_the_papers_synthesis_and_defaults_runs_the_librarys():
     paper, smoke, defaults = (ex.Protocol.preset(n) for n in ("paper", "smoke", "defaults"))
     for p in (paper, smoke):
-        assert (p.collision, p.clear_approach, p.cloud) == ("surface", False, "object")
+        assert (p.collision, p.clear_approach, p.contact_quality, p.cloud) == ("surface", False, False, "object")
     assert defaults.objects == paper.objects and defaults.trials == paper.trials
     assert defaults.collision == SynthesisOptions.collision
     assert defaults.clear_approach == SynthesisOptions.clear_approach
     assert defaults.stand_off == SynthesisOptions.stand_off
+    assert defaults.contact_quality == SynthesisOptions.contact_quality
+    assert defaults.friction == SynthesisOptions.friction
     assert defaults.cloud == "scene"
     # An override beats the preset.
     assert ex.Protocol.preset("paper", collision="occupancy").collision == "occupancy"
@@ -35,10 +37,16 @@ def test_paper_keeps_the_papers_synthesis_and_defaults_runs_the_librarys():
 
 def test_a_protocol_json_without_the_new_fields_is_the_papers():
     d = dataclasses.asdict(ex.Protocol.preset("paper"))
-    for k in ("collision", "clear_approach", "stand_off", "cloud", "views"):
+    for k in ("collision", "clear_approach", "stand_off", "contact_quality", "friction", "cloud", "views"):
         d.pop(k)
     p = protocol_from_json(d)
-    assert (p.collision, p.clear_approach, p.cloud, p.views) == ("surface", False, "object", 4)
+    assert (p.collision, p.clear_approach, p.contact_quality, p.cloud, p.views) == (
+        "surface",
+        False,
+        False,
+        "object",
+        4,
+    )
 
 
 def test_bad_values_are_errors(capsys):
@@ -49,6 +57,10 @@ def test_bad_values_are_errors(capsys):
         ex.Protocol(objects=objs, clear_approach="yes")
     with pytest.raises(ValueError, match="stand_off"):
         ex.Protocol(objects=objs, stand_off=-0.01)
+    with pytest.raises(ValueError, match="contact_quality"):
+        ex.Protocol(objects=objs, contact_quality=1)
+    with pytest.raises(ValueError, match="friction"):
+        ex.Protocol(objects=objs, friction=0.0)
     with pytest.raises(ValueError, match="views"):
         ex.Protocol(objects=objs, views=0)
     with pytest.raises(ValueError, match="cloud"):

@@ -156,9 +156,14 @@ def test_save_and_load_give_the_same_model(model, tmp_path, novel_clouds):
     again = graspmix.GraspModel.load(path)
     cloud = novel_clouds["cube_small.urdf"]
     kw = dict(remove_plane=False, plane=[0, 0, 1, 0], seed=1, n_samples=40, n_optimise=3)
-    assert [g["T_world_wrist"] for g in model.synthesize(cloud, **kw)] == [
-        g["T_world_wrist"] for g in again.synthesize(cloud, **kw)
-    ]
+    # To 1e-9, not bit for bit: a KDE model's save and load round trip changes some value in its last bit (the
+    # grasps then differ by ~1e-17 once the clear-approach expert is on; reported in issue 13's note).
+    np.testing.assert_allclose(
+        [g["T_world_wrist"] for g in model.synthesize(cloud, **kw)],
+        [g["T_world_wrist"] for g in again.synthesize(cloud, **kw)],
+        rtol=0,
+        atol=1e-9,
+    )
 
 
 def test_user_experts_see_batches_and_hard_ones_reject(gmm):
@@ -184,8 +189,11 @@ def test_approach_axis_expert_turns_the_best_grasp(gmm, axis):
     def approach(grasps):
         return Rotation.from_quat(grasps.best()["T_world_wrist"][3:]).apply([0, 0, 1]) @ np.asarray(axis)
 
-    free = gmm.synthesize(graspmix.data_path("mug.pcd"), seed=0)
-    turned = gmm.synthesize(graspmix.data_path("mug.pcd"), seed=0, approach_axis=axis)
+    # Without the hard clear-approach expert: on the mug it passes a few dozen of the 2000 samples (the others'
+    # open hands touch the cloud), too few for a soft preference to choose among.
+    kw = dict(seed=0, clear_approach=False)
+    free = gmm.synthesize(graspmix.data_path("mug.pcd"), **kw)
+    turned = gmm.synthesize(graspmix.data_path("mug.pcd"), approach_axis=axis, **kw)
     assert approach(turned) > approach(free) + 0.25 and approach(turned) > 0.4
     concentration = graspmix.model.settings.SynthesisOptions.approach_concentration
     assert turned.best()["experts"]["approach_axis"] == pytest.approx(concentration * (approach(turned) - 1), abs=1e-6)

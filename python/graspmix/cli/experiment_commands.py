@@ -119,7 +119,13 @@ def cmd_benchmark(args: argparse.Namespace) -> int:
             raise CliError(f"--limit must be at least 1, got {args.limit}")
         objects = objects[: args.limit]
     res = benchmark(
-        objects, args.out, n_samples=args.samples, n_optimise=args.optimise_top, seed=args.seed, progress=not args.quiet
+        objects,
+        args.out,
+        n_samples=args.samples,
+        n_optimise=args.optimise_top,
+        seed=args.seed,
+        progress=not args.quiet,
+        preset=args.preset,
     )
     print(format_benchmark(res))
     print(f"GMM is {res['ratio_kde_over_gmm']['total']:.2f}x faster than KDE in total (median over objects)")
@@ -303,6 +309,12 @@ def add_parsers(sub) -> None:
         help=f"best grasps annealed ({o.n_optimise})",
     )
     s.add_argument("--seed", type=seed, default=0)
+    s.add_argument(
+        "--preset",
+        choices=["defaults", "paper"],
+        default="defaults",
+        help="whose synthesis and clouds: the library's defaults on whole depth images (default), or the paper's",
+    )
     s.add_argument(
         "--out",
         type=output_folder,

@@ -14,11 +14,10 @@ from ..io import BENCHMARK_FORMAT, git_commit, package_version
 from ..io.checks import check_output_folder
 from ..model.grasps import STAGE_LABELS, STAGES
 from ..model.settings import METHODS, SynthesisOptions
-from ..sim.acquisition import acquire
 from ..viz.experiment import plot_runtime
-from .attempt import cached_model, crop_above_plane
+from .attempt import acquire_unit, cached_model, synthesize_on
 from .progress import Progress
-from .protocol import SUPPORT_PLANE, Protocol
+from .protocol import Protocol
 
 
 def _time_objects(p: Protocol, objects: list[str], n_samples: int, n_optimise: int, progress: bool) -> dict:
@@ -26,20 +25,10 @@ def _time_objects(p: Protocol, objects: list[str], n_samples: int, n_optimise: i
     per_object = {m: {s: [] for s in (*STAGES, "features", "total")} for m in METHODS}
     bar = Progress(len(objects) * len(METHODS), enabled=progress)
     for i, obj in enumerate(objects):
-        acq = acquire(obj, noise=False, seed=p.acquisition_seed(obj, 0), postprocess=crop_above_plane(p.min_height))
+        acq = acquire_unit(p, obj, 0, False)  # condition A's cloud (the preset's cameras and what it keeps)
         for m in METHODS if i % 2 == 0 else METHODS[::-1]:  # alternate which method runs first
-            g = cached_model(str(p.model_path(m).resolve())).synthesize(
-                acq.points,
-                n_samples=n_samples,
-                n_optimise=n_optimise,
-                optimise=True,
-                seed=p.synthesis_seed(obj, 0, "A"),
-                remove_plane=False,
-                plane=list(SUPPORT_PLANE),
-                viewpoints=acq.viewpoints,
-                query_samples=p.query_samples,
-                table_clearance=p.min_height,
-            )
+            model = cached_model(str(p.model_path(m).resolve()))
+            g = synthesize_on(model, acq, p, p.synthesis_seed(obj, 0, "A"), optimise=True)
             for s in (*STAGES, "features"):
                 per_object[m][s].append(float(g.timing[s]))
             per_object[m]["total"].append(float(sum(g.timing[s] for s in STAGES)))
@@ -56,11 +45,13 @@ def benchmark(
     n_optimise: int = SynthesisOptions.n_optimise,
     seed: int = 0,
     progress: bool = True,
+    preset: str = "defaults",
 ) -> dict:
     """Fig. runtime: per object, a noise-free acquisition and one synthesis per method (n_samples grasps,
-    the best n_optimise annealed); stage times, their medians over objects per method and the ratio
-    KDE / GMM. Writes benchmark.json and benchmark.png into out if given."""
-    p = Protocol(objects=list(objects), trials=1, n_samples=n_samples, n_optimise=n_optimise, seed=seed)
+    the best n_optimise annealed) with the experiment preset's synthesis ("paper": the paper's; "defaults":
+    the library's); stage times, their medians over objects per method and the ratio KDE / GMM. Writes
+    benchmark.json and benchmark.png into out if given."""
+    p = Protocol.preset(preset, objects=list(objects), trials=1, n_samples=n_samples, n_optimise=n_optimise, seed=seed)
     p.check_inputs()
     if out is not None:
         check_output_folder(out, "out")
@@ -78,6 +69,7 @@ def benchmark(
         "objects": list(objects),
         "n_samples": n_samples,
         "n_optimise": n_optimise,
+        "preset": preset,
         "annealing_iterations": p.annealing_iterations,
         "note": "total = query + sampling + optimisation (the paper's Fig. runtime); features (shared by "
         "both methods) is listed apart",

@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import argparse
+import math
+import sys
 import time
 from pathlib import Path
 
@@ -175,10 +177,26 @@ def cmd_synthesize(args: argparse.Namespace) -> int:
     print_grasps(grasps, args.top)
     grasps.save(args.out)
     print(f"wrote {args.out} ({len(grasps)} grasps, best first)")
+    if len(grasps) and not math.isfinite(grasps.best().log_likelihood):
+        print(f"graspmix_cli synthesize: warning: {no_grasp_passed(grasps)}", file=sys.stderr)
     if args.png:
         grasps.plot(args.png, top=max(min(args.top, 3), 1))
         print(f"wrote {args.png}")
     return 0
+
+
+def no_grasp_passed(grasps) -> str:
+    """Why every grasp of a synthesis was rejected: the hard experts that rejected them, first one per grasp."""
+    first = {}
+    for g in grasps:
+        name = next((k for k, v in g.experts.items() if v == -math.inf), "?")
+        first[name] = first.get(name, 0) + 1
+    why = ", ".join(f"{k} {n}" for k, n in sorted(first.items(), key=lambda kv: -kv[1]))
+    return (
+        f"no sampled grasp passed the hard experts (rejected first by: {why}); the grasps written are the least bad. "
+        "More --samples or another --seed may find one; with --collision occupancy the cloud must hold the table "
+        "around the objects (a whole depth image), or the space beside them is unseen and counts as solid"
+    )
 
 
 COMMANDS = ("demo", "learn", "synthesize")

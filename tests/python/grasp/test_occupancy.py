@@ -140,3 +140,19 @@ def test_clear_approach_bad_settings_are_value_errors(seen):
         _core.ClearApproachExpert(collision, config, step=0.0)
     with pytest.raises(ValueError, match="stand_off"):
         model.synthesize(scene.points, stand_off=-0.05)
+
+
+def test_an_object_only_cloud_under_the_occupancy_model_rejects_every_grasp_and_says_why(box_urdf, tmp_path, capsys):
+    """Without the table's rays the space beside the object is unseen (solid): no open hand fits. The CLI still
+    writes the least bad grasps and says on stderr why none passed."""
+    from graspmix import cli
+
+    acq = acquire(box_urdf(SIZE), seed=0, settings=AcquisitionSettings(cameras=[Camera(eye=EYE)], keep="object"))
+    np.save(tmp_path / "box.npy", acq.points)
+    argv = ["synthesize", "--cloud", str(tmp_path / "box.npy"), "--collision", "occupancy", "--plane", "0,0,1,0"]
+    argv += [f"--viewpoint={','.join(str(x) for x in EYE)}", "--samples", "40", "--out", str(tmp_path / "g.json")]
+    assert cli.main(argv) == 0
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "no sampled grasp passed the hard experts" in err and "clear_approach" in err
+    grasps = graspmix.GraspSet.load(tmp_path / "g.json")
+    assert len(grasps) == 40 and not any(np.isfinite(g.log_likelihood) for g in grasps)

@@ -167,6 +167,41 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     return 0
 
 
+def _add_synthesis_options(s) -> None:
+    """The protocol's cameras, clouds and synthesis beyond the paper's (default: the preset's)."""
+    s.add_argument(
+        "--views", type=int_in(1, 64), help="cameras: a ring of n (the paper's 4), or 1 above the table (default 4)"
+    )
+    s.add_argument(
+        "--cloud",
+        choices=["object", "scene"],
+        help="what an acquisition keeps: the object's pixels, table cropped (the paper's), or every pixel "
+        "(default: the preset's)",
+    )
+    s.add_argument(
+        "--collision", choices=list(COLLISION_MODELS), help="the collision expert's model (default: the preset's)"
+    )
+    s.add_argument(
+        "--clear-approach",
+        action=argparse.BooleanOptionalAction,
+        default=None,
+        help="the hard clear-approach expert on or off (default: the preset's)",
+    )
+    s.add_argument("--stand-off", type=float_in(0.0), help="m: the clear approach's stand-off (default: the preset's)")
+    s.add_argument(
+        "--approach-clearance", type=float_in(0.0), help="m: the clear approach's clearance (default: the preset's)"
+    )
+    s.add_argument(
+        "--contact-quality",
+        action=argparse.BooleanOptionalAction,
+        default=None,
+        help="the soft contact-quality expert on or off (default: the preset's)",
+    )
+    s.add_argument(
+        "--friction", type=float_in(gt=0.0), help="the contact-quality test's friction (default: the preset's)"
+    )
+
+
 def _add_run_options(s) -> None:
     """The options the experiment and the sweep share: the protocol's and how to run it."""
     s.add_argument(
@@ -206,37 +241,7 @@ def _add_run_options(s) -> None:
         type=float_in(0.0),
         help="sigma_d of the noise model, m (default: the paper's; 0: lateral shift only)",
     )
-    s.add_argument(
-        "--views", type=int_in(1, 64), help="cameras: a ring of n (the paper's 4), or 1 above the table (default 4)"
-    )
-    s.add_argument(
-        "--cloud",
-        choices=["object", "scene"],
-        help="what an acquisition keeps: the object's pixels, table cropped (the paper's), or every pixel "
-        "(default: the preset's)",
-    )
-    s.add_argument(
-        "--collision", choices=list(COLLISION_MODELS), help="the collision expert's model (default: the preset's)"
-    )
-    s.add_argument(
-        "--clear-approach",
-        action=argparse.BooleanOptionalAction,
-        default=None,
-        help="the hard clear-approach expert on or off (default: the preset's)",
-    )
-    s.add_argument("--stand-off", type=float_in(0.0), help="m: the clear approach's stand-off (default: the preset's)")
-    s.add_argument(
-        "--approach-clearance", type=float_in(0.0), help="m: the clear approach's clearance (default: the preset's)"
-    )
-    s.add_argument(
-        "--contact-quality",
-        action=argparse.BooleanOptionalAction,
-        default=None,
-        help="the soft contact-quality expert on or off (default: the preset's)",
-    )
-    s.add_argument(
-        "--friction", type=float_in(gt=0.0), help="the contact-quality test's friction (default: the preset's)"
-    )
+    _add_synthesis_options(s)
     s.add_argument("--seed", type=seed, default=None, help="base of every derived seed (default 0)")
     s.add_argument(
         "--closing",

@@ -301,6 +301,48 @@ def _target(text: str) -> str:
     return text
 
 
+def _add_expert_options(s) -> None:
+    """The collision model and the experts beyond the paper's: on by default, each with its switch."""
+    o = SynthesisOptions
+    s.add_argument(
+        "--collision",
+        choices=list(COLLISION_MODELS),
+        default=o.collision,
+        help="the collision expert: surface (the cloud's points) or occupancy (what the cameras saw free; unseen "
+        f"space is solid); default {o.collision}",
+    )
+    s.add_argument(
+        "--no-clear-approach",
+        action="store_true",
+        help="drop the hard clear-approach expert (the open hand reaches its pre-grasp along its approach axis "
+        "from the stand-off without touching anything)",
+    )
+    s.add_argument(
+        "--stand-off",
+        type=float_in(0.0),
+        default=o.stand_off,
+        help=f"m: where the clear approach starts, back along the approach axis ({o.stand_off:g})",
+    )
+    s.add_argument(
+        "--approach-clearance",
+        type=float_in(0.0),
+        default=o.approach_clearance,
+        help=f"m: how far the open hand keeps from every point on its approach ({o.approach_clearance:g})",
+    )
+    s.add_argument(
+        "--no-contact-quality",
+        action="store_true",
+        help="drop the soft contact-quality expert (the fingers close from the pre-grasp onto the object; the "
+        "contacts are scored by the antipodal friction-cone test)",
+    )
+    s.add_argument(
+        "--friction",
+        type=float_in(gt=0.0),
+        default=o.friction,
+        help=f"Coulomb friction coefficient of the contact-quality test ({o.friction:g})",
+    )
+
+
 def _add_synthesize(sub) -> None:
     o = SynthesisOptions
     s = sub.add_parser("synthesize", help="synthesise, rank and optimise grasps on a cloud")
@@ -339,43 +381,7 @@ def _add_synthesize(sub) -> None:
         "--approach-axis", help="prefer wrists approaching along this world axis, e.g. 0,0,-1 for top grasps"
     )
     s.add_argument("--no-plane", action="store_true", help="the cloud is objects only: search for no support plane")
-    s.add_argument(
-        "--collision",
-        choices=list(COLLISION_MODELS),
-        default=o.collision,
-        help="the collision expert: surface (the cloud's points) or occupancy (what the cameras saw free; unseen "
-        f"space is solid); default {o.collision}",
-    )
-    s.add_argument(
-        "--no-clear-approach",
-        action="store_true",
-        help="drop the hard clear-approach expert (the open hand reaches its pre-grasp along its approach axis "
-        "from the stand-off without touching anything)",
-    )
-    s.add_argument(
-        "--stand-off",
-        type=float_in(0.0),
-        default=o.stand_off,
-        help=f"m: where the clear approach starts, back along the approach axis ({o.stand_off:g})",
-    )
-    s.add_argument(
-        "--approach-clearance",
-        type=float_in(0.0),
-        default=o.approach_clearance,
-        help=f"m: how far the open hand keeps from every point on its approach ({o.approach_clearance:g})",
-    )
-    s.add_argument(
-        "--no-contact-quality",
-        action="store_true",
-        help="drop the soft contact-quality expert (the fingers close from the pre-grasp onto the object; the "
-        "contacts are scored by the antipodal friction-cone test)",
-    )
-    s.add_argument(
-        "--friction",
-        type=float_in(gt=0.0),
-        default=o.friction,
-        help=f"Coulomb friction coefficient of the contact-quality test ({o.friction:g})",
-    )
+    _add_expert_options(s)
     s.add_argument(
         "--target",
         type=_target,

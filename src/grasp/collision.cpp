@@ -46,6 +46,13 @@ struct CollisionExpert::Shapes {
     std::shared_ptr<fcl::CollisionGeometryd> fcl_geometry;
     std::vector<Eigen::Vector3d> samples;  ///< interior points (shape frame), for the occupancy model
     double sample_volume = 0.0;            ///< m^3 each stands for
+    /// The samples in blocks of up to kBlock^3 grid neighbours: [begin, end) of samples and the block's box
+    /// (shape frame), so that a block wholly in free cells is skipped at once (OccupancyMap::any_blocked).
+    struct Block {
+      std::size_t begin = 0, end = 0;
+      Eigen::Vector3d centre = Eigen::Vector3d::Zero(), half = Eigen::Vector3d::Zero();
+    };
+    std::vector<Block> blocks;
   };
   /// Fills every shape's interior samples: a grid of spacing min(h, half its thinnest side).
   void sample_interiors(double h);
@@ -127,20 +134,26 @@ Eigen::Vector4d checked_plane(const Eigen::Vector4d& plane, const Eigen::Ref<con
 }
 
 /// The volume (m^3) of the shape posed at T inside blocked cells of the map, over its interior samples
-/// whose cell's centre lies deeper than tol + h/2 inside it; `count` gets the samples charged.
-double blocked_volume(const OccupancyMap& map, const CollisionShape& shape, const std::vector<Eigen::Vector3d>& samples,
-                      double sample_volume, const Eigen::Isometry3d& T, double tol, int& count) {
+/// whose cell's centre lies deeper than tol + h/2 inside it; `count` gets the samples charged. A block of
+/// samples whose world box touches no blocked cell is skipped whole.
+template <class Shape>
+double blocked_volume(const OccupancyMap& map, const Shape& sh, const Eigen::Isometry3d& T, double tol, int& count) {
   const double erosion = tol + 0.5 * map.resolution();
   const Eigen::Matrix3d& R = T.linear();
+  const Eigen::Matrix3d absR = R.cwiseAbs();
   const Eigen::Vector3d t = T.translation();
   int n = 0;
-  for (const Eigen::Vector3d& x : samples) {
-    Eigen::Vector3d centre;
-    if (!map.blocked(map.cell(R * x + t, centre))) continue;
-    if (-signed_distance(shape, R.transpose() * (centre - t)) > erosion) ++n;
+  for (const auto& b : sh.blocks) {
+    const Eigen::Vector3d c = T * b.centre, half = absR * b.half;
+    if (!map.any_blocked(c - half, c + half)) continue;
+    for (std::size_t s = b.begin; s < b.end; ++s) {
+      Eigen::Vector3d centre;
+      if (!map.blocked(map.cell(R * sh.samples[s] + t, centre))) continue;
+      if (-signed_distance(*sh.src, R.transpose() * (centre - t)) > erosion) ++n;
+    }
   }
   count += n;
-  return n * sample_volume;
+  return n * sh.sample_volume;
 }
 
 }  // namespace
@@ -240,11 +253,27 @@ void CollisionExpert::Shapes::sample_interiors(double h) {
     const Eigen::Vector3i n = (2.0 * sh.half / spacing).array().ceil().cast<int>().max(1);
     // The grid centred on the shape's box, so that a symmetric shape gets symmetric samples.
     const Eigen::Vector3d first = sh.centre - 0.5 * spacing * (n.cast<double>() - Eigen::Vector3d::Ones());
-    for (int k = 0; k < n.z(); ++k)
-      for (int j = 0; j < n.y(); ++j)
-        for (int i = 0; i < n.x(); ++i) {
-          const Eigen::Vector3d p = first + spacing * Eigen::Vector3d(i, j, k);
-          if (signed_distance(*sh.src, p) < 0) sh.samples.push_back(p);
+    constexpr int kBlock = 4;
+    for (int kb = 0; kb < n.z(); kb += kBlock)
+      for (int jb = 0; jb < n.y(); jb += kBlock)
+        for (int ib = 0; ib < n.x(); ib += kBlock) {
+          Shape::Block b;
+          b.begin = sh.samples.size();
+          Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+          for (int k = kb; k < std::min(kb + kBlock, n.z()); ++k)
+            for (int j = jb; j < std::min(jb + kBlock, n.y()); ++j)
+              for (int i = ib; i < std::min(ib + kBlock, n.x()); ++i) {
+                const Eigen::Vector3d p = first + spacing * Eigen::Vector3d(i, j, k);
+                if (signed_distance(*sh.src, p) >= 0) continue;
+                sh.samples.push_back(p);
+                lo = lo.cwiseMin(p);
+                hi = hi.cwiseMax(p);
+              }
+          b.end = sh.samples.size();
+          if (b.end == b.begin) continue;
+          b.centre = 0.5 * (lo + hi);
+          b.half = 0.5 * (hi - lo);
+          sh.blocks.push_back(b);
         }
     sh.sample_volume = spacing * spacing * spacing;
   }
@@ -346,16 +375,13 @@ void CollisionExpert::evaluate_into(const Eigen::Isometry3d* link_poses, double*
   for (const Shapes::Shape& sh : shapes_->shapes) {
     if (skip && skip[sh.link]) continue;
     const Eigen::Isometry3d T = link_poses[sh.link] * sh.src->T_link_shape;
-    // Occupancy: the shape's volume in blocked cells, when its world box meets the map's region.
+    // Occupancy: the shape's volume in blocked cells, when its world box touches any.
     if (occupancy_) {
       const OccupancyMap& map = *occupancy_;
       const Eigen::Vector3d centre = T * sh.centre;
       const Eigen::Vector3d half = T.linear().cwiseAbs() * sh.half;
-      if (((centre - half).array() <= map.region_max().array()).all() &&
-          ((centre + half).array() >= map.region_min().array()).all()) {
-        cloud_depth[sh.link] +=
-            blocked_volume(map, *sh.src, sh.samples, sh.sample_volume, T, tol, points_inside[sh.link]) /
-            settings_.reference_area;
+      if (map.any_blocked(centre - half, centre + half)) {  // else every sample lies in a free cell
+        cloud_depth[sh.link] += blocked_volume(map, sh, T, tol, points_inside[sh.link]) / settings_.reference_area;
       }
     }
     if (N > 0) cloud_term(*index_, sh, T, settings_.point_radius, tol, cloud_depth[sh.link], points_inside[sh.link]);

@@ -203,7 +203,42 @@ OccupancyMap::OccupancyMap(const Eigen::Ref<const Vec3Array>& points, const Eige
     const auto st = static_cast<CellState>(c);
     (st == CellState::Free ? stats_.n_free : st == CellState::Occupied ? stats_.n_occupied : stats_.n_unknown) += 1;
   }
+  build_blocked_sums();
   stats_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+}
+
+void OccupancyMap::build_blocked_sums() {
+  const std::int64_t nx = dims_.x(), ny = dims_.y(), nz = dims_.z();
+  const std::int64_t sx = nx + 1, sy = ny + 1;
+  blocked_sums_.assign(static_cast<std::size_t>(sx * sy * (nz + 1)), 0);
+  auto at = [&](std::int64_t i, std::int64_t j, std::int64_t k) -> std::int64_t& {
+    return blocked_sums_[static_cast<std::size_t>((k * sy + j) * sx + i)];
+  };
+  for (std::int64_t k = 0; k < nz; ++k)
+    for (std::int64_t j = 0; j < ny; ++j)
+      for (std::int64_t i = 0; i < nx; ++i) {
+        const bool b = blocked(static_cast<CellState>(cells_[static_cast<std::size_t>((k * ny + j) * nx + i)]));
+        at(i + 1, j + 1, k + 1) = (b ? 1 : 0) + at(i, j + 1, k + 1) + at(i + 1, j, k + 1) + at(i + 1, j + 1, k) -
+                                  at(i, j, k + 1) - at(i, j + 1, k) - at(i + 1, j, k) + at(i, j, k);
+      }
+}
+
+bool OccupancyMap::any_blocked(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) const {
+  // The cells the box touches, clipped to the region (outside it every cell is free).
+  const Eigen::Vector3d a = ((lo - origin_) / h_).array().floor(), b = ((hi - origin_) / h_).array().floor();
+  std::int64_t l[3], u[3];
+  for (int d = 0; d < 3; ++d) {
+    if (b[d] < 0 || a[d] >= static_cast<double>(dims_[d])) return false;
+    l[d] = static_cast<std::int64_t>(std::max(a[d], 0.0));
+    u[d] = static_cast<std::int64_t>(std::min(b[d], static_cast<double>(dims_[d] - 1))) + 1;
+  }
+  const std::int64_t sx = dims_.x() + 1, sy = dims_.y() + 1;
+  auto s = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
+    return blocked_sums_[static_cast<std::size_t>((k * sy + j) * sx + i)];
+  };
+  const std::int64_t n = s(u[0], u[1], u[2]) - s(l[0], u[1], u[2]) - s(u[0], l[1], u[2]) - s(u[0], u[1], l[2]) +
+                         s(l[0], l[1], u[2]) + s(l[0], u[1], l[2]) + s(u[0], l[1], l[2]) - s(l[0], l[1], l[2]);
+  return n > 0;
 }
 
 }  // namespace graspmix

@@ -82,6 +82,10 @@ class OccupancyMap {
     return s == CellState::Occupied || (s == CellState::Unknown && settings_.unknown_is_occupied);
   }
 
+  /// Whether any blocked cell touches the axis-aligned box [lo, hi] (world): O(1), from a summed-volume table of
+  /// the blocked cells built with the map. A false answer means the box lies wholly in free cells.
+  bool any_blocked(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) const;
+
   double resolution() const { return h_; }
   /// The region of interest: [lo, hi] corners of the dense grid (aligned to the OctoMap's cells).
   Eigen::Vector3d region_min() const { return origin_; }
@@ -104,6 +108,9 @@ class OccupancyMap {
   Eigen::Vector3d objects_lo_ = Eigen::Vector3d::Zero(), objects_hi_ = Eigen::Vector3d::Zero();
   Eigen::Matrix<std::int64_t, 3, 1> dims_ = Eigen::Matrix<std::int64_t, 3, 1>::Zero();
   std::vector<std::uint8_t> cells_;  ///< CellState per cell, x fastest
+  /// blocked cells in [0, i) x [0, j) x [0, k), (dims + 1) per axis, x fastest: any_blocked's table
+  std::vector<std::int64_t> blocked_sums_;
+  void build_blocked_sums();
   OccupancyStats stats_;
 };
 

@@ -68,6 +68,34 @@ TEST(Occupancy, FaceSeenFromOneSideFreeInFrontUnknownBehind) {
             static_cast<std::int64_t>(map.dims().cast<double>().prod()));
 }
 
+TEST(Occupancy, AnyBlockedAgreesWithEveryCellOfTheBox) {
+  const Vec3Array face = seen_face();
+  const OccupancyMap map(face, kCamera.transpose(), face);
+  const double h = map.resolution();
+  const Eigen::Vector3d lo = map.region_min(), hi = map.region_max();
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 1.0), size(0.0, 0.04);
+  int n_true = 0, n_false = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    // Boxes around the region, some reaching past it (cells outside it are free).
+    Eigen::Vector3d a, b;
+    for (int d = 0; d < 3; ++d) {
+      a[d] = lo[d] - 0.03 + (hi[d] - lo[d] + 0.06) * u(rng);
+      b[d] = a[d] + size(rng);
+    }
+    bool brute = false;  // every cell centre the box's cells hold, by the map's own lookup
+    const Eigen::Vector3d first = ((a - lo) / h).array().floor(), last = ((b - lo) / h).array().floor();
+    for (double i = first.x(); i <= last.x() && !brute; ++i)
+      for (double j = first.y(); j <= last.y() && !brute; ++j)
+        for (double k = first.z(); k <= last.z() && !brute; ++k)
+          brute = map.blocked(map.state(lo + h * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5)));
+    EXPECT_EQ(map.any_blocked(a, b), brute) << a.transpose() << " / " << b.transpose();
+    (brute ? n_true : n_false) += 1;
+  }
+  EXPECT_GT(n_true, 300);
+  EXPECT_GT(n_false, 300);
+}
+
 TEST(Occupancy, CellsWithinOneCellOfThePlaneAreFree) {
   const Vec3Array face = seen_face();
   // The box stands on z = -0.05; the plane is given upside down and oriented towards the camera.

@@ -182,3 +182,24 @@ def test_bad_clouds_and_grasps_raise(hand, opening):
     with pytest.raises(ValueError, match="unknown_setting"):
         graspmix.ContactQualityExpert(hand, P, N, opening, unknown_setting=1)
     assert graspmix.ContactQualitySettings().friction == 0.5  # the C++ defaults
+
+
+def test_synthesis_options_of_the_new_experts_are_checked(capsys):
+    """synthesize() and the CLI refuse a friction <= 0 and a negative stand-off or clearance before any work."""
+    from graspmix import cli
+
+    model = graspmix.GraspModel.load(graspmix.default_model_path())
+    cloud = graspmix.data_path("mug.pcd")
+    for kw, name in (
+        ({"friction": 0.0}, "friction"),
+        ({"friction": -1.0}, "friction"),
+        ({"friction": float("nan")}, "friction"),
+        ({"stand_off": -0.01}, "stand_off"),
+        ({"approach_clearance": -0.001}, "approach_clearance"),
+    ):
+        with pytest.raises(ValueError, match=name):
+            model.synthesize(cloud, **kw)
+    for flag, value in (("--friction", "0"), ("--stand-off", "-0.1"), ("--approach-clearance", "-1")):
+        assert cli.main(["synthesize", "--cloud", str(cloud), flag, value]) == 2
+        err = capsys.readouterr().err.strip()
+        assert len(err.splitlines()) == 1 and flag in err

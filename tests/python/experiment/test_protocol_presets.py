@@ -68,3 +68,31 @@ def test_bad_values_are_errors(capsys):
     assert cli.main(["experiment", "--out", "unused", "--stand-off", "-0.1"]) == 2
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and "--stand-off" in err
+
+
+def test_the_paper_preset_still_gives_the_rows_of_results_paper(tmp_path):
+    """Two attempts of the paper preset (the mug, trial 0, condition A, both methods) against the committed full
+    run's rows: the same executed grasp (to 1e-6) and the same outcome."""
+    import csv
+    import gzip
+    import json
+    from pathlib import Path
+
+    import numpy as np
+
+    objs = tmp_path / "objects.txt"
+    objs.write_text("objects/mug.urdf\n")
+    out = tmp_path / "run"
+    argv = ["experiment", "--preset", "paper", "--objects", str(objs), "--trials", "1", "--conditions", "A"]
+    assert cli.main([*argv, "--out", str(out), "--quiet"]) == 0
+    with open(out / "attempts.csv", newline="") as f:
+        now = {r["method"]: r for r in csv.DictReader(f)}
+    repo = Path(__file__).resolve().parents[3]
+    with gzip.open(repo / "results" / "paper" / "attempts.csv.gz", "rt", newline="") as f:
+        key = ("objects/mug.urdf", "0", "A")
+        before = {r["method"]: r for r in csv.DictReader(f) if (r["object"], r["trial"], r["condition"]) == key}
+    assert set(now) == set(before) == {"gmm", "kde"}
+    for m in now:
+        a, b = json.loads(now[m]["grasp"]), json.loads(before[m]["grasp"])
+        np.testing.assert_allclose(a["T_world_wrist"], b["T_world_wrist"], rtol=0, atol=1e-6)
+        assert now[m]["reason"] == before[m]["reason"]

@@ -84,7 +84,7 @@ class Protocol:
     views: int = 4  # cameras: the paper's ring of 4 (n > 1: a ring of n), or 1: one camera above the table
     cloud: str = "scene"  # what an acquisition keeps: see CLOUDS (the paper's: "object")
     # The experts beyond the paper's (SynthesisOptions; the paper's values: PAPER_SYNTHESIS): the collision model
-    # ("surface" or "occupancy"), the hard clear-approach expert with its stand-off and clearance (m), the contact-quality expert.
+    # ("surface" or "occupancy"), the hard clear-approach expert with its stand-off and clearance (m).
     collision: str = SynthesisOptions.collision
     clear_approach: bool = SynthesisOptions.clear_approach
     stand_off: float = SynthesisOptions.stand_off

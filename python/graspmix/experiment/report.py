@@ -261,6 +261,29 @@ def _html_table(rows: list[list[str]]) -> str:
     return f"<table><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
 
 
+def _clouds_text(proto: dict) -> str:
+    """The cameras and what an acquisition kept (a protocol.json without the fields is the paper's)."""
+    views = proto.get("views", 4)
+    cameras = "1 camera above the table" if views == 1 else f"{views} cameras"
+    kept = "the whole depth images" if proto.get("cloud", "object") == "scene" else "the object's pixels"
+    return f"{cameras}, {kept}"
+
+
+def _synthesis_text(proto: dict) -> str:
+    """The experts beyond the paper's that the synthesis ran (none: the paper's synthesis)."""
+    extra = []
+    if proto.get("collision", "surface") == "occupancy":
+        extra.append("the occupancy collision model")
+    if proto.get("clear_approach", False):
+        extra.append(
+            f"the clear approach (stand-off {100 * proto.get('stand_off', 0.1):g} cm, clearance "
+            f"{1000 * proto.get('approach_clearance', 0.0):g} mm)"
+        )
+    if proto.get("contact_quality", False):
+        extra.append(f"the contact quality (friction {proto.get('friction', 0.5):g})")
+    return ("Synthesis with " + ", ".join(extra) + ". ") if extra else "The paper's synthesis. "
+
+
 def _noise_text(proto: dict) -> str:
     """The noise model of the conditions with noise: sigma_p and sigma_d (protocols before they were settings:
     the paper's, which the defaults are)."""
@@ -290,8 +313,8 @@ def _blocks(summary: dict) -> list[tuple]:
                 if proto.get("closing", "full") == "full"
                 else "with the simulation's default closing (just past the synthesised grasp joints). "
             )
-            + f"Clouds: 4 cameras, points within {1000 * proto['min_height']:.0f} mm of the support plane "
-            f"dropped, the same for both methods. {_noise_text(proto)}graspmix "
+            + f"Clouds: {_clouds_text(proto)}, points within {1000 * proto['min_height']:.0f} mm of the support "
+            f"plane dropped, the same for both methods. {_synthesis_text(proto)}{_noise_text(proto)}graspmix "
             f"{prov.get('graspmix', '?')}, commit {prov.get('commit') or 'unknown'}.",
         ),
     ]

@@ -96,3 +96,19 @@ def test_the_paper_preset_still_gives_the_rows_of_results_paper(tmp_path):
         a, b = json.loads(now[m]["grasp"]), json.loads(before[m]["grasp"])
         np.testing.assert_allclose(a["T_world_wrist"], b["T_world_wrist"], rtol=0, atol=1e-6)
         assert now[m]["reason"] == before[m]["reason"]
+
+
+def test_the_report_says_which_clouds_and_experts_a_run_used():
+    import dataclasses as dc
+
+    from graspmix.experiment.report import _clouds_text, _synthesis_text
+
+    paper = dc.asdict(ex.Protocol.preset("paper"))
+    assert (
+        _synthesis_text(paper) == "The paper's synthesis. " and _clouds_text(paper) == "4 cameras, the object's pixels"
+    )
+    one = dc.asdict(ex.Protocol.preset("defaults", views=1, collision="occupancy"))
+    text = _synthesis_text(one)
+    assert "occupancy" in text and "stand-off 10 cm, clearance 2 mm" in text and "friction 0.5" in text
+    assert _clouds_text(one) == "1 camera above the table, the whole depth images"
+    assert _synthesis_text({}) == "The paper's synthesis. "  # a protocol.json from before the fields

@@ -10,6 +10,8 @@ each type's reference score: graspmix.model.grasp_types). One expert is added in
 objects: "clear_of_neighbours", hard, rejects a grasp whose hand, at the grasp or at its pre-grasp,
 holds a point of another object (the paper's collision expert is soft: a finger 1 cm inside a neighbour
 costs about 20 nats, less than the spread of the contact terms, and Bullet then starts in collision).
+Each target and grasp type also gets, by default, the hard clear approach against the whole scene (its open hand
+from the stand-off to its pre-grasp) and, last, the soft contact quality on the target's own surface.
 """
 
 from __future__ import annotations

@@ -1,5 +1,5 @@
 // The collision expert W(h): exact point-in-shape depths against a grid index of the cloud, and the
-// support plane as an fcl::Halfspace against every link shape.
+// support plane and the occupancy map through each link shape (grasp/collision_shapes.hpp).
 #include "graspmix/grasp/collision.hpp"
 
 #include <algorithm>
@@ -9,23 +9,14 @@
 #include <stdexcept>
 #include <string>
 
-#include <fcl/geometry/shape/box.h>
-#include <fcl/geometry/shape/convex.h>
-#include <fcl/geometry/shape/cylinder.h>
-#include <fcl/geometry/shape/halfspace.h>
-#include <fcl/geometry/shape/sphere.h>
-#include <fcl/narrowphase/collision.h>
-#include <fcl/narrowphase/collision_request.h>
-#include <fcl/narrowphase/collision_result.h>
-
 #include "core/uniform_grid.hpp"
 #include "grasp/collision_geometry.hpp"
+#include "grasp/collision_shapes.hpp"
 #include "graspmix/core/plane.hpp"
 #include "graspmix/core/se3.hpp"
 
 namespace graspmix {
 
-using detail::box_halfspace_depth;
 using detail::BoxColumns;
 using detail::signed_distance;
 
@@ -36,54 +27,7 @@ struct CollisionExpert::Index {
   detail::UniformGrid grid;
 };
 
-struct CollisionExpert::Shapes {
-  Shapes(const Hand& hand, const std::optional<Eigen::Vector4d>& plane, double plane_margin);
-  struct Shape {
-    int link = -1;
-    const CollisionShape* src = nullptr;
-    Eigen::Vector3d half = Eigen::Vector3d::Zero();    ///< half extents of the local bounding box
-    Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< centre of the local bounding box
-    std::shared_ptr<fcl::CollisionGeometryd> fcl_geometry;
-    std::vector<Eigen::Vector3d> samples;  ///< interior points (shape frame), for the occupancy model
-    double sample_volume = 0.0;            ///< m^3 each stands for
-    /// The samples in blocks of up to kBlock^3 grid neighbours: [begin, end) of samples and the block's box
-    /// (shape frame), so that a block wholly in free cells is skipped at once (OccupancyMap::any_blocked).
-    struct Block {
-      std::size_t begin = 0, end = 0;
-      Eigen::Vector3d centre = Eigen::Vector3d::Zero(), half = Eigen::Vector3d::Zero();
-    };
-    std::vector<Block> blocks;
-  };
-  /// Fills every shape's interior samples: a grid of spacing min(h, half its thinnest side).
-  void sample_interiors(double h);
-  std::vector<Shape> shapes;
-  std::shared_ptr<fcl::Halfspaced> halfspace;
-};
-
 namespace {
-
-std::shared_ptr<fcl::CollisionGeometryd> make_fcl_geometry(const CollisionShape& s) {
-  switch (s.type) {
-    case ShapeType::Box:
-      return std::make_shared<fcl::Boxd>(s.size.x(), s.size.y(), s.size.z());
-    case ShapeType::Cylinder:
-      return std::make_shared<fcl::Cylinderd>(s.size.x(), s.size.y());
-    case ShapeType::Sphere:
-      return std::make_shared<fcl::Sphered>(s.size.x());
-    case ShapeType::Mesh: {
-      if (!s.hull) return nullptr;
-      auto verts = std::make_shared<std::vector<Eigen::Vector3d>>();
-      for (Eigen::Index i = 0; i < s.hull->vertices.rows(); ++i) verts->push_back(s.hull->vertices.row(i).transpose());
-      auto faces = std::make_shared<std::vector<int>>();
-      for (Eigen::Index i = 0; i < s.hull->triangles.rows(); ++i) {
-        faces->push_back(3);
-        for (int k = 0; k < 3; ++k) faces->push_back(s.hull->triangles(i, k));
-      }
-      return std::make_shared<fcl::Convexd>(verts, static_cast<int>(s.hull->triangles.rows()), faces);
-    }
-  }
-  return nullptr;
-}
 
 void check_settings(const CollisionSettings& s) {
   if (!(s.beta >= 0) || !std::isfinite(s.beta)) throw std::invalid_argument("beta must be finite and >= 0");
@@ -133,29 +77,6 @@ Eigen::Vector4d checked_plane(const Eigen::Vector4d& plane, const Eigen::Ref<con
   return orient ? orient_plane(p, cloud, PlaneSide::Mean) : p;
 }
 
-/// The volume (m^3) of the shape posed at T inside blocked cells of the map, over its interior samples
-/// whose cell's centre lies deeper than tol + h/2 inside it; `count` gets the samples charged. A block of
-/// samples whose world box touches no blocked cell is skipped whole.
-template <class Shape>
-double blocked_volume(const OccupancyMap& map, const Shape& sh, const Eigen::Isometry3d& T, double tol, int& count) {
-  const double erosion = tol + 0.5 * map.resolution();
-  const Eigen::Matrix3d& R = T.linear();
-  const Eigen::Matrix3d absR = R.cwiseAbs();
-  const Eigen::Vector3d t = T.translation();
-  int n = 0;
-  for (const auto& b : sh.blocks) {
-    const Eigen::Vector3d c = T * b.centre, half = absR * b.half;
-    if (!map.any_blocked(c - half, c + half)) continue;
-    for (std::size_t s = b.begin; s < b.end; ++s) {
-      Eigen::Vector3d centre;
-      if (!map.blocked(map.cell(R * sh.samples[s] + t, centre))) continue;
-      if (-signed_distance(*sh.src, R.transpose() * (centre - t)) > erosion) ++n;
-    }
-  }
-  count += n;
-  return n * sh.sample_volume;
-}
-
 }  // namespace
 
 std::string to_string(CollisionModel model) { return model == CollisionModel::Occupancy ? "occupancy" : "surface"; }
@@ -173,43 +94,6 @@ CollisionExpert::Index::Index(const Eigen::Ref<const Vec3Array>& cloud, double c
 
 /// The hand's collision shapes with their local bounding boxes and (with a plane) their FCL geometry,
 /// and the plane as an FCL half-space.
-CollisionExpert::Shapes::Shapes(const Hand& hand, const std::optional<Eigen::Vector4d>& plane, double plane_margin) {
-  for (int l = 0; l < hand.n_links(); ++l) {
-    for (const CollisionShape& s : hand.links()[static_cast<size_t>(l)].collisions) {
-      if (s.type == ShapeType::Mesh && !s.hull_planes) {
-        throw std::invalid_argument("hand: link '" + hand.link_names()[static_cast<size_t>(l)] +
-                                    "' has a mesh without geometry (the hand was read with load_meshes = false)");
-      }
-      Shape sh;
-      sh.link = l;
-      sh.src = &s;
-      switch (s.type) {
-        case ShapeType::Box:
-          sh.half = 0.5 * s.size;
-          break;
-        case ShapeType::Cylinder:
-          sh.half = Eigen::Vector3d(s.size.x(), s.size.x(), 0.5 * s.size.y());
-          break;
-        case ShapeType::Sphere:
-          sh.half = Eigen::Vector3d::Constant(s.size.x());
-          break;
-        case ShapeType::Mesh: {
-          const Eigen::Vector3d lo = s.hull->vertices.colwise().minCoeff().transpose();
-          const Eigen::Vector3d hi = s.hull->vertices.colwise().maxCoeff().transpose();
-          sh.centre = 0.5 * (lo + hi);
-          sh.half = 0.5 * (hi - lo);
-          break;
-        }
-      }
-      if (plane) sh.fcl_geometry = make_fcl_geometry(s);
-      shapes.push_back(std::move(sh));
-    }
-  }
-  if (plane) {
-    // FCL's half-space is {x : n . x <= d}: the table below the (raised) plane n . x + d0 = margin.
-    halfspace = std::make_shared<fcl::Halfspaced>(Eigen::Vector3d(plane->head<3>()), plane_margin - (*plane)[3]);
-  }
-}
 
 CollisionExpert::CollisionExpert(std::shared_ptr<const Hand> hand, const Eigen::Ref<const Vec3Array>& cloud,
                                  const std::optional<Eigen::Vector4d>& plane, CollisionSettings settings)
@@ -244,39 +128,6 @@ CollisionExpert::CollisionExpert(std::shared_ptr<const Hand> hand, std::shared_p
   auto shapes = std::make_shared<Shapes>(*hand_, plane_, settings_.plane_margin);
   shapes->sample_interiors(occupancy_->resolution());
   shapes_ = std::move(shapes);
-}
-
-void CollisionExpert::Shapes::sample_interiors(double h) {
-  for (Shape& sh : shapes) {
-    const double spacing = std::min(h, sh.half.minCoeff());  // at least two samples across
-    if (!(spacing > 0)) continue;
-    const Eigen::Vector3i n = (2.0 * sh.half / spacing).array().ceil().cast<int>().max(1);
-    // The grid centred on the shape's box, so that a symmetric shape gets symmetric samples.
-    const Eigen::Vector3d first = sh.centre - 0.5 * spacing * (n.cast<double>() - Eigen::Vector3d::Ones());
-    constexpr int kBlock = 4;
-    for (int kb = 0; kb < n.z(); kb += kBlock)
-      for (int jb = 0; jb < n.y(); jb += kBlock)
-        for (int ib = 0; ib < n.x(); ib += kBlock) {
-          Shape::Block b;
-          b.begin = sh.samples.size();
-          Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-          for (int k = kb; k < std::min(kb + kBlock, n.z()); ++k)
-            for (int j = jb; j < std::min(jb + kBlock, n.y()); ++j)
-              for (int i = ib; i < std::min(ib + kBlock, n.x()); ++i) {
-                const Eigen::Vector3d p = first + spacing * Eigen::Vector3d(i, j, k);
-                if (signed_distance(*sh.src, p) >= 0) continue;
-                sh.samples.push_back(p);
-                lo = lo.cwiseMin(p);
-                hi = hi.cwiseMax(p);
-              }
-          b.end = sh.samples.size();
-          if (b.end == b.begin) continue;
-          b.centre = 0.5 * (lo + hi);
-          b.half = 0.5 * (hi - lo);
-          sh.blocks.push_back(b);
-        }
-    sh.sample_volume = spacing * spacing * spacing;
-  }
 }
 
 Eigen::Index CollisionExpert::n_points() const { return index_->grid.size(); }
@@ -342,28 +193,6 @@ void cloud_term(const CollisionExpert::Index& ix, const CollisionExpert::Shapes:
 double total_depth(const Eigen::VectorXd& cloud_depth, const Eigen::VectorXd& plane_depth,
                    const std::vector<int>& inside, double inside_weight) {
   return cloud_depth.sum() + plane_depth.sum() + inside_weight * std::accumulate(inside.begin(), inside.end(), 0);
-}
-
-/// The plane's P_l term of one shape posed at T (0 when clear): boxes by FCL's own formula, other shapes by
-/// FCL when their bounding box reaches below the raised plane.
-double plane_term(const CollisionExpert::Shapes& shapes, const CollisionExpert::Shapes::Shape& sh,
-                  const Eigen::Isometry3d& T, const Eigen::Vector4d& plane, double plane_margin) {
-  const fcl::Halfspaced& hs = *shapes.halfspace;
-  if (sh.src->type == ShapeType::Box) {
-    const double depth = box_halfspace_depth(sh.src->size, T, hs.n, hs.d);
-    return depth >= 0 ? depth : 0.0;
-  }
-  const Eigen::Vector3d n = plane.head<3>();
-  // Skip FCL when even the shape's bounding box clears the raised plane.
-  const Eigen::Vector3d centre = T * sh.centre;
-  const Eigen::Vector3d half = T.linear().cwiseAbs() * sh.half;
-  const double lowest = n.dot(centre) + plane[3] - half.dot(n.cwiseAbs());
-  if (!(lowest < plane_margin && sh.fcl_geometry)) return 0.0;
-  fcl::CollisionRequestd request(1, true);
-  fcl::CollisionResultd result;
-  fcl::collide(sh.fcl_geometry.get(), fcl::Transform3d(T.matrix()), &hs, fcl::Transform3d::Identity(), request, result);
-  // FCL's sign convention for half-space contacts differs between shape pairs; the depth is its magnitude.
-  return result.isCollision() ? std::abs(result.getContact(0).penetration_depth) : 0.0;
 }
 
 }  // namespace

@@ -1,0 +1,52 @@
+#pragma once
+// The collision expert's view of a hand's link shapes (private to src/): each shape's local bounding box, its
+// FCL geometry against the support plane, and its interior samples for the occupancy model; the plane's and the
+// occupancy's per-shape terms.
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include <Eigen/Geometry>
+#include <fcl/geometry/collision_geometry.h>
+#include <fcl/geometry/shape/halfspace.h>
+
+#include "graspmix/grasp/collision.hpp"
+
+namespace graspmix {
+
+struct CollisionExpert::Shapes {
+  Shapes(const Hand& hand, const std::optional<Eigen::Vector4d>& plane, double plane_margin);
+  struct Shape {
+    int link = -1;
+    const CollisionShape* src = nullptr;
+    Eigen::Vector3d half = Eigen::Vector3d::Zero();    ///< half extents of the local bounding box
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< centre of the local bounding box
+    std::shared_ptr<fcl::CollisionGeometryd> fcl_geometry;
+    std::vector<Eigen::Vector3d> samples;  ///< interior points (shape frame), for the occupancy model
+    double sample_volume = 0.0;            ///< m^3 each stands for
+    /// The samples in blocks of up to kBlock^3 grid neighbours: [begin, end) of samples and the block's box
+    /// (shape frame), so that a block wholly in free cells is skipped at once (OccupancyMap::any_blocked).
+    struct Block {
+      std::size_t begin = 0, end = 0;
+      Eigen::Vector3d centre = Eigen::Vector3d::Zero(), half = Eigen::Vector3d::Zero();
+    };
+    std::vector<Block> blocks;
+  };
+  /// Fills every shape's interior samples: a grid of spacing min(h, half its thinnest side).
+  void sample_interiors(double h);
+  std::vector<Shape> shapes;
+  std::shared_ptr<fcl::Halfspaced> halfspace;
+};
+
+/// The plane's P_l term of one shape posed at T (0 when clear): boxes by FCL's own formula, other shapes by
+/// FCL when their bounding box reaches below the raised plane.
+double plane_term(const CollisionExpert::Shapes& shapes, const CollisionExpert::Shapes::Shape& sh,
+                  const Eigen::Isometry3d& T, const Eigen::Vector4d& plane, double plane_margin);
+
+/// The volume (m^3) of the shape posed at T inside blocked cells of the map, over its interior samples
+/// whose cell's centre lies deeper than tol + h/2 inside it; `count` gets the samples charged. A block of
+/// samples whose world box touches no blocked cell is skipped whole.
+double blocked_volume(const OccupancyMap& map, const CollisionExpert::Shapes::Shape& sh, const Eigen::Isometry3d& T,
+                      double tol, int& count);
+
+}  // namespace graspmix

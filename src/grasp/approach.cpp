@@ -13,10 +13,7 @@ ClearApproachExpert::ClearApproachExpert(std::shared_ptr<const CollisionExpert> 
                                          ClearApproachSettings settings)
     : collision_(std::move(collision)), config_(std::move(config)), settings_(std::move(settings)) {
   if (!collision_) throw std::invalid_argument("ClearApproachExpert: no collision expert");
-  if (config_.dim() != collision_->hand().n_dofs()) {
-    throw std::invalid_argument("ClearApproachExpert: the configuration model has " + std::to_string(config_.dim()) +
-                                " joints, the hand " + std::to_string(collision_->hand().n_dofs()));
-  }
+  require_config_of(config_, collision_->hand(), "ClearApproachExpert");
   const ClearApproachSettings& s = settings_;
   if (!std::isfinite(s.stand_off) || s.stand_off < 0.0) {
     throw std::invalid_argument("ClearApproachExpert: stand_off must be a finite distance >= 0 (m), got " +
@@ -38,10 +35,7 @@ ClearApproachExpert::ClearApproachExpert(std::shared_ptr<const CollisionExpert> 
 Eigen::VectorXd ClearApproachExpert::log_value(const GraspBatch& b) const {
   const Eigen::Index n = b.wrists.rows();
   const int dofs = collision_->hand().n_dofs();
-  if (b.joints.rows() != n || b.joints.cols() != dofs) {
-    throw std::invalid_argument(settings_.name + " expert: joints must be (" + std::to_string(n) + ", " +
-                                std::to_string(dofs) + ")");
-  }
+  require_joints_shape(n, b.joints, dofs, settings_.name + " expert");
   const RowMatrixXd open = config_.pregrasps_for(b.joints);
   // The approach direction of every grasp in the world frame.
   Vec3Array axis(n, 3);

@@ -152,7 +152,8 @@ double plane_term(const CollisionExpert::Shapes& shapes, const CollisionExpert::
   return result.isCollision() ? std::abs(result.getContact(0).penetration_depth) : 0.0;
 }
 
-double blocked_volume(const OccupancyMap& map, const CollisionExpert::Shapes::Shape& sh, const Eigen::Isometry3d& T, double tol, int& count) {
+double blocked_volume(const OccupancyMap& map, const CollisionExpert::Shapes::Shape& sh, const Eigen::Isometry3d& T,
+                      double tol, int& count) {
   const double erosion = tol + 0.5 * map.resolution();
   const Eigen::Matrix3d& R = T.linear();
   const Eigen::Matrix3d absR = R.cwiseAbs();

@@ -6,9 +6,9 @@
 #include <optional>
 #include <vector>
 
-#include <Eigen/Geometry>
 #include <fcl/geometry/collision_geometry.h>
 #include <fcl/geometry/shape/halfspace.h>
+#include <Eigen/Geometry>
 
 #include "graspmix/grasp/collision.hpp"
 

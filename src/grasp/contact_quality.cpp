@@ -104,10 +104,7 @@ ContactQualityExpert::ContactQualityExpert(std::shared_ptr<const Hand> hand, con
     : hand_(std::move(hand)), config_(std::move(config)), settings_(std::move(settings)) {
   if (!hand_) throw std::invalid_argument("ContactQualityExpert: no hand");
   check_settings(settings_);
-  if (config_.dim() != hand_->n_dofs()) {
-    throw std::invalid_argument("ContactQualityExpert: the configuration model has " + std::to_string(config_.dim()) +
-                                " joints, the hand " + std::to_string(hand_->n_dofs()));
-  }
+  require_config_of(config_, *hand_, "ContactQualityExpert");
   if (normals.rows() != points.rows()) {
     throw std::invalid_argument("ContactQualityExpert: normals must be (" + std::to_string(points.rows()) +
                                 ", 3) like points, got (" + std::to_string(normals.rows()) + ", 3)");
@@ -154,11 +151,7 @@ ContactQualityResult ContactQualityExpert::evaluate(const Eigen::Ref<const PoseA
                                                     const Eigen::Ref<const RowMatrixXd>& joints) const {
   const Eigen::Index n = wrists.rows();
   const int D = hand_->n_dofs(), F = static_cast<int>(fingers_.size()), L = hand_->n_links();
-  if (joints.rows() != n || joints.cols() != D) {
-    throw std::invalid_argument(settings_.name + " expert: joints must be (" + std::to_string(n) + ", " +
-                                std::to_string(D) + "), got (" + std::to_string(joints.rows()) + ", " +
-                                std::to_string(joints.cols()) + ")");
-  }
+  require_joints_shape(n, joints, D, settings_.name + " expert");
   require_finite(wrists, "wrists");
   require_finite(joints, "joints");
   const RowMatrixXd pre = config_.pregrasps_for(joints);

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 
@@ -11,6 +12,67 @@ namespace graspmix {
 
 namespace {
 constexpr double kRejected = -std::numeric_limits<double>::infinity();
+}
+
+void require_joints_shape(Eigen::Index n_wrists, const RowMatrixXd& joints, int n_dofs, const std::string& who) {
+  if (joints.rows() != n_wrists || joints.cols() != n_dofs) {
+    throw std::invalid_argument(who + ": joints must be (" + std::to_string(n_wrists) + ", " + std::to_string(n_dofs) +
+                                "), got (" + std::to_string(joints.rows()) + ", " + std::to_string(joints.cols()) +
+                                ")");
+  }
+}
+
+void require_config_of(const ConfigModel& config, const Hand& hand, const std::string& who) {
+  if (config.dim() != hand.n_dofs()) {
+    throw std::invalid_argument(who + ": the configuration model has " + std::to_string(config.dim()) +
+                                " joints, the hand '" + hand.name() + "' has " + std::to_string(hand.n_dofs()));
+  }
+}
+
+std::pair<PoseArray, RowMatrixXd> batch_rows(const PoseArray& wrists, const RowMatrixXd& joints,
+                                             const std::vector<Eigen::Index>& rows) {
+  const auto m = static_cast<Eigen::Index>(rows.size());
+  PoseArray w(m, 7);
+  RowMatrixXd q(m, joints.cols());
+  for (Eigen::Index k = 0; k < m; ++k) {
+    w.row(k) = wrists.row(rows[static_cast<size_t>(k)]);
+    q.row(k) = joints.row(rows[static_cast<size_t>(k)]);
+  }
+  return {std::move(w), std::move(q)};
+}
+
+ExpertTerms evaluate_experts(const std::vector<std::shared_ptr<const Expert>>& experts, const PoseArray& wrists,
+                             const RowMatrixXd& joints) {
+  const Eigen::Index n = wrists.rows();
+  ExpertTerms e;
+  e.log_values =
+      RowMatrixXd::Constant(n, static_cast<Eigen::Index>(experts.size()), std::numeric_limits<double>::quiet_NaN());
+  e.total = Eigen::VectorXd::Zero(n);
+  e.passed.resize(static_cast<size_t>(n));
+  std::iota(e.passed.begin(), e.passed.end(), Eigen::Index{0});
+  for (size_t k = 0; k < experts.size() && !e.passed.empty(); ++k) {
+    const auto m = static_cast<Eigen::Index>(e.passed.size());
+    Eigen::VectorXd v;
+    if (m == n) {
+      v = experts[k]->log_value(GraspBatch{wrists, joints});
+    } else {
+      const auto [w, q] = batch_rows(wrists, joints, e.passed);
+      v = experts[k]->log_value(GraspBatch{w, q});
+    }
+    if (v.size() != m || v.array().isNaN().any() || (v.array() == std::numeric_limits<double>::infinity()).any()) {
+      throw std::invalid_argument("expert '" + experts[k]->name() +
+                                  "' returned NaN, +inf or the wrong number of values");
+    }
+    std::vector<Eigen::Index> still;
+    for (Eigen::Index j = 0; j < m; ++j) {
+      const Eigen::Index i = e.passed[static_cast<size_t>(j)];
+      e.log_values(i, static_cast<Eigen::Index>(k)) = v[j];
+      e.total[i] += v[j];
+      if (e.total[i] > kRejected) still.push_back(i);
+    }
+    e.passed.swap(still);
+  }
+  return e;
 }
 
 KinematicFeasibilityExpert::KinematicFeasibilityExpert(std::shared_ptr<const Hand> hand,
@@ -45,18 +107,12 @@ CollisionFreeExpert::CollisionFreeExpert(std::shared_ptr<const CollisionExpert> 
                                          std::optional<ConfigModel> pregrasp_config, std::string name)
     : collision_(std::move(collision)), config_(std::move(pregrasp_config)), name_(std::move(name)) {
   if (!collision_) throw std::invalid_argument("CollisionFreeExpert: no collision expert");
-  if (config_ && config_->dim() != collision_->hand().n_dofs()) {
-    throw std::invalid_argument("CollisionFreeExpert: the configuration model has " + std::to_string(config_->dim()) +
-                                " joints, the hand " + std::to_string(collision_->hand().n_dofs()));
-  }
+  if (config_) require_config_of(*config_, collision_->hand(), "CollisionFreeExpert");
 }
 
 Eigen::VectorXd CollisionFreeExpert::log_value(const GraspBatch& b) const {
   const Eigen::Index n = b.wrists.rows();
-  if (b.joints.rows() != n || b.joints.cols() != collision_->hand().n_dofs()) {
-    throw std::invalid_argument(name_ + " expert: joints must be (" + std::to_string(n) + ", " +
-                                std::to_string(collision_->hand().n_dofs()) + ")");
-  }
+  require_joints_shape(n, b.joints, collision_->hand().n_dofs(), name_ + " expert");
   Eigen::VectorXd out = Eigen::VectorXd::Zero(n);
   if (config_) {
     const auto [grasp, pregrasp] = collision_->total_depth_pair(b.wrists, b.joints, config_->pregrasps_for(b.joints));
@@ -72,10 +128,7 @@ Eigen::VectorXd CollisionFreeExpert::log_value(const GraspBatch& b) const {
 
 Eigen::VectorXd KinematicFeasibilityExpert::log_value(const GraspBatch& b) const {
   const Eigen::Index n = b.wrists.rows();
-  if (b.joints.rows() != n || b.joints.cols() != hand_->n_dofs()) {
-    throw std::invalid_argument("kinematic expert: joints must be (" + std::to_string(n) + ", " +
-                                std::to_string(hand_->n_dofs()) + ")");
-  }
+  require_joints_shape(n, b.joints, hand_->n_dofs(), "kinematic expert");
   Eigen::VectorXd out = Eigen::VectorXd::Zero(n);
   for (Eigen::Index i = 0; i < n; ++i) {
     if (!hand_->within_limits(b.joints.row(i).transpose(), limit_tolerance_)) out[i] = kRejected;

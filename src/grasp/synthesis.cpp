@@ -64,10 +64,7 @@ GraspSynthesizer::GraspSynthesizer(std::shared_ptr<const Hand> hand, std::vector
     : hand_(std::move(hand)), contact_models_(std::move(contact_models)), config_(std::move(config)) {
   if (!hand_) throw std::invalid_argument("GraspSynthesizer: no hand");
   if (contact_models_.empty()) throw std::invalid_argument("GraspSynthesizer: no contact models");
-  if (config_.dim() != hand_->n_dofs()) {
-    throw std::invalid_argument("GraspSynthesizer: the configuration model has " + std::to_string(config_.dim()) +
-                                " joints, the hand '" + hand_->name() + "' has " + std::to_string(hand_->n_dofs()));
-  }
+  require_config_of(config_, *hand_, "GraspSynthesizer");
   for (const ContactModel& m : contact_models_) {
     if (!m.density || !m.density->fitted())
       throw std::invalid_argument("GraspSynthesizer: contact model of link '" + m.link_name + "' is not fitted");
@@ -178,10 +175,7 @@ Evaluation GraspSynthesizer::evaluate(const std::vector<QueryDensity>& query, co
                                       const Eigen::Ref<const PoseArray>& wrists_in,
                                       const Eigen::Ref<const RowMatrixXd>& joints_in, bool clear_pregrasp) const {
   const Eigen::Index n = wrists_in.rows();
-  if (joints_in.rows() != n || joints_in.cols() != hand_->n_dofs()) {
-    throw std::invalid_argument("evaluate: joints must be (" + std::to_string(n) + ", " +
-                                std::to_string(hand_->n_dofs()) + ")");
-  }
+  require_joints_shape(n, joints_in, hand_->n_dofs(), "evaluate");
   const PoseArray wrists = wrists_in;
   const RowMatrixXd joints = joints_in;
   // Bad rows fail here, named by the caller's row, before any expert or subset sees them.
@@ -192,49 +186,16 @@ Evaluation GraspSynthesizer::evaluate(const std::vector<QueryDensity>& query, co
     }
   }
   require_finite(joints, "evaluate: joints");
+  // The experts first (evaluate_experts): a grasp a hard expert rejects costs nothing more (its other terms
+  // stay NaN, "not evaluated"), which keeps rejection sampling cheap.
+  ExpertTerms terms = evaluate_experts(experts, wrists, joints);
   Evaluation e;
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  // The experts first, in order, each on the grasps no expert before it rejected: a grasp a hard expert
-  // rejects costs nothing more (its later terms stay NaN, "not evaluated"), which keeps rejection sampling
-  // cheap and lets an expensive soft expert placed last see only the survivors.
-  e.log_experts = RowMatrixXd::Constant(n, static_cast<Eigen::Index>(experts.size()), nan);
-  e.total = Eigen::VectorXd::Zero(n);
-  std::vector<Eigen::Index> alive(static_cast<size_t>(n));
-  std::iota(alive.begin(), alive.end(), Eigen::Index{0});
-  for (size_t k = 0; k < experts.size() && !alive.empty(); ++k) {
-    const auto m = static_cast<Eigen::Index>(alive.size());
-    Eigen::VectorXd v;
-    if (m == n) {
-      v = experts[k]->log_value(GraspBatch{wrists, joints});
-    } else {
-      PoseArray w(m, 7);
-      RowMatrixXd q(m, joints.cols());
-      for (Eigen::Index j = 0; j < m; ++j) {
-        w.row(j) = wrists.row(alive[static_cast<size_t>(j)]);
-        q.row(j) = joints.row(alive[static_cast<size_t>(j)]);
-      }
-      v = experts[k]->log_value(GraspBatch{w, q});
-    }
-    if (v.size() != m || v.array().isNaN().any() || (v.array() == std::numeric_limits<double>::infinity()).any()) {
-      throw std::invalid_argument("expert '" + experts[k]->name() +
-                                  "' returned NaN, +inf or the wrong number of values");
-    }
-    std::vector<Eigen::Index> still;
-    for (Eigen::Index j = 0; j < m; ++j) {
-      const Eigen::Index i = alive[static_cast<size_t>(j)];
-      e.log_experts(i, static_cast<Eigen::Index>(k)) = v[j];
-      e.total[i] += v[j];
-      if (e.total[i] > -std::numeric_limits<double>::infinity()) still.push_back(i);
-    }
-    alive.swap(still);
-  }
+  e.log_experts = std::move(terms.log_values);
+  e.total = std::move(terms.total);
+  const std::vector<Eigen::Index>& alive = terms.passed;
   const Eigen::Index m = static_cast<Eigen::Index>(alive.size());
-  PoseArray w(m, 7);
-  RowMatrixXd q(m, joints.cols());
-  for (Eigen::Index k = 0; k < m; ++k) {
-    w.row(k) = wrists.row(alive[k]);
-    q.row(k) = joints.row(alive[k]);
-  }
+  const auto [w, q] = batch_rows(wrists, joints, alive);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
   e.log_contact = RowMatrixXd::Constant(n, query.size(), nan);
   e.log_config = e.log_collision = e.log_pregrasp = Eigen::VectorXd::Constant(n, nan);
   if (m > 0) {

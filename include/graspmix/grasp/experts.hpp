@@ -7,6 +7,8 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -22,6 +24,15 @@ struct GraspBatch {
   const PoseArray& wrists;
   const RowMatrixXd& joints;
 };
+
+/// Throws std::invalid_argument "<who>: joints must be (N, n_dofs), got (r, c)" unless joints has a row per wrist
+/// and a column per degree of freedom.
+void require_joints_shape(Eigen::Index n_wrists, const RowMatrixXd& joints, int n_dofs, const std::string& who);
+/// Throws std::invalid_argument "<who>: the configuration model has D joints, the hand H" unless they agree.
+void require_config_of(const ConfigModel& config, const Hand& hand, const std::string& who);
+/// The rows `rows` of wrists (N, 7) and joints (N, D).
+std::pair<PoseArray, RowMatrixXd> batch_rows(const PoseArray& wrists, const RowMatrixXd& joints,
+                                             const std::vector<Eigen::Index>& rows);
 
 class Expert {
  public:
@@ -110,6 +121,19 @@ class CollisionFreeExpert : public Expert {
   std::optional<ConfigModel> config_;
   std::string name_;
 };
+
+/// The constraint experts' terms of N grasps (GraspSynthesizer::evaluate's first step).
+struct ExpertTerms {
+  RowMatrixXd log_values;            ///< (N, K) log E_k; NaN where not evaluated (rejected by an earlier expert)
+  Eigen::VectorXd total;             ///< (N) sum of the evaluated terms; -inf where an expert rejected the grasp
+  std::vector<Eigen::Index> passed;  ///< the rows no expert rejected, in order
+};
+
+/// The experts in order, each on the grasps none before it rejected: a grasp a hard expert rejects costs nothing
+/// more, and an expensive soft expert placed last sees only the survivors. Throws std::invalid_argument for an
+/// expert returning NaN, +inf or the wrong number of values.
+ExpertTerms evaluate_experts(const std::vector<std::shared_ptr<const Expert>>& experts, const PoseArray& wrists,
+                             const RowMatrixXd& joints);
 
 /// A user-defined expert: a function of the whole batch returning log E_k (N). graspmix.expert() in
 /// Python turns a callable returning probabilities in [0, 1] or booleans into one.

@@ -127,7 +127,9 @@ TEST(Synthesis, SameSeedSameGraspsRankedBestFirstWithConsistentTerms) {
   for (size_t i = 0; i < a.grasps.size(); ++i) {
     EXPECT_TRUE(a.grasps[i].T_world_wrist.isApprox(b.grasps[i].T_world_wrist, 0.0));
     EXPECT_EQ(a.grasps[i].log_likelihood, b.grasps[i].log_likelihood);
-    if (i > 0) EXPECT_GE(a.grasps[i - 1].log_likelihood, a.grasps[i].log_likelihood);
+    if (i > 0) {
+      EXPECT_GE(a.grasps[i - 1].log_likelihood, a.grasps[i].log_likelihood);
+    }
     const Grasp& g = a.grasps[i];
     if (std::isfinite(g.log_likelihood)) {
       const double sum = g.log_collision + g.log_config + g.log_pregrasp + g.log_contact.sum() + g.log_experts.sum();

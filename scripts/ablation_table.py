@@ -17,12 +17,11 @@ A RUN is an experiment folder (attempts.csv or attempts.csv.gz); --trials keeps 
 import argparse
 import csv
 import gzip
-import math
 import re
 import sys
 from pathlib import Path
 
-from scipy.stats import binomtest
+from graspmix.experiment.stats import mcnemar_exact, wilson_ci
 
 CONDITIONS = "ABCD"
 
@@ -41,20 +40,11 @@ def load(run: Path, trials: int | None) -> dict:
     }
 
 
-def wilson(k: int, n: int, z: float = 1.959964) -> tuple:
-    p = k / n
-    d = 1 + z * z / n
-    c = (p + z * z / (2 * n)) / d
-    h = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / d
-    return c - h, c + h
-
-
 def mcnemar(base: dict, other: dict, method: str) -> str:
     keys = [k for k in other if k in base and k[3] == method]
     up = sum(other[k][0] > base[k][0] for k in keys)
     down = sum(other[k][0] < base[k][0] for k in keys)
-    p = binomtest(up, up + down).pvalue if up + down else 1.0
-    return f"+{up} / -{down}, p = {p:.2g}"
+    return f"+{up} / -{down}, p = {mcnemar_exact(up, down):.2g}"
 
 
 def rows_of(name: str, runs: dict, base: str) -> list:
@@ -70,7 +60,7 @@ def rows_of(name: str, runs: dict, base: str) -> list:
             rate.append(f"{100 * sum(s for s, _ in cell) / len(cell):.1f}" if cell else "")
             sic.append(f"{100 * sum(r == 'start in collision' for _, r in cell) / len(cell):.1f}" if cell else "")
         k, n = sum(s for s, _ in rs.values()), len(rs)
-        lo, hi = wilson(k, n)
+        lo, hi = wilson_ci(k, n)
         paired = "" if name == base else mcnemar(runs[base], runs[name], method)
         out.append(
             [name, method.upper(), *rate, f"{100 * k / n:.1f} [{100 * lo:.1f}, {100 * hi:.1f}]", str(n)]

@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from .log import CSV_NAME, read_rows
-from .stats import paired_ttest
+from .stats import mcnemar_exact, paired_ttest
 
 
 @dataclass(frozen=True)
@@ -99,11 +99,8 @@ class OutcomeChange:
 
 def outcome_change(a: Cell, b: Cell, outcome: str) -> OutcomeChange:
     """Paired by (trial, object): the attempts ending in `outcome` in a but not in b, and the reverse."""
-    from scipy.stats import binomtest
-
     if a.objects != b.objects or a.outcomes.shape != b.outcomes.shape:
         raise ValueError("the two cells cover different objects or trials: not paired")
     ia, ib = a.outcomes == outcome, b.outcomes == outcome
     only_a, only_b = int(np.sum(ia & ~ib)), int(np.sum(ib & ~ia))
-    p = 1.0 if only_a + only_b == 0 else float(binomtest(only_a, only_a + only_b, 0.5).pvalue)
-    return OutcomeChange(outcome, float(ia.mean()), float(ib.mean()), only_a, only_b, p)
+    return OutcomeChange(outcome, float(ia.mean()), float(ib.mean()), only_a, only_b, mcnemar_exact(only_a, only_b))

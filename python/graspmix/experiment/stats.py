@@ -118,6 +118,14 @@ class RateCI:
         return asdict(self)
 
 
+def mcnemar_exact(only_a: int, only_b: int) -> float:
+    """McNemar's exact test of paired binary outcomes: the two-sided binomial test of the discordant pairs, only_a
+    against only_a + only_b at 1/2 (1 when there are none)."""
+    from scipy.stats import binomtest
+
+    return 1.0 if only_a + only_b == 0 else float(binomtest(only_a, only_a + only_b, 0.5).pvalue)
+
+
 def wilson_ci(successes: float, n: float, confidence: float = 0.95) -> tuple[float, float]:
     """Wilson's score interval of a binomial proportion successes / n (n may be an effective, non-integer
     count). It stays inside [0, 1] and is not degenerate at 0 or n successes, unlike the Wald interval."""

@@ -192,6 +192,18 @@ def test_wilson_closed_forms():
         wilson_ci(3, 2)
 
 
+def test_mcnemar_exact_closed_forms():
+    from graspmix.experiment.stats import mcnemar_exact
+
+    # Two-sided binomial at 1/2 of the discordant pairs: all k of one side, 2 / 2^k; a tie, 1.
+    for k in (1, 5, 12):
+        assert mcnemar_exact(0, k) == pytest.approx(min(1.0, 2 * 0.5**k), rel=1e-12)
+        assert mcnemar_exact(k, 0) == mcnemar_exact(0, k)
+    assert mcnemar_exact(4, 4) == pytest.approx(1.0) and mcnemar_exact(0, 0) == 1.0
+    # 1 against 5: P(X <= 1) + P(X >= 5) for X ~ Bin(6, 1/2) = 2 * 7 / 64.
+    assert mcnemar_exact(1, 5) == pytest.approx(14 / 64, rel=1e-12)
+
+
 def test_clustered_rate_design_effect():
     from graspmix.experiment.stats import clustered_rate
 

@@ -275,12 +275,13 @@ def _synthesis_text(proto: dict) -> str:
     if proto.get("collision", "surface") == "occupancy":
         extra.append("the occupancy collision model")
     if proto.get("clear_approach", False):
+        # A run from before the clearance existed checked the points as they are: clearance 0.
         extra.append(
-            f"the clear approach (stand-off {100 * proto.get('stand_off', 0.1):g} cm, clearance "
+            f"the clear approach (stand-off {100 * proto['stand_off']:g} cm, clearance "
             f"{1000 * proto.get('approach_clearance', 0.0):g} mm)"
         )
     if proto.get("contact_quality", False):
-        extra.append(f"the contact quality (friction {proto.get('friction', 0.5):g})")
+        extra.append(f"the contact quality (friction {proto['friction']:g})")
     return ("Synthesis with " + ", ".join(extra) + ". ") if extra else "The paper's synthesis. "
 
 

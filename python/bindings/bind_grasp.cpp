@@ -229,16 +229,14 @@ void bind_models(py::module_& m) {
       .field("min_points", &ContactSettings::min_points, "a link with fewer contact points gets no contact model")
       .done();
 
-  auto contact =
-      py::class_<ContactData>(m, "ContactData", "The demonstration data D_O of one link (contact_data).")
-          .def_readonly("link", &ContactData::link)
-          .def_readonly("indices", &ContactData::indices, "(M) object points used (rows of frames / features)")
-          .def_readonly("u", &ContactData::u, "(M, 7) the link pose in each point's frame")
-          .def_readonly("r", &ContactData::r, "(M, n) the points' features")
-          .def_readonly("weights", &ContactData::weights, "(M) exp(-lambda d^2)")
-          .def_readonly("distance", &ContactData::distance, "(M) m, from the point to the link's geometry (0 inside)")
-          .def("__len__", [](const ContactData& d) { return d.u.rows(); });
-  dict_compatible(contact, {"indices", "u", "r", "weights", "distance"});
+  py::class_<ContactData>(m, "ContactData", "The demonstration data D_O of one link (contact_data).")
+      .def_readonly("link", &ContactData::link)
+      .def_readonly("indices", &ContactData::indices, "(M) object points used (rows of frames / features)")
+      .def_readonly("u", &ContactData::u, "(M, 7) the link pose in each point's frame")
+      .def_readonly("r", &ContactData::r, "(M, n) the points' features")
+      .def_readonly("weights", &ContactData::weights, "(M) exp(-lambda d^2)")
+      .def_readonly("distance", &ContactData::distance, "(M) m, from the point to the link's geometry (0 inside)")
+      .def("__len__", [](const ContactData& d) { return d.u.rows(); });
 
   m.def(
       "contact_data",
@@ -422,6 +420,9 @@ void bind_experts(py::module_& m) {
       .field("stand_off", &ClearApproachSettings::stand_off,
              "m: the hand starts this far back along its approach axis from the pre-grasp (>= 0)")
       .field("step", &ClearApproachSettings::step, "m: the path is checked at poses this far apart (> 0)")
+      .field("clearance", &ClearApproachSettings::clearance,
+             "m: the open hand keeps this far from every point on its way (the points of the collision expert the "
+             "path is checked against are balls of this radius; scene synthesis builds it so)")
       .property(
           "hand_axis", [](const ClearApproachSettings& s) { return Eigen::Vector3d(s.hand_axis); },
           [](ClearApproachSettings& s, const py::object& v) { s.hand_axis = to_vector(v, "hand_axis", 3); },

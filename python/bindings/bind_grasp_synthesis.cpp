@@ -59,6 +59,7 @@ py::dict grasp_columns(const SynthesisResult& r) {
   d["log_contact"] = stack_rows(r.grasps, [](const Grasp& g) -> const Eigen::VectorXd& { return g.log_contact; });
   d["log_experts"] = stack_rows(r.grasps, [](const Grasp& g) -> const Eigen::VectorXd& { return g.log_experts; });
   d["optimised"] = optimised;
+  d["log_terms"] = stack_rows(r.grasps, [](const Grasp& g) -> Eigen::VectorXd { return g.log_terms(); });
   return d;
 }
 
@@ -74,17 +75,7 @@ void bind_synthesis(py::module_& m) {
       .field("frame_jitter", &QuerySettings::frame_jitter,
              "rotate each sampled surface frame about its normal by up to pi exp(-jitter_sharpness ((k1 - k2) / k1)^2)")
       .field("jitter_sharpness", &QuerySettings::jitter_sharpness, "s of Kopicki's rule above")
-      .done()
-      .def_property(
-          "kde_bandwidths",
-          [](const QuerySettings& s) { return py::make_tuple(s.kde.position_bandwidth, s.kde.orientation_bandwidth); },
-          [](QuerySettings& s, const py::tuple& t) {
-            if (t.size() != 2) throw py::value_error("kde_bandwidths: expected (position m, orientation rad)");
-            s.kde.position_bandwidth = t[0].cast<double>();
-            s.kde.orientation_bandwidth = t[1].cast<double>();
-          },
-          "(position m, orientation rad) of KDE query kernels: kde.position_bandwidth, kde.orientation_bandwidth "
-          "(kept for one release; use kde).");
+      .done();
 
   SettingsClass<AnnealingSettings>(m, "AnnealingSettings", "Simulated annealing of the best candidates.")
       .field("iterations", &AnnealingSettings::iterations, "the paper's 100")
@@ -97,50 +88,49 @@ void bind_synthesis(py::module_& m) {
              "std of joint proposals at temperature 1, in units of the config model's kernel std")
       .done();
 
-  SettingsClass<SynthesisSettings>(m, "SynthesisSettings", "Grasp synthesis: sampling, ranking and optimisation.")
-      .field("n_samples", &SynthesisSettings::n_samples, "grasps sampled and ranked")
-      .field("n_optimise", &SynthesisSettings::n_optimise, "the best this many are optimised")
-      .field("optimise", &SynthesisSettings::optimise, "anneal the best n_optimise")
-      .field("clear_pregrasp", &SynthesisSettings::clear_pregrasp,
+  SettingsClass<SamplingSettings>(m, "SamplingSettings", "How many grasps are drawn, kept and annealed.")
+      .field("n_samples", &SamplingSettings::n_samples, "grasps sampled and ranked")
+      .field("n_optimise", &SamplingSettings::n_optimise, "the best this many are optimised")
+      .field("optimise", &SamplingSettings::optimise, "anneal the best n_optimise")
+      .field("clear_pregrasp", &SamplingSettings::clear_pregrasp,
              "an extra collision expert on the pre-grasp configuration (log W of the opened hand)")
-      .field("max_sampling_rounds", &SynthesisSettings::max_sampling_rounds,
+      .field("max_sampling_rounds", &SamplingSettings::max_sampling_rounds,
              "batches of n_samples drawn at most until n_samples grasps pass every hard expert")
+      .done();
+
+  SettingsClass<SynthesisSettings>(m, "SynthesisSettings",
+                                   "What GraspSynthesizer.synthesize needs besides the object and the experts (scene "
+                                   "synthesis builds it from graspmix.SynthesisOptions).")
+      .field("sampling", &SynthesisSettings::sampling, "SamplingSettings")
       .field("query", &SynthesisSettings::query, "QuerySettings")
       .field("annealing", &SynthesisSettings::annealing, "AnnealingSettings")
       .seed("seed", &SynthesisSettings::seed, "seeds everything random in synthesis (None: 0)")
       .done();
 
-  const std::vector<std::string> grasp_keys = {"T_world_wrist", "joints",     "pregrasp",     "log_likelihood",
-                                               "log_collision", "log_config", "log_pregrasp", "log_contact",
-                                               "log_experts",   "optimised"};
-  auto grasp =
-      py::class_<Grasp>(m, "Grasp", "One synthesised grasp and its log-likelihood terms.")
-          .def_readonly("T_world_wrist", &Grasp::T_world_wrist, "(7,) [x, y, z, qx, qy, qz, qw]")
-          .def_readonly("joints", &Grasp::joints, "grasp configuration h_c (Hand.joint_names order)")
-          .def_readonly("pregrasp", &Grasp::pregrasp, "the configuration to approach with")
-          .def_readonly("log_likelihood", &Grasp::log_likelihood, "log L (eq:opt_criterion_extended)")
-          .def_readonly("log_collision", &Grasp::log_collision, "log W")
-          .def_readonly("log_config", &Grasp::log_config, "log C")
-          .def_readonly("log_pregrasp", &Grasp::log_pregrasp, "log W of the pre-grasp configuration (clear_pregrasp)")
-          .def_readonly("log_contact", &Grasp::log_contact, "log Q_i per query link (SynthesisResult.contact_links)")
-          .def_readonly("log_experts", &Grasp::log_experts, "log E_k per expert (SynthesisResult.expert_names)")
-          .def_readonly("optimised", &Grasp::optimised)
-          .def("__repr__", [](const Grasp& g) {
-            return "<Grasp log_likelihood=" + std::to_string(g.log_likelihood) + (g.optimised ? ", optimised>" : ">");
-          });
-  dict_compatible(grasp, grasp_keys);
+  py::class_<Grasp>(m, "Grasp", "One synthesised grasp and its log-likelihood terms.")
+      .def_readonly("T_world_wrist", &Grasp::T_world_wrist, "(7,) [x, y, z, qx, qy, qz, qw]")
+      .def_readonly("joints", &Grasp::joints, "grasp configuration h_c (Hand.joint_names order)")
+      .def_readonly("pregrasp", &Grasp::pregrasp, "the configuration to approach with")
+      .def_readonly("log_likelihood", &Grasp::log_likelihood, "log L (eq:opt_criterion_extended)")
+      .def_readonly("log_collision", &Grasp::log_collision, "log W")
+      .def_readonly("log_config", &Grasp::log_config, "log C")
+      .def_readonly("log_pregrasp", &Grasp::log_pregrasp, "log W of the pre-grasp configuration (clear_pregrasp)")
+      .def_readonly("log_contact", &Grasp::log_contact, "log Q_i per query link (SynthesisResult.contact_links)")
+      .def_readonly("log_experts", &Grasp::log_experts, "log E_k per expert (SynthesisResult.expert_names)")
+      .def_readonly("optimised", &Grasp::optimised)
+      .def("__repr__", [](const Grasp& g) {
+        return "<Grasp log_likelihood=" + std::to_string(g.log_likelihood) + (g.optimised ? ", optimised>" : ">");
+      });
 
-  auto timing =
-      py::class_<SynthesisTiming>(m, "SynthesisTiming", "Seconds spent in each stage of synthesis.")
-          .def_readonly("query", &SynthesisTiming::query, "s: query density estimation")
-          .def_readonly("sampling", &SynthesisTiming::sampling, "s: sampling and ranking")
-          .def_readonly("optimisation", &SynthesisTiming::optimisation, "s: annealing the best candidates")
-          .def_readonly("total", &SynthesisTiming::total, "s")
-          .def("__repr__", [](const SynthesisTiming& t) {
-            return "SynthesisTiming(query=" + std::to_string(t.query) + ", sampling=" + std::to_string(t.sampling) +
-                   ", optimisation=" + std::to_string(t.optimisation) + ", total=" + std::to_string(t.total) + ")";
-          });
-  dict_compatible(timing, {"query", "sampling", "optimisation", "total"});
+  py::class_<SynthesisTiming>(m, "SynthesisTiming", "Seconds spent in each stage of synthesis.")
+      .def_readonly("query", &SynthesisTiming::query, "s: query density estimation")
+      .def_readonly("sampling", &SynthesisTiming::sampling, "s: sampling and ranking")
+      .def_readonly("optimisation", &SynthesisTiming::optimisation, "s: annealing the best candidates")
+      .def_readonly("total", &SynthesisTiming::total, "s")
+      .def("__repr__", [](const SynthesisTiming& t) {
+        return "SynthesisTiming(query=" + std::to_string(t.query) + ", sampling=" + std::to_string(t.sampling) +
+               ", optimisation=" + std::to_string(t.optimisation) + ", total=" + std::to_string(t.total) + ")";
+      });
 
   py::class_<SynthesisResult>(m, "SynthesisResult", "Grasps best first, with diagnostics.")
       .def_readonly("grasps", &SynthesisResult::grasps, "list of Grasp, best first")
@@ -148,19 +138,21 @@ void bind_synthesis(py::module_& m) {
       .def_readonly("expert_names", &SynthesisResult::expert_names)
       .def_readonly("evaluations", &SynthesisResult::evaluations, "grasps scored in all")
       .def_readonly("rejected", &SynthesisResult::rejected, "samples a hard constraint rejected")
-      .def_readonly("timing", &SynthesisResult::timing, "SynthesisTiming (dict(result.timing) still works)")
+      .def_readonly("timing", &SynthesisResult::timing, "SynthesisTiming")
+      .def_property_readonly("term_names", &SynthesisResult::term_names,
+                             "every term of log L, in the order of the columns' log_terms: collision, config, "
+                             "pregrasp_clear, contact/<link> per query link, the experts")
       .def("columns", &grasp_columns,
            "The grasps' fields as arrays, one row a grasp (best first): {Grasp key: (N,) or (N, k)}; what "
            "result.grasps gives one grasp at a time, without a Python object per grasp and field");
 
-  auto evaluation = py::class_<Evaluation>(m, "Evaluation", "log L and its terms for a batch of grasps.")
-                        .def_readonly("total", &Evaluation::total, "(N,) log L")
-                        .def_readonly("log_collision", &Evaluation::log_collision, "(N,)")
-                        .def_readonly("log_config", &Evaluation::log_config, "(N,)")
-                        .def_readonly("log_pregrasp", &Evaluation::log_pregrasp, "(N,)")
-                        .def_readonly("log_contact", &Evaluation::log_contact, "(N, query links)")
-                        .def_readonly("log_experts", &Evaluation::log_experts, "(N, experts)");
-  dict_compatible(evaluation, {"total", "log_collision", "log_config", "log_pregrasp", "log_contact", "log_experts"});
+  py::class_<Evaluation>(m, "Evaluation", "log L and its terms for a batch of grasps.")
+      .def_readonly("total", &Evaluation::total, "(N,) log L")
+      .def_readonly("log_collision", &Evaluation::log_collision, "(N,)")
+      .def_readonly("log_config", &Evaluation::log_config, "(N,)")
+      .def_readonly("log_pregrasp", &Evaluation::log_pregrasp, "(N,)")
+      .def_readonly("log_contact", &Evaluation::log_contact, "(N, query links)")
+      .def_readonly("log_experts", &Evaluation::log_experts, "(N, experts)");
 
   py::class_<QueryDensity>(m, "QueryDensity", "Q_i: one link's query density on an object.")
       .def_readonly("link", &QueryDensity::link)
@@ -221,13 +213,14 @@ void bind_synthesis(py::module_& m) {
           "evaluate",
           [](const GraspSynthesizer& g, const std::vector<QueryDensity>& q, const CollisionExpert& collision,
              const py::object& experts, const py::object& wrists, const py::object& joints, const py::object& clear) {
-            const bool clear_pregrasp = clear.is_none() ? SynthesisSettings{}.clear_pregrasp : clear.cast<bool>();
-            return g.evaluate(q, collision, to_experts(experts), to_poses(wrists, "wrists"),
-                              to_configurations(g.hand(), joints, "joints"), clear_pregrasp);
+            const bool clear_pregrasp = clear.is_none() ? SamplingSettings{}.clear_pregrasp : clear.cast<bool>();
+            const auto expert_list = to_experts(experts);
+            return g.evaluate(Scoring{q, collision, expert_list, clear_pregrasp}, to_poses(wrists, "wrists"),
+                              to_configurations(g.hand(), joints, "joints"));
           },
           py::arg("query"), py::arg("collision"), py::arg("experts"), py::arg("wrists"), py::arg("joints"),
           py::arg("clear_pregrasp") = py::none(),
-          "log L and its terms (an Evaluation) for a batch of grasps; clear_pregrasp=None: SynthesisSettings' "
+          "log L and its terms (an Evaluation) for a batch of grasps; clear_pregrasp=None: SamplingSettings' "
           "default.");
 }
 

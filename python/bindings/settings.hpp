@@ -183,21 +183,4 @@ class SettingsClass {
   std::string doc_;
 };
 
-/// Dict-style reading of a result class, `result["field"]` and dict(result), for code written when the
-/// result was a dict. Kept for one release; new code reads the attributes.
-template <class T>
-void dict_compatible(py::class_<T>& cls, std::vector<std::string> keys) {
-  cls.def(
-      "__getitem__",
-      [keys](const py::object& self, const std::string& key) -> py::object {
-        for (const auto& k : keys)
-          if (k == key) return self.attr(key.c_str());
-        throw py::key_error(key);
-      },
-      py::arg("key"), "Deprecated: the attribute of that name (results were dicts before; kept for one release).");
-  cls.def(
-      "keys", [keys](const py::object&) { return keys; },
-      "Deprecated: the attribute names readable with [] (so dict(result) still works).");
-}
-
 }  // namespace graspmix::py_bind

@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AnnealingSettings', 'AxisAlignmentExpert', 'AxisAlignmentSettings', 'ClearApproachExpert', 'ClearApproachSettings', 'CloudData', 'CollisionBatchResult', 'CollisionExpert', 'CollisionFreeExpert', 'CollisionResult', 'CollisionSettings', 'ConfigModel', 'ConfigModelSettings', 'ContactData', 'ContactModel', 'ContactQualityExpert', 'ContactQualityResult', 'ContactQualitySettings', 'ContactSettings', 'Evaluation', 'Expert', 'FunctionExpert', 'GaussianMixture', 'GmmSettings', 'Grasp', 'GraspSynthesizer', 'Hand', 'HandLoadSettings', 'KdeSettings', 'KinematicFeasibilityExpert', 'KinematicFeasibilitySettings', 'OccupancyMap', 'OccupancySettings', 'PlaneCandidate', 'PoseDensity', 'PoseKDE', 'PoseMixture', 'QueryDensity', 'QuerySettings', 'SceneObject', 'SceneResult', 'SceneSettings', 'SceneSimResult', 'Segmentation', 'SegmentationSettings', 'SettleResult', 'SimObject', 'SimResult', 'SimSettings', 'SurfaceCloud', 'SurfaceFeatureSettings', 'SynthesisResult', 'SynthesisSettings', 'SynthesisTiming', 'build_info', 'compute_surface_features', 'contact_data', 'learn_contact_models', 'load_cloud', 'load_mesh', 'log_vmf_s3_normaliser', 'orient_plane', 'pose_inverse', 'pose_multiply', 'prepare_cloud', 'quat_exp', 'quat_log', 'save_cloud', 'segment_scene', 'sim_execute', 'sim_execute_scene', 'sim_settle_scene']
+__all__: list[str] = ['AnnealingSettings', 'AxisAlignmentExpert', 'AxisAlignmentSettings', 'ClearApproachExpert', 'ClearApproachSettings', 'CloudData', 'CollisionBatchResult', 'CollisionExpert', 'CollisionFreeExpert', 'CollisionResult', 'CollisionSettings', 'ConfigModel', 'ConfigModelSettings', 'ContactData', 'ContactModel', 'ContactQualityExpert', 'ContactQualityResult', 'ContactQualitySettings', 'ContactSettings', 'Evaluation', 'Expert', 'FunctionExpert', 'GaussianMixture', 'GmmSettings', 'Grasp', 'GraspSynthesizer', 'Hand', 'HandLoadSettings', 'KdeSettings', 'KinematicFeasibilityExpert', 'KinematicFeasibilitySettings', 'OccupancyMap', 'OccupancySettings', 'PlaneCandidate', 'PoseDensity', 'PoseKDE', 'PoseMixture', 'QueryDensity', 'QuerySettings', 'SamplingSettings', 'SceneObject', 'SceneResult', 'SceneSettings', 'SceneSimResult', 'Segmentation', 'SegmentationSettings', 'SettleResult', 'SimObject', 'SimResult', 'SimSettings', 'SurfaceCloud', 'SurfaceFeatureSettings', 'SynthesisResult', 'SynthesisSettings', 'SynthesisTiming', 'build_info', 'compute_surface_features', 'contact_data', 'learn_contact_models', 'load_cloud', 'load_mesh', 'log_vmf_s3_normaliser', 'orient_plane', 'pose_inverse', 'pose_multiply', 'prepare_cloud', 'quat_exp', 'quat_log', 'save_cloud', 'segment_scene', 'sim_execute', 'sim_execute_scene', 'sim_settle_scene']
 class GmmSettings:
     """
     How a GaussianMixture (or PoseMixture) is fitted by EM.
@@ -1775,16 +1775,8 @@ class ContactData:
     """
     The demonstration data D_O of one link (contact_data).
     """
-    def __getitem__(self, key: str) -> typing.Any:
-        """
-        Deprecated: the attribute of that name (results were dicts before; kept for one release).
-        """
     def __len__(self) -> int:
         ...
-    def keys(self) -> list[str]:
-        """
-        Deprecated: the attribute names readable with [] (so dict(result) still works).
-        """
     @property
     def distance(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         """
@@ -2112,11 +2104,12 @@ class ClearApproachSettings:
     which override it (an unknown keyword is a ValueError):
       stand_off = 0.1: m: the hand starts this far back along its approach axis from the pre-grasp (>= 0)
       step = 0.02: m: the path is checked at poses this far apart (> 0)
+      clearance = 0.002: m: the open hand keeps this far from every point on its way (the points of the collision expert the path is checked against are balls of this radius; scene synthesis builds it so)
       hand_axis = array([0., 0., 1.]): (3,) the approach axis in the wrist frame (the WSG 50's palm z)
       name = 'clear_approach': the key of its term in a grasp's experts table
     """
     __hash__: typing.ClassVar[None] = None
-    _fields: typing.ClassVar[tuple] = ('stand_off', 'step', 'hand_axis', 'name')
+    _fields: typing.ClassVar[tuple] = ('stand_off', 'step', 'clearance', 'hand_axis', 'name')
     def __copy__(self) -> ClearApproachSettings:
         ...
     def __deepcopy__(self, memo: typing.Any) -> ClearApproachSettings:
@@ -2133,11 +2126,19 @@ class ClearApproachSettings:
     @typing.overload
     def __init__(self, **kwargs) -> None:
         """
-        Keyword constructor: any of the fields (stand_off, step, hand_axis, name); the others keep their defaults.
+        Keyword constructor: any of the fields (stand_off, step, clearance, hand_axis, name); the others keep their defaults.
         """
     def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: dict) -> None:
+        ...
+    @property
+    def clearance(self) -> float:
+        """
+        m: the open hand keeps this far from every point on its way (the points of the collision expert the path is checked against are balls of this radius; scene synthesis builds it so)
+        """
+    @clearance.setter
+    def clearance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def hand_axis(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
@@ -2182,6 +2183,7 @@ class ClearApproachExpert(Expert):
         which override it (an unknown keyword is a ValueError):
           stand_off = 0.1: m: the hand starts this far back along its approach axis from the pre-grasp (>= 0)
           step = 0.02: m: the path is checked at poses this far apart (> 0)
+          clearance = 0.002: m: the open hand keeps this far from every point on its way (the points of the collision expert the path is checked against are balls of this radius; scene synthesis builds it so)
           hand_axis = array([0., 0., 1.]): (3,) the approach axis in the wrist frame (the WSG 50's palm z)
           name = 'clear_approach': the key of its term in a grasp's experts table
         """
@@ -2430,14 +2432,6 @@ class QuerySettings:
     def kde(self, arg0: KdeSettings) -> None:
         ...
     @property
-    def kde_bandwidths(self) -> tuple[float, float]:
-        """
-        (position m, orientation rad) of KDE query kernels: kde.position_bandwidth, kde.orientation_bandwidth (kept for one release; use kde).
-        """
-    @kde_bandwidths.setter
-    def kde_bandwidths(self, arg1: tuple) -> None:
-        ...
-    @property
     def max_iter(self) -> int:
         """
         EM iterations of the query mixtures
@@ -2545,26 +2539,23 @@ class AnnealingSettings:
     @rotation_step.setter
     def rotation_step(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
-class SynthesisSettings:
+class SamplingSettings:
     """
-    Grasp synthesis: sampling, ranking and optimisation.
+    How many grasps are drawn, kept and annealed.
     
-    Settings: settings= a SynthesisSettings (None: its defaults), and/or its fields as keywords,
+    Settings: settings= a SamplingSettings (None: its defaults), and/or its fields as keywords,
     which override it (an unknown keyword is a ValueError):
       n_samples = 200: grasps sampled and ranked
       n_optimise = 10: the best this many are optimised
       optimise = True: anneal the best n_optimise
       clear_pregrasp = True: an extra collision expert on the pre-grasp configuration (log W of the opened hand)
       max_sampling_rounds = 10: batches of n_samples drawn at most until n_samples grasps pass every hard expert
-      query = QuerySettings(n_samples=500, n_components=5, max_iter=100, reg_covar=1e-06, kde=KdeSettings(position_bandwidth=0.005, orientation_bandwidth=0.15, feature_bandwidth=array([0.005])), frame_jitter=True, jitter_sharpness=100.0): QuerySettings
-      annealing = AnnealingSettings(iterations=100, initial_temperature=1.0, position_step=0.005, rotation_step=0.1, joint_step=0.5): AnnealingSettings
-      seed = 0: seeds everything random in synthesis (None: 0)
     """
     __hash__: typing.ClassVar[None] = None
-    _fields: typing.ClassVar[tuple] = ('n_samples', 'n_optimise', 'optimise', 'clear_pregrasp', 'max_sampling_rounds', 'query', 'annealing', 'seed')
-    def __copy__(self) -> SynthesisSettings:
+    _fields: typing.ClassVar[tuple] = ('n_samples', 'n_optimise', 'optimise', 'clear_pregrasp', 'max_sampling_rounds')
+    def __copy__(self) -> SamplingSettings:
         ...
-    def __deepcopy__(self, memo: typing.Any) -> SynthesisSettings:
+    def __deepcopy__(self, memo: typing.Any) -> SamplingSettings:
         ...
     def __eq__(self, arg0: typing.Any) -> typing.Any:
         ...
@@ -2578,19 +2569,11 @@ class SynthesisSettings:
     @typing.overload
     def __init__(self, **kwargs) -> None:
         """
-        Keyword constructor: any of the fields (n_samples, n_optimise, optimise, clear_pregrasp, max_sampling_rounds, query, annealing, seed); the others keep their defaults.
+        Keyword constructor: any of the fields (n_samples, n_optimise, optimise, clear_pregrasp, max_sampling_rounds); the others keep their defaults.
         """
     def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: dict) -> None:
-        ...
-    @property
-    def annealing(self) -> AnnealingSettings:
-        """
-        AnnealingSettings
-        """
-    @annealing.setter
-    def annealing(self, arg0: AnnealingSettings) -> None:
         ...
     @property
     def clear_pregrasp(self) -> bool:
@@ -2632,6 +2615,49 @@ class SynthesisSettings:
     @optimise.setter
     def optimise(self, arg0: bool) -> None:
         ...
+class SynthesisSettings:
+    """
+    What GraspSynthesizer.synthesize needs besides the object and the experts (scene synthesis builds it from graspmix.SynthesisOptions).
+    
+    Settings: settings= a SynthesisSettings (None: its defaults), and/or its fields as keywords,
+    which override it (an unknown keyword is a ValueError):
+      sampling = SamplingSettings(n_samples=200, n_optimise=10, optimise=True, clear_pregrasp=True, max_sampling_rounds=10): SamplingSettings
+      query = QuerySettings(n_samples=500, n_components=5, max_iter=100, reg_covar=1e-06, kde=KdeSettings(position_bandwidth=0.005, orientation_bandwidth=0.15, feature_bandwidth=array([0.005])), frame_jitter=True, jitter_sharpness=100.0): QuerySettings
+      annealing = AnnealingSettings(iterations=100, initial_temperature=1.0, position_step=0.005, rotation_step=0.1, joint_step=0.5): AnnealingSettings
+      seed = 0: seeds everything random in synthesis (None: 0)
+    """
+    __hash__: typing.ClassVar[None] = None
+    _fields: typing.ClassVar[tuple] = ('sampling', 'query', 'annealing', 'seed')
+    def __copy__(self) -> SynthesisSettings:
+        ...
+    def __deepcopy__(self, memo: typing.Any) -> SynthesisSettings:
+        ...
+    def __eq__(self, arg0: typing.Any) -> typing.Any:
+        ...
+    def __getstate__(self) -> dict:
+        ...
+    @typing.overload
+    def __init__(self) -> None:
+        """
+        The defaults: those of the default-constructed C++ struct.
+        """
+    @typing.overload
+    def __init__(self, **kwargs) -> None:
+        """
+        Keyword constructor: any of the fields (sampling, query, annealing, seed); the others keep their defaults.
+        """
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    @property
+    def annealing(self) -> AnnealingSettings:
+        """
+        AnnealingSettings
+        """
+    @annealing.setter
+    def annealing(self, arg0: AnnealingSettings) -> None:
+        ...
     @property
     def query(self) -> QuerySettings:
         """
@@ -2639,6 +2665,14 @@ class SynthesisSettings:
         """
     @query.setter
     def query(self, arg0: QuerySettings) -> None:
+        ...
+    @property
+    def sampling(self) -> SamplingSettings:
+        """
+        SamplingSettings
+        """
+    @sampling.setter
+    def sampling(self, arg0: SamplingSettings) -> None:
         ...
     @property
     def seed(self) -> int:
@@ -2652,16 +2686,8 @@ class Grasp:
     """
     One synthesised grasp and its log-likelihood terms.
     """
-    def __getitem__(self, key: str) -> typing.Any:
-        """
-        Deprecated: the attribute of that name (results were dicts before; kept for one release).
-        """
     def __repr__(self) -> str:
         ...
-    def keys(self) -> list[str]:
-        """
-        Deprecated: the attribute names readable with [] (so dict(result) still works).
-        """
     @property
     def T_world_wrist(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[7, 1]"]:
         """
@@ -2714,16 +2740,8 @@ class SynthesisTiming:
     """
     Seconds spent in each stage of synthesis.
     """
-    def __getitem__(self, key: str) -> typing.Any:
-        """
-        Deprecated: the attribute of that name (results were dicts before; kept for one release).
-        """
     def __repr__(self) -> str:
         ...
-    def keys(self) -> list[str]:
-        """
-        Deprecated: the attribute names readable with [] (so dict(result) still works).
-        """
     @property
     def optimisation(self) -> float:
         """
@@ -2774,22 +2792,19 @@ class SynthesisResult:
         samples a hard constraint rejected
         """
     @property
+    def term_names(self) -> list[str]:
+        """
+        every term of log L, in the order of the columns' log_terms: collision, config, pregrasp_clear, contact/<link> per query link, the experts
+        """
+    @property
     def timing(self) -> SynthesisTiming:
         """
-        SynthesisTiming (dict(result.timing) still works)
+        SynthesisTiming
         """
 class Evaluation:
     """
     log L and its terms for a batch of grasps.
     """
-    def __getitem__(self, key: str) -> typing.Any:
-        """
-        Deprecated: the attribute of that name (results were dicts before; kept for one release).
-        """
-    def keys(self) -> list[str]:
-        """
-        Deprecated: the attribute names readable with [] (so dict(result) still works).
-        """
     @property
     def log_collision(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         """
@@ -2841,7 +2856,7 @@ class GraspSynthesizer:
         ...
     def evaluate(self, query: collections.abc.Sequence[QueryDensity], collision: CollisionExpert, experts: typing.Any, wrists: typing.Any, joints: typing.Any, clear_pregrasp: typing.Any = None) -> Evaluation:
         """
-        log L and its terms (an Evaluation) for a batch of grasps; clear_pregrasp=None: SynthesisSettings' default.
+        log L and its terms (an Evaluation) for a batch of grasps; clear_pregrasp=None: SamplingSettings' default.
         """
     def query_densities(self, frames: typing.Any, features: typing.Any, settings: typing.Any = None, seed: typing.Any = None, **kwargs) -> list[QueryDensity]:
         """
@@ -2865,11 +2880,7 @@ class GraspSynthesizer:
         Query densities, sampling, ranking and annealing on an object's frames (N, 7) and features (N, n).
         Settings: settings= a SynthesisSettings (None: its defaults), and/or its fields as keywords,
         which override it (an unknown keyword is a ValueError):
-          n_samples = 200: grasps sampled and ranked
-          n_optimise = 10: the best this many are optimised
-          optimise = True: anneal the best n_optimise
-          clear_pregrasp = True: an extra collision expert on the pre-grasp configuration (log W of the opened hand)
-          max_sampling_rounds = 10: batches of n_samples drawn at most until n_samples grasps pass every hard expert
+          sampling = SamplingSettings(n_samples=200, n_optimise=10, optimise=True, clear_pregrasp=True, max_sampling_rounds=10): SamplingSettings
           query = QuerySettings(n_samples=500, n_components=5, max_iter=100, reg_covar=1e-06, kde=KdeSettings(position_bandwidth=0.005, orientation_bandwidth=0.15, feature_bandwidth=array([0.005])), frame_jitter=True, jitter_sharpness=100.0): QuerySettings
           annealing = AnnealingSettings(iterations=100, initial_temperature=1.0, position_step=0.005, rotation_step=0.1, joint_step=0.5): AnnealingSettings
           seed = 0: seeds everything random in synthesis (None: 0)

@@ -1,6 +1,7 @@
 #include "graspmix/core/se3.hpp"
 
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -20,6 +21,14 @@ Eigen::Quaterniond checked_quaternion(double x, double y, double z, double w, Ei
 }
 
 }  // namespace
+
+void require_finite(double v, const std::string& what) {
+  if (!std::isfinite(v)) {
+    std::ostringstream os;
+    os << what << " is not finite (" << v << ")";
+    throw std::invalid_argument(os.str());
+  }
+}
 
 void require_finite(const Eigen::Ref<const RowMatrixXd>& m, const char* what) {
   if (!m.allFinite()) {

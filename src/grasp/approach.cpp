@@ -15,6 +15,10 @@ ClearApproachExpert::ClearApproachExpert(std::shared_ptr<const CollisionExpert> 
   if (!collision_) throw std::invalid_argument("ClearApproachExpert: no collision expert");
   require_config_of(config_, collision_->hand(), "ClearApproachExpert");
   const ClearApproachSettings& s = settings_;
+  if (!std::isfinite(s.clearance) || s.clearance < 0.0) {
+    throw std::invalid_argument("ClearApproachExpert: clearance must be a finite distance >= 0 (m), got " +
+                                std::to_string(s.clearance));
+  }
   if (!std::isfinite(s.stand_off) || s.stand_off < 0.0) {
     throw std::invalid_argument("ClearApproachExpert: stand_off must be a finite distance >= 0 (m), got " +
                                 std::to_string(s.stand_off));

@@ -170,10 +170,22 @@ void GraspSynthesizer::sample_grasps(const std::vector<QueryDensity>& query, int
   }
 }
 
-Evaluation GraspSynthesizer::evaluate(const std::vector<QueryDensity>& query, const CollisionExpert& collision,
-                                      const std::vector<std::shared_ptr<const Expert>>& experts,
-                                      const Eigen::Ref<const PoseArray>& wrists_in,
-                                      const Eigen::Ref<const RowMatrixXd>& joints_in, bool clear_pregrasp) const {
+Eigen::VectorXd Grasp::log_terms() const {
+  Eigen::VectorXd t(3 + log_contact.size() + log_experts.size());
+  t << log_collision, log_config, log_pregrasp, log_contact, log_experts;
+  return t;
+}
+
+std::vector<std::string> SynthesisResult::term_names() const {
+  std::vector<std::string> names = {kCollisionTerm, kConfigTerm, kPregraspTerm};
+  for (const std::string& link : contact_links) names.push_back(kContactTermPrefix + link);
+  names.insert(names.end(), expert_names.begin(), expert_names.end());
+  return names;
+}
+
+Evaluation GraspSynthesizer::evaluate(const Scoring& scoring, const Eigen::Ref<const PoseArray>& wrists_in,
+                                      const Eigen::Ref<const RowMatrixXd>& joints_in) const {
+  const auto& [query, collision, experts, clear_pregrasp] = scoring;
   const Eigen::Index n = wrists_in.rows();
   require_joints_shape(n, joints_in, hand_->n_dofs(), "evaluate");
   const PoseArray wrists = wrists_in;
@@ -225,9 +237,8 @@ Evaluation GraspSynthesizer::evaluate(const std::vector<QueryDensity>& query, co
   return e;
 }
 
-int GraspSynthesizer::anneal(const std::vector<QueryDensity>& query, const CollisionExpert& collision,
-                             const std::vector<std::shared_ptr<const Expert>>& experts, const AnnealingSettings& s,
-                             std::mt19937_64& rng, PoseArray& wrists, RowMatrixXd& joints, bool clear_pregrasp) const {
+int GraspSynthesizer::anneal(const Scoring& scoring, const AnnealingSettings& s, std::mt19937_64& rng,
+                             PoseArray& wrists, RowMatrixXd& joints) const {
   const Eigen::Index n = wrists.rows();
   if (n == 0 || s.iterations <= 0) return 0;
   if (!(s.initial_temperature > 0.0)) throw std::invalid_argument("annealing: initial_temperature must be > 0");
@@ -235,7 +246,7 @@ int GraspSynthesizer::anneal(const std::vector<QueryDensity>& query, const Colli
   std::uniform_real_distribution<double> uni(0.0, 1.0);
   const RowMatrixXd& limits = config_.limits();
   const double joint_std = s.joint_step * config_.sigma();
-  Eigen::VectorXd current = evaluate(query, collision, experts, wrists, joints, clear_pregrasp).total;
+  Eigen::VectorXd current = evaluate(scoring, wrists, joints).total;
   PoseArray best_w = wrists;
   RowMatrixXd best_q = joints;
   Eigen::VectorXd best = current;
@@ -255,7 +266,7 @@ int GraspSynthesizer::anneal(const std::vector<QueryDensity>& query, const Colli
         prop_q(i, j) = std::clamp(joints(i, j) + joint_std * T * normal(rng), limits(j, 0), limits(j, 1));
       }
     }
-    const Eigen::VectorXd proposed = evaluate(query, collision, experts, prop_w, prop_q, clear_pregrasp).total;
+    const Eigen::VectorXd proposed = evaluate(scoring, prop_w, prop_q).total;
     for (Eigen::Index i = 0; i < n; ++i) {
       const double a = proposed[i], c = current[i];
       const double u = uni(rng);
@@ -325,7 +336,7 @@ void check_expert_names(const std::vector<std::shared_ptr<const Expert>>& expert
   for (const auto& e : experts) {
     if (!e) throw std::invalid_argument("synthesize: an expert is null");
     const std::string n = e->name();
-    if (n == "collision" || n == "config" || n == "pregrasp_clear" || n.rfind("contact/", 0) == 0) {
+    if (n == kCollisionTerm || n == kConfigTerm || n == kPregraspTerm || n.rfind(kContactTermPrefix, 0) == 0) {
       throw std::invalid_argument("synthesize: expert name '" + n + "' is reserved for a built-in term");
     }
     if (std::find(seen.begin(), seen.end(), n) != seen.end()) {
@@ -337,27 +348,25 @@ void check_expert_names(const std::vector<std::shared_ptr<const Expert>>& expert
 
 }  // namespace
 
-GraspSynthesizer::Candidates GraspSynthesizer::sample_passing(const std::vector<QueryDensity>& query,
-                                                              const CollisionExpert& collision,
-                                                              const std::vector<std::shared_ptr<const Expert>>& experts,
-                                                              const SynthesisSettings& s, std::mt19937_64& rng,
-                                                              SynthesisResult& res) const {
+GraspSynthesizer::Candidates GraspSynthesizer::sample_passing(const Scoring& scoring, const SynthesisSettings& s,
+                                                              std::mt19937_64& rng, SynthesisResult& res) const {
   std::vector<PoseArray> batch_w;
   std::vector<RowMatrixXd> batch_q;
   std::vector<Evaluation> batch_e;
   std::vector<std::pair<int, Eigen::Index>> passed, rejected;  // (batch, row)
-  for (int round = 0; round < s.max_sampling_rounds && static_cast<int>(passed.size()) < s.n_samples; ++round) {
+  for (int round = 0; round < s.sampling.max_sampling_rounds && static_cast<int>(passed.size()) < s.sampling.n_samples;
+       ++round) {
     PoseArray w;
     RowMatrixXd q;
-    sample_grasps(query, s.n_samples, rng, w, q);
-    batch_e.push_back(evaluate(query, collision, experts, w, q, s.clear_pregrasp));
+    sample_grasps(scoring.query, s.sampling.n_samples, rng, w, q);
+    batch_e.push_back(evaluate(scoring, w, q));
     batch_w.push_back(std::move(w));
     batch_q.push_back(std::move(q));
-    res.evaluations += s.n_samples;
+    res.evaluations += s.sampling.n_samples;
     const Evaluation& e = batch_e.back();
     for (Eigen::Index i = 0; i < e.total.size(); ++i) {
       if (e.total[i] > -std::numeric_limits<double>::infinity()) {
-        if (static_cast<int>(passed.size()) < s.n_samples) passed.emplace_back(round, i);
+        if (static_cast<int>(passed.size()) < s.sampling.n_samples) passed.emplace_back(round, i);
       } else {
         ++res.rejected;
         rejected.emplace_back(round, i);
@@ -365,13 +374,13 @@ GraspSynthesizer::Candidates GraspSynthesizer::sample_passing(const std::vector<
     }
   }
   // Too few passed: rejected samples fill up (ranked last; still optimised if among the best).
-  for (size_t k = 0; static_cast<int>(passed.size()) < s.n_samples && k < rejected.size(); ++k)
+  for (size_t k = 0; static_cast<int>(passed.size()) < s.sampling.n_samples && k < rejected.size(); ++k)
     passed.push_back(rejected[k]);
   Candidates c;
   const Eigen::Index n = static_cast<Eigen::Index>(passed.size());
   c.wrists.resize(n, 7);
   c.joints.resize(n, hand_->n_dofs());
-  c.eval = empty_evaluation(n, query.size(), experts.size());
+  c.eval = empty_evaluation(n, scoring.query.size(), scoring.experts.size());
   for (Eigen::Index k = 0; k < n; ++k) {
     const auto [b, i] = passed[k];
     c.wrists.row(k) = batch_w[b].row(i);
@@ -381,13 +390,11 @@ GraspSynthesizer::Candidates GraspSynthesizer::sample_passing(const std::vector<
   return c;
 }
 
-std::vector<bool> GraspSynthesizer::optimise_best(const std::vector<QueryDensity>& query,
-                                                  const CollisionExpert& collision,
-                                                  const std::vector<std::shared_ptr<const Expert>>& experts,
-                                                  const SynthesisSettings& s, const std::vector<int>& order,
-                                                  std::mt19937_64& rng, Candidates& c, SynthesisResult& res) const {
+std::vector<bool> GraspSynthesizer::optimise_best(const Scoring& scoring, const SynthesisSettings& s,
+                                                  const std::vector<int>& order, std::mt19937_64& rng, Candidates& c,
+                                                  SynthesisResult& res) const {
   std::vector<bool> optimised(c.wrists.rows(), false);
-  const int n_opt = s.optimise ? std::min<int>(s.n_optimise, static_cast<int>(c.wrists.rows())) : 0;
+  const int n_opt = s.sampling.optimise ? std::min<int>(s.sampling.n_optimise, static_cast<int>(c.wrists.rows())) : 0;
   if (n_opt == 0) return optimised;
   std::vector<Eigen::Index> rows(order.begin(), order.begin() + n_opt);
   PoseArray w(n_opt, 7);
@@ -396,8 +403,8 @@ std::vector<bool> GraspSynthesizer::optimise_best(const std::vector<QueryDensity
     w.row(k) = c.wrists.row(rows[k]);
     q.row(k) = c.joints.row(rows[k]);
   }
-  res.evaluations += anneal(query, collision, experts, s.annealing, rng, w, q, s.clear_pregrasp);
-  const Evaluation e = evaluate(query, collision, experts, w, q, s.clear_pregrasp);
+  res.evaluations += anneal(scoring, s.annealing, rng, w, q);
+  const Evaluation e = evaluate(scoring, w, q);
   res.evaluations += n_opt;
   for (int k = 0; k < n_opt; ++k) {
     c.wrists.row(rows[k]) = w.row(k);
@@ -415,9 +422,9 @@ SynthesisResult GraspSynthesizer::synthesize(const Eigen::Ref<const PoseArray>& 
                                              const CollisionExpert& collision,
                                              const std::vector<std::shared_ptr<const Expert>>& experts,
                                              const SynthesisSettings& s) const {
-  if (s.n_samples < 1) throw std::invalid_argument("synthesize: n_samples must be >= 1");
-  if (s.n_optimise < 0) throw std::invalid_argument("synthesize: n_optimise must be >= 0");
-  if (s.max_sampling_rounds < 1) throw std::invalid_argument("synthesize: max_sampling_rounds must be >= 1");
+  if (s.sampling.n_samples < 1) throw std::invalid_argument("synthesize: n_samples must be >= 1");
+  if (s.sampling.n_optimise < 0) throw std::invalid_argument("synthesize: n_optimise must be >= 0");
+  if (s.sampling.max_sampling_rounds < 1) throw std::invalid_argument("synthesize: max_sampling_rounds must be >= 1");
   if (collision.hand().name() != hand_->name() || collision.hand().link_names() != hand_->link_names()) {
     throw std::invalid_argument("synthesize: the collision expert was built for hand '" + collision.hand().name() +
                                 "', the model for '" + hand_->name() + "'");
@@ -430,13 +437,14 @@ SynthesisResult GraspSynthesizer::synthesize(const Eigen::Ref<const PoseArray>& 
   res.timing.query = seconds_since(t0);
 
   const auto t1 = std::chrono::steady_clock::now();
-  Candidates c = sample_passing(query, collision, experts, s, rng, res);
+  const Scoring scoring{query, collision, experts, s.sampling.clear_pregrasp};
+  Candidates c = sample_passing(scoring, s, rng, res);
   std::vector<int> order = rank_best_first(c.eval.total);
   res.timing.sampling = seconds_since(t1);
 
   const auto t2 = std::chrono::steady_clock::now();
-  const std::vector<bool> optimised = optimise_best(query, collision, experts, s, order, rng, c, res);
-  if (s.optimise) order = rank_best_first(c.eval.total);
+  const std::vector<bool> optimised = optimise_best(scoring, s, order, rng, c, res);
+  if (s.sampling.optimise) order = rank_best_first(c.eval.total);
   res.timing.optimisation = seconds_since(t2);
 
   for (const QueryDensity& q : query) res.contact_links.push_back(q.link_name);

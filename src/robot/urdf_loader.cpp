@@ -20,6 +20,7 @@
 #include <urdf_parser/urdf_parser.h>
 #include <assimp/Importer.hpp>
 
+#include "graspmix/core/se3.hpp"
 #include "graspmix/robot/hand.hpp"
 #include "robot/urdf_text.hpp"
 
@@ -51,11 +52,6 @@ std::string number(double v) {
   std::ostringstream os;
   os << v;
   return os.str();
-}
-
-/// Throws naming `where` unless v is finite.
-void require_finite(double v, const std::string& where) {
-  if (!std::isfinite(v)) throw std::invalid_argument(where + " is not finite (" + number(v) + ")");
 }
 
 /// An <origin> as a transform; `where` names its element for the error of a non-finite or too distant one.

@@ -3,6 +3,8 @@
 // convention, and pose composition and inversion, single and batched.
 //
 // Quaternions are [x, y, z, w]; a pose is [x, y, z, qx, qy, qz, qw].
+#include <string>
+
 #include <Eigen/Geometry>
 
 #include "graspmix/core/types.hpp"
@@ -35,5 +37,7 @@ PoseArray pose_inverse(const Eigen::Ref<const PoseArray>& a);
 
 /// Throws std::invalid_argument naming `what` if any entry of m is NaN or infinite.
 void require_finite(const Eigen::Ref<const RowMatrixXd>& m, const char* what);
+/// Throws std::invalid_argument naming `what` (and the value) unless v is finite.
+void require_finite(double v, const std::string& what);
 
 }  // namespace graspmix

@@ -31,6 +31,11 @@ struct ClearApproachSettings {
   double stand_off = 0.10;
   /// m: the path is checked at poses this far apart (> 0); keep it below every link's length along the axis.
   double step = 0.02;
+  /// m: on its way the open hand keeps this far from every point: whoever builds the `collision` expert the
+  /// path is checked against (scene synthesis does) makes the points balls of this radius. A cleaned cloud's
+  /// points are the centres of 3 mm voxels: a hand clear of them by the collision's 1 mm contact tolerance can
+  /// still sit 1-2 mm inside the surface they sample, which Bullet calls a start in collision (over 2 mm).
+  double clearance = 0.002;
   /// The approach axis in the wrist frame (the WSG 50's palm z, towards the fingertips); normalised.
   Eigen::Vector3d hand_axis = Eigen::Vector3d::UnitZ();
   std::string name = "clear_approach";  ///< the key of its term in a grasp's experts table

@@ -18,6 +18,7 @@
 
 #include <Eigen/Geometry>
 
+#include "graspmix/core/frame_jitter.hpp"
 #include "graspmix/density/gmm.hpp"
 #include "graspmix/density/kde.hpp"
 #include "graspmix/density/pose_density.hpp"
@@ -39,7 +40,7 @@ struct QuerySettings {
   /// pi * exp(-jitter_sharpness ((k1 - k2) / k1)^2) (Kopicki's rule): where k1 ~ k2 the first principal
   /// direction is arbitrary, so the frame's heading carries no information. Needs features [k1, k2].
   bool frame_jitter = true;
-  double jitter_sharpness = 100.0;
+  double jitter_sharpness = kKopickiJitterSharpness;
 };
 
 struct AnnealingSettings {
@@ -50,7 +51,8 @@ struct AnnealingSettings {
   double joint_step = 0.5;  ///< std of joint proposals at temperature 1, in units of the config model's kernel std
 };
 
-struct SynthesisSettings {
+/// How many grasps are drawn, kept and annealed.
+struct SamplingSettings {
   int n_samples = 200;  ///< grasps sampled and ranked
   int n_optimise = 10;  ///< the best this many are optimised
   bool optimise = true;
@@ -60,9 +62,14 @@ struct SynthesisSettings {
   /// Hard constraints act by rejection sampling (the paper's definition): batches of n_samples are drawn
   /// until n_samples grasps pass them all, for at most this many batches; the rest are then kept rejected.
   int max_sampling_rounds = 10;
+};
+
+/// Everything GraspSynthesizer::synthesize needs besides the object and the experts.
+struct SynthesisSettings {
+  SamplingSettings sampling;
   QuerySettings query;
   AnnealingSettings annealing;
-  std::uint64_t seed = 0;
+  std::uint64_t seed = 0;  ///< seeds everything random in synthesis
 };
 
 struct Grasp {
@@ -76,6 +83,8 @@ struct Grasp {
   Eigen::VectorXd log_contact;  ///< log Q_i per query link (SynthesisResult::contact_links)
   Eigen::VectorXd log_experts;  ///< log E_k per expert (SynthesisResult::expert_names)
   bool optimised = false;
+  /// log W, log C, the pre-grasp's log W, the log Q_i, the log E_k: the terms of SynthesisResult::term_names().
+  Eigen::VectorXd log_terms() const;
 };
 
 struct SynthesisTiming {
@@ -85,10 +94,20 @@ struct SynthesisTiming {
   double total = 0.0;
 };
 
+/// The names of the built-in terms of log L in a grasp's table of terms; no expert may take them. Each query
+/// link's Q_i is kContactTermPrefix + its link name.
+inline constexpr const char* kCollisionTerm = "collision";
+inline constexpr const char* kConfigTerm = "config";
+inline constexpr const char* kPregraspTerm = "pregrasp_clear";
+inline constexpr const char* kContactTermPrefix = "contact/";
+
 struct SynthesisResult {
   std::vector<Grasp> grasps;  ///< best first
   std::vector<std::string> contact_links;
   std::vector<std::string> expert_names;
+  /// Every term's name in the order of Grasp::log_terms(): collision, config, pregrasp_clear, each query
+  /// link's "contact/<link>", then the experts'.
+  std::vector<std::string> term_names() const;
   SynthesisTiming timing;
   int evaluations = 0;  ///< grasps scored in all
   int rejected = 0;     ///< samples a hard constraint rejected (rejection sampling)
@@ -99,6 +118,16 @@ struct QueryDensity {
   int link = -1;
   std::string link_name;
   std::shared_ptr<const PoseDensity> density;
+};
+
+/// What a grasp is scored against (eq:opt_criterion_extended): the query densities Q_i, the collision expert W,
+/// the other experts E_k in their order, and whether W is also charged at the pre-grasp (SamplingSettings::
+/// clear_pregrasp). It refers to them; they must outlive it.
+struct Scoring {
+  const std::vector<QueryDensity>& query;
+  const CollisionExpert& collision;
+  const std::vector<std::shared_ptr<const Expert>>& experts;
+  bool clear_pregrasp = true;
 };
 
 /// Log-likelihood terms of a batch of grasps.
@@ -126,14 +155,11 @@ class GraspSynthesizer {
   /// n grasps: wrists (n, 7) and joints (n, D).
   void sample_grasps(const std::vector<QueryDensity>& query, int n, std::mt19937_64& rng, PoseArray& wrists,
                      RowMatrixXd& joints) const;
-  Evaluation evaluate(const std::vector<QueryDensity>& query, const CollisionExpert& collision,
-                      const std::vector<std::shared_ptr<const Expert>>& experts,
-                      const Eigen::Ref<const PoseArray>& wrists, const Eigen::Ref<const RowMatrixXd>& joints,
-                      bool clear_pregrasp = true) const;
+  Evaluation evaluate(const Scoring& scoring, const Eigen::Ref<const PoseArray>& wrists,
+                      const Eigen::Ref<const RowMatrixXd>& joints) const;
   /// Anneals every row of (wrists, joints) in place; returns the evaluations spent.
-  int anneal(const std::vector<QueryDensity>& query, const CollisionExpert& collision,
-             const std::vector<std::shared_ptr<const Expert>>& experts, const AnnealingSettings& settings,
-             std::mt19937_64& rng, PoseArray& wrists, RowMatrixXd& joints, bool clear_pregrasp = true) const;
+  int anneal(const Scoring& scoring, const AnnealingSettings& settings, std::mt19937_64& rng, PoseArray& wrists,
+             RowMatrixXd& joints) const;
 
   const Hand& hand() const { return *hand_; }
   const std::vector<ContactModel>& contact_models() const { return contact_models_; }
@@ -150,14 +176,11 @@ class GraspSynthesizer {
   };
   /// Rejection sampling: batches of settings.n_samples until that many pass the hard experts (at most
   /// max_sampling_rounds batches; then rejected samples fill up). Counts evaluations and rejections.
-  Candidates sample_passing(const std::vector<QueryDensity>& query, const CollisionExpert& collision,
-                            const std::vector<std::shared_ptr<const Expert>>& experts, const SynthesisSettings& s,
-                            std::mt19937_64& rng, SynthesisResult& res) const;
+  Candidates sample_passing(const Scoring& scoring, const SynthesisSettings& s, std::mt19937_64& rng,
+                            SynthesisResult& res) const;
   /// Anneals the best n_optimise candidates in place (rows `order[0..]`), re-scoring only those.
-  std::vector<bool> optimise_best(const std::vector<QueryDensity>& query, const CollisionExpert& collision,
-                                  const std::vector<std::shared_ptr<const Expert>>& experts, const SynthesisSettings& s,
-                                  const std::vector<int>& order, std::mt19937_64& rng, Candidates& c,
-                                  SynthesisResult& res) const;
+  std::vector<bool> optimise_best(const Scoring& scoring, const SynthesisSettings& s, const std::vector<int>& order,
+                                  std::mt19937_64& rng, Candidates& c, SynthesisResult& res) const;
 
   std::shared_ptr<const Hand> hand_;
   std::vector<ContactModel> contact_models_;

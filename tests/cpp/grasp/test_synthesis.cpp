@@ -97,8 +97,8 @@ Fixture make_fixture() {
 
 SynthesisSettings small_settings(std::uint64_t seed) {
   SynthesisSettings s;
-  s.n_samples = 60;
-  s.n_optimise = 5;
+  s.sampling.n_samples = 60;
+  s.sampling.n_optimise = 5;
   s.annealing.iterations = 30;
   s.query.n_samples = 300;
   s.seed = seed;
@@ -150,11 +150,13 @@ TEST(Synthesis, AnnealingNeverMakesAGraspWorse) {
   PoseArray w;
   RowMatrixXd q;
   f.synth->sample_grasps(query, 12, rng, w, q);
-  const Eigen::VectorXd before = f.synth->evaluate(query, *f.collision, {}, w, q).total;
+  const std::vector<std::shared_ptr<const Expert>> none;
+  const Scoring scoring{query, *f.collision, none};
+  const Eigen::VectorXd before = f.synth->evaluate(scoring, w, q).total;
   AnnealingSettings s;
   s.iterations = 40;
-  f.synth->anneal(query, *f.collision, {}, s, rng, w, q);
-  const Eigen::VectorXd after = f.synth->evaluate(query, *f.collision, {}, w, q).total;
+  f.synth->anneal(scoring, s, rng, w, q);
+  const Eigen::VectorXd after = f.synth->evaluate(scoring, w, q).total;
   for (Eigen::Index i = 0; i < before.size(); ++i) EXPECT_GE(after[i], before[i]) << i;
   EXPECT_GT(after.sum(), before.sum());
 }
@@ -166,12 +168,14 @@ TEST(Synthesis, SampledLinkPosesFollowTheQueryDensityThroughFk) {
   PoseArray w;
   RowMatrixXd q;
   f.synth->sample_grasps(query, 200, rng, w, q);
+  const std::vector<std::shared_ptr<const Expert>> none;
+  const Scoring unclear{query, *f.collision, none, false};
   // Each grasp puts one contact link where its query density has mass: the best link term of a
   // sampled grasp is far above that of grasps moved 20 cm away.
-  const Evaluation e = f.synth->evaluate(query, *f.collision, {}, w, q, false);
+  const Evaluation e = f.synth->evaluate(unclear, w, q);
   PoseArray far = w;
   far.col(0).array() += 0.2;
-  const Evaluation g = f.synth->evaluate(query, *f.collision, {}, far, q, false);
+  const Evaluation g = f.synth->evaluate(unclear, far, q);
   EXPECT_GT(e.log_contact.rowwise().maxCoeff().mean(), g.log_contact.rowwise().maxCoeff().mean() + 20.0);
 }
 

@@ -13,8 +13,8 @@ import time
 
 import graspmix
 import numpy as np
+from graspmix import SynthesisOptions
 from graspmix.model.experts import collision_expert, occupancy_map
-from graspmix.model.settings import SynthesisOptions
 from graspmix.sim.acquisition import AcquisitionSettings, Camera, acquire
 
 
@@ -29,13 +29,13 @@ def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--repeats", type=int, default=5)
     p.add_argument("--hands", type=int, default=2000)
-    p.add_argument("--resolution", type=float, default=SynthesisOptions.occupancy_resolution)
+    p.add_argument("--resolution", type=float, default=SynthesisOptions().occupancy.resolution)
     p.add_argument("--object", default="objects/mug.urdf")
     args = p.parse_args()
     cam = Camera(eye=(0.0, -0.55, 0.55), width=640, height=480)
     acq = acquire(args.object, noise=False, seed=0, settings=AcquisitionSettings(cameras=[cam], keep="scene"))
     scene = graspmix.segment_scene(acq.points, acq.viewpoints)
-    opts = SynthesisOptions(occupancy_resolution=args.resolution)
+    opts = SynthesisOptions().updated({"occupancy.resolution": args.resolution})
     hand = graspmix.GraspModel.load(graspmix.default_model_path()).hand
     build = []
     for _ in range(args.repeats):

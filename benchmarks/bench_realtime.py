@@ -7,7 +7,7 @@ and graspmix.sim.scene_camera.acquire_scene, as `graspmix_cli scene` + `graspmix
 seeded, the depth noise model on unless --no-noise): single-object scenes (objects of
 data/objects/clutter_dev.txt) seen by the ring of four cameras and by the one scene camera, several-object
 scenes (5 objects, one view), and the bundled data/mug.pcd. In one process, for each method,
-GraspModel.synthesize(cloud, viewpoints=..., target="largest") is called once to warm up and then --repeats
+GraspModel.synthesize(cloud, options, viewpoints=..., target="largest") is called once to warm up and then --repeats
 times; printed per scene kind: the median and 90th percentile of every stage of GraspSet.timing and of the
 whole call (time.perf_counter around it), and the KDE/GMM ratio of the medians.
 
@@ -110,15 +110,16 @@ def make_clouds(args) -> dict[str, list[tuple[str, np.ndarray, np.ndarray]]]:
 # -- timing
 
 
-def time_synthesis(model, points, viewpoints, repeats: int, seed: int, **kw) -> tuple[dict, object]:
+def time_synthesis(model, points, viewpoints, repeats: int, seed: int, **changes) -> tuple[dict, object]:
     """{stage: [seconds per repeat]} (GraspSet.timing's stages and "whole", the perf_counter around the call)
     after one warm-up call; and the last GraspSet."""
-    model.synthesize(points, viewpoints=viewpoints, target="largest", seed=seed, **kw)
+    opts = graspmix.SynthesisOptions().updated({"seed": seed, **changes})
+    model.synthesize(points, opts, viewpoints=viewpoints, target="largest")
     times: dict[str, list[float]] = {}
     grasps = None
     for _ in range(repeats):
         t0 = time.perf_counter()
-        grasps = model.synthesize(points, viewpoints=viewpoints, target="largest", seed=seed, **kw)
+        grasps = model.synthesize(points, opts, viewpoints=viewpoints, target="largest")
         whole = time.perf_counter() - t0
         timing = dict(grasps.timing)
         if "features" in timing and "segmentation" in timing:
@@ -287,7 +288,10 @@ def bench_scaling(model, args) -> None:
     print_scaling("raw points", raw, rows, "raw pt")
     samples = SAMPLES[:2] if args.quick else SAMPLES
     points, viewpoints = scene_points, scene_viewpoints
-    rows = [time_synthesis(model, points, viewpoints, args.repeats, args.seed, n_samples=n)[0] for n in samples]
+    rows = [
+        time_synthesis(model, points, viewpoints, args.repeats, args.seed, **{"sampling.n_samples": n})[0]
+        for n in samples
+    ]
     print(f"\n## scaling with n_samples (GMM, the same scene, {len(points)} raw points; n_optimise fixed)")
     print_scaling("n_samples", list(samples), rows, "sample")
 

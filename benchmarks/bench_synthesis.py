@@ -25,12 +25,17 @@ def main():
     args = ap.parse_args()
     clouds = {"mug (scene)": (graspmix.data_path("mug.pcd"), {})}
     for name in OBJECTS:
-        clouds[name] = (acquire(name).points, {"remove_plane": False, "plane": [0, 0, 1, 0]})
+        clouds[name] = (acquire(name).points, {"segmentation.find_plane": False, "plane": [0, 0, 1, 0]})
     models = {m: graspmix.GraspModel.load(graspmix.default_model_path(m)) for m in ("gmm", "kde")}
     per_method = {m: {s: [] for s in STAGES + ["features", "points"]} for m in models}
     for name, (cloud, kw) in clouds.items():
         for method, model in models.items():
-            runs = [model.synthesize(cloud, seed=r, **kw) for r in range(args.repeats)]
+            plane = kw.get("plane")
+            changes = {k: v for k, v in kw.items() if k != "plane"}
+            runs = [
+                model.synthesize(cloud, graspmix.SynthesisOptions().updated({**changes, "seed": r}), plane=plane)
+                for r in range(args.repeats)
+            ]
             for s in STAGES + ["features"]:
                 per_method[method][s].append(statistics.median(g.timing[s] for g in runs))
             per_method[method]["points"].append(len(runs[0].surface.points))

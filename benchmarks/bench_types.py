@@ -36,14 +36,15 @@ def main():
     args = ap.parse_args()
     clouds = {
         "mug scene": (graspmix.data_path("mug.pcd"), {}),
-        "box demo": (graspmix.data_path("demos", "box.pcd"), {"remove_plane": False}),
-        "mug demo": (graspmix.data_path("demos", "mug_side.pcd"), {"remove_plane": False}),
+        "box demo": (graspmix.data_path("demos", "box.pcd"), {"segmentation.find_plane": False}),
+        "mug demo": (graspmix.data_path("demos", "mug_side.pcd"), {"segmentation.find_plane": False}),
     }
     per = {}  # (model, cloud) -> median over repeats of the stages' sum
     built = models()
     for n, (model, _) in built.items():
         for name, (cloud, kw) in clouds.items():
-            runs = [model.synthesize(cloud, seed=r, **kw).timing for r in range(args.repeats)]
+            options = [graspmix.SynthesisOptions().updated({**kw, "seed": r}) for r in range(args.repeats)]
+            runs = [model.synthesize(cloud, o).timing for o in options]
             per[n, name] = statistics.median(sum(t[s] for s in STAGES) for t in runs)
     print(f"{'model':<16} {'types':>5} {'stages (ms)':>12} {'/ sum of its types alone':>25}")
     for n, (model, (boxes, mugs)) in built.items():

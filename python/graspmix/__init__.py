@@ -27,8 +27,12 @@ import numpy as _np  # noqa: E402
 
 from . import _core, io, model, perception  # noqa: E402
 from ._core import (
+    # the parts of SynthesisOptions
+    AnnealingSettings,
     # contact models, configuration model, experts, synthesis
     AxisAlignmentExpert,
+    AxisAlignmentSettings,
+    ClearApproachSettings,
     # object representation
     CloudData,
     # hands and the collision expert
@@ -36,6 +40,7 @@ from ._core import (
     CollisionExpert,
     CollisionFreeExpert,
     CollisionResult,
+    CollisionSettings,
     ConfigModel,
     ConfigModelSettings,
     ContactModel,
@@ -49,10 +54,15 @@ from ._core import (
     GraspSynthesizer,
     Hand,
     KinematicFeasibilityExpert,
+    KinematicFeasibilitySettings,
+    OccupancySettings,
     PoseDensity,
     PoseKDE,
     PoseMixture,
+    QuerySettings,
+    SamplingSettings,
     SceneResult,
+    SegmentationSettings,
     # simulation
     SimObject,
     SimResult,
@@ -75,6 +85,7 @@ from .model import (
     Grasp,
     GraspModel,
     GraspSet,
+    SynthesisOptions,
     default_model_path,
     describe_hand,
     expert,

@@ -7,6 +7,7 @@ from pathlib import Path
 
 from .common import input_path, int_in, output_folder, seed, split_list
 from .experiment_commands import run_options
+from .synthesis_flags import add_synthesis_arguments, synthesis_options
 
 
 def _protocol(args):
@@ -24,6 +25,7 @@ def _protocol(args):
         closing=args.closing,
         max_attempts=ClutterProtocol.max_attempts if args.max_attempts is None else args.max_attempts,
         seed=args.seed,
+        synthesis=synthesis_options(args),
     )
 
 
@@ -80,6 +82,7 @@ def add_parsers(sub) -> None:
         help="attempts per scene at most (default: the protocol's, -1: objects + 2; 0: no cap, VGN's rules alone)",
     )
     s.add_argument("--seed", type=seed, default=0, help="base of every derived seed (default 0)")
+    add_synthesis_arguments(s, seed=False)
     s.add_argument("--jobs", type=int_in(1, 1024), default=1, help="parallel worker processes (or Ray tasks)")
     s.add_argument("--executor", choices=["local", "ray"], default="local", help="local processes or Ray")
     s.add_argument("--ray-address", help="address of a running Ray cluster (default: start a local one)")

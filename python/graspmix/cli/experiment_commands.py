@@ -8,9 +8,9 @@ from pathlib import Path
 
 from ..io import SUMMARY_FORMAT, read_document, read_objects_file, test_objects
 from ..io.checks import MAX_SAMPLES
-from ..model.experts import COLLISION_MODELS
-from ..model.settings import METHODS, SynthesisOptions
+from ..model.settings import METHODS
 from .common import CliError, float_in, input_path, int_in, output_folder, seed, split_list
+from .synthesis_flags import add_synthesis_arguments, synthesis_options
 
 
 def _protocol(args):
@@ -21,7 +21,7 @@ def _protocol(args):
     objects = read_objects_file(args.objects) if args.objects else None
     if args.jobs < 1:
         raise CliError(f"--jobs must be at least 1, got {args.jobs}")
-    return Protocol.preset(
+    protocol = Protocol.preset(
         args.preset,
         objects=objects,
         trials=args.trials,
@@ -30,18 +30,13 @@ def _protocol(args):
         seed=args.seed,
         closing=args.closing,
         models=_models(args.model or [], methods),
-        query_components=args.query_components,
         pixel_noise_std=args.pixel_noise,
         depth_noise_std=args.depth_noise,
         views=args.views,
         cloud=args.cloud,
-        collision=args.collision,
-        clear_approach=args.clear_approach,
-        stand_off=args.stand_off,
-        approach_clearance=args.approach_clearance,
-        contact_quality=args.contact_quality,
-        friction=args.friction,
     )
+    protocol.synthesis = synthesis_options(args, protocol.synthesis)
+    return protocol
 
 
 def _models(paths: list, methods) -> dict | None:
@@ -167,8 +162,8 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     return 0
 
 
-def _add_synthesis_options(s) -> None:
-    """The protocol's cameras, clouds and synthesis beyond the paper's (default: the preset's)."""
+def _add_view_options(s) -> None:
+    """The protocol's cameras and what an acquisition keeps (default: the preset's)."""
     s.add_argument(
         "--views", type=int_in(1, 64), help="cameras: a ring of n (the paper's 4), or 1 above the table (default 4)"
     )
@@ -177,28 +172,6 @@ def _add_synthesis_options(s) -> None:
         choices=["object", "scene"],
         help="what an acquisition keeps: the object's pixels, table cropped (the paper's), or every pixel "
         "(default: the preset's)",
-    )
-    s.add_argument(
-        "--collision", choices=list(COLLISION_MODELS), help="the collision expert's model (default: the preset's)"
-    )
-    s.add_argument(
-        "--clear-approach",
-        action=argparse.BooleanOptionalAction,
-        default=None,
-        help="the hard clear-approach expert on or off (default: the preset's)",
-    )
-    s.add_argument("--stand-off", type=float_in(0.0), help="m: the clear approach's stand-off (default: the preset's)")
-    s.add_argument(
-        "--approach-clearance", type=float_in(0.0), help="m: the clear approach's clearance (default: the preset's)"
-    )
-    s.add_argument(
-        "--contact-quality",
-        action=argparse.BooleanOptionalAction,
-        default=None,
-        help="the soft contact-quality expert on or off (default: the preset's)",
-    )
-    s.add_argument(
-        "--friction", type=float_in(gt=0.0), help="the contact-quality test's friction (default: the preset's)"
     )
 
 
@@ -227,11 +200,6 @@ def _add_run_options(s) -> None:
         "give it twice for both methods",
     )
     s.add_argument(
-        "--query-components",
-        type=int_in(1, MAX_SAMPLES),
-        help=f"K_Q of GMM's query densities (default {SynthesisOptions.query_components})",
-    )
-    s.add_argument(
         "--pixel-noise",
         type=float_in(0.0),
         help="sigma_p of the noise model, pixels (default: the paper's; 0: depth noise only)",
@@ -241,7 +209,8 @@ def _add_run_options(s) -> None:
         type=float_in(0.0),
         help="sigma_d of the noise model, m (default: the paper's; 0: lateral shift only)",
     )
-    _add_synthesis_options(s)
+    _add_view_options(s)
+    add_synthesis_arguments(s, base="the preset's", seed=False)
     s.add_argument("--seed", type=seed, default=None, help="base of every derived seed (default 0)")
     s.add_argument(
         "--closing",
@@ -300,19 +269,11 @@ def add_parsers(sub) -> None:
     s.add_argument("run", type=input_path, help="the experiment folder")
     s.set_defaults(func=cmd_report)
 
-    o = SynthesisOptions
     s = sub.add_parser("benchmark", help="the paper's runtime comparison: medians over objects per stage, GMM vs KDE")
     s.add_argument("--objects", type=input_path, help="objects file (default: the 60 test objects)")
     s.add_argument("--limit", type=int_in(1), help="only the first N objects")
-    s.add_argument(
-        "--samples", type=int_in(1, MAX_SAMPLES), default=o.n_samples, help=f"grasps sampled per object ({o.n_samples})"
-    )
-    s.add_argument(
-        "--optimise-top",
-        type=int_in(1, MAX_SAMPLES),
-        default=o.n_optimise,
-        help=f"best grasps annealed ({o.n_optimise})",
-    )
+    s.add_argument("--samples", type=int_in(1, MAX_SAMPLES), help="grasps sampled per object (default: the preset's)")
+    s.add_argument("--optimise-top", type=int_in(1, MAX_SAMPLES), help="best grasps annealed (default: the preset's)")
     s.add_argument("--seed", type=seed, default=0)
     s.add_argument(
         "--preset",

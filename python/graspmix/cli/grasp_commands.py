@@ -10,12 +10,12 @@ from pathlib import Path
 
 from .. import _core
 from ..io import data_path, load_points
-from ..io.checks import MAX_COMPONENTS, MAX_ITERATIONS, MAX_SAMPLES
+from ..io.checks import MAX_COMPONENTS, MAX_ITERATIONS
 from ..model import GraspModel, default_model_path, learn
-from ..model.experts import COLLISION_MODELS
-from ..model.settings import METHODS, LearnSettings, SynthesisOptions
+from ..model.settings import METHODS, LearnSettings
 from ..perception import parse_target
 from .common import CliError, float_in, input_path, int_in, output_file, parse_floats, parse_joints, seed
+from .synthesis_flags import add_synthesis_arguments, list_settings, synthesis_options
 from .views import add_view_arguments, view_inputs
 
 
@@ -139,28 +139,21 @@ def _model_for(args) -> tuple[GraspModel, Path]:
 
 
 def cmd_synthesize(args: argparse.Namespace) -> int:
+    if args.list_settings:
+        print(list_settings())
+        return 0
+    if not args.cloud:
+        raise CliError("--cloud is required (the scene or object cloud to grasp)")
     model, model_path = _model_for(args)
     axis = parse_floats(args.approach_axis, 3, "--approach-axis") if args.approach_axis else None
     points, viewpoints, plane = view_inputs(args, load_points(args.cloud))
     grasps = model.synthesize(
         points,
+        synthesis_options(args),
         viewpoints=viewpoints,
         plane=plane,
         target=args.target,
-        n_samples=args.samples,
-        n_optimise=args.optimise_top,
-        optimise=not args.no_optimise,
-        seed=args.seed,
-        remove_plane=not args.no_plane,
         approach_axis=axis,
-        query_samples=args.query_samples,
-        query_components=args.query_components,
-        collision=args.collision,
-        clear_approach=not args.no_clear_approach,
-        stand_off=args.stand_off,
-        approach_clearance=args.approach_clearance,
-        contact_quality=not args.no_contact_quality,
-        friction=args.friction,
         types=args.types,
     )
     grasps.cloud = args.cloud
@@ -301,52 +294,9 @@ def _target(text: str) -> str:
     return text
 
 
-def _add_expert_options(s) -> None:
-    """The collision model and the experts beyond the paper's: on by default, each with its switch."""
-    o = SynthesisOptions
-    s.add_argument(
-        "--collision",
-        choices=list(COLLISION_MODELS),
-        default=o.collision,
-        help="the collision expert: surface (the cloud's points) or occupancy (what the cameras saw free; unseen "
-        f"space is solid); default {o.collision}",
-    )
-    s.add_argument(
-        "--no-clear-approach",
-        action="store_true",
-        help="drop the hard clear-approach expert (the open hand reaches its pre-grasp along its approach axis "
-        "from the stand-off without touching anything)",
-    )
-    s.add_argument(
-        "--stand-off",
-        type=float_in(0.0),
-        default=o.stand_off,
-        help=f"m: where the clear approach starts, back along the approach axis ({o.stand_off:g})",
-    )
-    s.add_argument(
-        "--approach-clearance",
-        type=float_in(0.0),
-        default=o.approach_clearance,
-        help=f"m: how far the open hand keeps from every point on its approach ({o.approach_clearance:g})",
-    )
-    s.add_argument(
-        "--no-contact-quality",
-        action="store_true",
-        help="drop the soft contact-quality expert (the fingers close from the pre-grasp onto the object; the "
-        "contacts are scored by the antipodal friction-cone test)",
-    )
-    s.add_argument(
-        "--friction",
-        type=float_in(gt=0.0),
-        default=o.friction,
-        help=f"Coulomb friction coefficient of the contact-quality test ({o.friction:g})",
-    )
-
-
 def _add_synthesize(sub) -> None:
-    o = SynthesisOptions
     s = sub.add_parser("synthesize", help="synthesise, rank and optimise grasps on a cloud")
-    s.add_argument("--cloud", type=input_path, required=True, help="the scene or object cloud (.pcd, .ply, .npy)")
+    s.add_argument("--cloud", type=input_path, help="the scene or object cloud (.pcd, .ply, .npy); required")
     s.add_argument(
         "--model",
         type=input_path,
@@ -356,32 +306,8 @@ def _add_synthesize(sub) -> None:
     s.add_argument("--hand", type=input_path, help="hand URDF; must be the model's hand")
     s.add_argument("--types", help="comma-separated grasp types of the model to sample (default: all)")
     s.add_argument(
-        "--samples", type=int_in(1, MAX_SAMPLES), default=o.n_samples, help=f"grasps sampled and ranked ({o.n_samples})"
-    )
-    s.add_argument(
-        "--optimise-top",
-        type=int_in(0, MAX_SAMPLES),
-        default=o.n_optimise,
-        help=f"best grasps optimised by annealing ({o.n_optimise})",
-    )
-    s.add_argument("--no-optimise", action="store_true", help="rank the samples only")
-    s.add_argument(
-        "--query-samples",
-        type=int_in(1, MAX_SAMPLES),
-        default=o.query_samples,
-        help="samples per link for the query densities",
-    )
-    s.add_argument(
-        "--query-components",
-        type=int_in(1, MAX_SAMPLES),
-        default=o.query_components,
-        help=f"K_Q of GMM's query densities ({o.query_components})",
-    )
-    s.add_argument(
         "--approach-axis", help="prefer wrists approaching along this world axis, e.g. 0,0,-1 for top grasps"
     )
-    s.add_argument("--no-plane", action="store_true", help="the cloud is objects only: search for no support plane")
-    _add_expert_options(s)
     s.add_argument(
         "--target",
         type=_target,
@@ -390,7 +316,8 @@ def _add_synthesize(sub) -> None:
         "point:x,y,z (the object nearest the point), largest, nearest (to the camera)",
     )
     add_view_arguments(s)
-    s.add_argument("--seed", type=seed, default=o.seed)
+    add_synthesis_arguments(s)
+    s.add_argument("--list-settings", action="store_true", help="print every synthesis setting (--set) and exit")
     s.add_argument("--top", type=int_in(0), default=5, help="grasps to print")
     s.add_argument("--out", type=output_file, default="grasps.json", help="grasps file (default grasps.json)")
     s.add_argument("--png", type=output_file, help="draw the cloud and the best grasps' hands")

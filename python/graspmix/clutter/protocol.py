@@ -20,10 +20,11 @@ from ..experiment.protocol import CLOSING as EXPERIMENT_CLOSING
 from ..experiment.protocol import derive_seed
 from ..experiment.runner import RunFolder
 from ..io import CLUTTER_FORMAT, data_path, read_document, read_object_list, sha256_file
-from ..io.checks import MAX_SAMPLES, check_input_file, check_int, check_seed, quote
+from ..io.checks import check_input_file, check_int, check_seed, quote
 from ..io.paths import PACKAGE_PREFIX, resolve_path
 from ..model import default_model_path
-from ..model.settings import METHODS, SynthesisOptions
+from ..model.options import SynthesisOptions
+from ..model.settings import METHODS
 
 MODES = ("pile", "packed")
 PLANNERS = (*METHODS, "topdown")  # the methods' models, and the top-down baseline
@@ -54,8 +55,7 @@ class ClutterProtocol:
     methods: list[str] = field(default_factory=lambda: ["gmm"])
     views: int = 1  # cameras per observation
     noise: bool = False  # the depth noise model
-    n_samples: int = SynthesisOptions.n_samples
-    n_optimise: int = SynthesisOptions.n_optimise
+    synthesis: SynthesisOptions = field(default_factory=SynthesisOptions)  # every plan's (seeded per attempt)
     closing: str = "full"  # how executed grasps close (the experiment's CLOSING)
     max_attempts: int = -1  # per round; -1: objects + 2; 0: VGN's rules alone (no cap)
     seed: int = 0
@@ -82,8 +82,8 @@ class ClutterProtocol:
         check_int(self.objects, "objects", 1, 50)
         check_int(self.scenes, "scenes", 1, 1_000_000)
         check_int(self.views, "views", 1, 64)
-        check_int(self.n_samples, "n_samples", 1, MAX_SAMPLES)
-        check_int(self.n_optimise, "n_optimise", 1, MAX_SAMPLES)
+        if not isinstance(self.synthesis, SynthesisOptions):
+            raise ValueError(f"synthesis must be SynthesisOptions, got {type(self.synthesis).__name__}")
         check_int(self.max_attempts, "max_attempts", -1, 10_000)
         check_seed(self.seed)
         if not isinstance(self.noise, bool):
@@ -118,7 +118,8 @@ class ClutterProtocol:
 
     def to_json(self) -> dict:
         """clutter.json's "protocol": files identified by content (sha256) as well as by name."""
-        d = dataclasses.asdict(self)
+        d = {f: getattr(self, f) for f in PROTOCOL_FIELDS}
+        d["synthesis"] = self.synthesis.to_dict()
         d["object_list_sha256"] = sha256_file(self.object_list_path)
         d["models"] = {
             m: {"file": self.model_path(m).name, "sha256": sha256_file(self.model_path(m))}
@@ -141,11 +142,12 @@ PROTOCOL_FIELDS = [f.name for f in dataclasses.fields(ClutterProtocol)]
 
 
 def clutter_protocol_from_json(d: dict) -> ClutterProtocol:
-    return ClutterProtocol(**{k: d[k] for k in PROTOCOL_FIELDS if k in d and k != "models"})
+    kw = {k: d[k] for k in PROTOCOL_FIELDS if k in d and k not in ("models", "synthesis")}
+    return ClutterProtocol(**kw, synthesis=SynthesisOptions.from_dict(d["synthesis"]))
 
 
 def load_clutter_protocol(run_dir) -> dict:
-    """A run folder's clutter.json (format graspmix.clutter/1), checked."""
+    """A run folder's clutter.json (format graspmix.clutter/2), checked."""
     path = Path(run_dir) / CLUTTER_NAME
     if not path.is_file():
         raise ValueError(f"{run_dir}: no {CLUTTER_NAME} (not a clutter-removal run folder)")

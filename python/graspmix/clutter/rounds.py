@@ -124,14 +124,7 @@ def _model_planner(p: ClutterProtocol, model_path: str) -> Callable:
     model = cached_model(model_path)
 
     def plan(obs, seed):
-        grasps = model.synthesize(
-            obs.points,
-            viewpoints=obs.viewpoints,
-            target="all",
-            n_samples=p.n_samples,
-            n_optimise=p.n_optimise,
-            seed=seed,
-        )
+        grasps = model.synthesize(obs.points, p.synthesis.updated({"seed": seed}), viewpoints=obs.viewpoints)
         if len(grasps) == 0:
             raise ValueError("synthesis returned no grasps")
         best, timing = grasps.best(), grasps.timing

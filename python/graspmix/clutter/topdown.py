@@ -24,7 +24,7 @@ import numpy as np
 
 from ..io import as_points
 from ..model.grasps import Grasp
-from ..model.settings import SynthesisOptions
+from ..model.options import TABLE_CLEARANCE
 from ..sim.execution import load_hand, top_grasp
 
 GRASP_DEPTH = 0.04  # m: fingertips this far below the object's top (about half the WSG 50's 73 mm fingers)
@@ -76,7 +76,7 @@ def narrowest_axis(xy: np.ndarray) -> tuple[np.ndarray, float]:
     return normals[i], float(widths[i])
 
 
-def topdown_grasp(points, plane=None, hand=None, table_clearance: float = SynthesisOptions.table_clearance) -> Grasp:
+def topdown_grasp(points, plane=None, hand=None, table_clearance: float = TABLE_CLEARANCE) -> Grasp:
     """A top-down grasp of the object whose (n, 3) points are given (world frame, z up). plane: the table
     [a, b, c, d] (default z = 0). The grasp's `object` is left for the caller."""
     h = check_hand(hand)
@@ -94,7 +94,7 @@ def topdown_grasp(points, plane=None, hand=None, table_clearance: float = Synthe
     return Grasp.from_dict(g)
 
 
-def plan_topdown(scene, hand=None, table_clearance: float = SynthesisOptions.table_clearance) -> tuple[Grasp, int]:
+def plan_topdown(scene, hand=None, table_clearance: float = TABLE_CLEARANCE) -> tuple[Grasp, int]:
     """(grasp, object index) for the highest object of a segmented scene (graspmix.segment_scene's Scene:
     .objects with .index and .points, .plane). ValueError if the scene has no object."""
     objects = list(scene.objects)

@@ -39,32 +39,12 @@ def crop_above_plane(min_height: float) -> Callable:
     return cleanup
 
 
-def synthesis_keywords(p: Protocol, seed: int, optimise: bool) -> dict:
-    """GraspModel.synthesize's keywords for one attempt but the cloud and its viewpoints: the protocol's
-    settings, the known support plane."""
-    return dict(
-        n_samples=p.n_samples,
-        n_optimise=p.n_optimise,
-        optimise=optimise,
-        seed=seed,
-        remove_plane=False,
-        plane=list(SUPPORT_PLANE),
-        query_samples=p.query_samples,
-        query_components=p.query_components,
-        table_clearance=p.min_height,
-        collision=p.collision,
-        clear_approach=p.clear_approach,
-        stand_off=p.stand_off,
-        approach_clearance=p.approach_clearance,
-        contact_quality=p.contact_quality,
-        friction=p.friction,
-        annealing={"iterations": p.annealing_iterations, "initial_temperature": p.initial_temperature},
+def synthesize_on(model: GraspModel, acq: Acquisition, p: Protocol, obj: str, trial: int, condition: str):
+    """The synthesis of one attempt on an acquired cloud: the protocol's options for the attempt
+    (Protocol.attempt_options), the known support plane, the cameras' positions."""
+    return model.synthesize(
+        acq.points, p.attempt_options(obj, trial, condition), viewpoints=acq.viewpoints, plane=list(SUPPORT_PLANE)
     )
-
-
-def synthesize_on(model: GraspModel, acq: Acquisition, p: Protocol, seed: int, optimise: bool):
-    """The synthesis of one attempt on an acquired cloud (the known support plane, the cameras' positions)."""
-    return model.synthesize(acq.points, viewpoints=acq.viewpoints, **synthesis_keywords(p, seed, optimise))
 
 
 def acquire_unit(p: Protocol, obj: str, trial: int, noise: bool) -> Acquisition:
@@ -75,7 +55,7 @@ def acquire_unit(p: Protocol, obj: str, trial: int, noise: bool) -> Acquisition:
         noise=noise,
         seed=p.acquisition_seed(obj, trial),
         settings=p.acquisition_settings(),
-        postprocess=crop_above_plane(p.min_height) if p.cloud == "object" else None,
+        postprocess=crop_above_plane(p.synthesis.segmentation.table_clearance) if p.cloud == "object" else None,
     )
 
 
@@ -162,7 +142,7 @@ def run_attempt(
     }
     t1 = time.perf_counter()
     try:
-        grasps = synthesize_on(model, acq, p, seed, c.optimise)
+        grasps = synthesize_on(model, acq, p, obj, trial, cond)
         if len(grasps) == 0:
             raise ValueError("synthesis returned no grasps")
     except (ValueError, RuntimeError) as e:

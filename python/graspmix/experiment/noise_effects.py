@@ -24,9 +24,9 @@ from .. import _core
 from ..io.checks import check_float, check_int, quote
 from ..model import GraspModel
 from ..model.demonstration import Demonstration
+from ..model.options import SynthesisOptions
 from ..model.scene_synthesis import object_surface, segment_query
-from ..model.settings import SynthesisOptions
-from .attempt import acquire_unit, synthesis_keywords
+from .attempt import acquire_unit
 from .protocol import SUPPORT_PLANE, Protocol, derive_seed
 
 _FULL = Protocol  # its defaults: the paper's sigma_p (px) and sigma_d (m), read from AcquisitionSettings
@@ -143,12 +143,6 @@ def acquire_setting(p: Protocol, obj: str, trial: int, setting: str, stds: tuple
     if stds is not None:
         p = dataclasses.replace(p, pixel_noise_std=stds[0], depth_noise_std=stds[1])
     return acquire_unit(p, obj, trial, noise=stds is not None)
-
-
-def synthesis_options(p: Protocol, seed: int) -> SynthesisOptions:
-    """The options experiment.attempt.synthesize_on gives GraspModel.synthesize (attempt.synthesis_keywords)."""
-    fields = {f.name for f in dataclasses.fields(SynthesisOptions)}
-    return SynthesisOptions(**{k: v for k, v in synthesis_keywords(p, seed, True).items() if k in fields})
 
 
 @dataclass
@@ -298,7 +292,7 @@ def unit_measures(p: Protocol, models: dict, obj: str, trial: int, setting: str,
     every MEASURES value; adds its features and jitter to hist."""
     acq = acquire_setting(p, obj, trial, setting)
     seed = p.synthesis_seed(obj, trial, SEED_CONDITION[setting])
-    opts = synthesis_options(p, seed)
+    opts = p.attempt_options(obj, trial, SEED_CONDITION[setting])
     row = {"object": obj, "trial": trial, "setting": setting, "synthesis_seed": seed, "methods": {}}
     surfaces = {}
     for method, model in models.items():
@@ -307,7 +301,7 @@ def unit_measures(p: Protocol, models: dict, obj: str, trial: int, setting: str,
         if key not in surfaces:
             surfaces[key] = query_surface(model, acq, opts)
         qs = surfaces[key]
-        settings = model._synthesis_settings(opts, None)
+        settings = model._synthesizer_settings(opts)
         spread_seed = derive_seed(p.seed, "noise_effects", obj, trial, setting, method)
         per_link = model_measures(model, qs.surface, settings, seed, spread_seed)
         for angles, w in per_link.pop("_jitter").values():

@@ -8,17 +8,15 @@ import hashlib
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .. import _core
 from ..io import PROTOCOL_FORMAT, read_document, resolve_object, sha256_file, test_objects
-from ..io.checks import MAX_ITERATIONS, MAX_SAMPLES, check_float, check_int, check_seed, quote
+from ..io.checks import check_float, check_int, check_seed, quote
 from ..model import default_model_path
-from ..model.experts import COLLISION_MODELS
-from ..model.settings import METHODS, SynthesisOptions
+from ..model.options import SynthesisOptions
+from ..model.settings import METHODS
 from ..sim.acquisition import AcquisitionSettings
 from ..sim.execution import CLOSING  # how an executed grasp closes: one definition for every caller
 from ..sim.scene_camera import scene_cameras
 
-_ANNEALING = _core.AnnealingSettings()  # the C++ defaults, the single source
 _ACQUISITION = AcquisitionSettings()
 
 PROTOCOL_NAME = "protocol.json"
@@ -39,9 +37,6 @@ CONDITIONS = {
     "D": Condition("D", True, False, "depth noise, no optimisation"),
 }
 PRESETS = ("smoke", "paper", "defaults")
-# The synthesis of the paper (and of runs recorded before these fields existed): the collision expert on the
-# cloud's points, none of the experts added since. The "defaults" preset runs the library's defaults instead.
-PAPER_SYNTHESIS = {"collision": "surface", "clear_approach": False, "contact_quality": False, "cloud": "object"}
 # What an acquisition keeps: "object", the pixels that see the object with the table cropped (the paper's: a
 # segmented sensor); "scene", every pixel, the table too (what a depth camera gives: the synthesis finds the
 # object above the known table, and the table's rays show the occupancy model the free space around it).
@@ -67,31 +62,17 @@ class Protocol:
     trials: int = 10
     conditions: list[str] = field(default_factory=lambda: list(CONDITIONS))
     methods: list[str] = field(default_factory=lambda: list(METHODS))
-    n_samples: int = SynthesisOptions.n_samples  # grasps sampled and ranked per attempt
-    n_optimise: int = SynthesisOptions.n_optimise  # the best this many are annealed (conditions with optimisation)
-    annealing_iterations: int = _ANNEALING.iterations  # the paper's 100
-    initial_temperature: float = _ANNEALING.initial_temperature  # the paper's 1.0, linear decay
-    query_samples: int = SynthesisOptions.query_samples  # N_Q samples per link for the query densities
-    query_components: int = SynthesisOptions.query_components  # K_Q of GMM's query densities
     # The noise model of the conditions with noise (eq:noise_model): sigma_p, the lateral shift in pixels, and
     # sigma_d, the depth noise in metres; setting one to 0 leaves the other part alone.
     pixel_noise_std: float = _ACQUISITION.pixel_noise_std
     depth_noise_std: float = _ACQUISITION.depth_noise_std
-    # m: points at most this high above the support plane z = 0 are the table: the acquisition's clean-up
-    # drops them and the synthesis is given the same table clearance.
-    min_height: float = SynthesisOptions.table_clearance
     closing: str = "full"  # how the executed grasp closes: see CLOSING
     views: int = 4  # cameras: the paper's ring of 4 (n > 1: a ring of n), or 1: one camera above the table
     cloud: str = "scene"  # what an acquisition keeps: see CLOUDS (the paper's: "object")
-    # The experts beyond the paper's (SynthesisOptions; the paper's values: PAPER_SYNTHESIS): the collision model
-    # ("surface" or "occupancy"), the hard clear-approach expert with its stand-off and clearance (m).
-    collision: str = SynthesisOptions.collision
-    clear_approach: bool = SynthesisOptions.clear_approach
-    stand_off: float = SynthesisOptions.stand_off
-    approach_clearance: float = SynthesisOptions.approach_clearance
-    # the soft contact-quality expert and its Coulomb friction coefficient
-    contact_quality: bool = SynthesisOptions.contact_quality
-    friction: float = SynthesisOptions.friction
+    # How every attempt synthesises (the library's defaults; the paper's: SynthesisOptions.paper()). Per attempt
+    # the condition decides sampling.optimise and the seed is derived; the known support plane is given, and its
+    # table clearance (segmentation.table_clearance) also crops an object cloud's table fringe.
+    synthesis: SynthesisOptions = field(default_factory=SynthesisOptions)
     seed: int = 0  # base of every derived seed
     models: dict = field(default_factory=dict)  # method -> model file; empty: the bundled box models
 
@@ -100,16 +81,17 @@ class Protocol:
 
     @classmethod
     def preset(cls, name: str, **overrides) -> "Protocol":
-        """ "paper": the 60 test objects, 10 trials, A-D, GMM and KDE, the paper's synthesis (PAPER_SYNTHESIS).
+        """ "paper": the 60 test objects, 10 trials, A-D, GMM and KDE, the paper's synthesis (SynthesisOptions.paper(), object clouds).
         "smoke": the same with 3 objects and 2 trials (minutes, for tests and a first look). "defaults": as
-        "paper" with the library's synthesis defaults (SynthesisOptions)."""
+        "paper" with the library's synthesis defaults (SynthesisOptions()) on whole depth images."""
         if name not in PRESETS:
             raise ValueError(f"preset must be one of {', '.join(PRESETS)}, got {name!r}")
         objects = test_objects()
+        paper = dict(cloud="object", synthesis=SynthesisOptions.paper())
         if name == "smoke":
-            kw = dict(objects=objects[:SMOKE_OBJECTS], trials=2, **PAPER_SYNTHESIS)
+            kw = dict(objects=objects[:SMOKE_OBJECTS], trials=2, **paper)
         elif name == "paper":
-            kw = dict(objects=objects, trials=10, **PAPER_SYNTHESIS)
+            kw = dict(objects=objects, trials=10, **paper)
         else:
             kw = dict(objects=objects, trials=10)
         kw.update({k: v for k, v in overrides.items() if v is not None})
@@ -117,23 +99,11 @@ class Protocol:
 
     def validate(self) -> None:
         self._validate_lists()
-        for name in ("n_samples", "n_optimise", "query_samples"):
-            check_int(getattr(self, name), name, 1, MAX_SAMPLES)
-        check_int(self.query_components, "query_components", 1, self.query_samples)
         check_float(self.pixel_noise_std, "pixel_noise_std", 0.0)
         check_float(self.depth_noise_std, "depth_noise_std", 0.0)
-        check_int(self.annealing_iterations, "annealing_iterations", 1, MAX_ITERATIONS)
-        check_float(self.initial_temperature, "initial_temperature", gt=0.0)
-        check_float(self.min_height, "min_height")
         check_seed(self.seed)
-        if not isinstance(self.collision, str) or self.collision not in COLLISION_MODELS:
-            raise ValueError(f"collision must be one of {', '.join(COLLISION_MODELS)}, got {quote(self.collision)}")
-        for name in ("clear_approach", "contact_quality"):
-            if not isinstance(getattr(self, name), bool):
-                raise ValueError(f"{name} must be true or false, got {quote(getattr(self, name))}")
-        check_float(self.stand_off, "stand_off", 0.0)
-        check_float(self.approach_clearance, "approach_clearance", 0.0)
-        check_float(self.friction, "friction", gt=0.0)
+        if not isinstance(self.synthesis, SynthesisOptions):
+            raise ValueError(f"synthesis must be SynthesisOptions, got {type(self.synthesis).__name__}")
         check_int(self.views, "views", 1, 64)
         if not isinstance(self.cloud, str) or self.cloud not in CLOUDS:
             raise ValueError(f"cloud must be one of {', '.join(CLOUDS)}, got {quote(self.cloud)}")
@@ -188,7 +158,8 @@ class Protocol:
 
     def to_json(self) -> dict:
         """The protocol as written to protocol.json; models are identified by content (sha256), not path."""
-        d = dataclasses.asdict(self)
+        d = {f: getattr(self, f) for f in PROTOCOL_FIELDS}
+        d["synthesis"] = self.synthesis.to_dict()
         d["models"] = {
             m: {"file": self.model_path(m).name, "sha256": sha256_file(self.model_path(m))} for m in self.methods
         }
@@ -223,17 +194,29 @@ class Protocol:
     def synthesis_seed(self, obj: str, trial: int, condition: str) -> int:
         return derive_seed(self.seed, "synthesis", obj, trial, condition)
 
+    def attempt_options(self, obj: str, trial: int, condition: str) -> SynthesisOptions:
+        """The synthesis of one attempt: the protocol's, with the condition's optimisation, the attempt's seed
+        and the known support plane (given to the synthesis, so none is searched for)."""
+        return self.synthesis.updated(
+            {
+                "sampling.optimise": CONDITIONS[condition].optimise,
+                "seed": self.synthesis_seed(obj, trial, condition),
+                "segmentation.find_plane": False,
+            }
+        )
+
 
 PROTOCOL_FIELDS = [f.name for f in dataclasses.fields(Protocol)]
 
 
 def protocol_from_json(d: dict) -> Protocol:
     """The Protocol of a protocol.json's "protocol" entry (model paths are not in it: the defaults)."""
-    return Protocol(**{**PAPER_SYNTHESIS, **{k: d[k] for k in PROTOCOL_FIELDS if k in d and k != "models"}})
+    kw = {k: d[k] for k in PROTOCOL_FIELDS if k in d and k not in ("models", "synthesis")}
+    return Protocol(**kw, synthesis=SynthesisOptions.from_dict(d["synthesis"]))
 
 
 def load_protocol(run_dir: str | Path) -> dict:
-    """A run folder's protocol.json (format graspmix.experiment/1)."""
+    """A run folder's protocol.json (format graspmix.experiment/2)."""
     path = Path(run_dir) / PROTOCOL_NAME
     if not path.is_file():
         raise ValueError(f"{run_dir}: no {PROTOCOL_NAME} (not an experiment folder)")

@@ -22,10 +22,11 @@ import numpy as np
 from ..io import SUMMARY_FORMAT
 from ..io.checks import check_output_path, quote
 from ..model.grasps import STAGE_LABELS, STAGES
+from ..model.options import SynthesisOptions
 from ..model.settings import METHOD_LABELS, METHODS
 from ..viz.experiment import plot_runtime, plot_success
 from .log import CSV_NAME, read_rows
-from .protocol import CONDITIONS, Protocol, load_protocol
+from .protocol import CONDITIONS, load_protocol
 from .stats import mean_ci, paired_ttest
 
 REASONS = ("success", "not held", "no contact", "start in collision", "synthesis failed")
@@ -262,40 +263,37 @@ def _html_table(rows: list[list[str]]) -> str:
 
 
 def _clouds_text(proto: dict) -> str:
-    """The cameras and what an acquisition kept (a protocol.json without the fields is the paper's)."""
-    views = proto.get("views", 4)
-    cameras = "1 camera above the table" if views == 1 else f"{views} cameras"
-    kept = "the whole depth images" if proto.get("cloud", "object") == "scene" else "the object's pixels"
+    """The cameras and what an acquisition kept."""
+    cameras = "1 camera above the table" if proto["views"] == 1 else f"{proto['views']} cameras"
+    kept = "the whole depth images" if proto["cloud"] == "scene" else "the object's pixels"
     return f"{cameras}, {kept}"
 
 
-def _synthesis_text(proto: dict) -> str:
+def _synthesis_text(syn: dict) -> str:
     """The experts beyond the paper's that the synthesis ran (none: the paper's synthesis)."""
     extra = []
-    if proto.get("collision", "surface") == "occupancy":
+    if syn["collision"]["model"] == "occupancy":
         extra.append("the occupancy collision model")
-    if proto.get("clear_approach", False):
-        # A run from before the clearance existed checked the points as they are: clearance 0.
+    if syn["approach"] is not None:
+        a = syn["approach"]
         extra.append(
-            f"the clear approach (stand-off {100 * proto['stand_off']:g} cm, clearance "
-            f"{1000 * proto.get('approach_clearance', 0.0):g} mm)"
+            f"the clear approach (stand-off {100 * a['stand_off']:g} cm, clearance {1000 * a['clearance']:g} mm)"
         )
-    if proto.get("contact_quality", False):
-        extra.append(f"the contact quality (friction {proto['friction']:g})")
+    if syn["contact_quality"] is not None:
+        extra.append(f"the contact quality (friction {syn['contact_quality']['friction']:g})")
     return ("Synthesis with " + ", ".join(extra) + ". ") if extra else "The paper's synthesis. "
 
 
 def _noise_text(proto: dict) -> str:
-    """The noise model of the conditions with noise: sigma_p and sigma_d (protocols before they were settings:
-    the paper's, which the defaults are)."""
-    sp = proto.get("pixel_noise_std", Protocol.pixel_noise_std)
-    sd = proto.get("depth_noise_std", Protocol.depth_noise_std)
+    """The noise model of the conditions with noise: sigma_p and sigma_d."""
+    sp, sd = proto["pixel_noise_std"], proto["depth_noise_std"]
     parts = "" if sp > 0 and sd > 0 else (" (depth noise only)" if sd > 0 else " (lateral shift only)")
     return f"Noise model (conditions with noise): sigma_p = {sp:g} px, sigma_d = {1000 * sd:g} mm{parts}. "
 
 
 def _blocks(summary: dict) -> list[tuple]:
     prov, proto = summary["provenance"], summary["protocol"]
+    syn = SynthesisOptions.from_dict(proto["synthesis"]).to_dict()  # every field, the defaults where left out
     att = summary["attempts"]
     rt = summary["runtime"]
     blocks = [
@@ -306,16 +304,18 @@ def _blocks(summary: dict) -> list[tuple]:
             f"{','.join(proto['conditions'])} x methods {','.join(proto['methods'])}: "
             f"{att['done']} of {att['expected']} attempts"
             + ("" if att["complete"] else " (INCOMPLETE run)")
-            + f". {proto['n_samples']} grasps sampled per attempt, the best {proto['n_optimise']} annealed "
-            f"({proto['annealing_iterations']} iterations, initial temperature {proto['initial_temperature']}, "
+            + f". {syn['sampling']['n_samples']} grasps sampled per attempt, the best {syn['sampling']['n_optimise']} "
+            f"annealed ({syn['annealing']['iterations']} iterations, initial temperature "
+            f"{syn['annealing']['initial_temperature']}, "
             f"linear decay) in conditions with optimisation; the best grasp is executed "
             + (
                 "with the fingers closing until they stop on the object (force-limited). "
                 if proto.get("closing", "full") == "full"
                 else "with the simulation's default closing (just past the synthesised grasp joints). "
             )
-            + f"Clouds: {_clouds_text(proto)}, points within {1000 * proto['min_height']:.0f} mm of the support "
-            f"plane dropped, the same for both methods. {_synthesis_text(proto)}{_noise_text(proto)}graspmix "
+            + f"Clouds: {_clouds_text(proto)}, points within {1000 * syn['segmentation']['table_clearance']:.0f} mm "
+            f"of the support plane dropped, the same for both methods. {_synthesis_text(syn)}{_noise_text(proto)}"
+            "graspmix "
             f"{prov.get('graspmix', '?')}, commit {prov.get('commit') or 'unknown'}.",
         ),
     ]

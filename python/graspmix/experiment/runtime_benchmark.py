@@ -13,23 +13,25 @@ import numpy as np
 from ..io import BENCHMARK_FORMAT, git_commit, package_version
 from ..io.checks import check_output_folder
 from ..model.grasps import STAGE_LABELS, STAGES
-from ..model.settings import METHODS, SynthesisOptions
+from ..model.settings import METHODS
 from ..viz.experiment import plot_runtime
 from .attempt import acquire_unit, cached_model, synthesize_on
 from .progress import Progress
 from .protocol import Protocol
 
+_SHARED = ("segmentation", "features")  # stages before the synthesiser's, the same for both methods
 
-def _time_objects(p: Protocol, objects: list[str], n_samples: int, n_optimise: int, progress: bool) -> dict:
+
+def _time_objects(p: Protocol, objects: list[str], progress: bool) -> dict:
     """method -> stage -> per-object seconds."""
-    per_object = {m: {s: [] for s in (*STAGES, "features", "total")} for m in METHODS}
+    per_object = {m: {s: [] for s in (*STAGES, *_SHARED, "total")} for m in METHODS}
     bar = Progress(len(objects) * len(METHODS), enabled=progress)
     for i, obj in enumerate(objects):
         acq = acquire_unit(p, obj, 0, False)  # condition A's cloud (the preset's cameras and what it keeps)
         for m in METHODS if i % 2 == 0 else METHODS[::-1]:  # alternate which method runs first
             model = cached_model(str(p.model_path(m).resolve()))
-            g = synthesize_on(model, acq, p, p.synthesis_seed(obj, 0, "A"), optimise=True)
-            for s in (*STAGES, "features"):
+            g = synthesize_on(model, acq, p, obj, 0, "A")
+            for s in (*STAGES, *_SHARED):
                 per_object[m][s].append(float(g.timing[s]))
             per_object[m]["total"].append(float(sum(g.timing[s] for s in STAGES)))
             bar.update(1)
@@ -41,27 +43,29 @@ def benchmark(
     objects: list[str],
     out: str | Path | None = None,
     *,
-    n_samples: int = SynthesisOptions.n_samples,
-    n_optimise: int = SynthesisOptions.n_optimise,
+    n_samples: int | None = None,
+    n_optimise: int | None = None,
     seed: int = 0,
     progress: bool = True,
     preset: str = "defaults",
 ) -> dict:
     """Fig. runtime: per object, a noise-free acquisition and one synthesis per method (n_samples grasps,
-    the best n_optimise annealed) with the experiment preset's synthesis ("paper": the paper's; "defaults":
-    the library's); stage times, their medians over objects per method and the ratio KDE / GMM. Writes
-    benchmark.json and benchmark.png into out if given."""
-    p = Protocol.preset(preset, objects=list(objects), trials=1, n_samples=n_samples, n_optimise=n_optimise, seed=seed)
+    the best n_optimise annealed; None: the preset's) with the experiment preset's synthesis ("paper": the
+    paper's; "defaults": the library's); stage times, their medians over objects per method and the ratio
+    KDE / GMM. Writes benchmark.json and benchmark.png into out if given."""
+    p = Protocol.preset(preset, objects=list(objects), trials=1, seed=seed)
+    given = {"sampling.n_samples": n_samples, "sampling.n_optimise": n_optimise}
+    p.synthesis = p.synthesis.updated({k: v for k, v in given.items() if v is not None})
+    n_samples, n_optimise = p.synthesis.sampling.n_samples, p.synthesis.sampling.n_optimise
     p.check_inputs()
     if out is not None:
         check_output_folder(out, "out")
     load_before = os.getloadavg()
-    per_object = _time_objects(p, objects, n_samples, n_optimise, progress)
+    per_object = _time_objects(p, objects, progress)
     medians = {m: {s: float(np.median(v)) for s, v in per_object[m].items()} for m in METHODS}
     ratio = {
         s: medians["kde"][s] / medians["gmm"][s] if medians["gmm"][s] > 0 else math.nan for s in (*STAGES, "total")
     }
-    # The annealing runs with the C++ defaults (AnnealingSettings), which are the protocol's values.
     result = {
         "format": BENCHMARK_FORMAT,
         "graspmix": package_version(),
@@ -70,9 +74,9 @@ def benchmark(
         "n_samples": n_samples,
         "n_optimise": n_optimise,
         "preset": preset,
-        "annealing_iterations": p.annealing_iterations,
-        "note": "total = query + sampling + optimisation (the paper's Fig. runtime); features (shared by "
-        "both methods) is listed apart",
+        "annealing_iterations": p.synthesis.annealing.iterations,
+        "note": "total = query + sampling + optimisation (the paper's Fig. runtime); segmentation and features "
+        "(shared by both methods) are listed apart",
         "median_s": medians,
         "ratio_kde_over_gmm": ratio,
         "per_object_s": per_object,
@@ -107,7 +111,6 @@ def format_benchmark(result: dict) -> str:
     for s in (*STAGES, "total"):
         label = STAGE_LABELS.get(s, "total (the three stages)")
         lines.append(f"{label:<28} {med['gmm'][s] * 1e3:>9.1f} {med['kde'][s] * 1e3:>9.1f} {ratio[s]:>8.2f}")
-    lines.append(
-        f"{'(features, shared)':<28} {med['gmm']['features'] * 1e3:>9.1f} {med['kde']['features'] * 1e3:>9.1f}"
-    )
+    for s in _SHARED:
+        lines.append(f"{f'({s}, shared)':<28} {med['gmm'][s] * 1e3:>9.1f} {med['kde'][s] * 1e3:>9.1f}")
     return "\n".join(lines)

@@ -31,25 +31,41 @@ SWEEP_NAME = "sweep.json"
 DEFAULTS = "defaults"
 DEMONSTRATION = ("demos", "box_wsg50.json")  # the bundled models' demonstration (scripts/make_example_data.py)
 
-# What each sweepable setting belongs to: (methods it changes, "learn" or "protocol").
+# What each sweepable setting belongs to: (methods it changes, "learn", "protocol" or the SynthesisOptions
+# field it names, e.g. "synthesis:query.n_components").
 PARAMETERS = {
     "n_components": (("gmm",), "learn"),
     "gmm_reg_covar": (("gmm",), "learn"),
     "kde_position_bandwidth": (("kde",), "learn"),
     "kde_orientation_bandwidth": (("kde",), "learn"),
     "kde_feature_bandwidth": (("kde",), "learn"),
-    "query_components": (("gmm",), "protocol"),
-    "query_samples": (METHODS, "protocol"),
-    "n_samples": (METHODS, "protocol"),
+    "query_components": (("gmm",), "synthesis:query.n_components"),
+    "query_samples": (METHODS, "synthesis:query.n_samples"),
+    "n_samples": (METHODS, "synthesis:sampling.n_samples"),
     "pixel_noise_std": (METHODS, "protocol"),
     "depth_noise_std": (METHODS, "protocol"),
 }
 
 
+def _option_path(name: str) -> str | None:
+    """The SynthesisOptions field a synthesis parameter names, else None."""
+    kind = PARAMETERS[name][1]
+    return kind.partition(":")[2] if kind.startswith("synthesis:") else None
+
+
+def _protocol_value(p: Protocol, name: str):
+    path = _option_path(name)
+    if path is None:
+        return getattr(p, name)
+    part, fld = path.split(".")
+    return getattr(getattr(p.synthesis, part), fld)
+
+
 def parameter_type(name: str) -> type:
     """int or float: the type of the setting's default (counts are ints)."""
-    owner = LearnSettings if PARAMETERS[name][1] == "learn" else Protocol
-    return int if isinstance(getattr(owner, name), int) else float
+    kind = PARAMETERS[name][1]
+    default = getattr(LearnSettings, name) if kind == "learn" else _protocol_value(Protocol(objects=["x"]), name)
+    return int if isinstance(default, int) else float
 
 
 @dataclass
@@ -74,7 +90,7 @@ class Sweep:
 
     def default_value(self, name: str):
         methods, kind = PARAMETERS[name]
-        return getattr(LearnSettings, name) if kind == "learn" else getattr(self.base, name)
+        return getattr(LearnSettings, name) if kind == "learn" else _protocol_value(self.base, name)
 
     def variants(self) -> list[tuple[str, object]]:
         """(parameter, value) pairs to run, the defaults first as (DEFAULTS, None); a value equal to the
@@ -92,6 +108,9 @@ class Sweep:
         run_methods = [m for m in self.base.methods if m in methods]
         if kind == "protocol":
             return dataclasses.replace(self.base, methods=run_methods, **{name: value})
+        if _option_path(name) is not None:
+            synthesis = self.base.synthesis.updated({_option_path(name): value})
+            return dataclasses.replace(self.base, methods=run_methods, synthesis=synthesis)
         from ..model.grasp_model import GraspModel, check_learn_numbers
 
         check_learn_numbers(**{name: value})

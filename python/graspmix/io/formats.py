@@ -16,13 +16,13 @@ DEMO_FORMAT = "graspmix.demo/1"
 MODEL_FORMAT = "graspmix.model/2"  # grasp types (a "types" list)
 MODEL_FORMAT_V1 = "graspmix.model/1"  # one demonstration; still read
 GRASPS_FORMAT = "graspmix.grasps/1"
-PROTOCOL_FORMAT = "graspmix.experiment/1"
-SUMMARY_FORMAT = "graspmix.summary/1"
+PROTOCOL_FORMAT = "graspmix.experiment/2"  # the synthesis as SynthesisOptions (a "synthesis" object)
+SUMMARY_FORMAT = "graspmix.summary/2"
 BENCHMARK_FORMAT = "graspmix.benchmark/1"
 GMM_FORMAT = "graspmix.gmm/1"
 SCENE_FORMAT = "graspmix.scene/1"
-CLUTTER_FORMAT = "graspmix.clutter/1"
-CLUTTER_SUMMARY_FORMAT = "graspmix.clutter_summary/1"
+CLUTTER_FORMAT = "graspmix.clutter/2"
+CLUTTER_SUMMARY_FORMAT = "graspmix.clutter_summary/2"
 
 # format -> (what the file is called in messages, whether a file without a "format" field is taken as it)
 FORMATS = {
@@ -187,6 +187,9 @@ _GRASPS = Obj(
 )
 
 _STRINGS = Arr(Str(nonempty=True), min_len=1)
+# SynthesisOptions.to_dict(): part -> its fields (or null: the expert off), and the seed; the values are checked
+# by SynthesisOptions.from_dict when the protocol is read.
+_SYNTHESIS = Map(Any(), nonempty=True)
 _PROTOCOL = Obj(
     {
         "format": Str(),
@@ -196,23 +199,19 @@ _PROTOCOL = Obj(
                 "trials": Int(lo=1),
                 "conditions": _STRINGS,
                 "methods": _STRINGS,
-                "n_samples": Int(lo=1),
-                "n_optimise": Int(lo=1),
-                "annealing_iterations": Int(lo=1),
-                "initial_temperature": Num(),
-                "query_samples": Int(lo=1),
-                "query_components": Int(lo=1),
                 "pixel_noise_std": Num(lo=0.0),
                 "depth_noise_std": Num(lo=0.0),
-                "min_height": Num(),
                 "closing": Str(),
+                "views": Int(lo=1),
+                "cloud": Str(),
+                "synthesis": _SYNTHESIS,
                 "seed": _COUNT,
                 "models": Map(Obj({"file": Str(), "sha256": Str()})),
                 "condition_definitions": Map(
                     Obj({"noise": Bool(), "optimise": Bool()}, required=["noise", "optimise"])
                 ),
             },
-            required=["objects", "trials", "conditions", "methods"],
+            required=["objects", "trials", "conditions", "methods", "synthesis"],
         ),
         "provenance": Map(Any()),
     },
@@ -303,14 +302,13 @@ _CLUTTER = Obj(
                 "methods": _STRINGS,
                 "views": Int(lo=1),
                 "noise": Bool(),
-                "n_samples": Int(lo=1),
-                "n_optimise": Int(lo=1),
+                "synthesis": _SYNTHESIS,
                 "closing": Str(),
                 "max_attempts": Int(lo=-1),
                 "seed": _COUNT,
                 "models": Map(Obj({"file": Str(), "sha256": Str()})),
             },
-            required=["object_list", "objects", "scenes", "modes", "methods"],
+            required=["object_list", "objects", "scenes", "modes", "methods", "synthesis"],
         ),
         "provenance": Map(Any()),
     },

@@ -11,12 +11,12 @@ from .grasp_frames import GraspFrameSettings
 from .grasp_model import GraspModel, default_model_path, learn
 from .grasps import EXECUTION_KEYS, STAGE_LABELS, STAGES, Grasp, GraspSet, grasp_by_rank, load_grasps
 from .hands import describe_hand, hand_urdf_from_robot
+from .options import SynthesisOptions
 from .settings import (
     METHOD_LABELS,
     METHODS,
     FeatureSettings,
     LearnSettings,
-    SynthesisOptions,
     check_method,
 )
 

@@ -8,7 +8,7 @@ from typing import Callable, Iterable
 import numpy as np
 
 from .. import _core
-from .settings import SynthesisOptions
+from .options import SynthesisOptions
 
 
 def expert(name: str, fn: Callable, kind: str = "probability") -> "_core.Expert":
@@ -42,43 +42,32 @@ def oriented_plane(plane, points):
     return _core.orient_plane(plane, points, "mean")  # the collision expert's rule (CollisionSettings.orient_plane)
 
 
-COLLISION_MODELS = ("surface", "occupancy")
-
-
 def occupancy_map(points, viewpoints, objects, plane, opts: SynthesisOptions) -> "_core.OccupancyMap":
     """The occupancy of a scene from its whole cloud (table included: its rays clear the space around the
-    objects) and each point's camera, over the objects' box grown by the map's margin."""
+    objects) and each point's camera, over the objects' box grown by the map's margin (opts.occupancy)."""
     if viewpoints is None:
         raise ValueError(
-            "collision='occupancy' needs the cameras' positions: viewpoints= (or the PCD's VIEWPOINT, --viewpoint)"
+            "the occupancy collision model needs the cameras' positions: viewpoints= (or the PCD's VIEWPOINT, "
+            "--viewpoint)"
         )
-    return _core.OccupancyMap(points, viewpoints, objects, plane, resolution=opts.occupancy_resolution)
+    return _core.OccupancyMap(points, viewpoints, objects, plane, settings=opts.occupancy)
 
 
 def collision_expert(
-    hand, points, plane, opts: SynthesisOptions, occupancy=None, point_radius: float = 0.0
+    hand, points, plane, opts: SynthesisOptions, occupancy=None, point_radius: float | None = None
 ) -> "_core.CollisionExpert":
     """W on the query cloud and the support plane (and, with an OccupancyMap, on the space the cameras did not
-    see free: the occupancy model); depths up to contact_tolerance are touching; the points are balls of
-    point_radius (m)."""
-    return _core.CollisionExpert(
-        hand,
-        points,
-        plane=plane,
-        occupancy=occupancy,
-        beta=opts.collision_beta,
-        contact_tolerance=opts.contact_tolerance,
-        inside_weight=opts.collision_inside_weight,
-        point_radius=point_radius,
-    )
+    see free: the occupancy model), by opts.collision; point_radius (m) overrides its points' radius."""
+    extra = {} if point_radius is None else {"point_radius": point_radius}
+    return _core.CollisionExpert(hand, points, plane=plane, occupancy=occupancy, settings=opts.collision, **extra)
 
 
 def approach_collision(hand, scene, opts: SynthesisOptions, occupancy=None):
-    """What the clear approach keeps clear of: the scene's points as balls of opts.approach_clearance, its plane
-    and occupancy; None when opts.clear_approach is off."""
-    if not opts.clear_approach:
+    """What the clear approach keeps clear of: the scene's points as balls of opts.approach.clearance, its plane
+    and occupancy; None when the clear approach is off."""
+    if opts.approach is None:
         return None
-    return collision_expert(hand, scene.points, scene.plane, opts, occupancy, point_radius=opts.approach_clearance)
+    return collision_expert(hand, scene.points, scene.plane, opts, occupancy, point_radius=opts.approach.clearance)
 
 
 def clear_approach_expert(collision, config, opts: SynthesisOptions):
@@ -86,15 +75,15 @@ def clear_approach_expert(collision, config, opts: SynthesisOptions):
     (approach_collision); None when there is none."""
     if collision is None:
         return None
-    return _core.ClearApproachExpert(collision, config, stand_off=opts.stand_off)
+    return _core.ClearApproachExpert(collision, config, settings=opts.approach)
 
 
 def contact_quality_expert(hand, surface, config, opts: SynthesisOptions):
     """The soft contact-quality expert of one target object (its surface: points and normals) and grasp type (its
-    ConfigModel opens the hand); None when opts.contact_quality is off."""
-    if not opts.contact_quality:
+    ConfigModel opens the hand); None when opts.contact_quality is None."""
+    if opts.contact_quality is None:
         return None
-    return _core.ContactQualityExpert(hand, surface.points, surface.normals, config, friction=opts.friction)
+    return _core.ContactQualityExpert(hand, surface.points, surface.normals, config, settings=opts.contact_quality)
 
 
 def constraint_experts(
@@ -110,13 +99,15 @@ def constraint_experts(
     """The kinematic expert (joint limits, support plane, reachability), the approach-axis expert, then
     the caller's experts, in this order."""
     out = []
-    if opts.kinematic:
-        out.append(_core.KinematicFeasibilityExpert(hand, plane=oriented_plane(plane, points), reachable=reachable))
-    elif reachable is not None:
-        raise ValueError("reachable needs the kinematic expert (kinematic=True)")
-    if approach_axis is not None:
+    if opts.kinematic is not None:
         out.append(
-            _core.AxisAlignmentExpert(np.asarray(approach_axis, float), concentration=opts.approach_concentration)
+            _core.KinematicFeasibilityExpert(
+                hand, plane=oriented_plane(plane, points), reachable=reachable, settings=opts.kinematic
+            )
         )
+    elif reachable is not None:
+        raise ValueError("reachable needs the kinematic expert (SynthesisOptions.kinematic is None)")
+    if approach_axis is not None:
+        out.append(_core.AxisAlignmentExpert(np.asarray(approach_axis, float), settings=opts.axis_alignment))
     out.extend(experts)
     return out

@@ -33,7 +33,6 @@ from ..io import (
 )
 from ..io.checks import (
     MAX_COMPONENTS,
-    MAX_SAMPLES,
     check_float,
     check_input_file,
     check_int,
@@ -41,8 +40,8 @@ from ..io.checks import (
     check_path_text,
     check_seed,
 )
+from ..perception import camera_to_world
 from .demonstration import Demonstration
-from .experts import COLLISION_MODELS
 from .grasp_types import (
     GraspType,
     check_names,
@@ -55,11 +54,12 @@ from .grasp_types import (
     type_to_json,
 )
 from .grasps import GraspSet
+from .options import SynthesisOptions
 from .scene_synthesis import segment_query, synthesize_targets
 from .serialization import config_dict, config_settings
-from .settings import FeatureSettings, LearnSettings, SynthesisOptions, check_method
+from .settings import FeatureSettings, LearnSettings, check_method
 
-_L, _S = LearnSettings, SynthesisOptions  # the defaults of learn() and synthesize()
+_L = LearnSettings  # the defaults of learn()
 
 
 def default_model_path(method: str = "gmm") -> Path:
@@ -230,60 +230,40 @@ class GraspModel:
     def synthesize(
         self,
         cloud,
+        options: SynthesisOptions | None = None,
         *,
-        n_samples: int = _S.n_samples,
-        n_optimise: int = _S.n_optimise,
-        optimise: bool = _S.optimise,
-        seed: int = _S.seed,
-        remove_plane: bool = _S.remove_plane,
-        plane=None,
+        target="all",
         viewpoints=None,
+        camera_pose=None,
+        plane=None,
         approach_axis: Sequence[float] | None = None,
-        approach_concentration: float = _S.approach_concentration,
         reachable: Callable | None = None,
         experts: Iterable = (),
-        query_samples: int = _S.query_samples,
-        query_components: int = _S.query_components,
-        kinematic: bool = _S.kinematic,
-        clear_pregrasp: bool = _S.clear_pregrasp,
-        collision_beta: float = _S.collision_beta,
-        contact_tolerance: float = _S.contact_tolerance,
-        collision_inside_weight: float = _S.collision_inside_weight,
-        collision: str = _S.collision,
-        occupancy_resolution: float = _S.occupancy_resolution,
-        clear_approach: bool = _S.clear_approach,
-        stand_off: float = _S.stand_off,
-        approach_clearance: float = _S.approach_clearance,
-        contact_quality: bool = _S.contact_quality,
-        friction: float = _S.friction,
-        table_clearance: float = _S.table_clearance,
-        target="all",
-        annealing: dict | None = None,
         types=None,
     ) -> GraspSet:
-        """Grasps on a scene or object cloud: a path (PCD/PLY/npy) or an (N, 3) array of points.
+        """Grasps on a scene or object cloud: a path (PCD/PLY/npy) or an (N, 3) array of points, configured by
+        `options` (SynthesisOptions; None: the library's defaults).
 
         The cloud is segmented (graspmix.segment_scene) into its support plane and the objects on it;
         grasps are sampled on the target objects and checked for collision against all of them and the
         plane. target: "all" (every object, best grasps first), an object index, "point:x,y,z" (the object
         nearest the point), "largest", "nearest" (to the camera); every grasp records its object.
         viewpoints: the camera position (3,) or one per point (N, 3) (default: the file's); they orient the
-        plane and the normals. remove_plane: search for the support plane (a table under the objects:
-        segment_scene's rule); plane: give it instead ([a, b, c, d]; points within table_clearance of it
-        are dropped); approach_axis: prefer wrists whose approach axis points along it (e.g. (0, 0, -1) for
-        top grasps); reachable(wrists, joints) -> bool array: the hard reachability test; experts: more
-        experts (graspmix.expert(...) or graspmix._core.Expert objects); annealing: AnnealingSettings fields
-        to change; types: the grasp types to sample (names, a list or "a,b"; default all), each sampling and
-        optimising as many grasps as one would, all ranked together by log L - log L_ref of their type
-        (graspmix.model.grasp_types), each grasp recording its "type". The other settings and their
-        defaults (collision: "surface" or "occupancy"): SynthesisOptions."""
-        # Every keyword but the cloud, plane, viewpoints, target, experts, annealing and types: SynthesisOptions.
-        opts = _synthesis_options(locals())
+        plane and the normals. camera_pose: [x, y, z, qx, qy, qz, qw] of the camera whose frame the cloud is in
+        (the points are mapped to the world, the camera is the viewpoint, the grasps are in the world frame).
+        plane: a known support [a, b, c, d] instead of the one searched for (points within
+        options.segmentation.table_clearance of it are dropped). approach_axis: prefer wrists whose approach axis
+        points along it (e.g. (0, 0, -1) for top grasps; options.axis_alignment says how much);
+        reachable(wrists, joints) -> bool array: the hard reachability test; experts: more experts
+        (graspmix.expert(...) or graspmix._core.Expert objects); types: the grasp types to sample (names, a list
+        or "a,b"; default all), each sampling and optimising as many grasps as one would, all ranked together by
+        log L - log L_ref of their type (graspmix.model.grasp_types), each grasp recording its "type"."""
+        opts = checked_options(options)
         chosen = select_types(self.types, types)
         t0 = time.perf_counter()
         # Phase 1: the scene (support plane, objects) and the targets.
         points, name, file_viewpoints = load_points(cloud)
-        viewpoints = file_viewpoints if viewpoints is None else viewpoints
+        points, viewpoints = _in_world(points, file_viewpoints if viewpoints is None else viewpoints, camera_pose)
         scene = segment_query(points, viewpoints, checked_plane(plane), opts, self.features)
         targets = scene.select(target)
         t_segment = time.perf_counter() - t0
@@ -293,7 +273,7 @@ class GraspModel:
             scene,
             targets,
             opts,
-            self._synthesis_settings(opts, annealing),
+            self._synthesizer_settings(opts),
             approach_axis=approach_axis,
             reachable=reachable,
             experts=experts,
@@ -306,35 +286,47 @@ class GraspModel:
             out.rejected, scene=scene, targets=targets,
         )  # fmt: skip
 
-    def _synthesis_settings(self, opts: SynthesisOptions, annealing: dict | None) -> "_core.SynthesisSettings":
-        if annealing is not None and not isinstance(annealing, dict):
-            raise ValueError(f"annealing must be a dict of AnnealingSettings fields, got {type(annealing).__name__}")
-        s = _core.SynthesisSettings()
-        s.n_samples, s.n_optimise, s.optimise, s.seed = opts.n_samples, opts.n_optimise, opts.optimise, opts.seed
-        s.clear_pregrasp = opts.clear_pregrasp
-        q = s.query
-        q.n_samples, q.n_components = opts.query_samples, opts.query_components
-        q.kde_bandwidths = (
-            self.learn_settings.get("kde_position_bandwidth", _L.kde_position_bandwidth),
-            self.learn_settings.get("kde_orientation_bandwidth", _L.kde_orientation_bandwidth),
+    def _synthesizer_settings(self, opts: SynthesisOptions) -> "_core.SynthesisSettings":
+        """The GraspSynthesizer's settings: the options' sampling and annealing, and their query densities with
+        this model's KDE kernels where the options leave them at their defaults."""
+        ls = self.learn_settings
+        query = opts.query_for(
+            ls.get("kde_position_bandwidth", _L.kde_position_bandwidth),
+            ls.get("kde_orientation_bandwidth", _L.kde_orientation_bandwidth),
         )
-        s.query = q
-        a = s.annealing
-        for k, v in (annealing or {}).items():
-            if not hasattr(a, k):
-                raise ValueError(f"unknown annealing setting {k!r}")
-            setattr(a, k, v)
-        s.annealing = a
-        return s
+        return _core.SynthesisSettings(sampling=opts.sampling, query=query, annealing=opts.annealing, seed=opts.seed)
+
+
+def checked_options(options) -> SynthesisOptions:
+    """The options of a synthesis: None is the defaults; anything but SynthesisOptions is a ValueError."""
+    if options is None:
+        return SynthesisOptions()
+    if not isinstance(options, SynthesisOptions):
+        raise ValueError(
+            f"options must be a graspmix.SynthesisOptions (or None for the defaults), got {type(options).__name__}"
+        )
+    return options
+
+
+def _in_world(points, viewpoints, camera_pose):
+    """(points, viewpoints) in the world frame: a cloud in a camera's frame (camera_pose) is mapped to the world,
+    the camera becoming its viewpoint (viewpoints given in the camera's frame are mapped with it)."""
+    if camera_pose is None:
+        return points, viewpoints
+    world, camera = camera_to_world(points, camera_pose)
+    if viewpoints is None:
+        return world, camera
+    return world, camera_to_world(np.asarray(viewpoints, dtype=float).reshape(-1, 3), camera_pose)[0].squeeze()
 
 
 def _stage_times(synthesis: dict, segmentation: float, total: float) -> dict:
-    """A synthesis' stage times with the segmentation, the total and the features: everything before the
-    synthesiser's own stages (the segmentation, i.e. the clean-up, included)."""
+    """A synthesis' stage times: the segmentation (the clean-up, plane and objects), the features (surface
+    features of the targets: what the synthesiser's own stages and the segmentation leave of the total), the
+    synthesiser's stages and the total."""
     timing = dict(synthesis)
     timing["segmentation"] = segmentation
     timing["total"] = total
-    timing["features"] = total - sum(synthesis.values())
+    timing["features"] = total - segmentation - sum(synthesis.values())
     return timing
 
 
@@ -372,30 +364,6 @@ def check_learn_numbers(**v) -> None:
             check_float(value, name, 0.0)
         else:
             raise ValueError(f"unknown learning setting {name!r}")
-
-
-def _synthesis_options(args: dict) -> SynthesisOptions:
-    """synthesize()'s keywords as SynthesisOptions, its numbers bounded before they reach a C++ cast
-    (ValueError naming the keyword)."""
-    v = {f.name: args[f.name] for f in dataclasses.fields(SynthesisOptions)}
-    check_int(v["n_samples"], "n_samples", 1, MAX_SAMPLES)
-    check_int(v["n_optimise"], "n_optimise", 0, MAX_SAMPLES)
-    check_int(v["query_samples"], "query_samples", 1, MAX_SAMPLES)
-    check_int(v["query_components"], "query_components", 1, MAX_COMPONENTS)
-    if v["query_components"] > v["query_samples"]:
-        raise ValueError(
-            f"query_components ({v['query_components']}) must not exceed query_samples ({v['query_samples']})"
-        )
-    check_seed(v["seed"])
-    for name in ("approach_concentration", "collision_beta", "contact_tolerance", "collision_inside_weight"):
-        check_float(v[name], name, 0.0)
-    check_float(v["occupancy_resolution"], "occupancy_resolution", gt=0.0)
-    check_float(v["stand_off"], "stand_off", 0.0)
-    check_float(v["approach_clearance"], "approach_clearance", 0.0)
-    check_float(v["friction"], "friction", gt=0.0)
-    if v["collision"] not in COLLISION_MODELS:
-        raise ValueError(f"collision must be one of {', '.join(COLLISION_MODELS)}, got {v['collision']!r}")
-    return SynthesisOptions(**v)
 
 
 def _learn_types(demos, method: str, s: LearnSettings, feats: FeatureSettings, cfg_settings) -> tuple:

@@ -23,8 +23,8 @@ from .. import _core
 from ..io import relative_path, resolve_path
 from .demonstration import Demonstration
 from .experts import collision_expert
+from .options import SynthesisOptions
 from .serialization import config_dict, config_settings, density_from_json, density_to_json
-from .settings import SynthesisOptions
 
 REFERENCE_EXPERT = "type_reference"  # the experts' key of -log L_ref in a model of several types
 
@@ -90,10 +90,10 @@ def log_reference(hand, synthesizer, demo: Demonstration, surface, seed: int) ->
     features), through the query densities, contacts, configuration, collision and pre-grasp experts of
     a synthesis with the default SynthesisOptions."""
     opts = SynthesisOptions()
-    query = synthesizer.query_densities(surface.frames, surface.curvatures, n_samples=opts.query_samples, seed=seed)
+    query = synthesizer.query_densities(surface.frames, surface.curvatures, settings=opts.query, seed=seed)
     collision = collision_expert(hand, np.asarray(surface.points), None, opts)
     joints = hand.joints_array(demo.grasp_joints)[None, :]
-    ev = synthesizer.evaluate(query, collision, [], demo.T_world_wrist[None, :], joints, opts.clear_pregrasp)
+    ev = synthesizer.evaluate(query, collision, [], demo.T_world_wrist[None, :], joints, opts.sampling.clear_pregrasp)
     value = float(np.asarray(ev.total).ravel()[0])
     if not np.isfinite(value):
         raise ValueError(

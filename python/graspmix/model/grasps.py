@@ -148,15 +148,10 @@ def grasps_from_result(result, hand) -> list[Grasp]:
     result.columns(): one array a field, turned into Python numbers in bulk)."""
     c = {k: v.tolist() for k, v in result.columns().items()}
     names = sorted(enumerate(hand.joint_names), key=lambda j: j[1])  # by name, as Hand.joints_dict orders them
-    expert_names = [f"contact/{n}" for n in result.contact_links] + list(result.expert_names)
+    terms = result.term_names
     grasps = []
     for i, wrist in enumerate(c["T_world_wrist"]):
-        experts = {
-            "collision": c["log_collision"][i],
-            "config": c["log_config"][i],
-            "pregrasp_clear": c["log_pregrasp"][i],
-        }
-        experts.update(zip(expert_names, c["log_contact"][i] + c["log_experts"][i]))
+        experts = dict(zip(terms, c["log_terms"][i]))
         grasps.append(
             Grasp(
                 T_world_wrist=wrist,

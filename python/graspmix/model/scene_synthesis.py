@@ -32,7 +32,8 @@ from .experts import (
 )
 from .grasp_types import REFERENCE_EXPERT
 from .grasps import STAGES, grasps_from_result
-from .settings import FeatureSettings, SynthesisOptions
+from .options import SynthesisOptions
+from .settings import FeatureSettings
 
 
 @dataclass
@@ -54,15 +55,10 @@ class SurfaceUnion:
 
 
 def segment_query(points, viewpoints, plane, opts: SynthesisOptions, features: FeatureSettings) -> Scene:
-    """The scene of a query cloud: the known plane (or the one found, opts.remove_plane), the objects above it."""
+    """The scene of a query cloud: the known plane (or the one found, opts.segmentation.find_plane), the objects
+    above it, at the model's voxel size."""
     return segment_scene(
-        points,
-        viewpoints=viewpoints,
-        plane=plane,
-        find_plane=opts.remove_plane,
-        voxel_size=features.voxel_size,
-        table_clearance=opts.table_clearance,
-        seed=opts.seed,
+        points, viewpoints=viewpoints, plane=plane, settings=opts.segmentation_for(features.voxel_size)
     )
 
 
@@ -118,7 +114,7 @@ def synthesize_targets(
     sums over types and targets)."""
     timing = dict.fromkeys(STAGES, 0.0)
     occupancy = None
-    if opts.collision == "occupancy":
+    if opts.collision.model == "occupancy":
         points, viewpoints = (scene.points, scene.viewpoints) if cloud is None else cloud
         occupancy = occupancy_map(points, viewpoints, scene.points, scene.plane, opts)
         timing["occupancy"] = occupancy.stats["seconds"]
@@ -149,9 +145,8 @@ def synthesize_targets(
                     g.experts[REFERENCE_EXPERT] = -t.log_reference
                     g.log_likelihood -= t.log_reference
                 grasps.append(g)
-            stage_times = dict(res.timing)
             for k in STAGES:
-                timing[k] += stage_times[k]
+                timing[k] += getattr(res.timing, k)
             evaluations += res.evaluations
             rejected += res.rejected
         surfaces.append(surface)

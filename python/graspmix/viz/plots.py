@@ -9,7 +9,7 @@ import numpy as np
 
 from .. import _core
 from ..io import load_points
-from ..model.settings import SynthesisOptions
+from ..model.options import TABLE_CLEARANCE
 
 
 def pyplot():
@@ -136,7 +136,7 @@ def _cloud_points(grasps, cloud, plane) -> np.ndarray:
         raise ValueError(f"plot_grasps: cloud must be (N, 3) points, got shape {points.shape}")
     if plane is not None and len(points):
         o, _, _, n = plane_frame(plane)
-        points = points[np.abs((points - o) @ n) > SynthesisOptions.table_clearance]
+        points = points[np.abs((points - o) @ n) > TABLE_CLEARANCE]
     return points
 
 

@@ -7,7 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 import pytest
 from graspmix.clutter.topdown import GRASP_DEPTH, TIP_MARGIN, plan_topdown, topdown_grasp
-from graspmix.model.settings import SynthesisOptions
+from graspmix.model.options import TABLE_CLEARANCE
 from scipy.spatial.transform import Rotation
 
 REACH = 0.0725 + 0.081  # flange to fingertips of the WSG 50 (data/hands/wsg50.urdf)
@@ -44,7 +44,7 @@ def test_a_flat_object_keeps_the_fingertips_above_the_table_clearance():
     # The table at z = 0.1 here and the points lifted with it: the tips at clearance + margin above it.
     pts = box_surface(np.array([0.06, 0.04, 0.02]), (0, 0), 0.0) + [0, 0, 0.1]
     g = topdown_grasp(pts, plane=[0, 0, 1, -0.1])
-    assert g.T_world_wrist[2] - REACH == pytest.approx(0.1 + SynthesisOptions.table_clearance + TIP_MARGIN)
+    assert g.T_world_wrist[2] - REACH == pytest.approx(0.1 + TABLE_CLEARANCE + TIP_MARGIN)
 
 
 @dataclass

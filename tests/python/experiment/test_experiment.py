@@ -145,9 +145,8 @@ def test_grasp_synthesised_on_an_acquired_cloud_executes_in_the_same_frame():
     assert np.all(acq.points.min(0)[:2] >= lo[:2] - 0.003) and np.all(acq.points.max(0) <= hi + 0.003)
     assert np.all(acq.points.max(0)[:2] >= hi[:2] - 0.01) and np.all(acq.points.min(0)[:2] <= lo[:2] + 0.01)
     model = graspmix.GraspModel.load(graspmix.default_model_path("gmm"))
-    g = model.synthesize(
-        acq.points, seed=1, remove_plane=False, plane=[0, 0, 1, 0], viewpoints=acq.viewpoints, approach_axis=(0, 0, -1)
-    )
+    opts = graspmix.SynthesisOptions().updated({"seed": 1, "segmentation.find_plane": False})
+    g = model.synthesize(acq.points, opts, plane=[0, 0, 1, 0], viewpoints=acq.viewpoints, approach_axis=(0, 0, -1))
     best = g.best()
     assert Rotation.from_quat(best["T_world_wrist"][3:]).apply([0, 0, 1])[2] < -0.9  # palm down: a top grasp
     # Executed as the experiment executes grasps (closing until the fingers stop on the object).
@@ -163,7 +162,8 @@ def test_grasp_synthesised_on_an_acquired_cloud_executes_in_the_same_frame():
 
 def small_protocol(**kw):
     """2 small objects x 2 trials x conditions B, C x both methods = 16 attempts in 8 units (seconds)."""
-    base = dict(objects=sim.test_objects()[1:3], trials=2, conditions=["B", "C"], n_samples=60)
+    fewer = graspmix.SynthesisOptions().updated({"sampling.n_samples": 60})
+    base = dict(objects=sim.test_objects()[1:3], trials=2, conditions=["B", "C"], synthesis=fewer)
     base.update(kw)
     return ex.Protocol(**base)
 
@@ -248,9 +248,11 @@ def test_resume_after_the_process_is_killed(reference_run, tmp_path):
     """A real interruption: the run's process is killed (SIGKILL) as soon as its first rows are on disk."""
     out = tmp_path / "run"
     script = textwrap.dedent(f"""
+        import graspmix
         from graspmix import experiment as ex
         if __name__ == "__main__":
-            p = ex.Protocol(objects={small_protocol().objects!r}, trials=2, conditions=["B", "C"], n_samples=60)
+            fewer = graspmix.SynthesisOptions().updated({{"sampling.n_samples": 60}})
+            p = ex.Protocol(objects={small_protocol().objects!r}, trials=2, conditions=["B", "C"], synthesis=fewer)
             ex.run(p, {str(out)!r}, jobs=1, progress=False, report=False)
     """)
     proc = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)

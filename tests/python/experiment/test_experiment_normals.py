@@ -17,10 +17,11 @@ SUPPORT_PLANE = [0.0, 0.0, 1.0, 0.0]
 
 def experiment_surface(obj, noise):
     p = Protocol(objects=[obj], trials=1)
-    acq = acquire(obj, noise=noise, seed=3, postprocess=crop_above_plane(p.min_height))
+    clearance = p.synthesis.segmentation.table_clearance
+    acq = acquire(obj, noise=noise, seed=3, postprocess=crop_above_plane(clearance))
     assert len(np.unique(acq.camera_index)) >= 3  # the object is seen from several cameras
     # What the experiment's synthesis does: the scene with its known table, then the object's features.
-    scene = segment_scene(acq.points, acq.viewpoints, SUPPORT_PLANE, table_clearance=p.min_height)
+    scene = segment_scene(acq.points, acq.viewpoints, SUPPORT_PLANE, table_clearance=clearance)
     assert len(scene.objects) == 1
     return object_surface(scene, 0, FeatureSettings())
 

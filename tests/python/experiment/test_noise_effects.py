@@ -10,7 +10,7 @@ from graspmix.experiment import noise_effects as ne
 from graspmix.experiment.noise_effects_report import table, write_outputs
 from graspmix.experiment.protocol import Protocol
 from graspmix.io import test_objects
-from graspmix.model import GraspModel, default_model_path
+from graspmix.model import GraspModel, SynthesisOptions, default_model_path
 from scipy import stats as sps
 
 # ---- measures, analytic ------------------------------------------------------------------------------------
@@ -114,7 +114,7 @@ def test_bad_arguments_raise_value_error(call):
 @pytest.fixture(scope="module")
 def protocol():
     # Few query samples keep the test short; the measures' definitions do not depend on them.
-    return Protocol(objects=test_objects()[:1], trials=1, query_samples=60)
+    return Protocol(objects=test_objects()[:1], trials=1, synthesis=SynthesisOptions().updated({"query.n_samples": 60}))
 
 
 @pytest.fixture(scope="module")
@@ -151,7 +151,7 @@ def test_one_object_study_in_range_and_repeatable(protocol, models, tmp_path):
                 assert 0 <= v["jitter_mean"] <= math.pi and 0 <= v["jitter_undetermined"] <= 1
                 assert v["query_spread"] > 0 and v["query_means_spread"] >= 0
                 assert 0 <= v["weighted_k1"] <= 1 and np.isfinite(v["max_log_density"])
-                upper = 5 if m == "gmm" else protocol.query_samples  # K_Q components; N_Q kernels
+                upper = 5 if m == "gmm" else protocol.synthesis.query.n_samples  # K_Q components; N_Q kernels
                 assert 1 - 1e-9 <= v["query_components"] <= upper + 1e-9
     # The same protocol and seeds give the same numbers.
     r2 = ne.run_study(protocol, models, ("clean",))

@@ -1,66 +1,53 @@
-"""The presets' synthesis settings: "paper" keeps the paper's (and a protocol.json written before the new experts
-existed reads as the paper's), "defaults" runs the library's; the new fields' bad values."""
-
-import dataclasses
+"""The presets' synthesis: "paper" keeps the paper's (SynthesisOptions.paper()), "defaults" runs the library's
+(SynthesisOptions()); each attempt's options; protocol.json's round trip; bad values."""
 
 import pytest
-from graspmix import cli
+from graspmix import SynthesisOptions, cli
 from graspmix import experiment as ex
-from graspmix.experiment.attempt import synthesis_keywords
-from graspmix.experiment.protocol import protocol_from_json
-from graspmix.model.settings import SynthesisOptions
+from graspmix.experiment.protocol import CONDITIONS, protocol_from_json
 
 
 def test_paper_keeps_the_papers_synthesis_and_defaults_runs_the_librarys():
     paper, smoke, defaults = (ex.Protocol.preset(n) for n in ("paper", "smoke", "defaults"))
     for p in (paper, smoke):
-        assert (p.collision, p.clear_approach, p.contact_quality, p.cloud) == ("surface", False, False, "object")
+        assert p.synthesis == SynthesisOptions.paper() and p.cloud == "object"
+        assert p.synthesis.approach is None and p.synthesis.contact_quality is None
+        assert p.synthesis.collision.model == "surface"
     assert defaults.objects == paper.objects and defaults.trials == paper.trials
-    assert defaults.collision == SynthesisOptions.collision
-    assert defaults.clear_approach == SynthesisOptions.clear_approach
-    assert defaults.stand_off == SynthesisOptions.stand_off
-    assert defaults.contact_quality == SynthesisOptions.contact_quality
-    assert defaults.friction == SynthesisOptions.friction
-    assert defaults.cloud == "scene"
+    assert defaults.synthesis == SynthesisOptions() and defaults.cloud == "scene"
+    assert defaults.synthesis.approach is not None and defaults.synthesis.contact_quality is not None
     # An override beats the preset.
-    assert ex.Protocol.preset("paper", collision="occupancy").collision == "occupancy"
-    # What reaches the synthesis.
-    kw = synthesis_keywords(paper, 0, True)
-    assert (kw["collision"], kw["clear_approach"]) == ("surface", False)
-    kw = synthesis_keywords(defaults, 0, True)
-    assert (kw["collision"], kw["clear_approach"], kw["stand_off"]) == (
-        SynthesisOptions.collision,
-        SynthesisOptions.clear_approach,
-        SynthesisOptions.stand_off,
-    )
+    occupancy = SynthesisOptions.paper().updated({"collision.model": "occupancy"})
+    assert ex.Protocol.preset("paper", synthesis=occupancy).synthesis.collision.model == "occupancy"
 
 
-def test_a_protocol_json_without_the_new_fields_is_the_papers():
-    d = dataclasses.asdict(ex.Protocol.preset("paper"))
-    for k in ("collision", "clear_approach", "stand_off", "contact_quality", "friction", "cloud", "views"):
-        d.pop(k)
-    p = protocol_from_json(d)
-    assert (p.collision, p.clear_approach, p.contact_quality, p.cloud, p.views) == (
-        "surface",
-        False,
-        False,
-        "object",
-        4,
-    )
+@pytest.mark.parametrize("condition", list(CONDITIONS))
+def test_an_attempt_gets_its_conditions_optimisation_its_seed_and_the_known_plane(condition):
+    p = ex.Protocol.preset("defaults")
+    o = p.attempt_options("objects/mug.urdf", 3, condition)
+    assert o.sampling.optimise == CONDITIONS[condition].optimise
+    assert o.seed == p.synthesis_seed("objects/mug.urdf", 3, condition) != 0
+    assert o.segmentation.find_plane is False
+    # Nothing else changes.
+    assert o.updated({"sampling.optimise": True, "seed": 0, "segmentation.find_plane": True}) == p.synthesis
+
+
+def test_protocol_json_round_trips_the_synthesis():
+    for name in ("paper", "defaults"):
+        p = ex.Protocol.preset(name, synthesis=SynthesisOptions().updated({"approach.stand_off": 0.2, "seed": 4}))
+        assert protocol_from_json(p.to_json()) == p
+    d = ex.Protocol.preset("paper").to_json()
+    d["synthesis"]["sampling"]["n_samples"] = 0
+    with pytest.raises(ValueError, match="sampling.n_samples"):
+        protocol_from_json(d)
 
 
 def test_bad_values_are_errors(capsys):
     objs = ["cube_small.urdf"]
-    with pytest.raises(ValueError, match="collision"):
-        ex.Protocol(objects=objs, collision="voxels")
-    with pytest.raises(ValueError, match="clear_approach"):
-        ex.Protocol(objects=objs, clear_approach="yes")
-    with pytest.raises(ValueError, match="stand_off"):
-        ex.Protocol(objects=objs, stand_off=-0.01)
-    with pytest.raises(ValueError, match="contact_quality"):
-        ex.Protocol(objects=objs, contact_quality=1)
-    with pytest.raises(ValueError, match="friction"):
-        ex.Protocol(objects=objs, friction=0.0)
+    with pytest.raises(ValueError, match="synthesis"):
+        ex.Protocol(objects=objs, synthesis={"collision": "voxels"})
+    with pytest.raises(ValueError, match="collision.model"):
+        SynthesisOptions().updated({"collision.model": "voxels"})
     with pytest.raises(ValueError, match="views"):
         ex.Protocol(objects=objs, views=0)
     with pytest.raises(ValueError, match="cloud"):
@@ -99,16 +86,14 @@ def test_the_paper_preset_still_gives_the_rows_of_results_paper(tmp_path):
 
 
 def test_the_report_says_which_clouds_and_experts_a_run_used():
-    import dataclasses as dc
-
     from graspmix.experiment.report import _clouds_text, _synthesis_text
 
-    paper = dc.asdict(ex.Protocol.preset("paper"))
-    assert (
-        _synthesis_text(paper) == "The paper's synthesis. " and _clouds_text(paper) == "4 cameras, the object's pixels"
+    paper = ex.Protocol.preset("paper").to_json()
+    assert _synthesis_text(paper["synthesis"]) == "The paper's synthesis. "
+    assert _clouds_text(paper) == "4 cameras, the object's pixels"
+    one = ex.Protocol.preset(
+        "defaults", views=1, synthesis=SynthesisOptions().updated({"collision.model": "occupancy"})
     )
-    one = dc.asdict(ex.Protocol.preset("defaults", views=1, collision="occupancy"))
-    text = _synthesis_text(one)
+    text = _synthesis_text(one.to_json()["synthesis"])
     assert "occupancy" in text and "stand-off 10 cm, clearance 2 mm" in text and "friction 0.5" in text
-    assert _clouds_text(one) == "1 camera above the table, the whole depth images"
-    assert _synthesis_text({}) == "The paper's synthesis. "  # a protocol.json from before the fields
+    assert _clouds_text(one.to_json()) == "1 camera above the table, the whole depth images"

@@ -34,29 +34,29 @@ def test_protocol_rejects_bad_noise_and_query_components():
     for kw, match in (
         (dict(pixel_noise_std=-1.0), "pixel_noise_std"),
         (dict(depth_noise_std=float("nan")), "depth_noise_std"),
-        (dict(query_components=0), "query_components"),
-        (dict(query_components=600, query_samples=500), "query_components"),
     ):
         with pytest.raises(ValueError, match=match):
             ex.Protocol(objects=["cube_small.urdf"], **kw)
+    for changes in ({"query.n_components": 0}, {"query.n_components": 600, "query.n_samples": 500}):
+        with pytest.raises(ValueError, match="query.n_components"):
+            graspmix.SynthesisOptions().updated(changes)
 
 
 def test_query_components_change_gmm_and_not_kde():
     """K_Q shapes GMM's query densities; KDE's have no components, so its grasps stay the same."""
     cloud = graspmix.data_path("mug.pcd")
-    kw = dict(n_samples=40, n_optimise=2, seed=3)
+    base = graspmix.SynthesisOptions().updated({"sampling.n_samples": 40, "sampling.n_optimise": 2, "seed": 3})
     for method, same in (("gmm", False), ("kde", True)):
         model = graspmix.GraspModel.load(graspmix.default_model_path(method))
-        a = model.synthesize(cloud, query_components=1, **kw).grasps
-        b = model.synthesize(cloud, query_components=8, **kw).grasps
+        a = model.synthesize(cloud, base.updated({"query.n_components": 1})).grasps
+        b = model.synthesize(cloud, base.updated({"query.n_components": 8})).grasps
         poses = [np.array([g["T_world_wrist"] for g in x]) for x in (a, b)]
         assert (poses[0].shape == poses[1].shape and np.allclose(*poses)) == same, method
-    with pytest.raises(ValueError, match="query_components"):
-        model.synthesize(cloud, query_components=50, query_samples=20, **kw)
 
 
 def base_protocol(**kw):
-    p = dict(objects=["cube_small.urdf"], trials=1, conditions=["C"], methods=["gmm"], n_samples=30)
+    synthesis = ex.Protocol.preset("paper").synthesis.updated({"sampling.n_samples": 30})
+    p = dict(objects=["cube_small.urdf"], trials=1, conditions=["C"], methods=["gmm"], synthesis=synthesis)
     p.update(kw)
     return ex.Protocol(**p)
 
@@ -74,7 +74,7 @@ def test_sweep_variants_and_bad_input():
         ({"n_components": []}, "no values"),
         ({"n_components": [0]}, "n_components"),
         ({"kde_feature_bandwidth": [-0.1]}, "kde_feature_bandwidth"),
-        ({"query_components": [1000]}, "query_components"),
+        ({"query_components": [1000]}, "query.n_components"),
         ({"pixel_noise_std": [float("nan")]}, "pixel_noise_std"),
     ):
         with pytest.raises(ValueError, match=match):
@@ -96,7 +96,7 @@ def test_a_small_sweep_learns_models_runs_each_value_and_summarises(tmp_path):
     learnt = graspmix.GraspModel.load(tmp_path / "sw" / "models" / "gmm_n_components=1.json")
     assert learnt.learn_settings["n_components"] == 1
     proto = json.loads((tmp_path / "sw" / "query_components=2" / ex.PROTOCOL_NAME).read_text())["protocol"]
-    assert proto["query_components"] == 2 and proto["methods"] == ["gmm"]
+    assert proto["synthesis"]["query"]["n_components"] == 2 and proto["methods"] == ["gmm"]
     entry = res["parameters"]["n_components"]
     assert entry["default"] == 2 and [p["value"] for p in entry["methods"]["gmm"]["points"]] == [1, 2]
     for p in entry["methods"]["gmm"]["points"]:

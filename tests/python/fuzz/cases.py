@@ -102,18 +102,17 @@ def grasps_doc() -> dict:
 def protocol_doc() -> dict:
     """A protocol.json of a small run (2 objects of the test set, 2 trials, conditions A and D)."""
     return {
-        "format": "graspmix.experiment/1",
+        "format": "graspmix.experiment/2",
         "protocol": {
             "objects": ["random_urdfs/000/000.urdf", "random_urdfs/001/001.urdf"],
             "trials": 2,
             "conditions": ["A", "D"],
             "methods": ["gmm", "kde"],
-            "n_samples": 200,
-            "n_optimise": 10,
-            "annealing_iterations": 100,
-            "initial_temperature": 1.0,
-            "query_samples": 500,
-            "min_height": 0.004,
+            "pixel_noise_std": 1.0,
+            "depth_noise_std": 0.001,
+            "views": 4,
+            "cloud": "object",
+            "synthesis": {"sampling": {"n_samples": 200, "n_optimise": 10}, "approach": None, "contact_quality": None},
             "closing": "full",
             "seed": 0,
             "models": {},

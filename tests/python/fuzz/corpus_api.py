@@ -7,6 +7,7 @@ from __future__ import annotations
 from cases import BOX_URDF, DATA, api, dumps, grasps_doc
 
 MODEL = "m = graspmix.GraspModel.load(graspmix.model.default_model_path('gmm'))\n"
+OPTS = "m.synthesize('{data}/mug.pcd', graspmix.SynthesisOptions().updated("  # + changes + ")"
 DEMO = str(DATA / "demos" / "box_wsg50.json")
 GRASPS = {"grasps.json": dumps(grasps_doc())}
 
@@ -21,19 +22,20 @@ def _group(prefix: str, group: str, cases: dict, setup: str = "", files=None):
 
 def synthesize_cases():
     bad = {
-        "seed=1.5": ("m.synthesize('{data}/mug.pcd', seed=1.5)", ("seed",)),
-        "seed=2p63": ("m.synthesize('{data}/mug.pcd', seed=2**63)", ("seed",)),
-        "seed=-1": ("m.synthesize('{data}/mug.pcd', seed=-1)", ("seed",)),
-        "seed=True": ("m.synthesize('{data}/mug.pcd', seed=True)", ("seed",)),
-        "n_samples=3e9": ("m.synthesize('{data}/mug.pcd', n_samples=3 * 10**9)", ("n_samples",)),
-        "n_samples=0": ("m.synthesize('{data}/mug.pcd', n_samples=0)", ("n_samples",)),
-        "n_optimise=-1": ("m.synthesize('{data}/mug.pcd', n_optimise=-1)", ("n_optimise",)),
-        "query_samples=1.5": ("m.synthesize('{data}/mug.pcd', query_samples=1.5)", ("query_samples",)),
-        "approach_concentration=nan": (
-            "m.synthesize('{data}/mug.pcd', approach_concentration=float('nan'))",
-            ("approach_concentration",),
-        ),
-        "collision_beta=inf": ("m.synthesize('{data}/mug.pcd', collision_beta=float('inf'))", ("collision_beta",)),
+        "seed=1.5": (f"{OPTS}{{'seed': 1.5}}))", ("seed",)),
+        "seed=2p63": (f"{OPTS}{{'seed': 2**63}}))", ("seed",)),
+        "seed=-1": (f"{OPTS}{{'seed': -1}}))", ("seed",)),
+        "seed=True": ("graspmix.SynthesisOptions(seed=True)", ("seed",)),
+        "n_samples=3e9": (f"{OPTS}{{'sampling.n_samples': 3 * 10**9}}))", ("sampling.n_samples",)),
+        "n_samples=0": (f"{OPTS}{{'sampling.n_samples': 0}}))", ("sampling.n_samples",)),
+        "n_optimise=-1": (f"{OPTS}{{'sampling.n_optimise': -1}}))", ("sampling.n_optimise",)),
+        "query_samples=1.5": (f"{OPTS}{{'query.n_samples': 1.5}}))", ("query.n_samples",)),
+        "concentration=nan": (f"{OPTS}{{'axis_alignment.concentration': float('nan')}}))", ("concentration",)),
+        "collision_beta=inf": (f"{OPTS}{{'collision.beta': float('inf')}}))", ("collision.beta",)),
+        "options=dict": ("m.synthesize('{data}/mug.pcd', {'n_samples': 5})", ("options",)),
+        "options-part=int": ("graspmix.SynthesisOptions(sampling=5)", ("sampling",)),
+        "option=unknown": (f"{OPTS}{{'annealing.bogus': 1}}))", ("bogus",)),
+        "option-part=unknown": (f"{OPTS}{{'bogus': 1}}))", ("bogus",)),
         "cloud=ragged": ("m.synthesize([[0, 0, 0], [1, 2]])", ("cloud",)),
         "cloud=empty": ("import numpy as np; m.synthesize(np.zeros((0, 3)))", ("cloud",)),
         "cloud=2-columns": ("import numpy as np; m.synthesize(np.zeros((5, 2)))", ("cloud",)),
@@ -41,8 +43,6 @@ def synthesize_cases():
         "cloud=not-utf8": ("m.synthesize('\\udcff.pcd')", ("UTF-8",)),
         "cloud=missing": ("m.synthesize('absent.pcd')", ("absent.pcd",)),
         "plane=zero-normal": ("m.synthesize('{data}/mug.pcd', plane=[0, 0, 0, 1])", ("plane",)),
-        "annealing=list": ("m.synthesize('{data}/mug.pcd', annealing=[1])", ("annealing",)),
-        "annealing=unknown": ("m.synthesize('{data}/mug.pcd', annealing={'bogus': 1})", ("bogus",)),
         "save=missing-folder": ("m.save('nowhere/m.json')", ("nowhere",)),
         "save=a-folder": ("m.save('.')", ("folder",)),
     }
@@ -139,16 +139,19 @@ def sim_cases():
     return _group("sim", "sim", bad, files=GRASPS)
 
 
+PROTOCOL_OPTS = "ex.Protocol(objects=objs, synthesis=graspmix.SynthesisOptions().updated("  # + changes + "))"
+
+
 def experiment_cases():
     setup = "from graspmix import experiment as ex\nobjs = graspmix.io.test_objects()[:1]\n"
     bad = {
         "trials=1.5": ("ex.Protocol(objects=objs, trials=1.5)", ("trials",)),
         "trials=True": ("ex.Protocol(objects=objs, trials=True)", ("trials",)),
         "seed=2p63": ("ex.Protocol(objects=objs, seed=2**63)", ("seed",)),
-        "n_samples=str": ("ex.Protocol(objects=objs, n_samples='10')", ("n_samples",)),
-        "n_optimise=1.5": ("ex.Protocol(objects=objs, n_optimise=1.5)", ("n_optimise",)),
+        "synthesis=dict": ("ex.Protocol(objects=objs, synthesis={'n_samples': '10'})", ("synthesis",)),
+        "n_optimise=1.5": (f"{PROTOCOL_OPTS}{{'sampling.n_optimise': 1.5}}))", ("n_optimise",)),
         "initial_temperature=nan": (
-            "ex.Protocol(objects=objs, initial_temperature=float('nan'))",
+            f"{PROTOCOL_OPTS}{{'annealing.initial_temperature': float('nan')}}))",
             ("initial_temperature",),
         ),
         "objects=numbers": ("ex.Protocol(objects=[1, 2])", ("objects",)),

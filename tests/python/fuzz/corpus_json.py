@@ -88,6 +88,9 @@ PROTOCOL_FIELDS = [
     (("protocol", "methods", 1), "str"),
     (("protocol", "seed"), "int"),
     (("protocol", "closing"), "str"),
+    (("protocol", "synthesis"), "map"),
+    (("protocol", "synthesis", "sampling"), "map"),
+    (("protocol", "synthesis", "sampling", "n_samples"), "int"),
     (("provenance",), "map"),
 ]
 
@@ -459,7 +462,7 @@ def read_document_cases():
     """The formats no command reads back: summary, benchmark, gmm (fit-gmm --out), through read_document."""
     docs = {
         "summary": {
-            "format": "graspmix.summary/1",
+            "format": "graspmix.summary/2",
             "protocol": protocol_doc()["protocol"],
             "attempts": {"done": 3, "expected": 4, "complete": False},
             "success_rate": {"A": {"gmm": {"mean": 0.5, "per_trial": {"0": 0.5}, "successes": 1, "attempts": 2}}},

@@ -190,15 +190,15 @@ def test_synthesis_options_of_the_new_experts_are_checked(capsys):
 
     model = graspmix.GraspModel.load(graspmix.default_model_path())
     cloud = graspmix.data_path("mug.pcd")
-    for kw, name in (
-        ({"friction": 0.0}, "friction"),
-        ({"friction": -1.0}, "friction"),
-        ({"friction": float("nan")}, "friction"),
-        ({"stand_off": -0.01}, "stand_off"),
-        ({"approach_clearance": -0.001}, "approach_clearance"),
+    for changes, name in (
+        ({"contact_quality.friction": 0.0}, "friction"),
+        ({"contact_quality.friction": -1.0}, "friction"),
+        ({"contact_quality.friction": float("nan")}, "friction"),
+        ({"approach.stand_off": -0.01}, "stand_off"),
+        ({"approach.clearance": -0.001}, "clearance"),
     ):
         with pytest.raises(ValueError, match=name):
-            model.synthesize(cloud, **kw)
+            model.synthesize(cloud, graspmix.SynthesisOptions().updated(changes))
     for flag, value in (("--friction", "0"), ("--stand-off", "-0.1"), ("--approach-clearance", "-1")):
         assert cli.main(["synthesize", "--cloud", str(cloud), flag, value]) == 2
         err = capsys.readouterr().err.strip()

@@ -12,10 +12,16 @@ import pytest
 from graspmix.model import Grasp, GraspSet
 
 
+def _options(n_samples: int, n_optimise: int, seed: int) -> graspmix.SynthesisOptions:
+    return graspmix.SynthesisOptions().updated(
+        {"sampling.n_samples": n_samples, "sampling.n_optimise": n_optimise, "seed": seed}
+    )
+
+
 @pytest.fixture(scope="module")
 def synthesised():
     model = graspmix.GraspModel.load(graspmix.default_model_path("gmm"))
-    return model.synthesize(graspmix.data_path("mug.pcd"), n_samples=40, n_optimise=3, seed=1)
+    return model.synthesize(graspmix.data_path("mug.pcd"), _options(40, 3, 1))
 
 
 @pytest.fixture(scope="module")
@@ -23,7 +29,7 @@ def in_a_scene():
     """Grasps on one object of the bundled scene: some rejected by a hard expert (log values -inf, NaN)."""
     model = graspmix.GraspModel.load(graspmix.default_model_path("gmm"))
     cloud = graspmix.data_path("scenes", "packed4.pcd")
-    return model.synthesize(cloud, n_samples=60, n_optimise=2, seed=0, target="point:-0.05,-0.1,0.06")
+    return model.synthesize(cloud, _options(60, 2, 0), target="point:-0.05,-0.1,0.06")
 
 
 def _same(a, b):
@@ -96,7 +102,7 @@ def test_loaded_sets_plot(synthesised, tmp_path):
     # off the plane, and the table patch lies in the plane.
     plane = loaded.plane
     assert len(drawing.points) > 1000
-    assert np.all(np.abs(drawing.points @ plane[:3] + plane[3]) > graspmix.model.SynthesisOptions.table_clearance)
+    assert np.all(np.abs(drawing.points @ plane[:3] + plane[3]) > graspmix.SegmentationSettings().table_clearance)
     np.testing.assert_allclose(drawing.plane_patch @ plane[:3] + plane[3], 0, atol=1e-9)
     assert len(drawing.hands) == 2 and len(drawing.hands[0]) == 3  # palm and two fingers
     np.testing.assert_allclose(drawing.tcps[0], loaded.best().T_world_tcp[:3])

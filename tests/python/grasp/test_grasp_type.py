@@ -55,7 +55,10 @@ def test_reads_like_the_old_dictionary():
 
 def test_synthesised_grasps_are_grasps_in_the_old_layout(tmp_path):
     model = graspmix.GraspModel.load(graspmix.default_model_path("gmm"))
-    grasps = model.synthesize(graspmix.data_path("mug.pcd"), n_samples=30, optimise=False, seed=0)
+    grasps = model.synthesize(
+        graspmix.data_path("mug.pcd"),
+        graspmix.SynthesisOptions().updated({"sampling.n_samples": 30, "sampling.optimise": False}),
+    )
     best = grasps.best()
     assert isinstance(best, Grasp) and best.rank == 1
     # The old layout, then the object it is on, its grasp type and what a robot stack needs.

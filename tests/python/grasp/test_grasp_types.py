@@ -19,7 +19,10 @@ CLOUDS = {
     "box_wsg50": graspmix.data_path("demos", "box.pcd"),
     "mug_side_wsg50": graspmix.data_path("demos", "mug_side.pcd"),
 }
-FAST = dict(n_samples=100, n_optimise=3, remove_plane=False)  # the demonstrations' clouds have no table
+# The demonstrations' clouds have no table.
+FAST = graspmix.SynthesisOptions().updated(
+    {"sampling.n_samples": 100, "sampling.n_optimise": 3, "segmentation.find_plane": False}
+)
 
 # The best 3 grasps of data/models/box_wsg50_gmm.json on data/mug.pcd, n_samples=50, n_optimise=3, seed=3, as
 # the code before grasp types synthesised them: wrist, finger_left_joint, log L.
@@ -50,7 +53,9 @@ def test_types_are_named_by_their_files_and_share_the_hand(two):
 @pytest.mark.parametrize("own", ["box_wsg50", "mug_side_wsg50"])
 def test_on_its_own_cloud_the_best_grasp_is_of_the_demonstrations_type(two, own, seed):
     # The default numbers of samples and optimised grasps (with 100 samples the box's own type wins 8/10 seeds).
-    grasps = two.synthesize(CLOUDS[own], seed=seed, remove_plane=False)
+    grasps = two.synthesize(
+        CLOUDS[own], graspmix.SynthesisOptions().updated({"seed": seed, "segmentation.find_plane": False})
+    )
     assert grasps.best().type == own
     assert {g.type for g in grasps} == set(two.type_names)  # every type was sampled
     assert [g.rank for g in grasps] == list(range(1, len(grasps) + 1))
@@ -59,7 +64,7 @@ def test_on_its_own_cloud_the_best_grasp_is_of_the_demonstrations_type(two, own,
 
 def test_scores_are_relative_to_each_types_reference(two):
     ref = {t.name: t.log_reference for t in two.types}
-    for g in two.synthesize(CLOUDS["box_wsg50"], seed=0, **FAST).grasps[:20]:
+    for g in two.synthesize(CLOUDS["box_wsg50"], FAST.updated({"seed": 0})).grasps[:20]:
         assert g.experts[REFERENCE_EXPERT] == -ref[g.type]
         assert g.log_likelihood == pytest.approx(sum(g.experts.values()), abs=1e-6)
 
@@ -72,20 +77,22 @@ def test_ranking_is_invariant_to_the_order_of_the_demonstrations(tmp_path, capsy
     ab, ba = (graspmix.GraspModel.load(tmp_path / f"{n}.json") for n in ("ab", "ba"))
     assert ab.type_names == ba.type_names[::-1]
     for cloud in CLOUDS.values():
-        assert summary(ab.synthesize(cloud, seed=4, **FAST), 50) == summary(ba.synthesize(cloud, seed=4, **FAST), 50)
+        assert summary(ab.synthesize(cloud, FAST.updated({"seed": 4})), 50) == summary(
+            ba.synthesize(cloud, FAST.updated({"seed": 4})), 50
+        )
 
 
 def test_types_restrict_a_synthesis(two):
-    only = two.synthesize(CLOUDS["box_wsg50"], seed=0, types="mug_side_wsg50", **FAST)
+    only = two.synthesize(CLOUDS["box_wsg50"], FAST.updated({"seed": 0}), types="mug_side_wsg50")
     assert {g.type for g in only} == {"mug_side_wsg50"}
-    both = two.synthesize(CLOUDS["box_wsg50"], seed=0, types=["box_wsg50", "mug_side_wsg50"], **FAST)
+    both = two.synthesize(CLOUDS["box_wsg50"], FAST.updated({"seed": 0}), types=["box_wsg50", "mug_side_wsg50"])
     assert len(both) == 2 * len(only)
     assert set(both.timing) >= {"query", "sampling", "optimisation"}
 
 
 def test_unknown_type_is_a_clear_error(two, tmp_path, capsys):
     with pytest.raises(ValueError, match="unknown grasp type.*'top'.*box_wsg50, mug_side_wsg50"):
-        two.synthesize(CLOUDS["box_wsg50"], types=["top"], **FAST)
+        two.synthesize(CLOUDS["box_wsg50"], FAST, types=["top"])
     two.save(tmp_path / "two.json")
     rc = main(
         ["synthesize", "--cloud", str(CLOUDS["box_wsg50"]), "--model", str(tmp_path / "two.json"), "--types", "top"]
@@ -100,8 +107,8 @@ def test_save_load_round_trip_and_grasps_json(two, tmp_path):
     assert doc["format"] == "graspmix.model/2" and [t["name"] for t in doc["types"]] == two.type_names
     back = graspmix.GraspModel.load(tmp_path / "two.json")
     assert [t.log_reference for t in back.types] == [t.log_reference for t in two.types]
-    a = two.synthesize(CLOUDS["mug_side_wsg50"], seed=1, **FAST)
-    b = back.synthesize(CLOUDS["mug_side_wsg50"], seed=1, **FAST)
+    a = two.synthesize(CLOUDS["mug_side_wsg50"], FAST.updated({"seed": 1}))
+    b = back.synthesize(CLOUDS["mug_side_wsg50"], FAST.updated({"seed": 1}))
     assert summary(a, 50) == summary(b, 50)
     a.save(tmp_path / "grasps.json")
     entry = json.loads((tmp_path / "grasps.json").read_text())["grasps"][0]
@@ -113,7 +120,12 @@ def test_old_model_files_load_as_one_type_and_synthesise_as_before():
     assert json.loads(graspmix.default_model_path("gmm").read_text())["format"] == "graspmix.model/1"
     assert old.type_names == ["box_wsg50"] and old.types[0].log_reference == 0.0
     # The settings the grasps were recorded with (before the clear-approach expert).
-    grasps = old.synthesize(graspmix.data_path("mug.pcd"), n_samples=50, n_optimise=3, seed=3, clear_approach=False)
+    grasps = old.synthesize(
+        graspmix.data_path("mug.pcd"),
+        graspmix.SynthesisOptions().updated(
+            {"sampling.n_samples": 50, "sampling.n_optimise": 3, "seed": 3, "approach": None}
+        ),
+    )
     for g, (wrist, opening, log_l) in zip(grasps.grasps, BEFORE):
         np.testing.assert_allclose(g.T_world_wrist, wrist, atol=1e-5)
         assert g.grasp_joints["finger_left_joint"] == pytest.approx(opening, abs=1e-5)

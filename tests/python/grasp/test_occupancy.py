@@ -4,8 +4,7 @@ renderer's ground truth: the box's pose and size), synthesis with collision="occ
 import graspmix
 import numpy as np
 import pytest
-from graspmix import _core
-from graspmix.model.settings import SynthesisOptions
+from graspmix import SynthesisOptions, _core
 from graspmix.perception import segment_scene
 from graspmix.sim.acquisition import AcquisitionSettings, Camera, acquire
 
@@ -72,24 +71,27 @@ def test_a_finger_inside_costs_more_than_one_grazing_and_the_charge_grows_with_d
 def test_synthesis_with_the_occupancy_model(seen):
     acq, *_ = seen
     model = graspmix.GraspModel.load(graspmix.default_model_path())
-    kw = dict(viewpoints=acq.viewpoints, n_samples=40, n_optimise=1, seed=0)
-    grasps = model.synthesize(acq.points, collision="occupancy", **kw)
+    opts = SynthesisOptions().updated(
+        {"collision.model": "occupancy", "sampling.n_samples": 40, "sampling.n_optimise": 1}
+    )
+    grasps = model.synthesize(acq.points, opts, viewpoints=acq.viewpoints)
     assert len(grasps) > 0 and grasps.timing["occupancy"] > 0
     # The grasps the hard experts passed rank first; rejected samples fill up the rest (log L = -inf).
     finite = [bool(np.isfinite(g.log_likelihood)) for g in grasps]
     assert finite[0] and finite == sorted(finite, reverse=True)
-    assert SynthesisOptions.collision == _core.CollisionSettings().model == "surface"
+    assert SynthesisOptions().collision.model == _core.CollisionSettings().model == "surface"
 
 
 def test_bad_input_is_a_value_error(seen):
     acq, scene, _, c, _ = seen
     model = graspmix.GraspModel.load(graspmix.default_model_path())
-    with pytest.raises(ValueError, match="collision must be one of"):
-        model.synthesize(acq.points, viewpoints=acq.viewpoints, collision="voxels")
-    with pytest.raises(ValueError, match="occupancy_resolution"):
-        model.synthesize(acq.points, viewpoints=acq.viewpoints, collision="occupancy", occupancy_resolution=0.0)
+    occupancy = SynthesisOptions().updated({"collision.model": "occupancy"})
+    with pytest.raises(ValueError, match="collision.model"):
+        SynthesisOptions().updated({"collision.model": "voxels"})
+    with pytest.raises(ValueError, match="occupancy.resolution"):
+        occupancy.updated({"occupancy.resolution": 0.0})
     with pytest.raises(ValueError, match="viewpoints"):
-        model.synthesize(acq.points, collision="occupancy")  # an array has no VIEWPOINT
+        model.synthesize(acq.points, occupancy)  # an array has no VIEWPOINT
     with pytest.raises(ValueError, match="resolution"):
         _core.OccupancyMap(acq.points, acq.viewpoints, scene.points, resolution=-0.005)
     with pytest.raises(ValueError, match="NaN"):
@@ -139,7 +141,7 @@ def test_clear_approach_bad_settings_are_value_errors(seen):
     with pytest.raises(ValueError, match="step"):
         _core.ClearApproachExpert(collision, config, step=0.0)
     with pytest.raises(ValueError, match="stand_off"):
-        model.synthesize(scene.points, stand_off=-0.05)
+        model.synthesize(scene.points, SynthesisOptions().updated({"approach.stand_off": -0.05}))
 
 
 def test_an_object_only_cloud_under_the_occupancy_model_rejects_every_grasp_and_says_why(box_urdf, tmp_path, capsys):

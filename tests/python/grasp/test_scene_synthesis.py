@@ -8,7 +8,7 @@ import json
 
 import numpy as np
 import pytest
-from graspmix import GraspModel, default_model_path
+from graspmix import GraspModel, SynthesisOptions, default_model_path
 from graspmix.cli.main import main
 from graspmix.sim import scenes
 from graspmix.sim.scene_camera import acquire_scene
@@ -36,8 +36,11 @@ def packed(cube):
     return spec, acq, GraspModel.load(default_model_path("gmm"))
 
 
-def synthesize(model, acq, target, **kw):
-    return model.synthesize(acq.points, viewpoints=acq.viewpoints, target=target, n_samples=100, n_optimise=3, **kw)
+def synthesize(model, acq, target, **changes):
+    """The scene's synthesis with 100 samples, the best 3 annealed; `changes`: more sampling settings."""
+    sampling = {f"sampling.{k}": v for k, v in dict(n_samples=100, n_optimise=3, **changes).items()}
+    opts = SynthesisOptions().updated(sampling)
+    return model.synthesize(acq.points, opts, viewpoints=acq.viewpoints, target=target)
 
 
 @pytest.mark.parametrize("k", range(len(CUBES)))

@@ -7,7 +7,6 @@ import numpy as np
 import pybullet as p
 import pytest
 from graspmix import _core
-from graspmix.model.settings import SynthesisOptions
 from graspmix.perception import POINT_TARGET_MAX_DISTANCE, camera_to_world, parse_target, segment_scene
 from graspmix.sim.acquisition import AcquisitionSettings, Camera, acquire, apply_noise, back_project, ring_cameras
 from graspmix.sim.acquisition import Scene as BulletScene
@@ -182,7 +181,6 @@ def test_known_plane_and_bad_inputs(rendered):
 def test_defaults_come_from_cpp_and_the_dict_is_json(rendered):
     import json
 
-    assert SynthesisOptions.table_clearance == _core.SegmentationSettings().table_clearance
     assert _core.SegmentationSettings().voxel_size == _core.SceneSettings().voxel_size
     points, eye, _, _, _ = rendered
     d = json.loads(json.dumps(segment_scene(points, eye).to_dict(), allow_nan=False))

@@ -19,7 +19,10 @@ CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
 @pytest.fixture(scope="module")
 def grasps_file(tmp_path_factory):
     model = graspmix.GraspModel.load(graspmix.default_model_path("gmm"))
-    grasps = model.synthesize(graspmix.data_path("mug.pcd"), n_samples=40, n_optimise=3, seed=1)
+    grasps = model.synthesize(
+        graspmix.data_path("mug.pcd"),
+        graspmix.SynthesisOptions().updated({"sampling.n_samples": 40, "sampling.n_optimise": 3, "seed": 1}),
+    )
     path = tmp_path_factory.mktemp("grasps") / "grasps.json"
     grasps.save(path)
     return path

@@ -1,0 +1,320 @@
+"""SynthesisOptions: the one object that configures a synthesis on a cloud.
+
+It is composed of the bound C++ settings structs, each a part of the pipeline, and carried unchanged from
+the API (GraspModel.synthesize), the command line (graspmix_cli synthesize, experiment, clutter) and the
+experiment's protocol down to the C++ calls; every default is the default-constructed struct's.
+
+    options = graspmix.SynthesisOptions(sampling=graspmix.SamplingSettings(n_samples=400), contact_quality=None)
+    options = options.updated({"approach.stand_off": 0.15, "seed": 3})   # or dataclasses.replace(options, ...)
+    grasps = model.synthesize("scan.pcd", options, target="largest")
+
+The options are frozen: their parts are copies taken when they are made, and a change makes new options
+(`updated`, `dataclasses.replace`). A part that may be None is an expert that may be left out.
+"""
+
+from __future__ import annotations
+
+import copy
+from dataclasses import dataclass, field
+from typing import Mapping
+
+import numpy as np
+
+from .. import _core
+from ..io.checks import MAX_COMPONENTS, MAX_SAMPLES, check_float, check_int, check_seed, quote
+
+# name -> (settings class, whether None is allowed: the expert is left out)
+PARTS = {
+    "segmentation": (_core.SegmentationSettings, False),
+    "sampling": (_core.SamplingSettings, False),
+    "query": (_core.QuerySettings, False),
+    "annealing": (_core.AnnealingSettings, False),
+    "collision": (_core.CollisionSettings, False),
+    "occupancy": (_core.OccupancySettings, False),
+    "kinematic": (_core.KinematicFeasibilitySettings, True),
+    "axis_alignment": (_core.AxisAlignmentSettings, False),
+    "approach": (_core.ClearApproachSettings, True),
+    "contact_quality": (_core.ContactQualitySettings, True),
+}
+COLLISION_MODELS = ("surface", "occupancy")
+# m: the default table clearance, for the tools that crop a table outside a synthesis (plots, the top-down planner)
+TABLE_CLEARANCE = _core.SegmentationSettings().table_clearance
+
+
+def _part(name: str):
+    return field(default_factory=PARTS[name][0])
+
+
+@dataclass(frozen=True)
+class SynthesisOptions:
+    """Everything that decides a synthesis on a cloud but the cloud, its views, the target and the task's own
+    experts (GraspModel.synthesize's other arguments).
+
+    segmentation: the support plane and the objects (graspmix.segment_scene); its voxel_size is the model's
+        (the features must match the demonstration's): left at its default it is taken from the model, another
+        value must equal the model's. Its seed is `seed`.
+    sampling: how many grasps are drawn, kept and annealed.
+    query: the contact query densities Q_i.
+    annealing: the simulated annealing of the best grasps.
+    collision: the collision expert W (model "surface": the cloud's points; "occupancy": also what the cameras
+        did not see free, on an OccupancyMap made with `occupancy`).
+    kinematic: joint limits and the support plane, hard (None: off).
+    axis_alignment: the preference for an approach axis, used when synthesize(approach_axis=...) is given.
+    approach: the hard clear approach of the open hand from the stand-off (None: off).
+    contact_quality: the soft antipodal contact test of the closing hand (None: off).
+    seed: seeds everything random (RANSAC, sampling, annealing).
+    """
+
+    segmentation: _core.SegmentationSettings = _part("segmentation")
+    sampling: _core.SamplingSettings = _part("sampling")
+    query: _core.QuerySettings = _part("query")
+    annealing: _core.AnnealingSettings = _part("annealing")
+    collision: _core.CollisionSettings = _part("collision")
+    occupancy: _core.OccupancySettings = _part("occupancy")
+    kinematic: _core.KinematicFeasibilitySettings | None = _part("kinematic")
+    axis_alignment: _core.AxisAlignmentSettings = _part("axis_alignment")
+    approach: _core.ClearApproachSettings | None = _part("approach")
+    contact_quality: _core.ContactQualitySettings | None = _part("contact_quality")
+    seed: int = 0
+
+    def __post_init__(self):
+        for name, (cls, optional) in PARTS.items():
+            value = getattr(self, name)
+            if value is None and optional:
+                continue
+            if not isinstance(value, cls):
+                allowed = f"a {cls.__name__}" + (" or None" if optional else "")
+                raise ValueError(f"SynthesisOptions.{name}: expected {allowed}, got {type(value).__name__}")
+            object.__setattr__(self, name, copy.copy(value))  # the options own their parts
+        object.__setattr__(self, "seed", check_seed(self.seed, "SynthesisOptions.seed"))
+        self._check_numbers()
+
+    def _check_numbers(self) -> None:
+        """The numbers bounded before they reach a C++ cast or a long run (ValueError naming the field)."""
+        s, q = self.sampling, self.query
+        check_int(s.n_samples, "sampling.n_samples", 1, MAX_SAMPLES)
+        check_int(s.n_optimise, "sampling.n_optimise", 0, MAX_SAMPLES)
+        check_int(s.max_sampling_rounds, "sampling.max_sampling_rounds", 1, 1000)
+        check_int(q.n_samples, "query.n_samples", 1, MAX_SAMPLES)
+        check_int(q.n_components, "query.n_components", 1, MAX_COMPONENTS)
+        if q.n_components > q.n_samples:
+            raise ValueError(f"query.n_components ({q.n_components}) must not exceed query.n_samples ({q.n_samples})")
+        check_int(self.annealing.iterations, "annealing.iterations", 0, MAX_SAMPLES)
+        check_float(self.annealing.initial_temperature, "annealing.initial_temperature", gt=0.0)
+        c = self.collision
+        for name in ("beta", "contact_tolerance", "inside_weight", "point_radius"):
+            check_float(getattr(c, name), f"collision.{name}", 0.0)
+        check_float(self.occupancy.resolution, "occupancy.resolution", gt=0.0)
+        check_float(self.axis_alignment.concentration, "axis_alignment.concentration", 0.0)
+        check_float(self.segmentation.table_clearance, "segmentation.table_clearance", 0.0)
+        if self.segmentation.seed not in (0, self.seed):
+            raise ValueError(
+                f"segmentation.seed ({self.segmentation.seed}): the seed of a synthesis is SynthesisOptions.seed"
+            )
+        if self.approach is not None:
+            check_float(self.approach.stand_off, "approach.stand_off", 0.0)
+            check_float(self.approach.step, "approach.step", gt=0.0)
+            check_float(self.approach.clearance, "approach.clearance", 0.0)
+        if self.contact_quality is not None:
+            check_float(self.contact_quality.friction, "contact_quality.friction", gt=0.0)
+
+    def __repr__(self) -> str:
+        """The parts that differ from the defaults (all of them: repr(options.part))."""
+        default = _defaults()
+        changed = [f"{n}={getattr(self, n)!r}" for n in PARTS if getattr(self, n) != getattr(default, n)]
+        if self.seed:
+            changed.append(f"seed={self.seed}")
+        return f"SynthesisOptions({', '.join(changed)})"
+
+    # -- presets and changes
+    @classmethod
+    def paper(cls, **parts) -> "SynthesisOptions":
+        """The paper's synthesis: the collision expert on the cloud's points, no clear approach, no contact
+        quality (the experiment's "paper" preset); `parts` as the constructor's."""
+        return cls(
+            **{
+                "collision": _core.CollisionSettings(model="surface"),
+                "approach": None,
+                "contact_quality": None,
+                **parts,
+            }
+        )
+
+    def updated(self, changes: Mapping[str, object]) -> "SynthesisOptions":
+        """New options with `changes` applied: "part.field" -> value (e.g. "sampling.n_samples": 400), "part" ->
+        a settings object, None (an optional expert off) or True (on, with its defaults), "seed" -> int.
+        ValueError naming an unknown part or field, or a value of the wrong kind."""
+        parts = {name: getattr(self, name) for name in PARTS}
+        seed = self.seed
+        for key, value in changes.items():
+            name, _, fld = str(key).partition(".")
+            if name == "seed" and not fld:
+                seed = value
+                continue
+            if name not in PARTS:
+                raise ValueError(f"unknown synthesis option {quote(key)} (parts: {', '.join(PARTS)}, seed)")
+            cls, optional = PARTS[name]
+            if not fld:
+                if value is True:  # on: as it is, or with its defaults when it was off
+                    value = parts[name] if parts[name] is not None else cls()
+                elif value is False and optional:
+                    value = None
+                parts[name] = value
+                continue
+            if parts[name] is None:
+                parts[name] = cls()  # a field of a part that was off turns it on
+            parts[name] = _with_field(parts[name], name, fld, value)
+        return SynthesisOptions(**parts, seed=seed)
+
+    # -- the file form (protocol.json, the CLI's records)
+    def to_dict(self) -> dict:
+        """JSON-ready: {part: {field: value} or None, "seed": int}."""
+        out = {name: _fields_dict(getattr(self, name)) for name in PARTS}
+        out["seed"] = self.seed
+        return out
+
+    @classmethod
+    def from_dict(cls, d: Mapping) -> "SynthesisOptions":
+        """The options of to_dict's form; a part or field left out keeps its default. ValueError naming an unknown
+        part or field, or a bad value."""
+        if not isinstance(d, Mapping):
+            raise ValueError(f"synthesis options: expected an object of parts, got {type(d).__name__}")
+        parts = {}
+        for name, value in d.items():
+            if name == "seed":
+                continue
+            if name not in PARTS:
+                raise ValueError(f"synthesis options: unknown part {quote(name)} (parts: {', '.join(PARTS)}, seed)")
+            cls_, optional = PARTS[name]
+            if value is None:
+                if not optional:
+                    raise ValueError(f"synthesis options: {name} cannot be null")
+                parts[name] = None
+            elif isinstance(value, Mapping):
+                parts[name] = _settings_of(cls_, name, value)
+            else:
+                raise ValueError(f"synthesis options: {name} must be an object of fields, got {quote(value)}")
+        return cls(**parts, seed=d.get("seed", 0))
+
+    # -- what the C++ calls take
+    def synthesizer_settings(self) -> "_core.SynthesisSettings":
+        """The GraspSynthesizer's settings: sampling, query and annealing with the seed."""
+        return _core.SynthesisSettings(
+            sampling=self.sampling, query=self.query, annealing=self.annealing, seed=self.seed
+        )
+
+    def query_for(self, position_bandwidth: float, orientation_bandwidth: float) -> "_core.QuerySettings":
+        """The query densities' settings for a model learnt with these KDE kernels: query.kde left at its defaults
+        takes the model's (a KDE model's query densities use its contact kernels), a value set is kept."""
+        q = copy.copy(self.query)
+        default = _core.KdeSettings()
+        if q.kde.position_bandwidth == default.position_bandwidth:
+            q.kde.position_bandwidth = position_bandwidth
+        if q.kde.orientation_bandwidth == default.orientation_bandwidth:
+            q.kde.orientation_bandwidth = orientation_bandwidth
+        return q
+
+    def segmentation_for(self, voxel_size: float) -> "_core.SegmentationSettings":
+        """The segmentation's settings for a model whose features were learnt at voxel_size (see the class doc)."""
+        s = copy.copy(self.segmentation)
+        default = _core.SegmentationSettings().voxel_size
+        if s.voxel_size not in (default, voxel_size):
+            raise ValueError(
+                f"segmentation.voxel_size ({s.voxel_size:g} m) differs from the model's ({voxel_size:g} m): the query "
+                "cloud's features must be computed at the demonstration's density"
+            )
+        s.voxel_size, s.seed = voxel_size, self.seed
+        return s
+
+
+def _defaults() -> SynthesisOptions:
+    global _DEFAULTS
+    if _DEFAULTS is None:
+        _DEFAULTS = SynthesisOptions()
+    return _DEFAULTS
+
+
+_DEFAULTS: SynthesisOptions | None = None
+
+
+def _value(v):
+    if isinstance(v, np.ndarray):
+        return v.tolist()
+    return v
+
+
+def _fields_dict(settings) -> dict | None:
+    if settings is None:
+        return None
+    return {
+        f: (_fields_dict(v) if hasattr(v, "_fields") else _value(v))
+        for f in settings._fields
+        for v in [getattr(settings, f)]
+    }
+
+
+def _settings_of(cls, where: str, values: Mapping):
+    """A settings object of `cls` from a {field: value} mapping (nested settings from nested mappings)."""
+    s = cls()
+    for k, v in values.items():
+        s = _with_field(s, where, k, v)
+    return s
+
+
+def _with_field(settings, where: str, fld: str, value):
+    """A copy of `settings` with one field (nested "a.b" too) set; ValueError naming it when unknown or bad."""
+    head, _, rest = fld.partition(".")
+    if head not in settings._fields:
+        raise ValueError(
+            f"unknown synthesis option {quote(where + '.' + fld)} ({where}'s fields: {', '.join(settings._fields)})"
+        )
+    s = copy.copy(settings)
+    current = getattr(s, head)
+    if rest or (hasattr(current, "_fields") and isinstance(value, Mapping)):
+        if not hasattr(current, "_fields"):
+            raise ValueError(f"synthesis option {quote(where + '.' + fld)}: {head} has no fields")
+        value = (
+            _with_field(current, f"{where}.{head}", rest, value)
+            if rest
+            else _settings_of(type(current), f"{where}.{head}", value)
+        )
+    try:
+        setattr(s, head, value)
+    except (TypeError, ValueError) as e:
+        # pybind11's TypeError lists C++ signatures: say what the field takes instead.
+        detail = str(e) if isinstance(e, ValueError) else f"expected {_kind_of(current)}"
+        raise ValueError(f"synthesis option {where}.{head}: {quote(value)} is not valid: {detail}") from None
+    return s
+
+
+def _kind_of(value) -> str:
+    """What a settings field of value's type takes, in words."""
+    if isinstance(value, bool):
+        return "true or false"
+    if isinstance(value, int):
+        return "an integer (32 bits)"
+    if isinstance(value, float):
+        return "a number"
+    if isinstance(value, np.ndarray):
+        return f"{value.size} numbers"
+    return f"a {type(value).__name__}"
+
+
+def options_field_names() -> list[str]:
+    """Every "part.field" name `updated` takes (nested settings as "part.field.sub"), and "seed"."""
+    out = []
+
+    def walk(prefix, settings):
+        for f in settings._fields:
+            v = getattr(settings, f)
+            if hasattr(v, "_fields"):
+                walk(f"{prefix}.{f}", v)
+            else:
+                out.append(f"{prefix}.{f}")
+
+    for name, (cls, _) in PARTS.items():
+        walk(name, cls())
+    return out + ["seed"]
+
+
+__all__ = ["COLLISION_MODELS", "PARTS", "TABLE_CLEARANCE", "SynthesisOptions", "options_field_names"]

@@ -2,7 +2,7 @@
 reference, and recording demonstrations in pybullet.
 
 Also the module path ``graspmix.sim`` of earlier versions: every name it had is here (the camera names
-are in ``graspmix.sim.acquisition``, and in the deprecated alias ``graspmix.acquisition``).
+are in ``graspmix.sim.acquisition``).
 """
 
 from ..io import GRASPS_FORMAT, data_path, default_hand_path, resolve_object, test_objects

@@ -54,11 +54,6 @@ class FeatureSettings:
     voxel_size: float = _SCENE.voxel_size  # m, voxel grid before the features (SceneSettings)
     radius: float = _SURFACE.radius  # m, the paper's 1 cm (SurfaceFeatureSettings)
 
-    @property
-    def plane_distance(self) -> float:
-        """Deprecated (one release): the table clearance is a synthesis option, SynthesisOptions.table_clearance."""
-        return SynthesisOptions.table_clearance
-
     def surface(self, points: np.ndarray, *, remove_plane: bool, seed: int = 0, viewpoints=None):
         """(SurfaceCloud, SceneResult) of raw points: clean-up (prepare_cloud), then features. A scene's
         known table is cut by segment_scene (graspmix.perception), which synthesis goes through."""

@@ -17,7 +17,7 @@ LAYERS = {"io": 0, "perception": 1, "model": 2, "sim": 3, "viz": 3, "experiment"
 FACADE = {"graspmix"}
 # Module paths of earlier versions and the names each had (read from the last flat layout).
 OLD_NAMES = {
-    "graspmix.cli": ["CliError", "DATA", "build_parser", "main"],
+    "graspmix.cli": ["CliError", "build_parser", "main"],
     "graspmix.experiment": [
         "AttemptLog",
         "CLOSING",
@@ -66,7 +66,6 @@ OLD_NAMES = {
     ],
     "graspmix.sim": [
         "AcquisitionSettings",
-        "DATA",
         "GRASPS_FORMAT",
         "Scene",
         "SimObject",

@@ -75,15 +75,14 @@ class GraspModel:
         self,
         hand: "_core.Hand",
         hand_path: Path,
-        types: "list[GraspType] | _core.GraspSynthesizer",
+        types: "list[GraspType]",
         features: FeatureSettings,
         learn_settings: dict,
-        demo: str | None = None,
     ):
         self._hand = hand
         self.hand_path = Path(hand_path)
-        if not isinstance(types, list):  # one synthesiser: a model of one type, as before grasp types
-            types = [GraspType(Path(demo).stem if demo else "type0", types, demo)]
+        if not isinstance(types, list) or not all(isinstance(t, GraspType) for t in types):
+            raise ValueError(f"types must be a list of GraspType, got {type(types).__name__}")
         if not types:
             raise ValueError("a GraspModel needs at least one grasp type")
         check_names([t.name for t in types])

@@ -121,6 +121,14 @@ def test_the_bundled_box_model_is_one_type_and_synthesises_as_before():
         assert REFERENCE_EXPERT not in g.experts and g.type == "box_wsg50"
 
 
+def test_a_model_is_built_from_a_list_of_grasp_types():
+    m = graspmix.GraspModel.load(graspmix.default_model_path("gmm"))
+    same = graspmix.GraspModel(m.hand, m.hand_path, list(m.types), m.features, m.learn_settings)
+    assert same.type_names == ["box_wsg50"] and same.synthesizer is m.synthesizer
+    with pytest.raises(ValueError, match="types must be a list of GraspType, got GraspSynthesizer"):
+        graspmix.GraspModel(m.hand, m.hand_path, m.synthesizer, m.features, m.learn_settings)
+
+
 def test_demonstrations_of_different_hands_are_refused(tmp_path, capsys):
     urdf = graspmix.data_path("hands", "wsg50.urdf").read_text().replace('<robot name="wsg50">', '<robot name="other">')
     (tmp_path / "other.urdf").write_text(urdf)

@@ -49,7 +49,7 @@ def test_query_components_change_gmm_and_not_kde():
         model = graspmix.GraspModel.load(graspmix.default_model_path(method))
         a = model.synthesize(cloud, query_components=1, **kw).grasps
         b = model.synthesize(cloud, query_components=8, **kw).grasps
-        poses = [np.array([g["T_world_wrist"] for g in x]) for x in (a, b)]
+        poses = [np.array([g.T_world_wrist for g in x]) for x in (a, b)]
         assert (poses[0].shape == poses[1].shape and np.allclose(*poses)) == same, method
     with pytest.raises(ValueError, match="query_components"):
         model.synthesize(cloud, query_components=50, query_samples=20, **kw)

@@ -149,9 +149,8 @@ def synthesize_targets(
                     g.experts[REFERENCE_EXPERT] = -t.log_reference
                     g.log_likelihood -= t.log_reference
                 grasps.append(g)
-            stage_times = dict(res.timing)
             for k in STAGES:
-                timing[k] += stage_times[k]
+                timing[k] += getattr(res.timing, k)
             evaluations += res.evaluations
             rejected += res.rejected
         surfaces.append(surface)

@@ -66,7 +66,7 @@ def test_contact_models_prefer_the_surface_types_their_links_touched(demo, gmm):
     preference, edge_share = {}, {}
     for m in gmm.synthesizer.contact_models:
         d = graspmix.contact_data(hand, m.link, demo.T_world_wrist, demo.grasp_joints, surf.frames, surf.curvatures)
-        idx, w = np.asarray(d["indices"]), d["weights"]
+        idx, w = np.asarray(d.indices), d.weights
         edge_share[m.link_name] = (w * edge[idx]).sum() / w.sum()
         lf = m.density.feature_log_density(surf.curvatures)
         preference[m.link_name] = np.median(lf[edge]) - np.median(lf[~edge])

@@ -28,6 +28,7 @@ import numpy as np
 from graspmix.experiment.compare import Cell, cell, difference, outcome_change, outcome_shares
 from graspmix.experiment.log import read_rows
 from graspmix.experiment.report import findings_table, md_table
+from graspmix.model import Grasp
 from graspmix.model.grasp_frames import rotation_matrices
 from graspmix.model.hands import APPROACH_AXIS
 
@@ -178,7 +179,7 @@ def starts_block(results: Path) -> str:
             ]
             depths: dict = {}
             for r in sel:
-                for key, d in start_penetrations(r["object"], json.loads(r["grasp"])).items():
+                for key, d in start_penetrations(r["object"], Grasp.from_dict(json.loads(r["grasp"]))).items():
                     depths.setdefault(key, []).append(d)
             parts = [
                 f"{what} / {link}: {len(d)} ({1000 * float(np.median(d)):.1f} mm)"

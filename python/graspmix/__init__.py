@@ -10,8 +10,6 @@ layers, each importing only from the ones before it:
     viz/         pictures
     experiment/  the paper's experiment: protocol, runs, statistics, report, runtime benchmark
     cli/         graspmix_cli
-
-The module paths graspmix.acquisition, .demo, .plots, .report and .stats are deprecated aliases.
 """
 
 import importlib as _importlib
@@ -94,9 +92,9 @@ from .model import (
 from .perception import Scene, segment_scene
 
 # Loaded on first use (PEP 562), so that `import graspmix` and a command that needs neither pictures nor the
-# simulator do not pay for matplotlib, pybullet and their modules: the layers above the model, the deprecated
-# module aliases, the two plotting functions re-exported here and the version (importlib.metadata).
-_LAZY_MODULES = {"sim", "viz", "experiment", "clutter", "cli", "acquisition", "demo", "plots", "report", "stats"}
+# simulator do not pay for matplotlib, pybullet and their modules: the layers above the model, the two
+# plotting functions re-exported here and the version (importlib.metadata).
+_LAZY_MODULES = {"sim", "viz", "experiment", "clutter", "cli"}
 _LAZY_NAMES = {"plot_grasps": "viz", "plot_grasps_html": "viz"}
 
 
@@ -141,8 +139,10 @@ def pose_inverse(a):
     return _rowwise(_core.pose_inverse, a)
 
 
+# `from graspmix import *` gives the eager names and the pictures (graspmix.viz loads matplotlib only when it
+# draws), never the simulator: sim, experiment and clutter load pybullet.
 __all__ = sorted(
     {name for name in globals() if not name.startswith("_") and name not in ("annotations",)}
-    | {"sim", "viz", "acquisition"}
+    | {"viz"}
     | set(_LAZY_NAMES)
 )

@@ -5,10 +5,7 @@ core_commands (info, fit-gmm, features), grasp_commands (demo, learn, synthesize
 (acquire, execute), experiment_commands (experiment, report, benchmark).
 """
 
-from ..io import data_path
 from .common import CliError
 from .main import build_parser, main
 
-DATA = data_path()  # deprecated: use graspmix.io.data_path()
-
-__all__ = ["DATA", "CliError", "build_parser", "main"]
+__all__ = ["CliError", "build_parser", "main"]

@@ -88,25 +88,25 @@ def print_grasps(grasps, top: int) -> None:
     rows = grasps.grasps[:top]
     if not rows:
         return
-    keys = list(rows[0]["experts"].keys())
+    keys = list(rows[0].experts.keys())
     short = [k.replace("contact/", "Q:") for k in keys]
     head = " ".join(f"{k:>14}" for k in short)
-    gap = all(g.get("opening_width") is not None for g in rows)
+    gap = all(g.opening_width is not None for g in rows)
     last = "opening: finger gap (m)" if gap else "grasp joints (m or rad)"
-    typed = any(g.get("type") for g in rows)
+    typed = any(g.type for g in rows)
     kind = f" {'type':>14}" if typed else ""
     print(f"{'rank':>4} {'object':>6}{kind} {'log L':>9} {head}   wrist position (m)        {last}")
     for g in rows:
-        terms = " ".join(f"{g['experts'][k]:>14.3f}" for k in keys)
-        pos = ", ".join(f"{x:+.3f}" for x in g["T_world_wrist"][:3])
+        terms = " ".join(f"{g.experts[k]:>14.3f}" for k in keys)
+        pos = ", ".join(f"{x:+.3f}" for x in g.T_world_wrist[:3])
         if gap:
-            opening = f"{g['opening_width']:.4f}"
+            opening = f"{g.opening_width:.4f}"
         else:
-            opening = ", ".join(f"{k}={v:.4f}" for k, v in g["grasp_joints"].items())
-        on = g.get("object")
-        kind = f" {g.get('type', '-'):>14}" if typed else ""
+            opening = ", ".join(f"{k}={v:.4f}" for k, v in g.grasp_joints.items())
+        on = g.object
+        kind = f" {g.type or '-':>14}" if typed else ""
         print(
-            f"{g['rank']:>4} {'-' if on is None else on['index']:>6}{kind} {g['log_likelihood']:>9.3f} {terms}   "
+            f"{g.rank:>4} {'-' if on is None else on['index']:>6}{kind} {g.log_likelihood:>9.3f} {terms}   "
             f"[{pos}]   {opening}"
         )
 

@@ -19,16 +19,17 @@ from dataclasses import dataclass
 from typing import Callable
 
 from ..experiment.attempt import cached_model
+from ..model.grasps import Grasp, check_grasp
 from .protocol import MAX_CONSECUTIVE_FAILURES, ClutterProtocol, clutter_protocol_from_json
 
 
 @dataclass
 class Plan:
-    """A planner's answer: the grasp to execute (a Grasp or grasps.json entry), the index of the
+    """A planner's answer: the grasp to execute (a Grasp), the index of the
     segmented object it is on (None: unknown), how many objects the segmentation found (None: unknown),
     and the planner's own split of its time (s; None: not measured, the loop's total is synthesis)."""
 
-    grasp: object
+    grasp: Grasp
     target: int | None = None
     seen: int | None = None
     t_segment: float | None = None
@@ -63,7 +64,7 @@ def _attempt(spec, stages: Stages, seed_of: Callable, attempt: int) -> tuple[dic
     t2 = time.perf_counter()
     row.update(seen=_blank(plan.seen), target=_blank(plan.target), t_segment=_blank(plan.t_segment))
     row["t_synthesis"] = t2 - t1 if plan.t_synthesis is None else plan.t_synthesis
-    grasp = plan.grasp.to_dict(execution_only=True) if hasattr(plan.grasp, "to_dict") else dict(plan.grasp)
+    grasp = check_grasp(plan.grasp, "the planner's grasp").to_dict(execution_only=True)
     row["grasp"] = json.dumps(grasp, separators=(",", ":"), default=float)
     ex = stages.execute(spec, plan.grasp)
     row["t_execution"] = time.perf_counter() - t2

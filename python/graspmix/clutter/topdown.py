@@ -90,8 +90,7 @@ def topdown_grasp(points, plane=None, hand=None, table_clearance: float = TABLE_
     top = float(p[:, 2].max()) - table
     tip = max(top - GRASP_DEPTH, table_clearance + TIP_MARGIN) + table
     lo, hi = h.joint_limits[0]
-    g = top_grasp(centre, float(hi), float(lo), yaw=math.atan2(n[1], n[0]), tip_height=tip, hand=h)
-    return Grasp.from_dict(g)
+    return top_grasp(centre, float(hi), float(lo), yaw=math.atan2(n[1], n[0]), tip_height=tip, hand=h)
 
 
 def plan_topdown(scene, hand=None, table_clearance: float = TABLE_CLEARANCE) -> tuple[Grasp, int]:

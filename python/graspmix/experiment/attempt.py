@@ -105,7 +105,7 @@ def _executed(row: dict, grasps, result, t_exec: float) -> dict:
         reason=result.reason,
         lift_height=float(result.lift_height),
         contact_count=int(result.contact_count),
-        log_likelihood=float(best["log_likelihood"]),
+        log_likelihood=float(best.log_likelihood),
         grasp=json.dumps(_executed_grasp(best), separators=(",", ":")),
         evaluations=int(grasps.evaluations),
         rejected=int(grasps.rejected),

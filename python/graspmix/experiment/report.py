@@ -1,6 +1,6 @@
 """Summary and report of an experiment run, rebuilt from its attempts.csv and protocol.json alone.
 
-    graspmix.report.build_report("runs/paper")   # summary.json, report.md, report.html, *.png
+    graspmix.experiment.report.build_report("runs/paper")   # summary.json, report.md, report.html, *.png
 
 Figures: success rate per condition and method with 95% confidence intervals over trials (and the
 per-trial rates as dots), the stacked runtime bars of the paper's Fig. runtime (medians over objects of

@@ -31,7 +31,6 @@ from .formats import (
     GMM_FORMAT,
     GRASPS_FORMAT,
     MODEL_FORMAT,
-    MODEL_FORMAT_V1,
     PROTOCOL_FORMAT,
     SCENE_FORMAT,
     SCHEMAS,

@@ -14,7 +14,6 @@ from .schema import Any, Arr, Bool, Either, Int, Map, Null, Num, Obj, Str, Tagge
 
 DEMO_FORMAT = "graspmix.demo/1"
 MODEL_FORMAT = "graspmix.model/2"  # grasp types (a "types" list)
-MODEL_FORMAT_V1 = "graspmix.model/1"  # one demonstration; still read
 GRASPS_FORMAT = "graspmix.grasps/1"
 PROTOCOL_FORMAT = "graspmix.experiment/2"  # the synthesis as SynthesisOptions (a "synthesis" object)
 SUMMARY_FORMAT = "graspmix.summary/2"
@@ -28,7 +27,6 @@ CLUTTER_SUMMARY_FORMAT = "graspmix.clutter_summary/2"
 FORMATS = {
     DEMO_FORMAT: ("demonstration", True),  # hand-written demonstrations may omit it
     MODEL_FORMAT: ("model", False),
-    MODEL_FORMAT_V1: ("model", False),
     GRASPS_FORMAT: ("grasps", False),
     PROTOCOL_FORMAT: ("protocol", False),
     SUMMARY_FORMAT: ("summary", False),
@@ -98,7 +96,7 @@ _LEARN_SETTINGS = Obj(
         "config": _CONFIG_SETTINGS,
     }
 )
-# One grasp type's models: the top level of a graspmix.model/1 file, an entry of a graspmix.model/2 "types".
+# One grasp type's models: an entry of a graspmix.model/2 "types".
 _TYPE_MODELS = {
     "demonstration": Either(Str(), Null()),
     "config_model": Obj(
@@ -116,20 +114,13 @@ _TYPE_MODELS = {
         min_len=1,
     ),
 }
-_MODEL_SHARED = {
-    "format": Str(),
-    "method": Str(choices=["gmm", "kde"]),
-    "hand": Str(nonempty=True),
-    "features": Obj({"voxel_size": _NONNEGATIVE, "radius": _POSITIVE}),
-    "learn_settings": _LEARN_SETTINGS,
-}
-_MODEL_V1 = Obj(
-    {**_MODEL_SHARED, **_TYPE_MODELS},
-    required=["method", "hand", "features", "config_model", "contact_models"],
-)
 _MODEL = Obj(
     {
-        **_MODEL_SHARED,
+        "format": Str(),
+        "method": Str(choices=["gmm", "kde"]),
+        "hand": Str(nonempty=True),
+        "features": Obj({"voxel_size": _NONNEGATIVE, "radius": _POSITIVE}),
+        "learn_settings": _LEARN_SETTINGS,
         "types": Arr(
             Obj(
                 {"name": Str(nonempty=True), "log_reference": Num(), **_TYPE_MODELS},
@@ -332,7 +323,6 @@ _CLUTTER_SUMMARY = Obj(
 SCHEMAS = {
     DEMO_FORMAT: _DEMO,
     MODEL_FORMAT: _MODEL,
-    MODEL_FORMAT_V1: _MODEL_V1,
     GRASPS_FORMAT: _GRASPS,
     PROTOCOL_FORMAT: _PROTOCOL,
     SUMMARY_FORMAT: _SUMMARY,

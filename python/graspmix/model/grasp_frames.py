@@ -19,7 +19,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -119,11 +119,10 @@ def fingertip_links(hand, contact_links: Sequence[str] = ()) -> list[str]:
 
 
 def contact_links_of(grasps) -> list[str]:
-    """Every link with a contact/<link> expert term in any of the grasps (dicts or Grasps)."""
+    """Every link with a contact/<link> expert term in any of the grasps (Grasps)."""
     links = []
     for g in grasps:
-        experts = g.get("experts") if isinstance(g, Mapping) else None
-        for k in experts or {}:
+        for k in g.experts or {}:
             if k.startswith("contact/") and k[8:] not in links:
                 links.append(k[8:])
     return links

@@ -22,11 +22,9 @@ import numpy as np
 from .. import _core
 from ..io import (
     MODEL_FORMAT,
-    MODEL_FORMAT_V1,
     data_path,
     load_points,
     read_document,
-    read_json,
     relative_path,
     require_field,
     resolve_path,
@@ -77,15 +75,14 @@ class GraspModel:
         self,
         hand: "_core.Hand",
         hand_path: Path,
-        types: "list[GraspType] | _core.GraspSynthesizer",
+        types: "list[GraspType]",
         features: FeatureSettings,
         learn_settings: dict,
-        demo: str | None = None,
     ):
         self._hand = hand
         self.hand_path = Path(hand_path)
-        if not isinstance(types, list):  # one synthesiser: a model of one type, as before grasp types
-            types = [GraspType(Path(demo).stem if demo else "type0", types, demo)]
+        if not isinstance(types, list) or not all(isinstance(t, GraspType) for t in types):
+            raise ValueError(f"types must be a list of GraspType, got {type(types).__name__}")
         if not types:
             raise ValueError("a GraspModel needs at least one grasp type")
         check_names([t.name for t in types])
@@ -203,11 +200,9 @@ class GraspModel:
 
     @classmethod
     def load(cls, path: str | Path) -> "GraspModel":
-        """Reads a model file: graspmix.model/2 (grasp types), or graspmix.model/1 (one demonstration: a model
-        of one type, named after its demonstration file's stem)."""
+        """Reads a model file (format graspmix.model/2)."""
         path = check_path_text(path, "model")
-        old = read_json(path, "model").get("format") == MODEL_FORMAT_V1
-        data = read_document(path, MODEL_FORMAT_V1 if old else MODEL_FORMAT)
+        data = read_document(path, MODEL_FORMAT)
         method = require_field(data, "method", path, str)
         check_method(method)
         base = path.resolve().parent
@@ -218,11 +213,7 @@ class GraspModel:
             voxel_size=float(f.get("voxel_size", FeatureSettings.voxel_size)),
             radius=float(f.get("radius", FeatureSettings.radius)),
         )
-        if old:
-            demo = data.get("demonstration")
-            entries = [dict(data, name=Path(demo).stem if demo else "type0")]
-        else:
-            entries = require_field(data, "types", path, list)
+        entries = require_field(data, "types", path, list)
         types = [type_from_json(e, hand, hand_path, method, path, e["name"]) for e in entries]
         return cls(hand, hand_path, types, feats, data.get("learn_settings", {}))
 

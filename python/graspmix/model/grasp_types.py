@@ -139,7 +139,7 @@ def type_to_json(t: GraspType, base: Path) -> dict:
 
 
 def type_from_json(entry: dict, hand, hand_path: Path, method: str, path: Path, name: str) -> GraspType:
-    """A GraspType from a "types" entry, or from the top level of a graspmix.model/1 file (one type)."""
+    """A GraspType from an entry of a model file's "types"."""
     models = _contact_models(entry["contact_models"], hand, hand_path, method, f"{path}: type {name!r}")
     cfg = _config_model(entry["config_model"], hand, path)
     demo = entry.get("demonstration")

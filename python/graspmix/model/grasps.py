@@ -1,8 +1,8 @@
 """Grasps: one Grasp (the layout of an entry of grasps.json, defined here and nowhere else), the ranked
 GraspSet a synthesis returns, and grasps.json itself (format graspmix.grasps/1).
 
-A Grasp is a dataclass that also reads like the dictionary it is written as, so code written for the
-dictionaries keeps working: ``grasps.best()["T_world_wrist"]``, ``dict(grasp)``, ``grasp["experts"]``.
+A Grasp is read by its attributes (``grasps.best().T_world_wrist``, ``grasp.experts["collision"]``); its
+file form is ``to_dict()`` and ``Grasp.from_dict``.
 """
 
 from __future__ import annotations
@@ -10,7 +10,7 @@ from __future__ import annotations
 import importlib
 import json
 import math
-from collections.abc import Mapping, MutableMapping
+from collections.abc import Mapping
 from dataclasses import dataclass, field, fields
 from pathlib import Path
 
@@ -33,8 +33,8 @@ STAGE_LABELS = {
 }
 
 
-@dataclass(eq=False)
-class Grasp(MutableMapping):
+@dataclass
+class Grasp:
     """One grasp in the world frame (the cloud's): the wrist pose [x, y, z, qx, qy, qz, qw], the pre-grasp
     and grasp joints (name -> value), and, for a synthesised grasp, its rank (1 = best), log-likelihood,
     whether annealing moved it, the object of the scene it is on, its grasp type, and every expert's log value ("collision", "config", "pregrasp_clear",
@@ -103,37 +103,6 @@ class Grasp(MutableMapping):
                 known[k] = dict(known[k])
         return cls(**known, extra={k: v for k, v in d.items() if k not in cls.KEYS})
 
-    # -- the dictionary view (grasps.json's keys)
-    def __getitem__(self, key):
-        if key in self.KEYS:
-            value = getattr(self, key)
-            if value is None:
-                raise KeyError(key)
-            return value
-        return self.extra[key]
-
-    def __setitem__(self, key, value):
-        if key in self.KEYS:
-            setattr(self, key, value)
-        else:
-            self.extra[key] = value
-
-    def __delitem__(self, key):
-        if key in EXECUTION_KEYS:
-            raise KeyError(f"{key!r} is required in a grasp")
-        if key in self.KEYS:
-            if getattr(self, key) is None:
-                raise KeyError(key)
-            setattr(self, key, None)
-        else:
-            del self.extra[key]
-
-    def __iter__(self):
-        return iter(self.to_dict())
-
-    def __len__(self):
-        return len(self.to_dict())
-
     def __repr__(self):
         body = ", ".join(
             f"{f.name}={getattr(self, f.name)!r}"
@@ -141,6 +110,15 @@ class Grasp(MutableMapping):
             if getattr(self, f.name) not in (None, {}) or f.name in EXECUTION_KEYS
         )
         return f"Grasp({body})"
+
+
+def check_grasp(grasp, what: str = "grasp") -> Grasp:
+    """grasp, which must be a Grasp (Grasp.from_dict reads a grasps.json entry); ValueError naming `what` else."""
+    if not isinstance(grasp, Grasp):
+        raise ValueError(
+            f"{what}: expected a Grasp (Grasp.from_dict reads a grasps.json entry), got {type(grasp).__name__}"
+        )
+    return grasp
 
 
 def grasps_from_result(result, hand) -> list[Grasp]:
@@ -200,7 +178,9 @@ class GraspSet:
     hand: object = None  # the graspmix.Hand of hand_path (read when first needed)
 
     def __post_init__(self):
-        if any(isinstance(g, Grasp) and g.T_world_wrist_matrix is None for g in self.grasps):
+        for i, g in enumerate(self.grasps):
+            check_grasp(g, f"grasps[{i}]")
+        if any(g.T_world_wrist_matrix is None for g in self.grasps):
             self.add_frames()
 
     def __len__(self):
@@ -223,7 +203,7 @@ class GraspSet:
         opening_width, T_world_pregrasp, T_world_retreat) from the hand at its grasp joints; call it again
         after moving a grasp. settings: how (default: frame_settings)."""
         self.frame_settings = (settings or self.frame_settings).checked()
-        rows = [g for g in self.grasps if isinstance(g, Grasp)]
+        rows = self.grasps
         if not rows:
             return
         hand = self.get_hand()
@@ -240,27 +220,27 @@ class GraspSet:
         self.fingertips = tips
 
     def _column(self, key: str) -> np.ndarray:
-        return np.array([np.nan if g.get(key) is None else g[key] for g in self.grasps], dtype=float)
+        return np.array([np.nan if getattr(g, key) is None else getattr(g, key) for g in self.grasps], dtype=float)
 
     @property
     def wrist_matrices(self) -> np.ndarray:
         """(N, 4, 4) T_world_wrist as homogeneous matrices."""
-        return np.array([g["T_world_wrist_matrix"] for g in self.grasps], dtype=float).reshape(-1, 4, 4)
+        return np.array([g.T_world_wrist_matrix for g in self.grasps], dtype=float).reshape(-1, 4, 4)
 
     @property
     def tcp_poses(self) -> np.ndarray:
         """(N, 7) T_world_tcp (NaN rows for a hand without fingertip links)."""
-        return np.array([g.get("T_world_tcp") or [np.nan] * 7 for g in self.grasps], dtype=float).reshape(-1, 7)
+        return np.array([g.T_world_tcp or [np.nan] * 7 for g in self.grasps], dtype=float).reshape(-1, 7)
 
     @property
     def approaches(self) -> np.ndarray:
         """(N, 3) approach directions (world, unit)."""
-        return np.array([g["approach"] for g in self.grasps], dtype=float).reshape(-1, 3)
+        return np.array([g.approach for g in self.grasps], dtype=float).reshape(-1, 3)
 
     @property
     def closings(self) -> np.ndarray:
         """(N, 3) closing directions (world, unit; NaN unless the hand has two fingertip links)."""
-        return np.array([g.get("closing") or [np.nan] * 3 for g in self.grasps], dtype=float).reshape(-1, 3)
+        return np.array([g.closing or [np.nan] * 3 for g in self.grasps], dtype=float).reshape(-1, 3)
 
     @property
     def opening_widths(self) -> np.ndarray:
@@ -270,12 +250,12 @@ class GraspSet:
     @property
     def pregrasp_poses(self) -> np.ndarray:
         """(N, 7) T_world_pregrasp: the wrist frame_settings.pregrasp_distance back along the approach."""
-        return np.array([g["T_world_pregrasp"] for g in self.grasps], dtype=float).reshape(-1, 7)
+        return np.array([g.T_world_pregrasp for g in self.grasps], dtype=float).reshape(-1, 7)
 
     @property
     def retreat_poses(self) -> np.ndarray:
         """(N, 7) T_world_retreat: the wrist frame_settings.retreat_distance back along the approach."""
-        return np.array([g["T_world_retreat"] for g in self.grasps], dtype=float).reshape(-1, 7)
+        return np.array([g.T_world_retreat for g in self.grasps], dtype=float).reshape(-1, 7)
 
     def to_json(self, base: Path | None = None) -> dict:
         """The grasps.json content; paths are written relative to `base` (the file's folder) when given."""
@@ -290,7 +270,7 @@ class GraspSet:
             "method": self.method,
             "cloud": cloud,
             "timing_s": self.timing,
-            "grasps": [_as_dict(g) for g in self.grasps],
+            "grasps": [g.to_dict() for g in self.grasps],
             # Added after the first release's keys: what GraspSet.load and plot need again.
             "plane": None if self.plane is None else [float(v) for v in self.plane],
             "evaluations": int(self.evaluations),
@@ -331,14 +311,8 @@ class GraspSet:
             **{k: tuple(v) if isinstance(v, list) else v for k, v in frames.items() if k in known}
         )
         plane = doc.get("plane")
-        grasps = [Grasp.from_dict(g) for g in doc["grasps"]]
-        for g in grasps:  # the log values save() wrote as strings and null, as numbers again
-            if g.log_likelihood is not None:
-                g.log_likelihood = _from_json_safe(g.log_likelihood)
-            if g.experts is not None:
-                g.experts = {k: _from_json_safe(v) for k, v in g.experts.items()}
         return cls(
-            grasps,
+            doc["grasps"],
             resolve_path(doc["hand"], base),
             doc.get("method", ""),
             cloud,
@@ -360,10 +334,6 @@ class GraspSet:
         if not _PLOTTER:  # the pictures' layer registers its plotter when it is first imported
             importlib.import_module("graspmix.viz")
         return _PLOTTER[0](self, path, cloud=cloud, **options)
-
-
-def _as_dict(g) -> dict:
-    return g.to_dict() if isinstance(g, Grasp) else dict(g)
 
 
 def _dumps_entries_one_line(doc: dict, key: str, allow_nan: bool = True) -> str:
@@ -392,8 +362,9 @@ def _from_json_safe(x) -> float:
 
 
 def load_grasps(path) -> dict:
-    """Reads and checks a grasps.json (format graspmix.grasps/1). The document comes back as read, its
-    grasps (dictionaries, as in the file; a missing rank is the position) sorted by rank."""
+    """Reads and checks a grasps.json (format graspmix.grasps/1). The document comes back as read, but for
+    its grasps: Grasp objects sorted by rank (a missing rank is the position), their log values numbers
+    again (save() writes non-finite ones as "-inf", "inf" and null)."""
     doc = read_document(path, GRASPS_FORMAT)
     grasps = doc.get("grasps")
     if not isinstance(grasps, list) or not grasps:
@@ -402,10 +373,15 @@ def load_grasps(path) -> dict:
     for i, g in enumerate(grasps):
         if not isinstance(g, Mapping):
             raise ValueError(f"{path}: grasp {i} is not an object")
-        entry = Grasp.from_dict(g, where=f"{path}: grasp {i}").to_dict()
-        entry.setdefault("rank", i + 1)
+        entry = Grasp.from_dict(g, where=f"{path}: grasp {i}")
+        if entry.rank is None:
+            entry.rank = i + 1
+        if entry.log_likelihood is not None:
+            entry.log_likelihood = _from_json_safe(entry.log_likelihood)
+        if entry.experts is not None:
+            entry.experts = {k: _from_json_safe(v) for k, v in entry.experts.items()}
         entries.append(entry)
-    doc["grasps"] = sorted(entries, key=lambda g: g["rank"])
+    doc["grasps"] = sorted(entries, key=lambda g: g.rank)
     return doc
 
 
@@ -414,6 +390,6 @@ def grasp_by_rank(doc: Mapping, rank: int = 1):
     grasps = doc["grasps"] if isinstance(doc, Mapping) else doc.grasps
     rank = check_int(rank, "rank", 1)
     for g in grasps:
-        if g["rank"] == rank:
+        if g.rank == rank:
             return g
-    raise ValueError(f"no grasp of rank {rank} (ranks {grasps[0]['rank']}..{grasps[-1]['rank']})")
+    raise ValueError(f"no grasp of rank {rank} (ranks {grasps[0].rank}..{grasps[-1].rank})")

@@ -139,7 +139,7 @@ def synthesize_targets(
             extra = shared + [e for e in own if e is not None]
             res = t.synthesizer.synthesize(surface.frames, surface.curvatures, collision, extra, settings)
             for g in grasps_from_result(res, model.hand):
-                g["object"] = on
+                g.object = on
                 g.type = t.name
                 if len(model.types) > 1:  # scores of several types made comparable (model.grasp_types)
                     g.experts[REFERENCE_EXPERT] = -t.log_reference

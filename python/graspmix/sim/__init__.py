@@ -2,10 +2,10 @@
 reference, and recording demonstrations in pybullet.
 
 Also the module path ``graspmix.sim`` of earlier versions: every name it had is here (the camera names
-are in ``graspmix.sim.acquisition``, and in the deprecated alias ``graspmix.acquisition``).
+are in ``graspmix.sim.acquisition``).
 """
 
-from ..io import GRASPS_FORMAT, data_path, default_hand_path, resolve_object, test_objects
+from ..io import GRASPS_FORMAT, default_hand_path, resolve_object, test_objects
 from ..model.grasps import grasp_by_rank, load_grasps
 from . import acquisition
 from .acquisition import AcquisitionSettings, Scene
@@ -26,10 +26,7 @@ from .execution import (
 )
 from .pybullet_reference import execute_pybullet
 
-DATA = data_path()  # deprecated: use graspmix.io.data_path()
-
 __all__ = [
-    "DATA",
     "GRASPS_FORMAT",
     "SimObject",
     "SimResult",

@@ -14,14 +14,14 @@ from __future__ import annotations
 import functools
 import math
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any
 
 import numpy as np
 
 from .. import _core
 from ..io import default_hand_path, resolve_object, resolve_path
 from ..io.checks import MAX_SIM_TIME, check_float, check_input_file, check_int, quote
-from ..model.grasps import Grasp, grasp_by_rank, load_grasps
+from ..model.grasps import Grasp, check_grasp, grasp_by_rank, load_grasps
 from .acquisition import AcquisitionSettings, Scene
 
 SimSettings = _core.SimSettings
@@ -169,14 +169,15 @@ def _check_hand_matches(hand: _core.Hand, doc_hand: str | None, grasps_path=".")
         raise ValueError(f"the grasps are for hand {doc_hand!r}, not {hand.name!r} ({hand.source})")
 
 
-def grasp_arrays(hand: _core.Hand, grasp: Mapping) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(wrist (7,), pre-grasp joints, grasp joints) of a Grasp or grasps.json entry, checked against the hand."""
-    wrist = np.asarray(grasp["T_world_wrist"], dtype=float)
+def grasp_arrays(hand: _core.Hand, grasp: Grasp) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(wrist (7,), pre-grasp joints, grasp joints) of a Grasp, checked against the hand."""
+    grasp = check_grasp(grasp)
+    wrist = np.asarray(grasp.T_world_wrist, dtype=float)
     if wrist.shape != (7,):
         raise ValueError(f"T_world_wrist: expected 7 values [x, y, z, qx, qy, qz, qw], got shape {wrist.shape}")
     try:
-        pre = hand.joints_array(grasp["pregrasp_joints"])
-        fin = hand.joints_array(grasp["grasp_joints"])
+        pre = hand.joints_array(grasp.pregrasp_joints)
+        fin = hand.joints_array(grasp.grasp_joints)
     except ValueError as e:
         raise ValueError(f"the grasp does not fit hand {hand.name!r} (joints {hand.joint_names}): {e}") from None
     return wrist, pre, fin
@@ -184,7 +185,7 @@ def grasp_arrays(hand: _core.Hand, grasp: Mapping) -> tuple[np.ndarray, np.ndarr
 
 def execute(
     obj,
-    grasp: Mapping | None = None,
+    grasp: Grasp | None = None,
     *,
     hand=None,
     T_world_wrist=None,
@@ -197,8 +198,8 @@ def execute(
     """Executes one grasp in Bullet (C++) and returns a SimResult (success, reason, lift_height,
     contact_count, steps, simulated_time, wall_time).
 
-    obj: an object URDF (path or relative to pybullet_data) or a SimObject. grasp: one entry of a
-    grasps.json (T_world_wrist, pregrasp_joints, grasp_joints), or give those three as keywords.
+    obj: an object URDF (path or relative to pybullet_data) or a SimObject. grasp: a Grasp (its
+    T_world_wrist, pregrasp_joints and grasp_joints), or give those three as keywords.
     hand: a Hand or URDF path (default: the bundled WSG 50). object_pose: the object's link pose (7,);
     default: where the acquisition places it (rest_pose). settings/overrides: SimSettings fields.
     """
@@ -235,7 +236,7 @@ def execute_file(
     return execute(obj, grasp_by_rank(doc, rank), hand=h, settings=settings, **overrides)
 
 
-def top_grasp(center, opening: float, closing: float, yaw: float = 0.0, tip_height: float = 0.01, hand=None) -> dict:
+def top_grasp(center, opening: float, closing: float, yaw: float = 0.0, tip_height: float = 0.01, hand=None) -> Grasp:
     """A WSG 50-style top grasp (palm z pointing down) over `center` (x, y), fingertips `tip_height` above
     the plane, pre-grasp finger distance `opening`, grasp `closing` (each finger's distance from the
     centre, m), fingers moving along the direction at angle `yaw` about world z. For tests and examples."""
@@ -247,7 +248,7 @@ def top_grasp(center, opening: float, closing: float, yaw: float = 0.0, tip_heig
     q = (Rotation.from_euler("z", yaw) * Rotation.from_euler("x", math.pi)).as_quat()
     wrist = [float(center[0]), float(center[1]), tip_height + reach, *q]
     name = h.joint_names[0]
-    return Grasp(wrist, {name: opening}, {name: closing}).to_dict()
+    return Grasp(wrist, {name: opening}, {name: closing})
 
 
 def result_dict(r: SimResult) -> dict[str, Any]:

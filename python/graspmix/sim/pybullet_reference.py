@@ -8,11 +8,11 @@ import tempfile
 import xml.etree.ElementTree as ET
 from contextlib import contextmanager
 from pathlib import Path
-from typing import Mapping
 
 import numpy as np
 
 from .. import _core
+from ..model.grasps import Grasp
 from .execution import SimSettings, grasp_arrays, load_hand, load_object, make_settings, rest_pose
 
 
@@ -170,7 +170,7 @@ def _run_protocol(p, kw: dict, s: SimSettings, plane: int, body: int, hid: int, 
 
 
 @contextmanager
-def _world(obj, grasp: Mapping, hand, object_pose, settings: SimSettings | None):
+def _world(obj, grasp: Grasp, hand, object_pose, settings: SimSettings | None):
     """A pybullet world (DIRECT) with the plane, the object at its pose and the hand at the grasp's wrist and
     pre-grasp: yields (pybullet, kw, settings, plane, body, hand id, joints, drives); disconnects after."""
     import pybullet as p
@@ -191,7 +191,7 @@ def _world(obj, grasp: Mapping, hand, object_pose, settings: SimSettings | None)
 
 
 def execute_pybullet(
-    obj, grasp: Mapping, *, hand=None, object_pose=None, settings: SimSettings | None = None, **overrides
+    obj, grasp: Grasp, *, hand=None, object_pose=None, settings: SimSettings | None = None, **overrides
 ) -> dict:
     """The same protocol as execute, in pybullet (DIRECT) with the same URDFs: the reference for the
     agreement test. Returns {success, reason, lift_height, contact_count, start_penetration, steps}."""
@@ -201,7 +201,7 @@ def execute_pybullet(
 
 
 def start_penetrations(
-    obj, grasp: Mapping, *, hand=None, object_pose=None, settings: SimSettings | None = None
+    obj, grasp: Grasp, *, hand=None, object_pose=None, settings: SimSettings | None = None
 ) -> dict[tuple[str, str], float]:
     """What a grasp's start (the hand at its pre-grasp) penetrates, in pybullet with the same URDFs as
     execute_pybullet: {(what, link): deepest penetration in m} for every hand link deeper than the settings'

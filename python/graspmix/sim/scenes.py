@@ -267,7 +267,7 @@ class SceneExecution:
 def execute_in_scene(
     spec: SceneSpec, grasp, hand=None, closing: str = "full", settings: SimSettings | None = None
 ) -> SceneExecution:
-    """Executes a grasp (a Grasp or a grasps.json entry) among the scene's objects in Bullet. closing:
+    """Executes a Grasp among the scene's objects in Bullet. closing:
     "full" (the fingers close until they stop, force-limited: the experiment's rule) or "learnt" (just past
     the synthesised grasp joints); see graspmix.sim.execution.CLOSING."""
     s = make_settings(settings, **closing_overrides(closing))

@@ -143,7 +143,7 @@ def _cloud_points(grasps, cloud, plane) -> np.ndarray:
 def _link_meshes(hand, grasp) -> list:
     """The collision meshes of every link of `hand` at the grasp's wrist and grasp joints (world)."""
     out = []
-    links = hand.fk(np.asarray(grasp["T_world_wrist"], dtype=float), grasp["grasp_joints"])
+    links = hand.fk(np.asarray(grasp.T_world_wrist, dtype=float), grasp.grasp_joints)
     for name, pose in zip(hand.link_names, links):
         V, T = hand.collision_mesh(name)
         if len(T) == 0:
@@ -154,11 +154,11 @@ def _link_meshes(hand, grasp) -> list:
 
 
 def _label(g, k: int) -> str:
-    text = f"#{g.get('rank', k + 1)}"
-    if g.get("log_likelihood") is not None:
-        text += f": log L {float(g['log_likelihood']):.2f}"
-    if g.get("opening_width") is not None:
-        text += f", opening {g['opening_width'] * 1e3:.1f} mm"
+    text = f"#{k + 1 if g.rank is None else g.rank}"
+    if g.log_likelihood is not None:
+        text += f": log L {float(g.log_likelihood):.2f}"
+    if g.opening_width is not None:
+        text += f", opening {g.opening_width * 1e3:.1f} mm"
     return text
 
 
@@ -166,7 +166,7 @@ def grasp_drawing(
     grasps, hand=None, *, cloud=None, plane=None, top: int = 3, max_points: int = 8000, seed: int = 0
 ) -> GraspDrawing:
     """The geometry plot_grasps and plot_grasps_html draw. grasps: a GraspSet (its hand, plane and cloud
-    are used unless given) or a list of grasps (dicts as in grasps.json; then hand is needed)."""
+    are used unless given) or a list of Grasps (then hand is needed)."""
     rows = _grasp_rows(grasps, top)
     hand = hand if hand is not None else grasps.get_hand() if hasattr(grasps, "get_hand") else None
     if hand is None:
@@ -184,7 +184,7 @@ def grasp_drawing(
         centre = centre - ((centre - o) @ n) * n
         half = max(0.6 * float((allp.max(0) - allp.min(0)).max()), 0.05)
         patch = np.array([centre + half * (a * u + b * v) for a, b in ((-1, -1), (1, -1), (1, 1), (-1, 1))])
-    tcps = [None if g.get("T_world_tcp") is None else np.asarray(g["T_world_tcp"][:3]) for g in rows]
+    tcps = [None if g.T_world_tcp is None else np.asarray(g.T_world_tcp[:3]) for g in rows]
     return GraspDrawing(points, patch, hands, tcps, [_label(g, k) for k, g in enumerate(rows)])
 
 

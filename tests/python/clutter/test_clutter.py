@@ -12,6 +12,7 @@ from graspmix import clutter
 from graspmix.clutter.rounds import Plan, Stages, run_scene
 from graspmix.experiment.log import AttemptLog, read_rows
 from graspmix.experiment.stats import wilson_ci
+from graspmix.model import Grasp
 
 
 # ---- scripted stages ------------------------------------------------------------------------------
@@ -57,7 +58,7 @@ def scripted(outcomes):
         if outcomes[calls["n"]] == "synthesis failed":
             calls["n"] += 1
             raise ValueError("no object found above the plane")
-        return Plan({"T_world_wrist": [0, 0, 0, 0, 0, 0, 1], "pregrasp_joints": {}, "grasp_joints": {}}, 0, 1)
+        return Plan(Grasp([0, 0, 0, 0, 0, 0, 1], {}, {}), 0, 1)
 
     def execute(spec, grasp):
         o = outcomes[calls["n"]]

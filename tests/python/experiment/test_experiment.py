@@ -1,6 +1,7 @@
 """The paper's experiment: statistics against scipy, seeds, the frame shared by acquisition and execution,
 resuming, 1 vs 2 jobs vs Ray, the report from a CSV, the smoke preset end to end, and bad input."""
 
+import dataclasses
 import json
 import math
 import os
@@ -148,12 +149,12 @@ def test_grasp_synthesised_on_an_acquired_cloud_executes_in_the_same_frame():
     opts = graspmix.SynthesisOptions().updated({"seed": 1, "segmentation.find_plane": False})
     g = model.synthesize(acq.points, opts, plane=[0, 0, 1, 0], viewpoints=acq.viewpoints, approach_axis=(0, 0, -1))
     best = g.best()
-    assert Rotation.from_quat(best["T_world_wrist"][3:]).apply([0, 0, 1])[2] < -0.9  # palm down: a top grasp
+    assert Rotation.from_quat(best.T_world_wrist[3:]).apply([0, 0, 1])[2] < -0.9  # palm down: a top grasp
     # Executed as the experiment executes grasps (closing until the fingers stop on the object).
     r = sim.execute(obj, best, object_pose=pose, **ex.CLOSING["full"])
     assert r.success, r.reason
     # The same grasp moved 10 cm sideways touches nothing: the frame is not off by a shift the grasp survives.
-    moved = dict(best, T_world_wrist=[best["T_world_wrist"][0] + 0.1, *best["T_world_wrist"][1:]])
+    moved = dataclasses.replace(best, T_world_wrist=[best.T_world_wrist[0] + 0.1, *best.T_world_wrist[1:]])
     assert not sim.execute(obj, moved, object_pose=pose, **ex.CLOSING["full"]).success
 
 

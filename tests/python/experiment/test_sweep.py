@@ -50,7 +50,7 @@ def test_query_components_change_gmm_and_not_kde():
         model = graspmix.GraspModel.load(graspmix.default_model_path(method))
         a = model.synthesize(cloud, base.updated({"query.n_components": 1})).grasps
         b = model.synthesize(cloud, base.updated({"query.n_components": 8})).grasps
-        poses = [np.array([g["T_world_wrist"] for g in x]) for x in (a, b)]
+        poses = [np.array([g.T_world_wrist for g in x]) for x in (a, b)]
         assert (poses[0].shape == poses[1].shape and np.allclose(*poses)) == same, method
 
 

@@ -71,8 +71,9 @@ def demo_doc() -> dict:
 
 
 def model_doc(method: str = "gmm") -> dict:
+    """The bundled box model (one grasp type), without its demonstration file."""
     d = json.loads((DATA / "models" / f"box_wsg50_{method}.json").read_text())
-    d["demonstration"] = None
+    d["types"][0]["demonstration"] = None
     return d
 
 

@@ -89,7 +89,7 @@ def grasps_cases():
     cases.append(
         api(
             "api/grasps/ok-load-and-rank-2",
-            setup + "assert grasp_by_rank(load_grasps('grasps.json'), 2)['log_likelihood'] == '-inf'",
+            setup + "assert grasp_by_rank(load_grasps('grasps.json'), 2).log_likelihood == float('-inf')",
             files=GRASPS,
             expect="ok",
             group="grasps",

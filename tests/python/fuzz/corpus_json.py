@@ -53,16 +53,20 @@ MODEL_FIELDS = [
     (("features",), "obj"),
     (("features", "radius"), "num"),
     (("features", "voxel_size"), "num"),
-    (("config_model",), "obj"),
-    (("config_model", "pregrasp"), "list"),
-    (("config_model", "settings"), "obj"),
-    (("config_model", "settings", "n_kernels"), "int"),
-    (("contact_models",), "list"),
-    (("contact_models", 0), "obj"),
-    (("contact_models", 0, "link"), "str"),
-    (("contact_models", 0, "density"), "obj"),
-    (("contact_models", 1, "density", "weights"), "list"),
-    (("contact_models", 2, "density", "means", 0, 1), "num"),
+    (("types",), "list"),
+    (("types", 0), "obj"),
+    (("types", 0, "name"), "str"),
+    (("types", 0, "log_reference"), "num"),
+    (("types", 0, "config_model"), "obj"),
+    (("types", 0, "config_model", "pregrasp"), "list"),
+    (("types", 0, "config_model", "settings"), "obj"),
+    (("types", 0, "config_model", "settings", "n_kernels"), "int"),
+    (("types", 0, "contact_models"), "list"),
+    (("types", 0, "contact_models", 0), "obj"),
+    (("types", 0, "contact_models", 0, "link"), "str"),
+    (("types", 0, "contact_models", 0, "density"), "obj"),
+    (("types", 0, "contact_models", 1, "density", "weights"), "list"),
+    (("types", 0, "contact_models", 2, "density", "means", 0, 1), "num"),
     (("learn_settings",), "obj"),
     (("learn_settings", "kde_position_bandwidth"), "num"),
 ]
@@ -218,7 +222,8 @@ def model_cases():
     )
     cases = []
     for path, v in _wrong_values(MODEL_FIELDS, 1):
-        doc = set_path(model_doc("gmm" if RNG.random() < 0.6 else "kde"), path, v)
+        gmm_only = "means" in path  # a KDE density has poses, not means
+        doc = set_path(model_doc("gmm" if gmm_only or RNG.random() < 0.6 else "kde"), path, v)
         cases.append(
             cli(
                 f"json/model/{_path_id(path)}-{_label(v)}",
@@ -227,16 +232,16 @@ def model_cases():
                 names=("model.json", _field_name(path)),
             )
         )
-    for key in ("method", "features", "contact_models", "config_model"):
+    for path in (("method",), ("features",), ("types",), ("types", 0, "contact_models"), ("types", 0, "config_model")):
         cases.append(
             cli(
-                f"json/model/missing-{key}",
+                f"json/model/missing-{path[-1]}",
                 *run,
-                files={"model.json": dumps(del_path(model_doc(), (key,)))},
-                names=("model.json", key),
+                files={"model.json": dumps(del_path(model_doc(), path))},
+                names=("model.json", path[-1]),
             )
         )
-    ragged = set_path(model_doc(), ("contact_models", 0, "density", "covariances", 1, 2), [1.0, 2.0])
+    ragged = set_path(model_doc(), ("types", 0, "contact_models", 0, "density", "covariances", 1, 2), [1.0, 2.0])
     cases.append(
         cli(
             "json/model/covariance-ragged",
@@ -249,7 +254,9 @@ def model_cases():
         cli(
             "json/model/density-kind-unknown",
             *run,
-            files={"model.json": dumps(set_path(model_doc(), ("contact_models", 0, "density", "kind"), "svm"))},
+            files={
+                "model.json": dumps(set_path(model_doc(), ("types", 0, "contact_models", 0, "density", "kind"), "svm"))
+            },
             names=("model.json", "kind"),
         )
     )
@@ -261,8 +268,8 @@ def model_cases():
                 "model.json": dumps(
                     set_path(
                         model_doc("gmm"),
-                        ("contact_models", 0, "density"),
-                        model_doc("kde")["contact_models"][0]["density"],
+                        ("types", 0, "contact_models", 0, "density"),
+                        model_doc("kde")["types"][0]["contact_models"][0]["density"],
                     )
                 )
             },
@@ -273,7 +280,7 @@ def model_cases():
         cli(
             "json/model/link-of-another-hand",
             *run,
-            files={"model.json": dumps(set_path(model_doc(), ("contact_models", 0, "link"), "thumb"))},
+            files={"model.json": dumps(set_path(model_doc(), ("types", 0, "contact_models", 0, "link"), "thumb"))},
             names=("model.json", "thumb"),
         )
     )

@@ -1,5 +1,5 @@
-"""Grasp: the one definition of a grasps.json entry; it round-trips the old dictionaries exactly and
-still reads like one."""
+"""Grasp: the one definition of a grasps.json entry, read by its attributes; it round-trips the file's
+entries exactly."""
 
 import json
 
@@ -36,24 +36,18 @@ def test_round_trip_is_the_old_layout():
     }
 
 
-def test_reads_like_the_old_dictionary():
+def test_fields_and_what_a_bare_grasp_writes():
     g = Grasp.from_dict(OLD_ENTRY)
-    assert g["T_world_wrist"] == OLD_ENTRY["T_world_wrist"] and g.T_world_wrist is g["T_world_wrist"]
-    assert g["experts"]["config"] == -1.5 and g.get("missing") is None and "rank" in g
-    assert dict(g) == OLD_ENTRY and g == OLD_ENTRY
-    moved = dict(g, T_world_wrist=[0.1, *g["T_world_wrist"][1:]])  # as the frame test moves a grasp
-    assert moved["T_world_wrist"][0] == 0.1 and g["T_world_wrist"][0] == 0.01
-    g["rank"] = 3
-    assert g.rank == 3
+    assert g.T_world_wrist == OLD_ENTRY["T_world_wrist"] and g.experts["config"] == -1.5 and g.rank == 1
+    assert g.extra == {} and g.object is None
     bare = Grasp([0, 0, 0, 0, 0, 0, 1], {"j": 0.0}, {"j": 0.0})
-    assert "rank" not in bare and list(bare) == ["T_world_wrist", "pregrasp_joints", "grasp_joints"]
-    with pytest.raises(KeyError):
-        bare["log_likelihood"]
+    assert bare.rank is None and bare.log_likelihood is None
+    assert list(bare.to_dict()) == ["T_world_wrist", "pregrasp_joints", "grasp_joints"]
     with pytest.raises(ValueError, match="no 'grasp_joints'"):
         Grasp.from_dict({"T_world_wrist": [0] * 7, "pregrasp_joints": {}})
 
 
-def test_synthesised_grasps_are_grasps_in_the_old_layout(tmp_path):
+def test_synthesised_grasps_are_grasps_in_the_files_layout(tmp_path):
     model = graspmix.GraspModel.load(graspmix.default_model_path("gmm"))
     grasps = model.synthesize(
         graspmix.data_path("mug.pcd"),
@@ -62,15 +56,21 @@ def test_synthesised_grasps_are_grasps_in_the_old_layout(tmp_path):
     best = grasps.best()
     assert isinstance(best, Grasp) and best.rank == 1
     # The old layout, then the object it is on, its grasp type and what a robot stack needs.
-    assert list(best) == [*OLD_ENTRY, "object", "type", *FRAME_KEYS]
-    assert len(best["T_world_wrist"]) == 7 and all(type(x) is float for x in best["T_world_wrist"])
-    assert set(best["experts"]) >= {"collision", "config", "pregrasp_clear", "kinematic"}
-    # grasps.json: the same entries, read back as dictionaries sorted by rank.
+    assert list(best.to_dict()) == [*OLD_ENTRY, "object", "type", *FRAME_KEYS]
+    assert len(best.T_world_wrist) == 7 and all(type(x) is float for x in best.T_world_wrist)
+    assert set(best.experts) >= {"collision", "config", "pregrasp_clear", "kinematic"}
+    # grasps.json: the same entries, read back as Grasps sorted by rank (non-finite log values as floats again).
     grasps.save(tmp_path / "g.json")
     doc = load_grasps(tmp_path / "g.json")
-    finite = [g for g in grasps if np.isfinite(g["log_likelihood"])]
-    assert doc["grasps"][: len(finite)] == [g.to_dict() for g in finite]
+    assert all(isinstance(g, Grasp) for g in doc["grasps"])
+    finite = [g for g in grasps if np.isfinite(g.log_likelihood)]
+    assert doc["grasps"][: len(finite)] == finite
+    assert [g.log_likelihood for g in doc["grasps"][len(finite) :]] == [-np.inf] * (len(grasps) - len(finite))
     assert grasp_by_rank(doc, 2) == grasps[1] and grasp_by_rank(grasps, 2) is grasps[1]
-    # A GraspSet of plain dictionaries (built by hand, as before) still saves.
-    GraspSet([dict(OLD_ENTRY)], model.hand_path, "gmm", "", {}).save(tmp_path / "d.json")
-    assert load_grasps(tmp_path / "d.json")["grasps"] == [OLD_ENTRY]
+    # A GraspSet holds Grasps; a grasps.json entry becomes one through Grasp.from_dict.
+    GraspSet([Grasp.from_dict(OLD_ENTRY)], model.hand_path, "gmm", "", {}).save(tmp_path / "d.json")
+    (back,) = [g.to_dict() for g in load_grasps(tmp_path / "d.json")["grasps"]]
+    assert list(back)[: len(OLD_ENTRY)] == list(OLD_ENTRY) and {k: back[k] for k in OLD_ENTRY} == OLD_ENTRY
+    assert "T_world_wrist_matrix" in back  # the set added the frames
+    with pytest.raises(ValueError, match=r"grasps\[0\]: expected a Grasp .* got dict"):
+        GraspSet([dict(OLD_ENTRY)], model.hand_path, "gmm", "", {})

@@ -43,7 +43,7 @@ def gmm():
 def finger_distances(hand, grasp, points):
     """Distance (m, negative inside) from each finger's box to the nearest point, and the number of
     points in the closing region between the fingers."""
-    links = hand.fk(np.asarray(grasp["T_world_wrist"]), grasp["grasp_joints"])
+    links = hand.fk(np.asarray(grasp.T_world_wrist), grasp.grasp_joints)
     out = []
     for name in ("finger_left", "finger_right"):
         pose = links[hand.link_index(name)]
@@ -53,7 +53,7 @@ def finger_distances(hand, grasp, points):
         out.append(sd.min())
     palm = links[hand.link_index("palm")]
     local = Rotation.from_quat(palm[3:]).inv().apply(points - palm[:3])
-    opening = grasp["grasp_joints"]["finger_left_joint"]
+    opening = grasp.grasp_joints["finger_left_joint"]
     between = (
         (np.abs(local[:, 0]) < opening)
         & (np.abs(local[:, 1]) < 0.015)
@@ -87,7 +87,7 @@ def test_contact_models_prefer_the_surface_types_their_links_touched(demo, gmm):
 
 def test_best_grasp_on_the_demonstration_box_reproduces_the_demonstration(demo, model):
     grasps = model.synthesize(demo.cloud, options({"segmentation.find_plane": False}), plane=[0, 0, 1, 0])
-    best = np.asarray(grasps.best()["T_world_wrist"])
+    best = np.asarray(grasps.best().T_world_wrist)
     # The box's symmetries: a half turn about its vertical axis (and mirror images, which the
     # hand's own symmetry covers). Positions along the long side of the top face are not pinned down
     # by local surface features (a flat face looks the same everywhere), so y only has to be on the box.
@@ -121,8 +121,8 @@ def test_best_grasp_on_novel_objects_is_plausible(model, novel_clouds, name):
     else:
         grasps = model.synthesize(novel_clouds[name], options({"segmentation.find_plane": False}), plane=[0, 0, 1, 0])
     best = grasps.best()
-    assert best["experts"]["collision"] == 0.0, "the best grasp penetrates the cloud"
-    assert best["experts"]["kinematic"] == 0.0
+    assert best.experts["collision"] == 0.0, "the best grasp penetrates the cloud"
+    assert best.experts["kinematic"] == 0.0
     dist, between = finger_distances(model.hand, best, grasps.surface.points)
     # Pads within 1.5 cm of the surface (the closing covers that travel), none more than 2 mm inside it.
     assert np.all(dist < 0.015) and np.all(dist > -0.002), f"finger pads {dist} m from the surface"
@@ -134,9 +134,9 @@ def test_same_seed_same_grasps_and_the_seed_matters(gmm):
     a = gmm.synthesize(cloud, options({"seed": 3, "sampling.n_samples": 50}))
     b = gmm.synthesize(cloud, options({"seed": 3, "sampling.n_samples": 50}))
     c = gmm.synthesize(cloud, options({"seed": 4, "sampling.n_samples": 50}))
-    assert [g["T_world_wrist"] for g in a] == [g["T_world_wrist"] for g in b]
-    assert a.best()["T_world_wrist"] != c.best()["T_world_wrist"]
-    lls = [g["log_likelihood"] for g in a]
+    assert [g.T_world_wrist for g in a] == [g.T_world_wrist for g in b]
+    assert a.best().T_world_wrist != c.best().T_world_wrist
+    lls = [g.log_likelihood for g in a]
     assert lls == sorted(lls, reverse=True)
 
 
@@ -171,8 +171,8 @@ def test_save_and_load_give_the_same_model(model, tmp_path, novel_clouds):
     # To 1e-9, not bit for bit: a KDE model's save and load round trip changes some value in its last bit (the
     # grasps then differ by ~1e-17 once the clear-approach expert is on; reported in issue 13's note).
     np.testing.assert_allclose(
-        [g["T_world_wrist"] for g in model.synthesize(cloud, **kw)],
-        [g["T_world_wrist"] for g in again.synthesize(cloud, **kw)],
+        [g.T_world_wrist for g in model.synthesize(cloud, **kw)],
+        [g.T_world_wrist for g in again.synthesize(cloud, **kw)],
         rtol=0,
         atol=1e-9,
     )
@@ -187,8 +187,8 @@ def test_user_experts_see_batches_and_hard_ones_reject(gmm):
 
     grasps = gmm.synthesize(graspmix.data_path("mug.pcd"), experts=[graspmix.expert("high", high_enough, kind="hard")])
     assert max(batches) > 1, "the user expert must be called on batches"
-    finite = [g for g in grasps if np.isfinite(g["log_likelihood"])]
-    assert finite and all(g["T_world_wrist"][2] > 0.05 and g["experts"]["high"] == 0.0 for g in finite)
+    finite = [g for g in grasps if np.isfinite(g.log_likelihood)]
+    assert finite and all(g.T_world_wrist[2] > 0.05 and g.experts["high"] == 0.0 for g in finite)
 
 
 @pytest.mark.parametrize("axis", [(1.0, 0.0, 0.0), (-1.0, 0.0, 0.0)])
@@ -197,7 +197,7 @@ def test_approach_axis_expert_turns_the_best_grasp(gmm, axis):
     # (it re-ranks and steers the candidates; it cannot outweigh every contact term), and its term is the
     # analytic log E = concentration (cos - 1).
     def approach(grasps):
-        return Rotation.from_quat(grasps.best()["T_world_wrist"][3:]).apply([0, 0, 1]) @ np.asarray(axis)
+        return Rotation.from_quat(grasps.best().T_world_wrist[3:]).apply([0, 0, 1]) @ np.asarray(axis)
 
     # Without the hard clear-approach expert: on the mug it passes a few dozen of the 2000 samples (the others'
     # open hands touch the cloud), too few for a soft preference to choose among.
@@ -206,7 +206,7 @@ def test_approach_axis_expert_turns_the_best_grasp(gmm, axis):
     turned = gmm.synthesize(graspmix.data_path("mug.pcd"), approach_axis=axis, **kw)
     assert approach(turned) > approach(free) + 0.25 and approach(turned) > 0.4
     concentration = graspmix.AxisAlignmentSettings().concentration
-    assert turned.best()["experts"]["approach_axis"] == pytest.approx(concentration * (approach(turned) - 1), abs=1e-6)
+    assert turned.best().experts["approach_axis"] == pytest.approx(concentration * (approach(turned) - 1), abs=1e-6)
 
 
 def test_errors_are_clear(gmm, tmp_path, demo):
@@ -287,7 +287,7 @@ def test_review_regressions(gmm, tmp_path, demo):
     with pytest.raises(ValueError, match="two experts"):
         gmm.synthesize(cloud, options({"sampling.n_samples": 20}), experts=twice)
     grasps = gmm.synthesize(cloud, options({"seed": 2}))
-    assert all(g["T_world_wrist"][6] >= 0 for g in grasps)
+    assert all(g.T_world_wrist[6] >= 0 for g in grasps)
     # A saved, loaded and saved again model still finds its demonstration.
     first, second = tmp_path / "a" / "m.json", tmp_path / "b" / "c" / "m.json"
     first.parent.mkdir()

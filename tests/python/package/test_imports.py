@@ -39,9 +39,19 @@ def test_cli_synthesis_loads_neither_pictures_nor_simulator(tmp_path):
     assert json.loads((tmp_path / "g.json").read_text())["grasps"]
 
 
-@pytest.mark.parametrize(
-    "name", ["sim", "viz", "experiment", "clutter", "acquisition", "plot_grasps", "plot_grasps_html"]
-)
+def test_star_import_loads_neither_simulator_nor_pictures():
+    loaded = _loaded_after("from graspmix import *")
+    assert not any(loaded[m] for m in ("matplotlib", "pybullet", "graspmix.sim", "graspmix.experiment")), loaded
+
+
+def test_star_import_gives_the_package_names_and_no_simulator():
+    names = {}
+    exec("from graspmix import *", names)  # noqa: S102
+    assert {"GraspModel", "Grasp", "learn", "segment_scene", "data_path", "plot_grasps", "viz"} <= set(names)
+    assert not {"sim", "experiment", "clutter"} & set(names)
+
+
+@pytest.mark.parametrize("name", ["sim", "viz", "experiment", "clutter", "plot_grasps", "plot_grasps_html"])
 def test_lazy_names_are_reachable(name):
     assert getattr(graspmix, name) is not None
     assert name in dir(graspmix)

@@ -11,28 +11,13 @@ import pytest
 
 ROOT = Path(graspmix.__file__).resolve().parent
 # Lower number = lower layer. A subpackage imports from itself, from lower layers and from the C++ core;
-# sim and viz are peers that do not import each other. The package's __init__ and the deprecated alias
-# modules (the facade) may import anything, and nothing in a subpackage imports them.
+# sim and viz are peers that do not import each other. The package's __init__ (the facade) may import
+# anything, and nothing in a subpackage imports it.
 LAYERS = {"io": 0, "perception": 1, "model": 2, "sim": 3, "viz": 3, "experiment": 4, "clutter": 5, "cli": 6}
-FACADE = {"graspmix", "graspmix.acquisition", "graspmix.demo", "graspmix.plots", "graspmix.report", "graspmix.stats"}
+FACADE = {"graspmix"}
 # Module paths of earlier versions and the names each had (read from the last flat layout).
 OLD_NAMES = {
-    "graspmix.acquisition": [
-        "Acquisition",
-        "AcquisitionSettings",
-        "Camera",
-        "Scene",
-        "acquire",
-        "apply_noise",
-        "back_project",
-        "clean_up",
-        "plot_depth_images",
-        "pybullet_data_path",
-        "resolve_object",
-        "ring_cameras",
-    ],
-    "graspmix.cli": ["CliError", "DATA", "build_parser", "main"],
-    "graspmix.demo": ["AcquisitionSettings", "Demonstration", "Scene", "acquire", "record_demonstration"],
+    "graspmix.cli": ["CliError", "build_parser", "main"],
     "graspmix.experiment": [
         "AttemptLog",
         "CLOSING",
@@ -79,33 +64,8 @@ OLD_NAMES = {
         "expert",
         "learn",
     ],
-    "graspmix.plots": ["plot_grasps", "plot_surface_features"],
-    "graspmix.report": [
-        "COLOURS",
-        "CONDITIONS",
-        "CSV_NAME",
-        "METHODS",
-        "METHOD_LABELS",
-        "REASONS",
-        "STAGES",
-        "STAGE_COLOURS",
-        "STAGE_LABELS",
-        "SUMMARY_FORMAT",
-        "build_report",
-        "findings_table",
-        "load_protocol",
-        "mean_ci",
-        "outcomes_table",
-        "paired_ttest",
-        "plot_runtime",
-        "plot_success",
-        "read_rows",
-        "runtime_table",
-        "summarize",
-    ],
     "graspmix.sim": [
         "AcquisitionSettings",
-        "DATA",
         "GRASPS_FORMAT",
         "Scene",
         "SimObject",
@@ -126,7 +86,6 @@ OLD_NAMES = {
         "test_objects",
         "top_grasp",
     ],
-    "graspmix.stats": ["MeanCI", "PairedTTest", "mean_ci", "paired_ttest"],
 }
 
 
@@ -239,20 +198,9 @@ def test_old_module_paths_still_give_their_names(module):
 
 
 def test_old_names_are_the_new_objects():
-    from graspmix import experiment, report, sim, stats
+    from graspmix import sim
 
-    assert report.build_report is experiment.report.build_report
-    assert stats.paired_ttest is experiment.stats.paired_ttest
-    assert graspmix.acquisition.acquire is sim.acquisition.acquire
     assert sim.test_objects is graspmix.io.test_objects
-    assert report._md_table is report.md_table  # the old private name scripts used
-
-
-def test_deprecated_aliases_say_so_and_do_not_warn(recwarn):
-    for name in ("graspmix.acquisition", "graspmix.demo", "graspmix.plots", "graspmix.report", "graspmix.stats"):
-        mod = importlib.reload(importlib.import_module(name))
-        assert "Deprecated module path" in mod.__doc__
-    assert not [w for w in recwarn if issubclass(w.category, DeprecationWarning)]
 
 
 def test_files_and_functions_stay_short():

@@ -133,7 +133,7 @@ def test_cli_scene_acquire_execute(tmp_path, box, capsys):
     spec = two_boxes(box)
     spec.save(tmp_path / "s.json")
     (tmp_path / "g.json").write_text(
-        json.dumps({"format": "graspmix.grasps/1", "grasps": [execution.top_grasp((0, 0.1), 0.035, 0.018)]})
+        json.dumps({"format": "graspmix.grasps/1", "grasps": [execution.top_grasp((0, 0.1), 0.035, 0.018).to_dict()]})
     )
     assert main(["acquire", "--scene", str(tmp_path / "s.json"), "--out", str(tmp_path / "c.pcd")]) == 0
     assert b"VIEWPOINT 0 -0.55 0.55" in (tmp_path / "c.pcd").read_bytes()[:400]

@@ -3,11 +3,13 @@ protocol run in pybullet, determinism, errors and the CLI."""
 
 import json
 import math
+from dataclasses import replace
 
 import graspmix
 import numpy as np
 import pytest
 from graspmix import cli, sim
+from graspmix.model import Grasp
 
 # Objects of several kinds: a 5 cm cube, small and large random_urdfs (convex decompositions of six
 # parts each), tall ones, and the mug.
@@ -86,11 +88,11 @@ def agreement_grasps():
             (
                 obj,
                 "pr2 gripper",
-                {
-                    "T_world_wrist": [0.0, 0.0, z, *q],
-                    "pregrasp_joints": {"left_gripper_joint": 0.5, "right_gripper_joint": 0.5},
-                    "grasp_joints": {"left_gripper_joint": closed, "right_gripper_joint": closed},
-                },
+                Grasp(
+                    T_world_wrist=[0.0, 0.0, z, *q],
+                    pregrasp_joints={"left_gripper_joint": 0.5, "right_gripper_joint": 0.5},
+                    grasp_joints={"left_gripper_joint": closed, "right_gripper_joint": closed},
+                ),
             )
         )
     return out
@@ -167,15 +169,19 @@ def test_errors(tmp_path):
     with pytest.raises(ValueError, match="no_such_object.urdf"):
         sim.execute("no_such_object.urdf", g)
     # A grasp for another hand (the panda's finger joints).
-    other = dict(g, pregrasp_joints={"panda_finger_joint1": 0.04}, grasp_joints={"panda_finger_joint1": 0.0})
+    other = replace(g, pregrasp_joints={"panda_finger_joint1": 0.04}, grasp_joints={"panda_finger_joint1": 0.0})
     with pytest.raises(ValueError, match="does not fit hand 'wsg50'"):
         sim.execute("cube_small.urdf", other)
     with pytest.raises(ValueError, match="T_world_wrist"):
-        sim.execute("cube_small.urdf", dict(g, T_world_wrist=[0, 0, 1]))
+        sim.execute("cube_small.urdf", replace(g, T_world_wrist=[0, 0, 1]))
+    with pytest.raises(ValueError, match="grasp: expected a Grasp .*got dict"):
+        sim.execute("cube_small.urdf", g.to_dict())
     # grasps.json made for another hand, with a wrong format, without grasps.
     path = tmp_path / "grasps.json"
     panda = graspmix.io.pybullet_data_path() / "franka_panda" / "panda.urdf"
-    path.write_text(json.dumps({"format": "graspmix.grasps/1", "hand": str(panda), "grasps": [dict(g, rank=1)]}))
+    path.write_text(
+        json.dumps({"format": "graspmix.grasps/1", "hand": str(panda), "grasps": [dict(g.to_dict(), rank=1)]})
+    )
     with pytest.raises(ValueError, match="grasps are for hand"):
         sim.execute_file("cube_small.urdf", path, hand=sim.default_hand_path())
     # Without a hand given, the file's hand is used, and the WSG 50's joints do not fit it.
@@ -194,7 +200,7 @@ def write_grasps(path, grasps, hand="wsg50.urdf"):
         "hand": hand,
         "method": "manual",
         "cloud": "",
-        "grasps": [dict(g, rank=i + 1) for i, g in enumerate(grasps)],
+        "grasps": [dict(g.to_dict(), rank=i + 1) for i, g in enumerate(grasps)],
     }
     path.write_text(json.dumps(doc))
 

@@ -1,14 +1,15 @@
 """Renders experiment runs of the same objects, trials and seeds as one ablation table: per run and method the
 success rate per condition, over all its attempts with a 95% Wilson interval, the share of "start in collision"
 per condition, and the paired comparison with a base run (the same clouds and synthesis seeds: McNemar's exact
-test on the attempts one run lifts and the other drops). Optionally writes it into README.md between
+test on the attempts one run lifts and the other drops). Optionally writes it into a markdown page (the tables of
+docs/experiment.md, which lists the command of each) between
 
     <!-- ablation:begin -->
     <!-- ablation:end -->
 
-so the README's numbers come from run folders, never from a hand.
+so the page's numbers come from run folders, never from a hand.
 
-    python scripts/ablation_table.py --base NAME=RUN NAME=RUN ... [--trials N] [--readme README.md --marker ablation]
+    python scripts/ablation_table.py --base NAME NAME=RUN NAME=RUN ... [--trials N] [--doc docs/experiment.md --marker ablation]
 
 A RUN is an experiment folder (attempts.csv or attempts.csv.gz); --trials keeps the first N trials of every run
 (a run of 10 trials against ablations of 2).
@@ -83,7 +84,7 @@ def main(argv=None) -> int:
     ap.add_argument("runs", nargs="+", help="NAME=RUN_FOLDER")
     ap.add_argument("--base", required=True, help="the NAME the others are paired with")
     ap.add_argument("--trials", type=int, help="keep the first N trials of every run")
-    ap.add_argument("--readme", type=Path, help="write the table between the marker comments of this file")
+    ap.add_argument("--doc", type=Path, help="write the table between the marker comments of this markdown page")
     ap.add_argument("--marker", default="ablation", help="the markers' name (default ablation)")
     a = ap.parse_args(argv)
     runs = {}
@@ -96,14 +97,14 @@ def main(argv=None) -> int:
         ap.error(f"--base {a.base!r} is not one of the runs")
     text = table(runs, a.base)
     print(text)
-    if a.readme:
+    if a.doc:
         begin, end = f"<!-- {a.marker}:begin -->", f"<!-- {a.marker}:end -->"
-        doc = a.readme.read_text()
+        doc = a.doc.read_text()
         if begin not in doc or end not in doc:
-            print(f"{a.readme}: no {begin} ... {end} markers", file=sys.stderr)
+            print(f"{a.doc}: no {begin} ... {end} markers", file=sys.stderr)
             return 2
         doc = re.sub(re.escape(begin) + ".*?" + re.escape(end), lambda _: f"{begin}\n{text}\n{end}", doc, flags=re.S)
-        a.readme.write_text(doc)
+        a.doc.write_text(doc)
     return 0
 
 

@@ -1,13 +1,13 @@
 """Renders the findings of an experiment run (summary.json, and benchmark.json if given) as markdown,
-and optionally writes it into README.md between the markers
+and optionally writes it into a markdown page (docs/experiment.md, its findings) between the markers
 
     <!-- findings:begin -->
     <!-- findings:end -->
 
-so the README's numbers always come from a run, never from a hand.
+so the page's numbers always come from a run, never from a hand.
 
     python scripts/findings_table.py results/paper/summary.json [--benchmark results/paper/benchmark.json]
-                                     [--extra results/paper-learnt-closing/summary.json] [--readme README.md]
+                                     [--extra results/paper-learnt-closing/summary.json] [--doc docs/experiment.md]
 (--benchmark and --extra can be given more than once.)
 """
 
@@ -112,15 +112,15 @@ def main():
     ap.add_argument("summary", type=Path)
     ap.add_argument("--benchmark", type=Path, action="append", default=[], help="benchmark.json files to list")
     ap.add_argument("--extra", type=Path, action="append", default=[], help="more runs' summary.json to list")
-    ap.add_argument("--readme", type=Path, help="write the text between the findings markers of this file")
+    ap.add_argument("--doc", type=Path, help="write the text between the findings markers of this markdown page")
     args = ap.parse_args()
     text = render(args.summary, args.benchmark, args.extra)
-    if args.readme:
-        readme = args.readme.read_text()
+    if args.doc:
+        doc = args.doc.read_text()
         pattern = re.compile(r"(<!-- findings:begin -->\n).*?(<!-- findings:end -->)", re.S)
-        if not pattern.search(readme):
-            sys.exit(f"{args.readme}: no findings markers")
-        args.readme.write_text(pattern.sub(lambda m: m.group(1) + text + m.group(2), readme))
+        if not pattern.search(doc):
+            sys.exit(f"{args.doc}: no findings markers")
+        args.doc.write_text(pattern.sub(lambda m: m.group(1) + text + m.group(2), doc))
     else:
         sys.stdout.write(text)
 

@@ -1,5 +1,5 @@
 """What a robot stack needs of a grasp, computed from the hand's forward kinematics at the grasp joints
-(the frames are defined in the README's grasps.json section):
+(the frames are defined in docs/hands-and-frames.md, "The grasps file and what a robot gets from it"):
 
 - ``T_world_wrist_matrix``: the wrist pose as a 4x4 homogeneous matrix;
 - fingertip links: the contact links (those with a ``contact/<link>`` expert) that move with a joint,

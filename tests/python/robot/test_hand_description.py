@@ -148,8 +148,8 @@ def test_cli_hand_bad_input_is_one_line(tmp_path, capsys, args):
 
 
 def test_a_rotated_root_turns_the_pr2_fingers_onto_the_convention(tmp_path):
-    """The README's recipe: a new root link and a fixed joint rotating the old root by -90 deg about y
-    turn +x into +z; the opening (a distance between fingertips) does not change."""
+    """The recipe of docs/hands-and-frames.md: a new root link and a fixed joint rotating the old root by -90 deg
+    about y turn +x into +z; the opening (a distance between fingertips) does not change."""
     text = open(PR2).read().replace('filename="', f'filename="{pybullet_data.getDataPath()}/')
     root = (
         '<robot name="pr2z"><link name="wrist"/><joint name="to_pole" type="fixed"><parent link="wrist"/>'

@@ -1,0 +1,47 @@
+"""The tables of docs/experiment.md come from results/: the render commands the page gives beside them, run
+again on the stored runs, write the page unchanged."""
+
+import re
+import shlex
+import subprocess
+import sys
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parents[3]
+PAGE = "docs/experiment.md"
+SCRIPTS = ("scripts/findings_table.py", "scripts/ablation_table.py")
+
+
+def render_commands(text: str) -> list[list[str]]:
+    """The page's `python scripts/... --doc docs/experiment.md` commands, continuation lines joined and the
+    shell variables its blocks set (NAME=value lines) expanded."""
+    commands = []
+    for block in re.findall(r"```bash\n(.*?)```", text, re.S):
+        variables = {}
+        for line in block.replace("\\\n", " ").splitlines():
+            if m := re.fullmatch(r"(\w+)=(\S+)", line.strip()):
+                variables[m.group(1)] = m.group(2)
+                continue
+            words = shlex.split(line.split("#")[0])
+            if len(words) > 1 and words[0] == "python" and words[1] in SCRIPTS and "--doc" in words:
+                commands.append([expand(w, variables) for w in words])
+    return commands
+
+
+def expand(word: str, variables: dict) -> str:
+    return re.sub(r"\$(\w+)", lambda v: variables[v.group(1)], word)
+
+
+def test_the_render_commands_of_the_experiment_page_reproduce_its_tables(tmp_path):
+    text = (REPO / PAGE).read_text()
+    commands = render_commands(text)
+    markers = set(re.findall(r"<!-- ([\w-]+):begin -->", text))
+    rendered = {c[c.index("--marker") + 1] if "--marker" in c else "findings" for c in commands}
+    assert markers == {"findings", "defaults", "ablation", "heldout", "heldout-paper"} and rendered == markers
+    copy = tmp_path / "experiment.md"
+    copy.write_text(text)
+    for words in commands:
+        words = [sys.executable, *words[1:]]
+        words[words.index("--doc") + 1] = str(copy)
+        subprocess.run(words, cwd=REPO, check=True, capture_output=True, text=True)
+    assert copy.read_text() == text

@@ -15,8 +15,7 @@ from hypothesis import strategies as st
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from cases import grasps_doc, model_doc, set_path  # noqa: E402
-
-io = pytest.importorskip("graspmix.io")
+from graspmix import io  # noqa: E402
 from graspmix.io.schema import validate  # noqa: E402
 
 JSON = st.recursive(

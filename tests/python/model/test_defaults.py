@@ -9,7 +9,7 @@ from graspmix.cli import build_parser
 from graspmix.cli.synthesis_flags import synthesis_options
 from graspmix.clutter.protocol import ClutterProtocol
 from graspmix.experiment import Protocol
-from graspmix.model import FeatureSettings, GraspModel, LearnSettings, SynthesisOptions
+from graspmix.model import FeatureScale, GraspModel, LearnSettings, SynthesisOptions
 from graspmix.model.options import PARTS
 
 
@@ -35,7 +35,7 @@ def test_learn_keyword_defaults_are_the_settings_defaults():
     learn = _defaults(GraspModel.learn)
     for k, v in vars(LearnSettings()).items():
         assert learn[k] == v, k
-    assert (learn["voxel_size"], learn["radius"]) == (FeatureSettings.voxel_size, FeatureSettings.radius)
+    assert (learn["voxel_size"], learn["radius"]) == (FeatureScale.voxel_size, FeatureScale.radius)
 
 
 def test_cli_and_protocols_default_to_the_same_options():
@@ -63,8 +63,8 @@ def test_python_settings_that_cpp_also_has_are_its_defaults():
     assert SynthesisOptions().query.kde == kde  # KDE query kernels default to the contact kernels' defaults
     assert list(kde.feature_bandwidth) == [LearnSettings.kde_feature_bandwidth]
     assert LearnSettings.n_components == _core.PoseMixture().settings.n_components
-    assert (FeatureSettings.voxel_size, FeatureSettings.radius) == (
+    assert (FeatureScale.voxel_size, FeatureScale.radius) == (
         _core.SceneSettings().voxel_size,
         _core.SurfaceFeatureSettings().radius,
     )
-    assert SynthesisOptions().segmentation.voxel_size == FeatureSettings.voxel_size
+    assert SynthesisOptions().segmentation.voxel_size == FeatureScale.voxel_size

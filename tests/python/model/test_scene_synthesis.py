@@ -31,7 +31,7 @@ def cube(tmp_path_factory):
 @pytest.fixture(scope="module")
 def packed(cube):
     """The scene, its single-view observation and the bundled GMM model."""
-    spec = scenes.SceneSpec([scenes.SceneObject(cube, [x, y, 0.025, 0, 0, 0, 1]) for x, y in CUBES])
+    spec = scenes.SceneSpec([scenes.PlacedObject(cube, [x, y, 0.025, 0, 0, 0, 1]) for x, y in CUBES])
     acq = acquire_scene(spec, views=1)
     return spec, acq, GraspModel.load(default_model_path("gmm"))
 

@@ -196,15 +196,18 @@ def test_approach_axis_expert_turns_the_best_grasp(gmm, axis):
     # The mug is grasped from the side all around: the soft expert turns the best grasp towards the axis
     # (it re-ranks and steers the candidates; it cannot outweigh every contact term), and its term is the
     # analytic log E = concentration (cos - 1).
-    def approach(grasps):
-        return Rotation.from_quat(grasps.best().T_world_wrist[3:]).apply([0, 0, 1]) @ np.asarray(axis)
+    def approach(grasps, top=1):
+        """The mean cosine between the approach axis and `axis` over the best `top` grasps."""
+        dirs = Rotation.from_quat([g.T_world_wrist[3:] for g in grasps.grasps[:top]]).apply([0, 0, 1])
+        return float(np.mean(dirs @ np.asarray(axis)))
 
     # Without the hard clear-approach expert: on the mug it passes a few dozen of the 2000 samples (the others'
     # open hands touch the cloud), too few for a soft preference to choose among.
     kw = dict(options=options({"approach": None}))
     free = gmm.synthesize(graspmix.data_path("mug.pcd"), **kw)
     turned = gmm.synthesize(graspmix.data_path("mug.pcd"), approach_axis=axis, **kw)
-    assert approach(turned) > approach(free) + 0.25 and approach(turned) > 0.4
+    # The best ten turn towards the axis (the single best may already face it by chance of the seed).
+    assert approach(turned, 10) > approach(free, 10) + 0.25 and approach(turned) > 0.4
     concentration = graspmix.AxisAlignmentSettings().concentration
     assert turned.best().experts["approach_axis"] == pytest.approx(concentration * (approach(turned) - 1), abs=1e-6)
 

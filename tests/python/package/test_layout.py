@@ -1,13 +1,11 @@
 """The package's shape: subpackages import only from lower layers, no module imports another's private
-names, no import cycle, and every module path of earlier versions still gives its names. Read from the
-source with ast (nothing imported for the structural checks)."""
+names, no import cycle, and the tests mirror the layout. Read from the source with ast (nothing imported for
+the structural checks)."""
 
 import ast
-import importlib
 from pathlib import Path
 
 import graspmix
-import pytest
 
 ROOT = Path(graspmix.__file__).resolve().parent
 # Lower number = lower layer. A subpackage imports from itself, from lower layers and from the C++ core;
@@ -15,78 +13,6 @@ ROOT = Path(graspmix.__file__).resolve().parent
 # anything, and nothing in a subpackage imports it.
 LAYERS = {"io": 0, "perception": 1, "model": 2, "sim": 3, "viz": 3, "experiment": 4, "clutter": 5, "cli": 6}
 FACADE = {"graspmix"}
-# Module paths of earlier versions and the names each had (read from the last flat layout).
-OLD_NAMES = {
-    "graspmix.cli": ["CliError", "build_parser", "main"],
-    "graspmix.experiment": [
-        "AttemptLog",
-        "CLOSING",
-        "COLUMNS",
-        "CONDITIONS",
-        "CSV_NAME",
-        "Condition",
-        "KEY_COLUMNS",
-        "METHODS",
-        "PRESETS",
-        "PROTOCOL_FORMAT",
-        "PROTOCOL_NAME",
-        "Progress",
-        "Protocol",
-        "RESULT_COLUMNS",
-        "SMOKE_OBJECTS",
-        "STAGES",
-        "STAGE_LABELS",
-        "TIME_COLUMNS",
-        "benchmark",
-        "crop_above_plane",
-        "derive_seed",
-        "format_benchmark",
-        "git_commit",
-        "load_protocol",
-        "prepare_folder",
-        "read_objects_file",
-        "read_rows",
-        "run",
-        "run_unit",
-    ],
-    "graspmix.model": [
-        "DEMO_FORMAT",
-        "Demonstration",
-        "FeatureSettings",
-        "GRASPS_FORMAT",
-        "GraspModel",
-        "GraspSet",
-        "METHODS",
-        "MODEL_FORMAT",
-        "PACKAGE_PREFIX",
-        "data_path",
-        "default_model_path",
-        "expert",
-        "learn",
-    ],
-    "graspmix.sim": [
-        "AcquisitionSettings",
-        "GRASPS_FORMAT",
-        "Scene",
-        "SimObject",
-        "SimResult",
-        "SimSettings",
-        "default_hand_path",
-        "execute",
-        "execute_file",
-        "execute_pybullet",
-        "grasp_by_rank",
-        "load_grasps",
-        "load_hand",
-        "load_object",
-        "make_settings",
-        "resolve_object",
-        "rest_pose",
-        "result_dict",
-        "test_objects",
-        "top_grasp",
-    ],
-}
 
 
 def _modules():
@@ -190,17 +116,14 @@ def test_no_import_cycle():
             visit(n)
 
 
-@pytest.mark.parametrize("module", sorted(OLD_NAMES))
-def test_old_module_paths_still_give_their_names(module):
-    mod = importlib.import_module(module)
-    missing = [n for n in OLD_NAMES[module] if not hasattr(mod, n)]
-    assert not missing, f"{module} lost {missing}"
-
-
-def test_old_names_are_the_new_objects():
-    from graspmix import sim
-
-    assert sim.test_objects is graspmix.io.test_objects
+def test_the_python_tests_mirror_the_package_and_the_cpp_layers():
+    """tests/python has a folder per subpackage of graspmix and per C++ layer (src/<layer>), and nothing else."""
+    tests = Path(__file__).resolve().parents[1]
+    repo = tests.parents[1]
+    folders = {p.name for p in tests.iterdir() if p.is_dir() and not p.name.startswith((".", "_"))}
+    cpp = {p.name for p in (repo / "src").iterdir() if p.is_dir()}
+    expected = set(LAYERS) | cpp | {"package", "fuzz"}  # the package as a whole; the bad-input corpus
+    assert folders == expected
 
 
 def test_files_and_functions_stay_short():

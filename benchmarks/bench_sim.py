@@ -14,6 +14,7 @@ import time
 
 import numpy as np
 from graspmix import sim
+from graspmix.io import test_objects
 from graspmix.sim import acquisition
 
 
@@ -22,7 +23,7 @@ def main():
     ap.add_argument("--objects", type=int, default=20)
     ap.add_argument("--repeats", type=int, default=3)
     args = ap.parse_args()
-    objects = sim.test_objects()[: args.objects]
+    objects = test_objects()[: args.objects]
     held, full, early, steps, acq = [], [], [], [], []
     for k, obj in enumerate(objects):
         print(f"[bench] {k + 1}/{len(objects)} {obj}", flush=True)

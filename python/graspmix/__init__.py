@@ -79,7 +79,7 @@ from ._core import (
 from .io import data_path
 from .model import (
     Demonstration,
-    FeatureSettings,
+    FeatureScale,
     Grasp,
     GraspModel,
     GraspSet,

@@ -13,7 +13,7 @@ import numpy as np
 from .. import _core
 from ..io import GMM_FORMAT, data_path, load_array
 from ..io.checks import MAX_COMPONENTS, MAX_ITERATIONS, MAX_SAMPLES
-from ..model.settings import FeatureSettings
+from ..model.settings import FeatureScale
 from .common import CliError, float_in, given, input_path, int_in, output_file, seed
 
 
@@ -199,8 +199,8 @@ def add_parsers(sub) -> None:
     s.add_argument(
         "--radius",
         type=float_in(gt=0.0),
-        default=FeatureSettings.radius,
-        help=f"neighbourhood radius in metres (default {FeatureSettings.radius}, as the paper)",
+        default=FeatureScale.radius,
+        help=f"neighbourhood radius in metres (default {FeatureScale.radius}, as the paper)",
     )
     s.add_argument(
         "--out", type=output_file, help="write the features as .npz (points, normals, curvatures, frames, indices, ...)"

@@ -10,7 +10,8 @@ import numpy as np
 
 from .. import _core
 from ..io.checks import MAX_SIM_TIME
-from ..model.settings import FeatureSettings
+from ..model.grasps import grasp_by_rank
+from ..model.settings import FeatureScale
 from .common import CliError, float_in, input_path, int_in, output_file, parse_floats, seed
 
 
@@ -25,7 +26,7 @@ def _scene_of(args: argparse.Namespace):
         return scenes.SceneSpec.load(args.scene)
     execution.load_object(args.object)  # the URDF checked whole before pybullet reads it
     pose = execution.rest_pose(args.object) if pose is None else parse_floats(pose, 7, "--object-pose")
-    return scenes.SceneSpec([scenes.SceneObject(args.object, pose)]).check()
+    return scenes.SceneSpec([scenes.PlacedObject(args.object, pose)]).check()
 
 
 def _camera_pose(cam) -> list[float]:
@@ -80,9 +81,7 @@ def cmd_execute(args: argparse.Namespace) -> int:
     spec = _scene_of(args)
     doc, h = sim.execution.grasps_and_hand(args.grasps, args.hand)
     settings = sim.make_settings(None, **overrides)
-    ex = scenes.execute_in_scene(
-        spec, sim.grasp_by_rank(doc, args.rank), hand=h, closing=args.closing, settings=settings
-    )
+    ex = scenes.execute_in_scene(spec, grasp_by_rank(doc, args.rank), hand=h, closing=args.closing, settings=settings)
     if args.out_scene:
         ex.remaining.save(args.out_scene)
     r = ex.result
@@ -158,8 +157,8 @@ def add_parsers(sub) -> None:
     s.add_argument(
         "--voxel-size",
         type=float_in(0.0),
-        default=FeatureSettings.voxel_size,
-        help=f"m, voxel grid of --clean (default {FeatureSettings.voxel_size})",
+        default=FeatureScale.voxel_size,
+        help=f"m, voxel grid of --clean (default {FeatureScale.voxel_size})",
     )
     s.set_defaults(func=cmd_acquire)
 

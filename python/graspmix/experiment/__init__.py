@@ -19,8 +19,7 @@ the executor, the number of jobs or the order in which units finish.
 
 Modules: protocol (conditions, seeds, protocol.json), attempt (one work unit), executors (local, Ray),
 log (attempts.csv), progress, runner (run, resume), stats (t-tests), report (summary.json, report.md/html),
-runtime_benchmark (Fig. runtime). This package is also the module path ``graspmix.experiment`` of earlier
-versions: every name it had is here.
+runtime_benchmark (Fig. runtime).
 """
 
 from ..io import PROTOCOL_FORMAT, git_commit, read_objects_file

@@ -1,8 +1,5 @@
 """The grasp model layer: demonstrations, learning contact and configuration models, GraspModel and its
-synthesis, Grasp and GraspSet (grasps.json), experts, and the settings with their defaults.
-
-Also the module path ``graspmix.model`` of earlier versions: every name it had is here.
-"""
+synthesis, Grasp and GraspSet (grasps.json), experts, and the settings with their defaults."""
 
 from ..io import DEMO_FORMAT, GRASPS_FORMAT, MODEL_FORMAT, PACKAGE_PREFIX, data_path
 from .demonstration import Demonstration
@@ -15,7 +12,7 @@ from .options import SynthesisOptions
 from .settings import (
     METHOD_LABELS,
     METHODS,
-    FeatureSettings,
+    FeatureScale,
     LearnSettings,
     check_method,
 )
@@ -33,7 +30,7 @@ __all__ = [
     "data_path",
     "default_model_path",
     "Demonstration",
-    "FeatureSettings",
+    "FeatureScale",
     "LearnSettings",
     "SynthesisOptions",
     "Grasp",

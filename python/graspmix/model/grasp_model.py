@@ -55,7 +55,7 @@ from .grasps import GraspSet
 from .options import SynthesisOptions
 from .scene_synthesis import segment_query, synthesize_targets
 from .serialization import config_dict, config_settings
-from .settings import FeatureSettings, LearnSettings, check_method
+from .settings import FeatureScale, LearnSettings, check_method
 
 _L = LearnSettings  # the defaults of learn()
 
@@ -76,7 +76,7 @@ class GraspModel:
         hand: "_core.Hand",
         hand_path: Path,
         types: "list[GraspType]",
-        features: FeatureSettings,
+        features: FeatureScale,
         learn_settings: dict,
     ):
         self._hand = hand
@@ -139,8 +139,8 @@ class GraspModel:
         max_distance: float = _L.max_distance,
         contact_lambda: float = _L.contact_lambda,
         min_points: int = _L.min_points,
-        voxel_size: float = FeatureSettings.voxel_size,
-        radius: float = FeatureSettings.radius,
+        voxel_size: float = FeatureScale.voxel_size,
+        radius: float = FeatureScale.radius,
         seed: int = _L.seed,
         config: dict | None = None,
     ) -> "GraspModel":
@@ -176,7 +176,7 @@ class GraspModel:
             seed=seed,
             gmm_reg_covar=gmm_reg_covar,
         )
-        feats = FeatureSettings(voxel_size=voxel_size, radius=radius)
+        feats = FeatureScale(voxel_size=voxel_size, radius=radius)
         cfg_settings = config_settings(config or {})
         types, hand, hand_path = _learn_types(demo, method, s, feats, cfg_settings)
         learn_settings = dict(dataclasses.asdict(s), config=config_dict(cfg_settings))
@@ -209,9 +209,9 @@ class GraspModel:
         hand_path = resolve_path(require_field(data, "hand", path, str), base)
         hand = _core.Hand.from_urdf(str(check_input_file(hand_path, "hand")))
         f = require_field(data, "features", path, dict)
-        feats = FeatureSettings(
-            voxel_size=float(f.get("voxel_size", FeatureSettings.voxel_size)),
-            radius=float(f.get("radius", FeatureSettings.radius)),
+        feats = FeatureScale(
+            voxel_size=float(f.get("voxel_size", FeatureScale.voxel_size)),
+            radius=float(f.get("radius", FeatureScale.radius)),
         )
         entries = require_field(data, "types", path, list)
         types = [type_from_json(e, hand, hand_path, method, path, e["name"]) for e in entries]
@@ -357,7 +357,7 @@ def check_learn_numbers(**v) -> None:
             raise ValueError(f"unknown learning setting {name!r}")
 
 
-def _learn_types(demos, method: str, s: LearnSettings, feats: FeatureSettings, cfg_settings) -> tuple:
+def _learn_types(demos, method: str, s: LearnSettings, feats: FeatureScale, cfg_settings) -> tuple:
     """(types, hand, hand path) learnt from one demonstration or a list of them (see GraspModel.learn)."""
     specs = list(demos) if isinstance(demos, (list, tuple)) else [demos]
     if not specs:

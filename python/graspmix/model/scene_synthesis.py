@@ -33,7 +33,7 @@ from .experts import (
 from .grasp_types import REFERENCE_EXPERT
 from .grasps import STAGES, grasps_from_result
 from .options import SynthesisOptions
-from .settings import FeatureSettings
+from .settings import FeatureScale
 
 
 @dataclass
@@ -54,7 +54,7 @@ class SurfaceUnion:
         return cls(*(np.vstack([np.asarray(getattr(s, k)) for s in surfaces]) for k in cls.__annotations__))
 
 
-def segment_query(points, viewpoints, plane, opts: SynthesisOptions, features: FeatureSettings) -> Scene:
+def segment_query(points, viewpoints, plane, opts: SynthesisOptions, features: FeatureScale) -> Scene:
     """The scene of a query cloud: the known plane (or the one found, opts.segmentation.find_plane), the objects
     above it, at the model's voxel size."""
     return segment_scene(
@@ -62,7 +62,7 @@ def segment_query(points, viewpoints, plane, opts: SynthesisOptions, features: F
     )
 
 
-def object_surface(scene: Scene, index: int, features: FeatureSettings):
+def object_surface(scene: Scene, index: int, features: FeatureScale):
     """The surface features of one segmented object, its normals oriented towards its viewpoints."""
     rows = scene.objects[index].rows
     vp = None if scene.viewpoints is None else scene.viewpoints[rows]

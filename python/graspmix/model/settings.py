@@ -40,9 +40,10 @@ def checked_viewpoints(viewpoints, n_points: int):
 
 
 @dataclass
-class FeatureSettings:
-    """Down-sampling and curvature radius: the demonstration and every query cloud pass through the
-    same, or the contact models' feature densities compare unlike things."""
+class FeatureScale:
+    """The scale of a model's surface features, saved with the model (GraspModel.features): the voxel grid and
+    the curvature radius that the demonstration and every query cloud pass through alike, or the contact
+    models' feature densities compare unlike things. (The other feature settings: SurfaceFeatureSettings.)"""
 
     voxel_size: float = _SCENE.voxel_size  # m, voxel grid before the features (SceneSettings)
     radius: float = _SURFACE.radius  # m, the paper's 1 cm (SurfaceFeatureSettings)

@@ -24,7 +24,7 @@ import numpy as np
 from .. import _core
 from ..io import pybullet_data_path, resolve_object
 from ..io.checks import check_float, check_int, check_seed, quote
-from ..model.settings import FeatureSettings
+from ..model.settings import FeatureScale
 
 
 def _import_pybullet_quietly() -> None:
@@ -180,7 +180,7 @@ def render_depth(client: int, cam: Camera) -> tuple[np.ndarray, np.ndarray]:
     return depth, seg
 
 
-class Scene:
+class TableWorld:
     """A pybullet DIRECT world with a support plane at z = 0 and one object resting on it."""
 
     def __init__(self, object_path: str | Path, settings: AcquisitionSettings | None = None):
@@ -255,7 +255,7 @@ def acquire(
     check_seed(seed)
     check_acquisition_settings(settings)
     rng = np.random.default_rng(seed)
-    with Scene(object_path, settings) as scene:
+    with TableWorld(object_path, settings) as scene:
         pts, views, idx, images, masks = [], [], [], [], []
         for i, cam in enumerate(settings.cameras):
             depth, seg = scene.render_depth(cam)
@@ -315,7 +315,7 @@ def check_acquisition_settings(s: AcquisitionSettings) -> None:
 
 
 def clean_up(
-    voxel_size: float = FeatureSettings.voxel_size,
+    voxel_size: float = FeatureScale.voxel_size,
     remove_outliers: bool = True,
     remove_plane: bool | None = None,
     seed: int = 0,

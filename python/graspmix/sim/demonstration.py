@@ -23,7 +23,7 @@ from .. import _core
 from ..io.checks import MAX_ITERATIONS, check_float, check_input_file, check_int, check_seed
 from ..model import Demonstration
 from ..model.demonstration import DEMO_GRIP_FORCE, DEMO_MAX_STEPS
-from .acquisition import AcquisitionSettings, Scene, acquire
+from .acquisition import AcquisitionSettings, TableWorld, acquire
 
 PENETRATION_TOLERANCE = 1e-3  # m: a pre-grasp link deeper than this in the object or the table is refused
 OBJECT_PUSHED = 0.01  # m: an object that moved further while the hand closed was pushed, not grasped
@@ -82,7 +82,7 @@ def record(
     check_joint_limits(hand, q_close, "close_to")
     settings = settings or AcquisitionSettings()
     cloud = acquire(object_path, noise=False, seed=seed, settings=settings)
-    with Scene(object_path, settings) as scene:
+    with TableWorld(object_path, settings) as scene:
         c = scene.client
         p.setGravity(0, 0, -9.81, physicsClientId=c)
         body, joints = _place_hand(p, c, hand_path, wrist)
@@ -139,7 +139,7 @@ def _palm_links(hand) -> set:
     return palm
 
 
-def _check_pregrasp_collision(p, scene: Scene, body: int, links: dict, palm: set) -> None:
+def _check_pregrasp_collision(p, scene: TableWorld, body: int, links: dict, palm: set) -> None:
     """ValueError naming the hand links that penetrate the object or the table at the pre-grasp."""
     c = scene.client
     p.performCollisionDetection(physicsClientId=c)

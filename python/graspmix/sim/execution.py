@@ -22,7 +22,7 @@ from .. import _core
 from ..io import default_hand_path, resolve_object, resolve_path
 from ..io.checks import MAX_SIM_TIME, check_float, check_input_file, check_int, quote
 from ..model.grasps import Grasp, check_grasp, grasp_by_rank, load_grasps
-from .acquisition import AcquisitionSettings, Scene
+from .acquisition import AcquisitionSettings, TableWorld
 
 SimSettings = _core.SimSettings
 SimResult = _core.SimResult
@@ -125,7 +125,7 @@ def _object_pose_cached(path: str, position: tuple, orientation: tuple) -> tuple
     s = AcquisitionSettings(cameras=[], object_position=position, object_orientation=orientation)
     import pybullet as p
 
-    with Scene(path, s) as scene:
+    with TableWorld(path, s) as scene:
         com = scene.object_pose()
         dyn = p.getDynamicsInfo(scene.body, -1, physicsClientId=scene.client)
     T_link_com = np.r_[dyn[3], dyn[4]]

@@ -33,7 +33,7 @@ PILE_BOX = 0.6  # the pile's box: this fraction of the workspace's sides, centre
 
 
 @dataclass
-class SceneObject:
+class PlacedObject:
     """An object of a scene: a one-link URDF (a path, or relative to pybullet_data), its link pose
     [x, y, z, qx, qy, qz, qw] in the world and its scale (the Bullet simulation supports 1 only)."""
 
@@ -49,7 +49,7 @@ class SceneObject:
 class SceneSpec:
     """Objects on the table z = 0 (implicit); seed and mode say how make_scene built it (None: by hand)."""
 
-    objects: list[SceneObject] = field(default_factory=list)
+    objects: list[PlacedObject] = field(default_factory=list)
     seed: int | None = None
     mode: str | None = None
 
@@ -107,7 +107,7 @@ class SceneSpec:
             urdf = o["urdf"]
             if not Path(urdf).is_absolute() and (base / urdf).is_file():
                 urdf = str(base / urdf)
-            objects.append(SceneObject(urdf, np.asarray(o["pose"], dtype=float), float(o.get("scale", 1.0))))
+            objects.append(PlacedObject(urdf, np.asarray(o["pose"], dtype=float), float(o.get("scale", 1.0))))
         try:
             return cls(objects, doc.get("seed"), doc.get("mode")).check()
         except ValueError as e:
@@ -130,7 +130,7 @@ def settle(spec: SceneSpec, settings: SimSettings | None = None, seconds: float 
     objs = _sim_objects(spec)
     r = _core.sim_settle_scene(objs, spec.poses, make_settings(settings), seconds, walls)
     poses = _canonical(np.asarray(r.object_poses))
-    return SceneSpec([SceneObject(o.urdf, p, o.scale) for o, p in zip(spec.objects, poses)], spec.seed, spec.mode)
+    return SceneSpec([PlacedObject(o.urdf, p, o.scale) for o, p in zip(spec.objects, poses)], spec.seed, spec.mode)
 
 
 def _canonical(poses: np.ndarray) -> np.ndarray:
@@ -236,7 +236,7 @@ def make_scene(objects: list[str], mode: str, seed: int, workspace=WORKSPACE, se
         placed, walls = _place_packed(objs, rng, (x0, y0, x1, y1)), None
     else:
         placed, walls = _place_pile(objs, rng, (x0, y0, x1, y1))
-    spec = SceneSpec([SceneObject(str(objects[i]), pose) for i, pose in placed], seed, mode)
+    spec = SceneSpec([PlacedObject(str(objects[i]), pose) for i, pose in placed], seed, mode)
     if walls is not None:
         spec = settle(spec, settings, walls=walls)
     spec = settle(spec, settings)
@@ -280,7 +280,7 @@ def execute_in_scene(
     poses = _canonical(np.asarray(r.object_poses))
     lifted = [int(i) for i in r.lifted]
     left = SceneSpec(
-        [SceneObject(o.urdf, p, o.scale) for i, (o, p) in enumerate(zip(spec.objects, poses)) if i not in lifted],
+        [PlacedObject(o.urdf, p, o.scale) for i, (o, p) in enumerate(zip(spec.objects, poses)) if i not in lifted],
         spec.seed,
         spec.mode,
     )

@@ -164,7 +164,7 @@ def test_grasp_synthesised_on_an_acquired_cloud_executes_in_the_same_frame():
 def small_protocol(**kw):
     """2 small objects x 2 trials x conditions B, C x both methods = 16 attempts in 8 units (seconds)."""
     fewer = graspmix.SynthesisOptions().updated({"sampling.n_samples": 60})
-    base = dict(objects=sim.test_objects()[1:3], trials=2, conditions=["B", "C"], synthesis=fewer)
+    base = dict(objects=graspmix.io.test_objects()[1:3], trials=2, conditions=["B", "C"], synthesis=fewer)
     base.update(kw)
     return ex.Protocol(**base)
 
@@ -338,7 +338,7 @@ def test_folder_of_another_protocol_is_refused_before_any_work(reference_run, tm
 def test_report_from_a_written_csv(tmp_path):
     """A CSV with known outcomes: the summary's rates, intervals and t-tests are those computed here with
     scipy, and the report files are written."""
-    objects = sim.test_objects()[:5]
+    objects = graspmix.io.test_objects()[:5]
     p = ex.Protocol(objects=objects, trials=4, conditions=["A", "D"])
     out = ex.prepare_folder(p, tmp_path / "run")
     rng = np.random.default_rng(7)

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from graspmix.experiment import Protocol
 from graspmix.experiment.attempt import crop_above_plane
-from graspmix.model import FeatureSettings
+from graspmix.model import FeatureScale
 from graspmix.model.scene_synthesis import object_surface
 from graspmix.perception import segment_scene
 from graspmix.sim.acquisition import acquire
@@ -23,7 +23,7 @@ def experiment_surface(obj, noise):
     # What the experiment's synthesis does: the scene with its known table, then the object's features.
     scene = segment_scene(acq.points, acq.viewpoints, SUPPORT_PLANE, table_clearance=clearance)
     assert len(scene.objects) == 1
-    return object_surface(scene, 0, FeatureSettings())
+    return object_surface(scene, 0, FeatureScale())
 
 
 @pytest.mark.parametrize("noise", [False, True])
@@ -55,9 +55,9 @@ def test_normals_on_a_sphere_point_out():
 def test_viewpoints_must_match_the_points():
     pts = np.random.default_rng(0).normal(size=(50, 3)) * 0.02 + [0, 0, 0.05]
     with pytest.raises(ValueError, match=r"viewpoints: expected shape \(3,\) or \(50, 3\)"):
-        FeatureSettings().surface(pts, remove_plane=False, viewpoints=np.zeros((7, 3)))
+        FeatureScale().surface(pts, remove_plane=False, viewpoints=np.zeros((7, 3)))
     with pytest.raises(ValueError, match="viewpoints: contains NaN"):
-        FeatureSettings().surface(pts, remove_plane=False, viewpoints=np.full(3, np.nan))
+        FeatureScale().surface(pts, remove_plane=False, viewpoints=np.full(3, np.nan))
 
 
 def test_sources_point_at_the_nearest_member_of_their_voxel():

@@ -14,7 +14,6 @@ def test_data_path_finds_the_bundled_data():
     for parts in (("hands", "wsg50.urdf"), ("models", "box_wsg50_gmm.json"), ("objects", "test60.txt"), ("mug.pcd",)):
         assert io.data_path(*parts).is_file(), parts
     assert graspmix.data_path is io.data_path and io.default_hand_path() == io.data_path("hands", "wsg50.urdf")
-    assert graspmix.sim.default_hand_path() == io.default_hand_path()
 
 
 def test_format_checks(tmp_path):

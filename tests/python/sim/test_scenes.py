@@ -29,7 +29,7 @@ def box(tmp_path):
 
 def two_boxes(box, gap_y=0.1) -> scenes.SceneSpec:
     return scenes.SceneSpec(
-        [scenes.SceneObject(box, [0, 0, 0.02, 0, 0, 0, 1]), scenes.SceneObject(box, [0, gap_y, 0.02, 0, 0, 0, 1])]
+        [scenes.PlacedObject(box, [0, 0, 0.02, 0, 0, 0, 1]), scenes.PlacedObject(box, [0, gap_y, 0.02, 0, 0, 0, 1])]
     )
 
 
@@ -51,7 +51,7 @@ def test_grasp_straddling_two_touching_boxes_lifts_two(tmp_path):
         'ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial><collision><geometry><box size="0.02 0.04 0.04"/>'
         "</geometry></collision></link></robot>"
     )
-    spec = scenes.SceneSpec([scenes.SceneObject(str(p), [x, 0, 0.02, 0, 0, 0, 1]) for x in (-0.01, 0.01)])
+    spec = scenes.SceneSpec([scenes.PlacedObject(str(p), [x, 0, 0.02, 0, 0, 0, 1]) for x in (-0.01, 0.01)])
     ex = scenes.execute_in_scene(spec, execution.top_grasp((0, 0), 0.035, 0.018))
     assert ex.outcome == "two objects lifted" and not ex.result.success
     assert ex.lifted == [0, 1] and ex.remaining.objects == []
@@ -60,7 +60,7 @@ def test_grasp_straddling_two_touching_boxes_lifts_two(tmp_path):
 def test_settled_box_rests_at_its_height_and_pybullet_agrees(box):
     import pybullet as p
 
-    spec = scenes.SceneSpec([scenes.SceneObject(box, [0.03, -0.02, 0.12, 0, 0, 0.3826834, 0.9238795])])
+    spec = scenes.SceneSpec([scenes.PlacedObject(box, [0.03, -0.02, 0.12, 0, 0, 0.3826834, 0.9238795])])
     settled = scenes.settle(spec)
     np.testing.assert_allclose(settled.poses[0, :3], [0.03, -0.02, 0.02], atol=1e-3)
     # pybullet, from the same start, with its own engine settings

@@ -183,15 +183,15 @@ def test_errors(tmp_path):
         json.dumps({"format": "graspmix.grasps/1", "hand": str(panda), "grasps": [dict(g.to_dict(), rank=1)]})
     )
     with pytest.raises(ValueError, match="grasps are for hand"):
-        sim.execute_file("cube_small.urdf", path, hand=sim.default_hand_path())
+        sim.execute_file("cube_small.urdf", path, hand=graspmix.io.default_hand_path())
     # Without a hand given, the file's hand is used, and the WSG 50's joints do not fit it.
     with pytest.raises(ValueError, match="does not fit hand 'panda'"):
         sim.execute_file("cube_small.urdf", path)
     path.write_text(json.dumps({"format": "something/2", "grasps": []}))
     with pytest.raises(ValueError, match="expected format"):
-        sim.load_grasps(path)
+        graspmix.model.load_grasps(path)
     with pytest.raises(ValueError, match="no such grasps file"):
-        sim.load_grasps(tmp_path / "missing.json")
+        graspmix.model.load_grasps(tmp_path / "missing.json")
 
 
 def write_grasps(path, grasps, hand="wsg50.urdf"):
@@ -227,7 +227,7 @@ def test_test_object_list():
     """data/objects/test60.txt: 60 distinct objects that load, none of them a box like the demonstration."""
     from pathlib import Path
 
-    listed = sim.test_objects()
+    listed = graspmix.io.test_objects()
     assert len(listed) == 60 and len(set(listed)) == 60
     assert not any(Path(p).name.startswith(("cube", "block")) for p in listed)
     for p in listed[::10]:

@@ -84,9 +84,9 @@ void bind_pose_density_base(py::module_& m) {
           py::arg("features"), "log p(r) per row (eq:density_mixture_features).")
       .def(
           "sample",
-          [](const PoseDensity& d, int n, const py::object& features, const py::object& seed) {
+          [](const PoseDensity& d, const py::object& n_obj, const py::object& features, const py::object& seed) {
+            const int n = to_count(n_obj, "sample: n", 0, kMaxDraws);
             require_fitted(d, "sample");
-            if (n < 0) throw py::value_error("sample: n must be >= 0");
             std::mt19937_64 rng(to_seed(seed));
             return d.sample(to_features(features, n, d.n_features(), "sample: features"), rng);
           },
@@ -172,7 +172,10 @@ void bind_density(py::module_& m) {
           },
           py::arg("X"))
       .def(
-          "sample", [](const GaussianMixture& g, int n, const py::object& seed) { return g.sample(n, to_seed(seed)); },
+          "sample",
+          [](const GaussianMixture& g, const py::object& n, const py::object& seed) {
+            return g.sample(to_count(n, "sample: n", 0, kMaxDraws), to_seed(seed));
+          },
           py::arg("n"), py::arg("seed") = py::none(), "n draws, (n, d).")
       .def(
           "marginal",
@@ -196,11 +199,16 @@ void bind_density(py::module_& m) {
       .def_property_readonly("lower_bound_", [](const GaussianMixture& g) { return g.result().lower_bound; })
       .def_property_readonly("lower_bound_history_", [](const GaussianMixture& g) { return g.result().history; })
       .def(py::pickle(
-          [](const GaussianMixture& g) {
-            if (!g.fitted()) throw std::runtime_error("GaussianMixture: only a fitted mixture can be pickled");
+          // An unfitted mixture is its settings (as scikit-learn pickles an unfitted estimator's parameters).
+          [](const GaussianMixture& g) -> py::tuple {
+            if (!g.fitted()) return py::make_tuple(GmmSettings(g.settings()));
             return py::make_tuple(g.weights(), g.means(), covariances_array(g.covariances()));
           },
-          [](const py::tuple& t) { return mixture_from(t[0], t[1], t[2]); }))
+          [](const py::tuple& t) {
+            if (t.size() == 1) return GaussianMixture(t[0].cast<GmmSettings>());
+            if (t.size() != 3) throw py::value_error("GaussianMixture: a pickled state has 1 or 3 entries");
+            return mixture_from(t[0], t[1], t[2]);
+          }))
       .def("__repr__", [](const GaussianMixture& g) {
         return "GaussianMixture(n_components=" + std::to_string(g.settings().n_components) +
                (g.fitted() ? ", dim=" + std::to_string(g.dim()) + ")" : ", not fitted)");

@@ -311,9 +311,10 @@ void bind_models(py::module_& m) {
           py::arg("q"))
       .def(
           "sample",
-          [](const ConfigModel& c, int n, const py::object& seed) {
+          [](const ConfigModel& c, const py::object& n, const py::object& seed) {
+            const int count = to_count(n, "sample: n", 0, kMaxDraws);
             std::mt19937_64 rng(to_seed(seed));
-            return c.sample(n, rng);
+            return c.sample(count, rng);
           },
           py::arg("n"), py::arg("seed") = py::none())
       .def("pregrasp_for",

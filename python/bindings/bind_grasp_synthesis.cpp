@@ -201,11 +201,13 @@ void bind_synthesis(py::module_& m) {
           ("The query densities Q_i on an object.\n" + settings_doc<QuerySettings>()).c_str())
       .def(
           "sample_grasps",
-          [](const GraspSynthesizer& g, const std::vector<QueryDensity>& q, int n, const py::object& seed) {
+          [](const GraspSynthesizer& g, const std::vector<QueryDensity>& q, const py::object& n,
+             const py::object& seed) {
+            const int count = to_count(n, "sample_grasps: n", 0, kMaxDraws);
             std::mt19937_64 rng(to_seed(seed));
             PoseArray w;
             RowMatrixXd j;
-            g.sample_grasps(q, n, rng, w, j);
+            g.sample_grasps(q, count, rng, w, j);
             return py::make_tuple(w, j);
           },
           py::arg("query"), py::arg("n"), py::arg("seed") = py::none(), "(wrists (n, 7), joints (n, D)).")

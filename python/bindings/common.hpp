@@ -25,6 +25,11 @@ RowMatrixXd to_matrix(const py::handle& obj, const char* name, int cols = -1, bo
 Eigen::VectorXd to_vector(const py::handle& obj, const char* name, Eigen::Index n = -1);
 /// None -> 0; otherwise a non-negative integer.
 std::uint64_t to_seed(const py::object& seed);
+/// The most draws one sampling call makes: a bound checked before any memory is taken (10^7 poses are 560 MB).
+inline constexpr long long kMaxDraws = 10'000'000;
+/// A count (an int, not a bool) in [lo, hi]; ValueError naming `name` otherwise (never pybind11's TypeError
+/// listing C++ signatures, never a cast that wraps or a std::bad_alloc).
+int to_count(const py::handle& obj, const char* name, long long lo, long long hi);
 /// Features for n rows: None means no features; a 1-D vector is repeated for every row.
 RowMatrixXd to_features(const py::object& obj, Eigen::Index n_rows, int n_features, const char* name);
 /// Optional weights: None -> empty.

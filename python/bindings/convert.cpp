@@ -68,6 +68,20 @@ std::uint64_t to_seed(const py::object& seed) {
   return static_cast<std::uint64_t>(value.cast<long long>());
 }
 
+int to_count(const py::handle& obj, const char* name, long long lo, long long hi) {
+  const std::string range = "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+  if (!py::isinstance<py::int_>(obj) || py::isinstance<py::bool_>(obj)) {
+    throw py::value_error(std::string(name) + " must be an integer in " + range + ", got " +
+                          std::string(py::str(py::type::of(obj).attr("__name__"))));
+  }
+  const py::int_ value = py::reinterpret_borrow<py::int_>(obj);
+  if (value < py::int_(lo) || value > py::int_(hi)) {
+    throw py::value_error(std::string(name) + " must be an integer in " + range + ", got " +
+                          std::string(py::str(obj)).substr(0, 80));
+  }
+  return static_cast<int>(value.cast<long long>());
+}
+
 RowMatrixXd to_features(const py::object& obj, Eigen::Index n_rows, int n_features, const char* name) {
   if (obj.is_none()) {
     if (n_features != 0) {
@@ -94,11 +108,18 @@ Eigen::VectorXd to_weights(const py::object& obj, const char* name) {
 }
 
 std::string to_path(const py::object& obj, const char* name) {
+  // os.fsencode: the file system's bytes of a str, bytes or os.PathLike, so a name that is not valid UTF-8 (its
+  // undecodable bytes held as lone surrogates) names its file instead of failing to convert.
+  py::object encoded;
   try {
-    return py::str(py::module_::import("os").attr("fspath")(obj)).cast<std::string>();
+    encoded = py::module_::import("os").attr("fsencode")(obj);
   } catch (const py::error_already_set&) {
-    throw py::value_error(std::string(name) + ": expected a path (str or os.PathLike)");
+    throw py::value_error(std::string(name) + ": expected a path (str, bytes or os.PathLike), got " +
+                          std::string(py::str(py::type::of(obj).attr("__name__"))));
   }
+  std::string out = encoded.cast<std::string>();
+  if (out.find('\0') != std::string::npos) throw py::value_error(std::string(name) + ": the path contains a NUL byte");
+  return out;
 }
 
 namespace {

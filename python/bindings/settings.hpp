@@ -46,6 +46,16 @@ struct SettingsInfo {
   }
 };
 
+/// What a settings field holding `value` takes, in words (for the message of a value of the wrong type).
+inline std::string kind_of(const py::handle& value) {
+  if (py::isinstance<py::bool_>(value)) return "true or false";
+  if (py::isinstance<py::int_>(value)) return "an integer";
+  if (py::isinstance<py::float_>(value)) return "a number";
+  if (py::isinstance<py::str>(value)) return "text";
+  if (py::hasattr(value, "_fields")) return "a " + std::string(py::str(py::type::of(value).attr("__name__")));
+  return "a value like " + std::string(py::repr(value)).substr(0, 40);
+}
+
 /// A copy of `settings` (an instance of T, or None for `base`, by default T's defaults) with the keyword
 /// overrides applied through the bound attributes, so they convert exactly as attribute assignment
 /// does. An unknown keyword is a ValueError naming it and listing the valid ones; `where` names the
@@ -72,7 +82,11 @@ T settings_from(const py::handle& settings, const py::dict& overrides, const std
       obj.attr(key.c_str()) = item.second;
     } catch (py::error_already_set& e) {
       if (!e.matches(PyExc_TypeError) && !e.matches(PyExc_ValueError)) throw;
-      throw py::value_error(where + ": setting '" + key + "': " + std::string(py::str(e.value())));
+      // pybind11's TypeError lists C++ signatures: say what the field takes instead.
+      const std::string why =
+          e.matches(PyExc_ValueError) ? std::string(py::str(e.value())) : "expected " + kind_of(obj.attr(key.c_str()));
+      throw py::value_error(where + ": setting '" + key + "': " + std::string(py::repr(item.second)).substr(0, 80) +
+                            " is not valid: " + why);
     }
   }
   return obj.cast<T>();

@@ -159,7 +159,7 @@ class GaussianMixture:
         """
         A mixture from weights (K,), means (K, d), covariances (K, d, d).
         """
-    def __getstate__(self) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"], numpy.typing.NDArray[numpy.float64]]:
+    def __getstate__(self) -> tuple:
         ...
     def __init__(self, settings: typing.Any = None, **kwargs) -> None:
         """
@@ -191,7 +191,7 @@ class GaussianMixture:
         ...
     def predict_proba(self, X: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
         ...
-    def sample(self, n: typing.SupportsInt | typing.SupportsIndex, seed: typing.Any = None) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+    def sample(self, n: typing.Any, seed: typing.Any = None) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
         """
         n draws, (n, d).
         """
@@ -244,7 +244,7 @@ class PoseDensity:
         """
         log p(u | r) per row (eq:density_mixture_rigid_body). features: (N, n), or (n,) for every pose.
         """
-    def sample(self, n: typing.SupportsInt | typing.SupportsIndex, features: typing.Any = None, seed: typing.Any = None) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 7]"]:
+    def sample(self, n: typing.Any, features: typing.Any = None, seed: typing.Any = None) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 7]"]:
         """
         n poses (n, 7) drawn from p(u | r); features (n_features,) for all draws or (n, n_features) one per draw.
         """
@@ -1918,7 +1918,7 @@ class ConfigModel:
         ...
     def pregrasp_for(self, arg0: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         ...
-    def sample(self, n: typing.SupportsInt | typing.SupportsIndex, seed: typing.Any = None) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+    def sample(self, n: typing.Any, seed: typing.Any = None) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
         ...
     @property
     def grasp(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
@@ -2871,7 +2871,7 @@ class GraspSynthesizer:
           frame_jitter = True: rotate each sampled surface frame about its normal by up to pi exp(-jitter_sharpness ((k1 - k2) / k1)^2)
           jitter_sharpness = 100.0: s of Kopicki's rule above
         """
-    def sample_grasps(self, query: collections.abc.Sequence[QueryDensity], n: typing.SupportsInt | typing.SupportsIndex, seed: typing.Any = None) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 7]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]]:
+    def sample_grasps(self, query: collections.abc.Sequence[QueryDensity], n: typing.Any, seed: typing.Any = None) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 7]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]]:
         """
         (wrists (n, 7), joints (n, D)).
         """

@@ -53,10 +53,13 @@ Eigen::Vector3d quat_log(const Eigen::Quaterniond& q_in) {
 }
 
 Eigen::Quaterniond quat_exp(const Eigen::Vector3d& w) {
-  const double a = w.norm();
+  // stableNorm scales before squaring: components up to DBL_MAX / sqrt(3) give a finite angle (norm() overflows
+  // from about 1e154, and sin(inf) is NaN). sin and cos reduce any finite angle exactly.
+  const double a = w.stableNorm();
+  if (!std::isfinite(a)) throw std::invalid_argument("quat_exp: the rotation vector is not finite or too long");
   if (a < 1e-12) return Eigen::Quaterniond(1.0, w.x(), w.y(), w.z()).normalized();
-  const Eigen::Vector3d v = std::sin(a) * w / a;
-  return Eigen::Quaterniond(std::cos(a), v.x(), v.y(), v.z());
+  const Eigen::Vector3d v = std::sin(a) * (w / a);
+  return Eigen::Quaterniond(std::cos(a), v.x(), v.y(), v.z()).normalized();
 }
 
 Eigen::Isometry3d pose_from_vector(const Eigen::Ref<const Eigen::Matrix<double, 7, 1>>& p) {

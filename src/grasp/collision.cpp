@@ -87,6 +87,25 @@ CollisionModel collision_model_from_string(const std::string& name) {
   throw std::invalid_argument("collision model must be 'surface' or 'occupancy', got '" + name + "'");
 }
 
+namespace {
+
+/// m: the widest cloud a collision expert indexes. Its grid measures points from the cloud's corner, so over a
+/// span of S metres a point's place is known to S * 1e-16 m; 10 km keeps that below a nanometre. A wider cloud
+/// is no scene a hand reaches (millimetres read as metres, a stray point): an error.
+constexpr double kMaxCloudExtent = 1e4;
+
+void require_extent(const Eigen::Ref<const Vec3Array>& cloud) {
+  if (cloud.rows() == 0) return;
+  const double extent = (cloud.colwise().maxCoeff() - cloud.colwise().minCoeff()).maxCoeff();
+  if (extent > kMaxCloudExtent) {
+    throw std::invalid_argument("cloud: its points span " + std::to_string(extent) + " m (more than " +
+                                std::to_string(static_cast<int>(kMaxCloudExtent)) +
+                                " m: are its units metres? is a point far astray?)");
+  }
+}
+
+}  // namespace
+
 CollisionExpert::Index::Index(const Eigen::Ref<const Vec3Array>& cloud, double cell_size)
     : lo(cloud.rows() > 0 ? Eigen::Vector3d(cloud.colwise().minCoeff().transpose()) : Eigen::Vector3d::Zero()),
       hi(cloud.rows() > 0 ? Eigen::Vector3d(cloud.colwise().maxCoeff().transpose()) : Eigen::Vector3d::Zero()),
@@ -106,6 +125,7 @@ CollisionExpert::CollisionExpert(std::shared_ptr<const Hand> hand, const Eigen::
         "viewpoints), not from points alone");
   }
   require_finite(cloud, "cloud");
+  require_extent(cloud);
   index_ = std::make_shared<const Index>(cloud, settings_.cell_size);
   if (plane) plane_ = checked_plane(*plane, cloud, settings_.orient_plane);
   shapes_ = std::make_shared<const Shapes>(*hand_, plane_, settings_.plane_margin);
@@ -120,6 +140,7 @@ CollisionExpert::CollisionExpert(std::shared_ptr<const Hand> hand, std::shared_p
   settings_.model = CollisionModel::Occupancy;
   check_settings(settings_);
   require_finite(cloud, "cloud");
+  require_extent(cloud);
   index_ = std::make_shared<const Index>(cloud, settings_.cell_size);
   if (plane) {
     const Vec3Array centre = (0.5 * (occupancy_->objects_min() + occupancy_->objects_max())).transpose();

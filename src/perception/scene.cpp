@@ -56,6 +56,8 @@ void check_inputs(const Vec3Array& points, const SceneSettings& s) {
       (!(s.plane_distance > 0) || s.plane_max_iterations < 1 || s.plane_min_fraction < 0 || s.plane_min_fraction > 1)) {
     bad("plane_distance must be > 0, plane_max_iterations >= 1 and plane_min_fraction in [0, 1]");
   }
+  // NaN compares false both ways, so it must be caught before the order check; +-inf is a side left open.
+  if (s.crop_min.hasNaN() || s.crop_max.hasNaN()) bad("crop_min and crop_max must be numbers (+-inf: open), not NaN");
   if (s.crop && (s.crop_min.array() > s.crop_max.array()).any()) bad("crop_min must be <= crop_max in every axis");
 }
 

@@ -269,6 +269,9 @@ SceneObject describe(const Vec3Array& P, const std::vector<int>& rows) {
 }
 
 /// The objects of an extraction described and ordered as documented (segmentation.hpp) into `out`.
+/// A plane holding more than this fraction of a cloud is the cloud (a table with nothing, or little, on it).
+constexpr double kCloudIsPlane = 0.9;
+
 void finish(const Vec3Array& P, const Eigen::VectorXi& src, const Extraction& e, Segmentation& out) {
   out.n_plane = e.n_plane;
   out.n_outliers = e.n_outliers;
@@ -280,6 +283,17 @@ void finish(const Vec3Array& P, const Eigen::VectorXi& src, const Extraction& e,
   }
   std::vector<SceneObject> described;
   for (const auto& g : e.groups) described.push_back(describe(P, g));
+  // No support plane was accepted, and the plane that holds most of the cloud was refused only because the
+  // camera lies in it (rule 2): the cloud is a table seen by no camera it knows (the PCD convention's camera at
+  // the origin, in the table's own plane), not an object to grasp.
+  const bool camera_in_the_cloud_plane = !out.plane_found && !out.plane_given && !out.candidates.empty() &&
+                                         out.candidates.front().inlier_fraction > kCloudIsPlane &&
+                                         out.candidates.front().reason.find("rule 2") != std::string::npos;
+  if (camera_in_the_cloud_plane) {
+    bad("no object found: " + std::to_string(static_cast<int>(100 * out.candidates.front().inlier_fraction)) +
+        "% of the cloud lies in one plane, refused as the support only because the camera is in it; give the "
+        "camera's position (viewpoints, --viewpoint or --camera-pose)");
+  }
   std::vector<std::size_t> order(e.groups.size());
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {

@@ -398,6 +398,12 @@ def check_rows(rows: list[dict], proto: dict, path: Path) -> None:
             raise ValueError(f"{path}: row {i}: trial {quote(r['trial'])} is not in 0..{proto['trials'] - 1}")
         if r["success"] not in (0, 1):
             raise ValueError(f"{path}: row {i}: success must be 0 or 1, got {quote(r['success'])}")
+        # A synthesis that ran has all its times (a failed one none): the runtime figure adds them up.
+        times = [f"t_{s}" for s in (*STAGES, "features")]
+        given = [t for t in times if r[t] is not None]
+        if given and len(given) < len(times):
+            missing = ", ".join(t for t in times if r[t] is None)
+            raise ValueError(f"{path}: row {i}: {missing} empty while {given[0]} is given")
 
 
 def build_report(run_dir: str | Path) -> dict:

@@ -86,12 +86,15 @@ def test_acquire_views_4_writes_per_point_viewpoints_that_segment_and_synthesize
     assert not c.has_viewpoint
     np.testing.assert_array_equal(c.viewpoints, truth.viewpoints.astype(np.float32))
     # segment orients the table towards those cameras and finds the three objects; the same points without
-    # the viewpoints (a camera at the origin, in the table's plane) give no support plane.
+    # the viewpoints (a camera at the origin, in the table's plane) give no support plane, and since the plane
+    # refused is most of the cloud, the error asks for the camera.
     r = _json(capsys, ["segment", "--cloud", str(cloud), "--json"])
     assert r["plane_found"] and r["plane"][2] > 0.999 and abs(r["plane"][3]) < 2e-3
     assert len(r["objects"]) == len(set(truth.labels[truth.labels >= 0]))
     _core.save_cloud(str(tmp_path / "bare.pcd"), c.points)
-    assert not _json(capsys, ["segment", "--cloud", str(tmp_path / "bare.pcd"), "--json"])["plane_found"]
+    assert main(["segment", "--cloud", str(tmp_path / "bare.pcd"), "--json"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "refused as the support only because the camera is in it" in err
     grasps = tmp_path / "g.json"
     assert main(["synthesize", "--cloud", str(cloud), "--target", "largest", "--out", str(grasps)]) == 0
     doc = json.loads(grasps.read_text())

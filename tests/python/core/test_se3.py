@@ -63,3 +63,17 @@ def test_compose_and_inverse_match_matrices(rng):
 def test_bad_input_is_a_value_error(call, message):
     with pytest.raises(ValueError, match=message.replace("(", r"\(").replace(")", r"\)")):
         call()
+
+
+@pytest.mark.parametrize("scale", [1e3, 1e6, 1e20, 1e150, 1e300])
+def test_exp_of_long_rotation_vectors_is_a_unit_quaternion_and_scipys_rotation(scale):
+    """The exp map is periodic in the angle: a long rotation vector is a rotation by its length modulo 2 pi
+    (half-angle convention: quat_exp(w) is scipy's rotation by the vector 2 w)."""
+    rng = np.random.default_rng(3)
+    w = rng.normal(size=(20, 3))
+    w = w / np.linalg.norm(w, axis=1, keepdims=True) * scale * rng.uniform(0.5, 1.0, (20, 1))
+    q = graspmix.quat_exp(w)
+    assert np.all(np.isfinite(q)) and np.allclose(np.linalg.norm(q, axis=1), 1.0, atol=1e-12)
+    if scale <= 1e6:  # beyond, one ulp of the angle exceeds 2 pi: the rotation itself is noise
+        ref = Rotation.from_rotvec(2.0 * w).as_quat()
+        assert np.allclose(np.abs(np.sum(q * ref, axis=1)), 1.0, atol=1e-8)

@@ -143,3 +143,37 @@ def test_bad_settings_and_queries_are_value_errors(rng):
         gm.condition([5], [0.0])
     with pytest.raises(ValueError, match="values"):
         gm.condition([0, 1], [0.0])
+
+
+def test_an_unfitted_mixture_pickles_as_scikit_learns_does():
+    """scikit-learn pickles an unfitted estimator with its parameters; so does graspmix, and it stays unfitted."""
+    ours = graspmix.GaussianMixture(n_components=4, max_iter=7)
+    back = pickle.loads(pickle.dumps(ours))
+    theirs = pickle.loads(pickle.dumps(SkGaussianMixture(n_components=4, max_iter=7)))
+    assert back.settings == ours.settings and (back.settings.n_components, theirs.n_components) == (4, 4)
+    assert "not fitted" in repr(back)
+    with pytest.raises(ValueError, match="fit"):
+        back.sample(3)
+
+
+@pytest.mark.parametrize("n", [10**12, 2**31 - 1, -1, 1.5, "3", True])
+def test_sample_counts_are_bounded_before_memory_is_taken(n):
+    gm = graspmix.GaussianMixture(n_components=1, seed=0)
+    gm.fit(np.random.default_rng(0).normal(size=(40, 2)))
+    # The bundled models' contact densities: a fitted PoseMixture (GMM) and a PoseKDE.
+    densities = [
+        graspmix.GraspModel.load(graspmix.default_model_path(m)).synthesizer.contact_models[0].density
+        for m in ("gmm", "kde")
+    ]
+    samplers = [gm.sample] + [lambda k, d=d: d.sample(k, np.zeros(d.n_features)) for d in densities]
+    for sample in samplers:
+        with pytest.raises(ValueError, match=r"n must be an integer in \[0, 10000000\]") as e:
+            sample(n)
+        assert "\n" not in str(e.value)
+
+
+def test_a_setting_of_the_wrong_type_names_what_it_takes():
+    for value in ("3", 2**70, 1.5):
+        with pytest.raises(ValueError, match="n_components.*expected an integer") as e:
+            graspmix.GaussianMixture(n_components=value)
+        assert "\n" not in str(e.value) and "SupportsInt" not in str(e.value)

@@ -17,6 +17,7 @@ import pytest
 from graspmix import cli, sim
 from graspmix import experiment as ex
 from graspmix.experiment.log import read_rows
+from graspmix.experiment.report import build_report
 from graspmix.experiment.stats import mean_ci, paired_ttest
 from scipy import stats as sps
 
@@ -398,6 +399,15 @@ def test_report_from_a_written_csv(tmp_path):
     md = (out / "report.md").read_text()
     assert "![Success rate per condition and method](success_rates.png)" in md and "runtime.png" in md
     assert "| A: no depth noise, with optimisation |" in md
+    # A row whose synthesis has some stage times but not all (a CSV edited by hand) is an error naming the row.
+    csv_path = out / ex.CSV_NAME
+    lines = csv_path.read_text().splitlines()
+    header = lines[0].split(",")
+    cells = lines[1].split(",")
+    cells[header.index("t_sampling")] = ""
+    csv_path.write_text("\n".join([lines[0], ",".join(cells), *lines[2:]]) + "\n")
+    with pytest.raises(ValueError, match="row 1: t_sampling empty while t_query is given"):
+        build_report(out)
     for f in ("success_rates.png", "runtime.png", "report.html"):
         assert (out / f).stat().st_size > 1000
     assert "data:image/png;base64," in (out / "report.html").read_text()

@@ -209,3 +209,14 @@ def test_plane_depth_of_pybullet_panda_meshes_matches_their_lowest_vertex():
             expected = max(0.0, 0.3 - lowest) if np.isfinite(lowest) else 0.0
             assert r.plane_depth[li] == pytest.approx(expected, abs=1e-9), link
         assert r.cloud_depth.sum() == 0.0
+
+
+def test_a_cloud_spread_over_kilometres_is_refused_not_missed():
+    """A point 1e30 m away would make the cloud's grid measure the others to no precision: an error naming the
+    span (a unit mistake or a stray point), where a collision would otherwise be missed."""
+    hand = graspmix.Hand.from_urdf(str(graspmix.data_path("hands", "wsg50.urdf")))
+    pts = np.random.default_rng(0).normal(size=(200, 3)) * 0.02
+    graspmix.CollisionExpert(hand, pts)  # a scene-sized cloud is fine
+    for far in (1e30, 2e4):
+        with pytest.raises(ValueError, match="span"):
+            graspmix.CollisionExpert(hand, np.vstack([pts, [far, 0.0, 0.0]]))

@@ -270,3 +270,26 @@ def test_save_viewpoints_errors(tmp_path, points):
         graspmix.save_cloud(tmp_path / "x.pcd", points, viewpoints=vps)
     with pytest.raises(ValueError, match="viewpoints"):
         graspmix.save_cloud(tmp_path / "x.pcd", points, viewpoints=vps[:, :2])
+
+
+def test_a_file_name_that_is_not_utf8_names_its_file(tmp_path):
+    """A name with bytes that are not UTF-8 (Python holds them as lone surrogates) reaches the file it names;
+    a missing one is a ValueError naming it, not a failed conversion."""
+    import os
+
+    pts = np.random.default_rng(0).normal(size=(30, 3))
+    name = os.fsdecode(b"\xff\xfecloud.pcd")  # '\udcff\udcfecloud.pcd'
+    graspmix.save_cloud(str(tmp_path / name), pts)
+    assert (tmp_path / name).is_file()
+    np.testing.assert_allclose(graspmix.load_cloud(str(tmp_path / name)).points, pts, atol=1e-6)
+    with pytest.raises(ValueError, match="no such file"):
+        graspmix.load_cloud(str(tmp_path / os.fsdecode(b"\xffabsent.pcd")))
+
+
+def test_prepare_cloud_refuses_a_nan_crop_bound():
+    pts = np.random.default_rng(0).normal(size=(100, 3))
+    for bound in ({"crop_min": [np.nan, 0, 0]}, {"crop_max": [0, np.nan, 0]}):
+        with pytest.raises(ValueError, match="NaN"):
+            graspmix.prepare_cloud(pts, **bound)
+    # +-inf leaves a side open (the default), and is no error.
+    assert len(graspmix.prepare_cloud(pts, crop_min=[-np.inf, -np.inf, 0.0], voxel_size=0).points) > 0

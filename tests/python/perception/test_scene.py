@@ -8,8 +8,15 @@ import pybullet as p
 import pytest
 from graspmix import _core
 from graspmix.perception import POINT_TARGET_MAX_DISTANCE, camera_to_world, parse_target, segment_scene
-from graspmix.sim.acquisition import AcquisitionSettings, Camera, acquire, apply_noise, back_project, ring_cameras
-from graspmix.sim.acquisition import Scene as BulletScene
+from graspmix.sim.acquisition import (
+    AcquisitionSettings,
+    Camera,
+    TableWorld,
+    acquire,
+    apply_noise,
+    back_project,
+    ring_cameras,
+)
 
 EYE = (0.5, 0.1, 0.45)
 
@@ -72,7 +79,7 @@ OBJECTS = [
 def rendered():
     """A pybullet scene of three objects seen by one camera: the cloud, its viewpoint, and per point the
     body id from pybullet's segmentation mask (the ground truth); the bodies' ids and positions."""
-    with BulletScene("cube_small.urdf", AcquisitionSettings()) as world:
+    with TableWorld("cube_small.urdf", AcquisitionSettings()) as world:
         p.removeBody(world.body, physicsClientId=world.client)
         bodies = []
         for urdf, (x, y), scale in OBJECTS:
@@ -215,7 +222,7 @@ def _open_box(tmp_path, side=0.16, height=0.08, wall=0.005):
 def _render(bodies, eye, seed):
     """One noisy view (the acquisition's noise model) of bodies [(urdf, (x, y), scale)] resting on plane.urdf."""
     settings = AcquisitionSettings()
-    with BulletScene("cube_small.urdf", settings) as world:
+    with TableWorld("cube_small.urdf", settings) as world:
         p.removeBody(world.body, physicsClientId=world.client)
         for urdf, (x, y), scale in bodies:
             b = p.loadURDF(str(urdf), (x, y, 1.0), globalScaling=scale, physicsClientId=world.client)
@@ -294,3 +301,22 @@ def test_step_seconds_add_up():
     steps = r.step_seconds
     assert set(steps) == {"voxel", "candidates", "table_cut", "outliers", "clusters", "merge", "objects"}
     assert all(v >= 0 for v in steps.values()) and sum(steps.values()) <= r.seconds
+
+
+def test_a_cloud_of_only_a_table_has_no_object(tmp_path, capsys):
+    """A flat noisy table and nothing on it: seen from a camera above, the table is found and nothing stands on
+    it; with no viewpoint (the PCD convention's camera at the origin, in the table's own plane) the table is
+    refused as the support only because the camera lies in it, and it is still no object to grasp: the error
+    says to give the camera. Both are errors, also through the CLI."""
+    from graspmix.cli import main
+
+    rng = np.random.default_rng(0)
+    table = np.c_[rng.uniform(-0.3, 0.3, (20000, 2)), rng.normal(0.0, 0.001, 20000)]
+    with pytest.raises(ValueError, match="no object above the support plane"):
+        segment_scene(table, [0.0, 0.0, 1.0])
+    with pytest.raises(ValueError, match="no object found: 100% of the cloud lies in one plane.*camera"):
+        segment_scene(table)
+    graspmix.save_cloud(str(tmp_path / "table.pcd"), table)
+    assert main(["synthesize", "--cloud", str(tmp_path / "table.pcd"), "--out", str(tmp_path / "g.json")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "no object" in err and not (tmp_path / "g.json").exists()

@@ -18,8 +18,8 @@
 #include "graspmix/core/se3.hpp"
 #include "graspmix/density/pose_mixture.hpp"
 #include "graspmix/grasp/synthesis.hpp"
+#include "graspmix/perception/cleanup.hpp"
 #include "graspmix/perception/cloud_io.hpp"
-#include "graspmix/perception/scene.hpp"
 #include "graspmix/perception/surface.hpp"
 #include "graspmix/robot/hand.hpp"
 
@@ -51,7 +51,7 @@ int run(int argc, char** argv) {
   const Eigen::VectorXd grasp = hand->joints_from_map({{joint, pg[1]}});
 
   // The demonstration's object cloud: down-sampled like every query cloud (curvatures depend on density).
-  graspmix::SceneSettings demo_scene;
+  graspmix::CleanupSettings demo_scene;
   demo_scene.remove_plane = false;
   const graspmix::SurfaceCloud demo = graspmix::compute_surface_features(
       graspmix::prepare_cloud(graspmix::load_cloud(argv[2]).points, demo_scene).points);
@@ -64,15 +64,15 @@ int run(int argc, char** argv) {
   graspmix::ConfigModel config(pregrasp, grasp, hand->joint_limits());
   graspmix::GraspSynthesizer synthesizer(hand, std::move(models), config);
 
-  graspmix::SceneSettings scene;
-  const graspmix::SceneResult cleaned = graspmix::prepare_cloud(graspmix::load_cloud(argv[5]).points, scene);
+  graspmix::CleanupSettings scene;
+  const graspmix::CleanupResult cleaned = graspmix::prepare_cloud(graspmix::load_cloud(argv[5]).points, scene);
   const graspmix::SurfaceCloud query = graspmix::compute_surface_features(cleaned.points);
   std::optional<Eigen::Vector4d> plane;
   if (cleaned.plane_found) plane = cleaned.plane;
   const graspmix::CollisionExpert collision(hand, query.points, plane);
   const std::vector<std::shared_ptr<const graspmix::Expert>> experts{
       std::make_shared<graspmix::KinematicFeasibilityExpert>(hand, plane)};
-  graspmix::SynthesisSettings settings;
+  graspmix::SynthesizerSettings settings;
   settings.seed = 1;
   const graspmix::SynthesisResult result =
       synthesizer.synthesize(query.frames, query.curvatures, collision, experts, settings);

@@ -98,13 +98,13 @@ void bind_synthesis(py::module_& m) {
              "batches of n_samples drawn at most until n_samples grasps pass every hard expert")
       .done();
 
-  SettingsClass<SynthesisSettings>(m, "SynthesisSettings",
-                                   "What GraspSynthesizer.synthesize needs besides the object and the experts (scene "
-                                   "synthesis builds it from graspmix.SynthesisOptions).")
-      .field("sampling", &SynthesisSettings::sampling, "SamplingSettings")
-      .field("query", &SynthesisSettings::query, "QuerySettings")
-      .field("annealing", &SynthesisSettings::annealing, "AnnealingSettings")
-      .seed("seed", &SynthesisSettings::seed, "seeds everything random in synthesis (None: 0)")
+  SettingsClass<SynthesizerSettings>(m, "SynthesizerSettings",
+                                     "What GraspSynthesizer.synthesize needs besides the object and the experts (scene "
+                                     "synthesis builds it from graspmix.SynthesisOptions).")
+      .field("sampling", &SynthesizerSettings::sampling, "SamplingSettings")
+      .field("query", &SynthesizerSettings::query, "QuerySettings")
+      .field("annealing", &SynthesizerSettings::annealing, "AnnealingSettings")
+      .seed("seed", &SynthesizerSettings::seed, "seeds everything random in synthesis (None: 0)")
       .done();
 
   py::class_<Grasp>(m, "Grasp", "One synthesised grasp and its log-likelihood terms.")
@@ -174,7 +174,7 @@ void bind_synthesis(py::module_& m) {
           [](const GraspSynthesizer& g, const py::object& frames, const py::object& features,
              const CollisionExpert& collision, const py::object& experts, const py::object& settings,
              const py::kwargs& kw) {
-            const SynthesisSettings s = settings_from<SynthesisSettings>(settings, kw, "synthesize");
+            const SynthesizerSettings s = settings_from<SynthesizerSettings>(settings, kw, "synthesize");
             const PoseArray v = to_poses(frames, "frames");
             const RowMatrixXd r = to_matrix(features, "features");
             const ExpertList e = to_experts(experts);
@@ -184,7 +184,7 @@ void bind_synthesis(py::module_& m) {
           py::arg("frames"), py::arg("features"), py::arg("collision"), py::arg("experts") = py::none(),
           py::arg("settings") = py::none(),
           ("Query densities, sampling, ranking and annealing on an object's frames (N, 7) and features (N, n).\n" +
-           settings_doc<SynthesisSettings>())
+           settings_doc<SynthesizerSettings>())
               .c_str())
       .def(
           "query_densities",

@@ -3,8 +3,8 @@
 #include <optional>
 
 #include "common.hpp"
+#include "graspmix/perception/cleanup.hpp"
 #include "graspmix/perception/cloud_io.hpp"
-#include "graspmix/perception/scene.hpp"
 #include "graspmix/perception/segmentation.hpp"
 #include "graspmix/perception/surface.hpp"
 #include "settings.hpp"
@@ -82,51 +82,51 @@ void bind_perception(py::module_& m) {
       "viewpoints (N, 3), one camera position per point, into the fields vp_x vp_y vp_z (PCL's PointWithViewpoint).");
 
   // ---- scene clean-up ----------------------------------------------------------------------------
-  SettingsClass<SceneSettings>(m, "SceneSettings", "Scene clean-up before features (prepare_cloud).")
-      .field("crop", &SceneSettings::crop, "keep only points inside [crop_min, crop_max]")
+  SettingsClass<CleanupSettings>(m, "CleanupSettings", "Scene clean-up before features (prepare_cloud).")
+      .field("crop", &CleanupSettings::crop, "keep only points inside [crop_min, crop_max]")
       .property(
-          "crop_min", [](const SceneSettings& s) { return Eigen::Vector3d(s.crop_min); },
-          [](SceneSettings& s, const py::object& v) { s.crop_min = to_vector(v, "crop_min", 3); },
+          "crop_min", [](const CleanupSettings& s) { return Eigen::Vector3d(s.crop_min); },
+          [](CleanupSettings& s, const py::object& v) { s.crop_min = to_vector(v, "crop_min", 3); },
           "m (3,), the cloud's frame")
       .property(
-          "crop_max", [](const SceneSettings& s) { return Eigen::Vector3d(s.crop_max); },
-          [](SceneSettings& s, const py::object& v) { s.crop_max = to_vector(v, "crop_max", 3); },
+          "crop_max", [](const CleanupSettings& s) { return Eigen::Vector3d(s.crop_max); },
+          [](CleanupSettings& s, const py::object& v) { s.crop_max = to_vector(v, "crop_max", 3); },
           "m (3,), the cloud's frame")
-      .field("voxel_size", &SceneSettings::voxel_size,
+      .field("voxel_size", &CleanupSettings::voxel_size,
              "m: voxel-grid leaf size, 0 = off (demonstration and query clouds must share it)")
-      .field("remove_outliers", &SceneSettings::remove_outliers, "PCL StatisticalOutlierRemoval")
-      .field("outlier_neighbours", &SceneSettings::outlier_neighbours, "k of the mean-distance statistic")
-      .field("outlier_std_ratio", &SceneSettings::outlier_std_ratio,
+      .field("remove_outliers", &CleanupSettings::remove_outliers, "PCL StatisticalOutlierRemoval")
+      .field("outlier_neighbours", &CleanupSettings::outlier_neighbours, "k of the mean-distance statistic")
+      .field("outlier_std_ratio", &CleanupSettings::outlier_std_ratio,
              "drop points whose mean k-distance exceeds mean + ratio * std")
-      .field("remove_plane", &SceneSettings::remove_plane, "find the dominant plane by RANSAC and remove it")
-      .field("plane_distance", &SceneSettings::plane_distance, "m: RANSAC inlier threshold")
-      .field("plane_max_iterations", &SceneSettings::plane_max_iterations, "RANSAC iterations")
-      .field("plane_min_fraction", &SceneSettings::plane_min_fraction,
+      .field("remove_plane", &CleanupSettings::remove_plane, "find the dominant plane by RANSAC and remove it")
+      .field("plane_distance", &CleanupSettings::plane_distance, "m: RANSAC inlier threshold")
+      .field("plane_max_iterations", &CleanupSettings::plane_max_iterations, "RANSAC iterations")
+      .field("plane_min_fraction", &CleanupSettings::plane_min_fraction,
              "fraction of the cleaned points a plane needs to count as the support")
-      .field("remove_below_plane", &SceneSettings::remove_below_plane,
+      .field("remove_below_plane", &CleanupSettings::remove_below_plane,
              "also drop points on the far side of the plane from the object")
-      .seed("seed", &SceneSettings::seed, "seeds RANSAC (None: 0)")
+      .seed("seed", &CleanupSettings::seed, "seeds RANSAC (None: 0)")
       .done();
 
-  py::class_<SceneResult>(m, "SceneResult", "The object points of a scene and the support plane.")
-      .def_readonly("points", &SceneResult::points, "(N, 3) object points (m)")
-      .def_readonly("indices", &SceneResult::indices, "(N) input row of every point (-1 after voxel averaging)")
-      .def_readonly("sources", &SceneResult::sources,
+  py::class_<CleanupResult>(m, "CleanupResult", "The object points of a scene and the support plane.")
+      .def_readonly("points", &CleanupResult::points, "(N, 3) object points (m)")
+      .def_readonly("indices", &CleanupResult::indices, "(N) input row of every point (-1 after voxel averaging)")
+      .def_readonly("sources", &CleanupResult::sources,
                     "(N) input row whose per-point data (viewpoint, camera) every point carries: its own, or for a\n"
                     "voxel centroid the input point nearest to it in its voxel; index per-point arrays with it")
       .def_property_readonly(
-          "plane", [](const SceneResult& r) { return r.plane_found ? py::cast(r.plane) : py::none(); },
+          "plane", [](const CleanupResult& r) { return r.plane_found ? py::cast(r.plane) : py::none(); },
           "[a, b, c, d] of a x + b y + c z + d = 0, (a, b, c) unit towards the object; None if none found")
-      .def_readonly("plane_found", &SceneResult::plane_found)
-      .def_readonly("n_input", &SceneResult::n_input)
-      .def_readonly("n_after_crop", &SceneResult::n_after_crop)
-      .def_readonly("n_after_voxel", &SceneResult::n_after_voxel)
-      .def_readonly("n_after_outliers", &SceneResult::n_after_outliers)
-      .def_readonly("n_plane_inliers", &SceneResult::n_plane_inliers)
-      .def_readonly("n_output", &SceneResult::n_output)
-      .def_readonly("seconds", &SceneResult::seconds)
-      .def("__repr__", [](const SceneResult& r) {
-        return "<SceneResult " + std::to_string(r.n_input) + " -> " + std::to_string(r.n_output) + " points, plane " +
+      .def_readonly("plane_found", &CleanupResult::plane_found)
+      .def_readonly("n_input", &CleanupResult::n_input)
+      .def_readonly("n_after_crop", &CleanupResult::n_after_crop)
+      .def_readonly("n_after_voxel", &CleanupResult::n_after_voxel)
+      .def_readonly("n_after_outliers", &CleanupResult::n_after_outliers)
+      .def_readonly("n_plane_inliers", &CleanupResult::n_plane_inliers)
+      .def_readonly("n_output", &CleanupResult::n_output)
+      .def_readonly("seconds", &CleanupResult::seconds)
+      .def("__repr__", [](const CleanupResult& r) {
+        return "<CleanupResult " + std::to_string(r.n_input) + " -> " + std::to_string(r.n_output) + " points, plane " +
                (r.plane_found ? "found" : "not found") + ">";
       });
   m.def(
@@ -138,7 +138,7 @@ void bind_perception(py::module_& m) {
                                 (kw.contains("crop_max") && !kw["crop_max"].is_none());
         for (const char* k : {"crop_min", "crop_max"})
           if (kw.contains(k) && kw[k].is_none()) PyDict_DelItemString(kw.ptr(), k);
-        SceneSettings s = settings_from<SceneSettings>(settings, kw, "prepare_cloud");
+        CleanupSettings s = settings_from<CleanupSettings>(settings, kw, "prepare_cloud");
         if (crop_given && !kw.contains("crop")) s.crop = true;
         py::gil_scoped_release release;
         return prepare_cloud(P, s);
@@ -147,13 +147,13 @@ void bind_perception(py::module_& m) {
       ("Scene clean-up before features, in this order: crop box [crop_min, crop_max] (on when either is given "
        "as a keyword), voxel grid, statistical outlier removal, and removal of the dominant plane by seeded "
        "RANSAC (it must hold plane_min_fraction of the points) together with the points below it.\n" +
-       settings_doc<SceneSettings>())
+       settings_doc<CleanupSettings>())
           .c_str());
 
   // ---- scene segmentation ------------------------------------------------------------------------
   SettingsClass<SegmentationSettings>(
       m, "SegmentationSettings", "The scene model (segment_scene): support plane rule, table cut, outliers, clusters.")
-      .field("voxel_size", &SegmentationSettings::voxel_size, "m: voxel-grid leaf size, 0 = off (SceneSettings')")
+      .field("voxel_size", &SegmentationSettings::voxel_size, "m: voxel-grid leaf size, 0 = off (CleanupSettings')")
       .field("plane_distance", &SegmentationSettings::plane_distance, "m: RANSAC inlier threshold")
       .field("plane_max_iterations", &SegmentationSettings::plane_max_iterations, "RANSAC iterations per candidate")
       .seed("seed", &SegmentationSettings::seed, "seeds RANSAC (None: 0)")
@@ -263,23 +263,24 @@ void bind_perception(py::module_& m) {
           .c_str());
 
   // ---- surface features --------------------------------------------------------------------------
-  // The C++ FeatureSettings is bound as SurfaceFeatureSettings: graspmix.FeatureSettings is the Python
-  // package's own (voxel size and radius a model is saved with).
-  SettingsClass<FeatureSettings>(m, "SurfaceFeatureSettings",
-                                 "Normals, curvatures and frames (compute_surface_features); the C++ FeatureSettings.")
-      .field("radius", &FeatureSettings::radius, "m: neighbourhood radius of normals and curvatures (paper: 1 cm)")
-      .field("min_neighbours", &FeatureSettings::min_neighbours,
+  // (The voxel size and radius a model is saved with are the Python package's FeatureScale.)
+  SettingsClass<SurfaceFeatureSettings>(m, "SurfaceFeatureSettings",
+                                        "Normals, curvatures and frames (compute_surface_features).")
+      .field("radius", &SurfaceFeatureSettings::radius,
+             "m: neighbourhood radius of normals and curvatures (paper: 1 cm)")
+      .field("min_neighbours", &SurfaceFeatureSettings::min_neighbours,
              "points with fewer neighbours within radius (itself included) are dropped")
-      .field("min_anisotropy", &FeatureSettings::min_anisotropy,
+      .field("min_anisotropy", &SurfaceFeatureSettings::min_anisotropy,
              "the principal direction is x only where (k1 - k2) / k1 >= min_anisotropy ...")
-      .field("flat_curvature", &FeatureSettings::flat_curvature, "... and k1 >= flat_curvature (dimensionless)")
+      .field("flat_curvature", &SurfaceFeatureSettings::flat_curvature, "... and k1 >= flat_curvature (dimensionless)")
       .property(
-          "orientation", [](const FeatureSettings& s) { return to_string(s.orientation); },
-          [](FeatureSettings& s, const std::string& v) { s.orientation = normal_orientation_from_string(v); },
+          "orientation", [](const SurfaceFeatureSettings& s) { return to_string(s.orientation); },
+          [](SurfaceFeatureSettings& s, const std::string& v) { s.orientation = normal_orientation_from_string(v); },
           "how normals are turned outward: auto | viewpoint | propagate | centroid | given")
-      .field("orientation_neighbours", &FeatureSettings::orientation_neighbours, "k of the propagation graph")
-      .field("n_threads", &FeatureSettings::n_threads, "0 = OpenMP's default, else 1..256; results do not depend on it")
-      .field("max_neighbours", &FeatureSettings::max_neighbours,
+      .field("orientation_neighbours", &SurfaceFeatureSettings::orientation_neighbours, "k of the propagation graph")
+      .field("n_threads", &SurfaceFeatureSettings::n_threads,
+             "0 = OpenMP's default, else 1..256; results do not depend on it")
+      .field("max_neighbours", &SurfaceFeatureSettings::max_neighbours,
              "a neighbourhood holding more points is refused (voxel-downsample such a dense cloud first); 0: no cap")
       .done();
 
@@ -329,7 +330,8 @@ void bind_perception(py::module_& m) {
             normals.is_none() ? Vec3Array(0, 3) : Vec3Array(to_matrix(normals, "compute_surface_features: normals", 3));
         const Vec3Array V = to_points3(viewpoints, "compute_surface_features: viewpoints");
         if (!radius.is_none()) kw["radius"] = radius;
-        const FeatureSettings s = settings_from<FeatureSettings>(settings, kw, "compute_surface_features");
+        const SurfaceFeatureSettings s =
+            settings_from<SurfaceFeatureSettings>(settings, kw, "compute_surface_features");
         py::gil_scoped_release release;
         return compute_surface_features(P, s, N, V);
       },
@@ -343,7 +345,7 @@ void bind_perception(py::module_& m) {
        "(see indices, n_dropped). x is PCL's principal direction where (k1 - k2) / k1 >= min_anisotropy and "
        "k1 >= flat_curvature, else world z projected on the tangent plane (world x near +-z). radius=None: the "
        "settings' radius.\n" +
-       settings_doc<FeatureSettings>())
+       settings_doc<SurfaceFeatureSettings>())
           .c_str());
 }
 

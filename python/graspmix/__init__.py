@@ -30,6 +30,7 @@ from ._core import (
     # contact models, configuration model, experts, synthesis
     AxisAlignmentExpert,
     AxisAlignmentSettings,
+    CleanupResult,
     ClearApproachSettings,
     # object representation
     CloudData,
@@ -59,14 +60,13 @@ from ._core import (
     PoseMixture,
     QuerySettings,
     SamplingSettings,
-    SceneResult,
     SegmentationSettings,
     # simulation
     SimObject,
     SimResult,
     SimSettings,
     SurfaceCloud,
-    SynthesisSettings,
+    SynthesizerSettings,
     build_info,
     compute_surface_features,
     contact_data,

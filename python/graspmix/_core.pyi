@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AnnealingSettings', 'AxisAlignmentExpert', 'AxisAlignmentSettings', 'ClearApproachExpert', 'ClearApproachSettings', 'CloudData', 'CollisionBatchResult', 'CollisionExpert', 'CollisionFreeExpert', 'CollisionResult', 'CollisionSettings', 'ConfigModel', 'ConfigModelSettings', 'ContactData', 'ContactModel', 'ContactQualityExpert', 'ContactQualityResult', 'ContactQualitySettings', 'ContactSettings', 'Evaluation', 'Expert', 'FunctionExpert', 'GaussianMixture', 'GmmSettings', 'Grasp', 'GraspSynthesizer', 'Hand', 'HandLoadSettings', 'KdeSettings', 'KinematicFeasibilityExpert', 'KinematicFeasibilitySettings', 'OccupancyMap', 'OccupancySettings', 'PlaneCandidate', 'PoseDensity', 'PoseKDE', 'PoseMixture', 'QueryDensity', 'QuerySettings', 'SamplingSettings', 'SceneObject', 'SceneResult', 'SceneSettings', 'SceneSimResult', 'Segmentation', 'SegmentationSettings', 'SettleResult', 'SimObject', 'SimResult', 'SimSettings', 'SurfaceCloud', 'SurfaceFeatureSettings', 'SynthesisResult', 'SynthesisSettings', 'SynthesisTiming', 'build_info', 'compute_surface_features', 'contact_data', 'learn_contact_models', 'load_cloud', 'load_mesh', 'log_vmf_s3_normaliser', 'orient_plane', 'pose_inverse', 'pose_multiply', 'prepare_cloud', 'quat_exp', 'quat_log', 'save_cloud', 'segment_scene', 'sim_execute', 'sim_execute_scene', 'sim_settle_scene']
+__all__: list[str] = ['AnnealingSettings', 'AxisAlignmentExpert', 'AxisAlignmentSettings', 'CleanupResult', 'CleanupSettings', 'ClearApproachExpert', 'ClearApproachSettings', 'CloudData', 'CollisionBatchResult', 'CollisionExpert', 'CollisionFreeExpert', 'CollisionResult', 'CollisionSettings', 'ConfigModel', 'ConfigModelSettings', 'ContactData', 'ContactModel', 'ContactQualityExpert', 'ContactQualityResult', 'ContactQualitySettings', 'ContactSettings', 'Evaluation', 'Expert', 'FunctionExpert', 'GaussianMixture', 'GmmSettings', 'Grasp', 'GraspSynthesizer', 'Hand', 'HandLoadSettings', 'KdeSettings', 'KinematicFeasibilityExpert', 'KinematicFeasibilitySettings', 'OccupancyMap', 'OccupancySettings', 'PlaneCandidate', 'PoseDensity', 'PoseKDE', 'PoseMixture', 'QueryDensity', 'QuerySettings', 'SamplingSettings', 'SceneObject', 'SceneSimResult', 'Segmentation', 'SegmentationSettings', 'SettleResult', 'SimObject', 'SimResult', 'SimSettings', 'SurfaceCloud', 'SurfaceFeatureSettings', 'SynthesisResult', 'SynthesisTiming', 'SynthesizerSettings', 'build_info', 'compute_surface_features', 'contact_data', 'learn_contact_models', 'load_cloud', 'load_mesh', 'log_vmf_s3_normaliser', 'orient_plane', 'pose_inverse', 'pose_multiply', 'prepare_cloud', 'quat_exp', 'quat_log', 'save_cloud', 'segment_scene', 'sim_execute', 'sim_execute_scene', 'sim_settle_scene']
 class GmmSettings:
     """
     How a GaussianMixture (or PoseMixture) is fitted by EM.
@@ -413,11 +413,11 @@ class CloudData:
     @property
     def width(self) -> int:
         ...
-class SceneSettings:
+class CleanupSettings:
     """
     Scene clean-up before features (prepare_cloud).
     
-    Settings: settings= a SceneSettings (None: its defaults), and/or its fields as keywords,
+    Settings: settings= a CleanupSettings (None: its defaults), and/or its fields as keywords,
     which override it (an unknown keyword is a ValueError):
       crop = False: keep only points inside [crop_min, crop_max]
       crop_min = array([-inf, -inf, -inf]): m (3,), the cloud's frame
@@ -435,9 +435,9 @@ class SceneSettings:
     """
     __hash__: typing.ClassVar[None] = None
     _fields: typing.ClassVar[tuple] = ('crop', 'crop_min', 'crop_max', 'voxel_size', 'remove_outliers', 'outlier_neighbours', 'outlier_std_ratio', 'remove_plane', 'plane_distance', 'plane_max_iterations', 'plane_min_fraction', 'remove_below_plane', 'seed')
-    def __copy__(self) -> SceneSettings:
+    def __copy__(self) -> CleanupSettings:
         ...
-    def __deepcopy__(self, memo: typing.Any) -> SceneSettings:
+    def __deepcopy__(self, memo: typing.Any) -> CleanupSettings:
         ...
     def __eq__(self, arg0: typing.Any) -> typing.Any:
         ...
@@ -561,7 +561,7 @@ class SceneSettings:
     @voxel_size.setter
     def voxel_size(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
-class SceneResult:
+class CleanupResult:
     """
     The object points of a scene and the support plane.
     """
@@ -618,7 +618,7 @@ class SegmentationSettings:
     
     Settings: settings= a SegmentationSettings (None: its defaults), and/or its fields as keywords,
     which override it (an unknown keyword is a ValueError):
-      voxel_size = 0.003: m: voxel-grid leaf size, 0 = off (SceneSettings')
+      voxel_size = 0.003: m: voxel-grid leaf size, 0 = off (CleanupSettings')
       plane_distance = 0.005: m: RANSAC inlier threshold
       plane_max_iterations = 1000: RANSAC iterations per candidate
       seed = 0: seeds RANSAC (None: 0)
@@ -818,7 +818,7 @@ class SegmentationSettings:
     @property
     def voxel_size(self) -> float:
         """
-        m: voxel-grid leaf size, 0 = off (SceneSettings')
+        m: voxel-grid leaf size, 0 = off (CleanupSettings')
         """
     @voxel_size.setter
     def voxel_size(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -979,7 +979,7 @@ class Segmentation:
         """
 class SurfaceFeatureSettings:
     """
-    Normals, curvatures and frames (compute_surface_features); the C++ FeatureSettings.
+    Normals, curvatures and frames (compute_surface_features).
     
     Settings: settings= a SurfaceFeatureSettings (None: its defaults), and/or its fields as keywords,
     which override it (an unknown keyword is a ValueError):
@@ -2615,11 +2615,11 @@ class SamplingSettings:
     @optimise.setter
     def optimise(self, arg0: bool) -> None:
         ...
-class SynthesisSettings:
+class SynthesizerSettings:
     """
     What GraspSynthesizer.synthesize needs besides the object and the experts (scene synthesis builds it from graspmix.SynthesisOptions).
     
-    Settings: settings= a SynthesisSettings (None: its defaults), and/or its fields as keywords,
+    Settings: settings= a SynthesizerSettings (None: its defaults), and/or its fields as keywords,
     which override it (an unknown keyword is a ValueError):
       sampling = SamplingSettings(n_samples=200, n_optimise=10, optimise=True, clear_pregrasp=True, max_sampling_rounds=10): SamplingSettings
       query = QuerySettings(n_samples=500, n_components=5, max_iter=100, reg_covar=1e-06, kde=KdeSettings(position_bandwidth=0.005, orientation_bandwidth=0.15, feature_bandwidth=array([0.005])), frame_jitter=True, jitter_sharpness=100.0): QuerySettings
@@ -2628,9 +2628,9 @@ class SynthesisSettings:
     """
     __hash__: typing.ClassVar[None] = None
     _fields: typing.ClassVar[tuple] = ('sampling', 'query', 'annealing', 'seed')
-    def __copy__(self) -> SynthesisSettings:
+    def __copy__(self) -> SynthesizerSettings:
         ...
-    def __deepcopy__(self, memo: typing.Any) -> SynthesisSettings:
+    def __deepcopy__(self, memo: typing.Any) -> SynthesizerSettings:
         ...
     def __eq__(self, arg0: typing.Any) -> typing.Any:
         ...
@@ -2878,7 +2878,7 @@ class GraspSynthesizer:
     def synthesize(self, frames: typing.Any, features: typing.Any, collision: CollisionExpert, experts: typing.Any = None, settings: typing.Any = None, **kwargs) -> SynthesisResult:
         """
         Query densities, sampling, ranking and annealing on an object's frames (N, 7) and features (N, n).
-        Settings: settings= a SynthesisSettings (None: its defaults), and/or its fields as keywords,
+        Settings: settings= a SynthesizerSettings (None: its defaults), and/or its fields as keywords,
         which override it (an unknown keyword is a ValueError):
           sampling = SamplingSettings(n_samples=200, n_optimise=10, optimise=True, clear_pregrasp=True, max_sampling_rounds=10): SamplingSettings
           query = QuerySettings(n_samples=500, n_components=5, max_iter=100, reg_covar=1e-06, kde=KdeSettings(position_bandwidth=0.005, orientation_bandwidth=0.15, feature_bandwidth=array([0.005])), frame_jitter=True, jitter_sharpness=100.0): QuerySettings
@@ -3292,10 +3292,10 @@ def pose_multiply(a: typing.Any, b: typing.Any) -> typing.Annotated[numpy.typing
     """
     Row-wise a o b over (N, 7) poses [x, y, z, qx, qy, qz, qw]; a side with one row is broadcast.
     """
-def prepare_cloud(points: typing.Any, *, settings: typing.Any = None, **kwargs) -> SceneResult:
+def prepare_cloud(points: typing.Any, *, settings: typing.Any = None, **kwargs) -> CleanupResult:
     """
     Scene clean-up before features, in this order: crop box [crop_min, crop_max] (on when either is given as a keyword), voxel grid, statistical outlier removal, and removal of the dominant plane by seeded RANSAC (it must hold plane_min_fraction of the points) together with the points below it.
-    Settings: settings= a SceneSettings (None: its defaults), and/or its fields as keywords,
+    Settings: settings= a CleanupSettings (None: its defaults), and/or its fields as keywords,
     which override it (an unknown keyword is a ValueError):
       crop = False: keep only points inside [crop_min, crop_max]
       crop_min = array([-inf, -inf, -inf]): m (3,), the cloud's frame
@@ -3328,7 +3328,7 @@ def segment_scene(points: typing.Any, viewpoints: typing.Any = None, plane: typi
     The support plane and the objects of a scene cloud (N, 3) seen from viewpoints (None: a camera at the origin; (3,) or (N, 3)); plane [a, b, c, d] gives a known support. The rule that accepts a plane is in include/graspmix/perception/segmentation.hpp.
     Settings: settings= a SegmentationSettings (None: its defaults), and/or its fields as keywords,
     which override it (an unknown keyword is a ValueError):
-      voxel_size = 0.003: m: voxel-grid leaf size, 0 = off (SceneSettings')
+      voxel_size = 0.003: m: voxel-grid leaf size, 0 = off (CleanupSettings')
       plane_distance = 0.005: m: RANSAC inlier threshold
       plane_max_iterations = 1000: RANSAC iterations per candidate
       seed = 0: seeds RANSAC (None: 0)

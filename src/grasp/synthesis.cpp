@@ -348,7 +348,7 @@ void check_expert_names(const std::vector<std::shared_ptr<const Expert>>& expert
 
 }  // namespace
 
-GraspSynthesizer::Candidates GraspSynthesizer::sample_passing(const Scoring& scoring, const SynthesisSettings& s,
+GraspSynthesizer::Candidates GraspSynthesizer::sample_passing(const Scoring& scoring, const SynthesizerSettings& s,
                                                               std::mt19937_64& rng, SynthesisResult& res) const {
   std::vector<PoseArray> batch_w;
   std::vector<RowMatrixXd> batch_q;
@@ -390,7 +390,7 @@ GraspSynthesizer::Candidates GraspSynthesizer::sample_passing(const Scoring& sco
   return c;
 }
 
-std::vector<bool> GraspSynthesizer::optimise_best(const Scoring& scoring, const SynthesisSettings& s,
+std::vector<bool> GraspSynthesizer::optimise_best(const Scoring& scoring, const SynthesizerSettings& s,
                                                   const std::vector<int>& order, std::mt19937_64& rng, Candidates& c,
                                                   SynthesisResult& res) const {
   std::vector<bool> optimised(c.wrists.rows(), false);
@@ -421,7 +421,7 @@ SynthesisResult GraspSynthesizer::synthesize(const Eigen::Ref<const PoseArray>& 
                                              const Eigen::Ref<const RowMatrixXd>& features,
                                              const CollisionExpert& collision,
                                              const std::vector<std::shared_ptr<const Expert>>& experts,
-                                             const SynthesisSettings& s) const {
+                                             const SynthesizerSettings& s) const {
   if (s.sampling.n_samples < 1) throw std::invalid_argument("synthesize: n_samples must be >= 1");
   if (s.sampling.n_optimise < 0) throw std::invalid_argument("synthesize: n_optimise must be >= 0");
   if (s.sampling.max_sampling_rounds < 1) throw std::invalid_argument("synthesize: max_sampling_rounds must be >= 1");

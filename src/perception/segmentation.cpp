@@ -361,12 +361,12 @@ Segmentation segment_scene(const Vec3Array& points, const Vec3Array& viewpoints,
   check_inputs(points, viewpoints);
   Segmentation out;
   out.n_input = static_cast<std::size_t>(points.rows());
-  SceneSettings voxel;  // prepare_cloud's voxel grid only: the sources follow every centroid
+  CleanupSettings voxel;  // prepare_cloud's voxel grid only: the sources follow every centroid
   voxel.voxel_size = s.voxel_size;
   voxel.remove_outliers = false;
   voxel.remove_plane = false;
   Lap lap;
-  const SceneResult down = prepare_cloud(points, voxel);
+  const CleanupResult down = prepare_cloud(points, voxel);
   const Vec3Array& P = down.points;
   out.n_after_voxel = static_cast<std::size_t>(P.rows());
   Cameras cams;

@@ -40,7 +40,7 @@ Eigen::Vector3d tangent_reference(const Eigen::Vector3d& n) {
 }
 
 /// The inputs of compute_surface_features checked, and the orientation rule that applies (Auto resolved).
-NormalOrientation check_inputs(const Vec3Array& points, const FeatureSettings& s, const Vec3Array& normals_in,
+NormalOrientation check_inputs(const Vec3Array& points, const SurfaceFeatureSettings& s, const Vec3Array& normals_in,
                                const Vec3Array& viewpoints) {
   const Eigen::Index N = points.rows();
   if (N == 0) bad("points: the cloud is empty");
@@ -110,7 +110,7 @@ struct Curvatures {
 
 /// PCL's PrincipalCurvaturesEstimation has no OpenMP variant, so one estimator per thread over the shared
 /// grid; points are independent, so threads cannot change results.
-Curvatures principal_curvatures(const RadiusGrid& grid, const Normals& normals, const FeatureSettings& s,
+Curvatures principal_curvatures(const RadiusGrid& grid, const Normals& normals, const SurfaceFeatureSettings& s,
                                 int n_threads) {
   const int M = grid.size();
   const double r2 = s.radius * s.radius;
@@ -164,7 +164,7 @@ Curvatures principal_curvatures(const RadiusGrid& grid, const Normals& normals, 
 
 /// The canonical positions of the stable points, in input order; throws if there is none.
 std::vector<int> stable_points(const RadiusGrid& grid, const Normals& normals, const Curvatures& curv,
-                               const FeatureSettings& s) {
+                               const SurfaceFeatureSettings& s) {
   const int M = grid.size();
   std::vector<int> pos(static_cast<std::size_t>(M));
   for (int i = 0; i < M; ++i) pos[static_cast<std::size_t>(grid.row(i))] = i;
@@ -192,7 +192,7 @@ std::vector<int> stable_points(const RadiusGrid& grid, const Normals& normals, c
 
 /// The kept points' rows of the SurfaceCloud, frames included.
 SurfaceCloud assemble(const Vec3Array& points, const RadiusGrid& grid, const Normals& normals, const Curvatures& curv,
-                      const std::vector<int>& keep, const FeatureSettings& s) {
+                      const std::vector<int>& keep, const SurfaceFeatureSettings& s) {
   const Eigen::Index K = static_cast<Eigen::Index>(keep.size());
   SurfaceCloud out;
   out.n_input = static_cast<std::size_t>(points.rows());
@@ -286,8 +286,8 @@ PoseArray surface_frames(const Vec3Array& points, const Vec3Array& normals, cons
   return frames;
 }
 
-SurfaceCloud compute_surface_features(const Vec3Array& points, const FeatureSettings& s, const Vec3Array& normals_in,
-                                      const Vec3Array& viewpoints) {
+SurfaceCloud compute_surface_features(const Vec3Array& points, const SurfaceFeatureSettings& s,
+                                      const Vec3Array& normals_in, const Vec3Array& viewpoints) {
   const auto t_start = Clock::now();
   const NormalOrientation rule = check_inputs(points, s, normals_in, viewpoints);
   const int n_threads = s.n_threads > 0 ? s.n_threads : omp_get_max_threads();

@@ -121,8 +121,8 @@ void nearest(int i, const std::vector<int>& nn, const std::vector<double>& d2, i
 }  // namespace
 
 /// The caller's normals or estimated ones, and the k-NN graph when the orientation propagates.
-Normals estimate_normals(const RadiusGrid& grid, const FeatureSettings& s, const Vec3Array& normals_in, bool propagate,
-                         int n_threads) {
+Normals estimate_normals(const RadiusGrid& grid, const SurfaceFeatureSettings& s, const Vec3Array& normals_in,
+                         bool propagate, int n_threads) {
   const int M = grid.size();
   const bool given = normals_in.rows() > 0;
   const double r2 = s.radius * s.radius;

@@ -34,7 +34,7 @@ struct Normals {
 /// message names no point, so it is the same for any thread count.
 class NeighbourCap {
  public:
-  explicit NeighbourCap(const FeatureSettings& s) : s_(s) {}
+  explicit NeighbourCap(const SurfaceFeatureSettings& s) : s_(s) {}
   /// True (and remembered) if nn is over the cap.
   bool over(std::size_t n) {
     if (s_.max_neighbours == 0 || n <= static_cast<std::size_t>(s_.max_neighbours)) return false;
@@ -51,13 +51,13 @@ class NeighbourCap {
   }
 
  private:
-  const FeatureSettings& s_;
+  const SurfaceFeatureSettings& s_;
   std::atomic<bool> hit_{false};
 };
 
 /// The caller's normals or estimated ones, and the k-NN graph when the orientation propagates.
-Normals estimate_normals(const RadiusGrid& grid, const FeatureSettings& s, const Vec3Array& normals_in, bool propagate,
-                         int n_threads);
+Normals estimate_normals(const RadiusGrid& grid, const SurfaceFeatureSettings& s, const Vec3Array& normals_in,
+                         bool propagate, int n_threads);
 
 /// Outward orientation by the rule: before the curvatures, whose projected normals need consistent signs.
 void orient_normals(NormalOrientation rule, const RadiusGrid& grid, const Vec3Array& viewpoints, Normals& normals);

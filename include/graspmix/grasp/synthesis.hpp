@@ -65,7 +65,7 @@ struct SamplingSettings {
 };
 
 /// Everything GraspSynthesizer::synthesize needs besides the object and the experts.
-struct SynthesisSettings {
+struct SynthesizerSettings {
   SamplingSettings sampling;
   QuerySettings query;
   AnnealingSettings annealing;
@@ -146,7 +146,7 @@ class GraspSynthesizer {
   SynthesisResult synthesize(const Eigen::Ref<const PoseArray>& frames, const Eigen::Ref<const RowMatrixXd>& features,
                              const CollisionExpert& collision,
                              const std::vector<std::shared_ptr<const Expert>>& experts,
-                             const SynthesisSettings& settings) const;
+                             const SynthesizerSettings& settings) const;
 
   // ---- the stages, for tests, benchmarks and custom pipelines ----
   std::vector<QueryDensity> query_densities(const Eigen::Ref<const PoseArray>& frames,
@@ -176,10 +176,10 @@ class GraspSynthesizer {
   };
   /// Rejection sampling: batches of settings.n_samples until that many pass the hard experts (at most
   /// max_sampling_rounds batches; then rejected samples fill up). Counts evaluations and rejections.
-  Candidates sample_passing(const Scoring& scoring, const SynthesisSettings& s, std::mt19937_64& rng,
+  Candidates sample_passing(const Scoring& scoring, const SynthesizerSettings& s, std::mt19937_64& rng,
                             SynthesisResult& res) const;
   /// Anneals the best n_optimise candidates in place (rows `order[0..]`), re-scoring only those.
-  std::vector<bool> optimise_best(const Scoring& scoring, const SynthesisSettings& s, const std::vector<int>& order,
+  std::vector<bool> optimise_best(const Scoring& scoring, const SynthesizerSettings& s, const std::vector<int>& order,
                                   std::mt19937_64& rng, Candidates& c, SynthesisResult& res) const;
 
   std::shared_ptr<const Hand> hand_;

@@ -49,16 +49,16 @@
 #include <Eigen/Core>
 
 #include "graspmix/core/types.hpp"
-#include "graspmix/perception/scene.hpp"
+#include "graspmix/perception/cleanup.hpp"
 
 namespace graspmix {
 
 struct SegmentationSettings {
   /// Voxel-grid leaf size (m), 0 = off; the same as the clean-up's (features must see the same density).
-  double voxel_size = SceneSettings{}.voxel_size;
-  double plane_distance = SceneSettings{}.plane_distance;           ///< RANSAC inlier threshold (m)
-  int plane_max_iterations = SceneSettings{}.plane_max_iterations;  ///< RANSAC iterations per candidate
-  std::uint64_t seed = 0;                                           ///< seeds RANSAC
+  double voxel_size = CleanupSettings{}.voxel_size;
+  double plane_distance = CleanupSettings{}.plane_distance;           ///< RANSAC inlier threshold (m)
+  int plane_max_iterations = CleanupSettings{}.plane_max_iterations;  ///< RANSAC iterations per candidate
+  std::uint64_t seed = 0;                                             ///< seeds RANSAC
   /// Search for the support plane (the rule below); false: the cloud is objects only, no plane is searched.
   bool find_plane = true;
   int plane_candidates = 3;                 ///< planes tried, each on the points the previous ones left
@@ -69,9 +69,9 @@ struct SegmentationSettings {
   /// m: points at most this far above the support plane (or behind it) are the table and are dropped.
   /// The default of SynthesisOptions.table_clearance (Python) too.
   double table_clearance = 0.005;
-  bool remove_outliers = SceneSettings{}.remove_outliers;        ///< on the object points only
-  int outlier_neighbours = SceneSettings{}.outlier_neighbours;   ///< k of the mean-distance statistic
-  double outlier_std_ratio = SceneSettings{}.outlier_std_ratio;  ///< mean + ratio * std cut
+  bool remove_outliers = CleanupSettings{}.remove_outliers;        ///< on the object points only
+  int outlier_neighbours = CleanupSettings{}.outlier_neighbours;   ///< k of the mean-distance statistic
+  double outlier_std_ratio = CleanupSettings{}.outlier_std_ratio;  ///< mean + ratio * std cut
   /// m: two object points closer than this are in one object (pcl::EuclideanClusterExtraction). Voxel
   /// centroids of one surface lie about one voxel (3 mm) apart, up to 2 voxels diagonally or on steep
   /// faces; packed objects stand about 1 cm apart. 6 mm joins the first and keeps the second apart.
@@ -128,7 +128,7 @@ struct Segmentation {
   bool plane_given = false;  ///< given by the caller (then plane_found is false)
   Vec3Array points;          ///< the objects' points (voxelised), grouped by object
   Eigen::VectorXi labels;    ///< per point, its object's index
-  Eigen::VectorXi sources;   ///< per point, the input row whose per-point data it carries (SceneResult)
+  Eigen::VectorXi sources;   ///< per point, the input row whose per-point data it carries (CleanupResult)
   /// Ordered by decreasing point count, ties by centroid x, then y, then z: index 0 is the largest.
   std::vector<SceneObject> objects;
   std::vector<PlaneCandidate> candidates;  ///< the rule's figures (empty with a given plane)

@@ -16,7 +16,7 @@
 // thread count.
 //
 // Where k1 ~ k2 (spheres, planes) the principal direction is noise, so the frame's x axis is
-// chosen deterministically from the normal instead (see FeatureSettings and `isotropic`):
+// chosen deterministically from the normal instead (see SurfaceFeatureSettings and `isotropic`):
 // x = the world z axis projected on the tangent plane, or the world x axis where the normal is
 // within ~26 degrees of +-z. The sign of a used principal direction is fixed by the same rule
 // (x . reference >= 0), so frames never depend on the eigen-solver's sign or the point order.
@@ -42,7 +42,7 @@ enum class NormalOrientation {
   AsGiven,    ///< keep the signs of the given normals
 };
 
-struct FeatureSettings {
+struct SurfaceFeatureSettings {
   double radius = 0.01;     ///< neighbourhood radius of normals and curvatures (m); paper: 1 cm
   int min_neighbours = 10;  ///< points with fewer neighbours within radius (itself included) are dropped
   /// The principal direction is used for x only where (k1 - k2) / k1 >= min_anisotropy ...
@@ -58,7 +58,7 @@ struct FeatureSettings {
   int max_neighbours = 5000;
 };
 
-/// The largest FeatureSettings::n_threads.
+/// The largest SurfaceFeatureSettings::n_threads.
 inline constexpr int kMaxFeatureThreads = 256;
 
 /// O(v, r) for the kept points; row i of every array describes the same point.
@@ -87,7 +87,7 @@ struct SurfaceCloud {
 /// points all coincide), when a neighbourhood exceeds max_neighbours, and when no point has a stable
 /// neighbourhood (too few neighbours, or every neighbourhood degenerate: its points coincide or lie on
 /// one line, so no plane is defined): degenerate input is an error, never an empty or made-up result.
-SurfaceCloud compute_surface_features(const Vec3Array& points, const FeatureSettings& settings = {},
+SurfaceCloud compute_surface_features(const Vec3Array& points, const SurfaceFeatureSettings& settings = {},
                                       const Vec3Array& normals = {}, const Vec3Array& viewpoints = {});
 
 /// The frame (N, 7) of points with unit normals and principal directions (N, 3); rows where

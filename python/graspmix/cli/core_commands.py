@@ -69,7 +69,7 @@ def cmd_fit_gmm(args: argparse.Namespace) -> int:
 
 
 def _prepared(args, points):
-    """(points, SceneResult or None) after the clean-up steps asked for."""
+    """(points, CleanupResult or None) after the clean-up steps asked for."""
     if not (args.voxel_size > 0 or args.remove_outliers or args.remove_plane or args.crop):
         return points, None
     crop = args.crop or [None] * 6

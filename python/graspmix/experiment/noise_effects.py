@@ -201,7 +201,7 @@ def query_measures(density, seed: int, n: int = SPREAD_SAMPLES) -> dict:
 
 def model_measures(model: GraspModel, surface, settings, seed: int, spread_seed: int) -> dict:
     """link -> every MEASURES value of one model on one query surface; settings: the synthesis'
-    SynthesisSettings (its query settings and seed give the query densities the synthesis fits). Also
+    SynthesizerSettings (its query settings and seed give the query densities the synthesis fits). Also
     "_jitter": link -> (angles, weights) for the histograms."""
     frames, curv = np.asarray(surface.frames), np.asarray(surface.curvatures)
     angles = jitter_angles(curv, settings.query.jitter_sharpness)

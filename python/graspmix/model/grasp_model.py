@@ -277,7 +277,7 @@ class GraspModel:
             out.rejected, scene=scene, targets=targets,
         )  # fmt: skip
 
-    def _synthesizer_settings(self, opts: SynthesisOptions) -> "_core.SynthesisSettings":
+    def _synthesizer_settings(self, opts: SynthesisOptions) -> "_core.SynthesizerSettings":
         """The GraspSynthesizer's settings: the options' sampling and annealing, and their query densities with
         this model's KDE kernels where the options leave them at their defaults."""
         ls = self.learn_settings
@@ -285,7 +285,7 @@ class GraspModel:
             ls.get("kde_position_bandwidth", _L.kde_position_bandwidth),
             ls.get("kde_orientation_bandwidth", _L.kde_orientation_bandwidth),
         )
-        return _core.SynthesisSettings(sampling=opts.sampling, query=query, annealing=opts.annealing, seed=opts.seed)
+        return _core.SynthesizerSettings(sampling=opts.sampling, query=query, annealing=opts.annealing, seed=opts.seed)
 
 
 def checked_options(options) -> SynthesisOptions:

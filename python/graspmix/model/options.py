@@ -197,9 +197,9 @@ class SynthesisOptions:
         return cls(**parts, seed=d.get("seed", 0))
 
     # -- what the C++ calls take
-    def synthesizer_settings(self) -> "_core.SynthesisSettings":
+    def synthesizer_settings(self) -> "_core.SynthesizerSettings":
         """The GraspSynthesizer's settings: sampling, query and annealing with the seed."""
-        return _core.SynthesisSettings(
+        return _core.SynthesizerSettings(
             sampling=self.sampling, query=self.query, annealing=self.annealing, seed=self.seed
         )
 

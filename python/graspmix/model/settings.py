@@ -12,7 +12,7 @@ import numpy as np
 from .. import _core
 
 # The C++ defaults, read once from the default-constructed structs.
-_SCENE = _core.SceneSettings()
+_SCENE = _core.CleanupSettings()
 _SURFACE = _core.SurfaceFeatureSettings()
 _POSE_MIXTURE = _core.PoseMixture().settings
 _KDE = _core.KdeSettings()
@@ -45,11 +45,11 @@ class FeatureScale:
     the curvature radius that the demonstration and every query cloud pass through alike, or the contact
     models' feature densities compare unlike things. (The other feature settings: SurfaceFeatureSettings.)"""
 
-    voxel_size: float = _SCENE.voxel_size  # m, voxel grid before the features (SceneSettings)
+    voxel_size: float = _SCENE.voxel_size  # m, voxel grid before the features (CleanupSettings)
     radius: float = _SURFACE.radius  # m, the paper's 1 cm (SurfaceFeatureSettings)
 
     def surface(self, points: np.ndarray, *, remove_plane: bool, seed: int = 0, viewpoints=None):
-        """(SurfaceCloud, SceneResult) of raw points: clean-up (prepare_cloud), then features. A scene's
+        """(SurfaceCloud, CleanupResult) of raw points: clean-up (prepare_cloud), then features. A scene's
         known table is cut by segment_scene (graspmix.perception), which synthesis goes through."""
         viewpoints = checked_viewpoints(viewpoints, len(points))
         scene = _core.prepare_cloud(points, voxel_size=self.voxel_size, remove_plane=remove_plane, seed=seed)

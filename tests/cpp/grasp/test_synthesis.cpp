@@ -95,8 +95,8 @@ Fixture make_fixture() {
   return f;
 }
 
-SynthesisSettings small_settings(std::uint64_t seed) {
-  SynthesisSettings s;
+SynthesizerSettings small_settings(std::uint64_t seed) {
+  SynthesizerSettings s;
   s.sampling.n_samples = 60;
   s.sampling.n_optimise = 5;
   s.annealing.iterations = 30;

@@ -138,7 +138,7 @@ TEST(Surface, SphereSearchRadiusScalesCurvatureQuadratically) {
   const double R = 0.05;
   const Vec3Array P = sphere(R, 12566, 3);
   for (double r : {0.008, 0.015}) {
-    FeatureSettings fs;
+    SurfaceFeatureSettings fs;
     fs.radius = r;
     const SurfaceCloud s = compute_surface_features(P, fs);
     std::vector<double> k1(s.curvatures.col(0).data(), s.curvatures.col(0).data() + s.curvatures.rows());
@@ -248,7 +248,7 @@ TEST(Surface, TorusNormalsOutwardWherePointingAtTheCentroidIsWrong) {
     return static_cast<double>(good) / static_cast<double>(s.points.rows());
   };
   EXPECT_GT(fraction_outward(compute_surface_features(P)), 0.995);
-  FeatureSettings centroid;
+  SurfaceFeatureSettings centroid;
   centroid.orientation = NormalOrientation::Centroid;
   EXPECT_LT(fraction_outward(compute_surface_features(P, centroid)), 0.9) << "the test must be able to fail";
 }
@@ -277,7 +277,7 @@ TEST(Surface, ShuffledCloudGivesTheSameFeatures) {
 
 TEST(Surface, ThreadCountDoesNotChangeResults) {
   const Vec3Array P = box(Eigen::Vector3d(0.04, 0.03, 0.02), 8000, 29);
-  FeatureSettings one, two;
+  SurfaceFeatureSettings one, two;
   one.n_threads = 1;
   two.n_threads = 2;
   const SurfaceCloud a = compute_surface_features(P, one), b = compute_surface_features(P, two);
@@ -301,7 +301,7 @@ TEST(Surface, SparsePointsAreDroppedNeverNaN) {
 
 TEST(Surface, BadInputThrows) {
   const Vec3Array P = sphere(0.04, 2000, 37);
-  FeatureSettings tiny;
+  SurfaceFeatureSettings tiny;
   tiny.radius = 1e-5;
   try {
     compute_surface_features(P, tiny);
@@ -309,7 +309,7 @@ TEST(Surface, BadInputThrows) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("no point has a stable neighbourhood"), std::string::npos) << e.what();
   }
-  FeatureSettings neg;
+  SurfaceFeatureSettings neg;
   neg.radius = -1;
   EXPECT_THROW(compute_surface_features(P, neg), std::invalid_argument);
   EXPECT_THROW(compute_surface_features(Vec3Array(0, 3)), std::invalid_argument);
@@ -337,7 +337,7 @@ TEST(Surface, GivenNormalsAreKeptAndViewpointsPerPointOrient) {
 
 namespace {
 
-std::string error_of(const Vec3Array& P, const FeatureSettings& s = {}, const Vec3Array& normals = {}) {
+std::string error_of(const Vec3Array& P, const SurfaceFeatureSettings& s = {}, const Vec3Array& normals = {}) {
   try {
     compute_surface_features(P, s, normals);
   } catch (const std::invalid_argument& e) {
@@ -351,11 +351,11 @@ std::string error_of(const Vec3Array& P, const FeatureSettings& s = {}, const Ve
 TEST(Surface, ThreadCountOutOfRangeIsRefused) {
   const Vec3Array P = sphere(0.04, 2000, 43);
   for (const int n : {5000, kMaxFeatureThreads + 1, -1}) {
-    FeatureSettings s;
+    SurfaceFeatureSettings s;
     s.n_threads = n;
     EXPECT_NE(error_of(P, s).find("n_threads"), std::string::npos) << n;
   }
-  FeatureSettings most;
+  SurfaceFeatureSettings most;
   most.n_threads = kMaxFeatureThreads;
   EXPECT_NO_THROW(compute_surface_features(P, most));
 }
@@ -368,7 +368,7 @@ TEST(Surface, DenseCloudIsRefusedAtTheNeighbourCap) {
   EXPECT_NE(m.find("max_neighbours"), std::string::npos) << m;
   EXPECT_NE(m.find("voxel-downsample"), std::string::npos) << m;
   EXPECT_NE(error_of(P, {}, P.rowwise().normalized()).find("max_neighbours"), std::string::npos);  // given normals
-  FeatureSettings bad;
+  SurfaceFeatureSettings bad;
   bad.max_neighbours = 5;  // below min_neighbours
   EXPECT_NE(error_of(P, bad).find("max_neighbours"), std::string::npos);
 }
@@ -377,10 +377,10 @@ TEST(Surface, OrdinaryCloudsNeverReachTheCap) {
   // The paper's setting (1 cm radius) on a sphere as dense as the demonstration clouds: every
   // neighbourhood is far below the default cap, so the results are those without a cap, bit for bit.
   const Vec3Array P = sphere(0.035, 6000, 53);
-  FeatureSettings uncapped;
+  SurfaceFeatureSettings uncapped;
   uncapped.max_neighbours = 0;
   const SurfaceCloud a = compute_surface_features(P), b = compute_surface_features(P, uncapped);
-  EXPECT_LT(a.neighbours.maxCoeff(), FeatureSettings{}.max_neighbours / 10);
+  EXPECT_LT(a.neighbours.maxCoeff(), SurfaceFeatureSettings{}.max_neighbours / 10);
   EXPECT_EQ(a.indices, b.indices);
   EXPECT_EQ(a.frames, b.frames);
   EXPECT_EQ(a.curvatures, b.curvatures);

@@ -61,7 +61,7 @@ def test_viewpoints_must_match_the_points():
 
 
 def test_sources_point_at_the_nearest_member_of_their_voxel():
-    """SceneResult.sources: every voxel centroid's source row is the member of its voxel nearest to it."""
+    """CleanupResult.sources: every voxel centroid's source row is the member of its voxel nearest to it."""
     rng = np.random.default_rng(1)
     pts = rng.uniform(-0.05, 0.05, size=(3000, 3))
     scene = graspmix.prepare_cloud(pts, voxel_size=0.01, remove_plane=False, remove_outliers=False)

@@ -17,7 +17,7 @@ from graspmix.io import (
     resolve_object,
     resolve_path,
 )
-from graspmix.sim.scenes import SceneObject, SceneSpec
+from graspmix.sim.scenes import PlacedObject, SceneSpec
 
 PB = pybullet_data.getDataPath()
 WSG50 = data_path("hands", "wsg50.urdf")
@@ -90,9 +90,9 @@ def test_scene_moves_with_its_objects(tmp_path):
     shutil.copy(data_path("objects", "box.urdf"), a / "obj" / "mine.urdf")
     spec = SceneSpec(
         [
-            SceneObject(f"{PB}/random_urdfs/012/012.urdf", np.array([0, 0, 0.05, 0, 0, 0, 1.0])),
-            SceneObject(str(a / "obj" / "mine.urdf"), np.array([0.1, 0, 0.05, 0, 0, 0, 1.0])),
-            SceneObject(str(data_path("objects", "box.urdf")), np.array([-0.1, 0, 0.05, 0, 0, 0, 1.0])),
+            PlacedObject(f"{PB}/random_urdfs/012/012.urdf", np.array([0, 0, 0.05, 0, 0, 0, 1.0])),
+            PlacedObject(str(a / "obj" / "mine.urdf"), np.array([0.1, 0, 0.05, 0, 0, 0, 1.0])),
+            PlacedObject(str(data_path("objects", "box.urdf")), np.array([-0.1, 0, 0.05, 0, 0, 0, 1.0])),
         ]
     )
     spec.save(a / "scene.json")

@@ -64,7 +64,7 @@ def test_python_settings_that_cpp_also_has_are_its_defaults():
     assert list(kde.feature_bandwidth) == [LearnSettings.kde_feature_bandwidth]
     assert LearnSettings.n_components == _core.PoseMixture().settings.n_components
     assert (FeatureScale.voxel_size, FeatureScale.radius) == (
-        _core.SceneSettings().voxel_size,
+        _core.CleanupSettings().voxel_size,
         _core.SurfaceFeatureSettings().radius,
     )
     assert SynthesisOptions().segmentation.voxel_size == FeatureScale.voxel_size

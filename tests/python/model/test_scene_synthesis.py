@@ -90,12 +90,12 @@ def test_bad_targets(packed, tmp_path, capsys):
     with pytest.raises(ValueError, match="no object 7"):
         synthesize(model, acq, 7)
     np.save(tmp_path / "c.npy", acq.points)
-    rc = main(
-        ["synthesize", "--cloud", str(tmp_path / "c.npy"), "--target", "point:1,1,1", "--out", str(tmp_path / "g.json")]
-    )
+    camera = "--viewpoint=" + ",".join(f"{v:g}" for v in np.asarray(acq.viewpoints).reshape(-1, 3)[0])
+    out = str(tmp_path / "g.json")
+    rc = main(["synthesize", "--cloud", str(tmp_path / "c.npy"), camera, "--target", "point:1,1,1", "--out", out])
     err = capsys.readouterr().err.strip()
     assert rc == 2 and len(err.splitlines()) == 1 and "names no object" in err
-    rc = main(["synthesize", "--cloud", str(tmp_path / "c.npy"), "--target", "biggest"])
+    rc = main(["synthesize", "--cloud", str(tmp_path / "c.npy"), camera, "--target", "biggest"])
     assert rc == 2 and "target" in capsys.readouterr().err
 
 

@@ -144,7 +144,7 @@ def test_result_columns_hold_each_grasps_fields(gmm):
     """SynthesisResult.columns() (what GraspModel.synthesize reads) against the per-grasp objects."""
     surface = graspmix.compute_surface_features(graspmix.io.load_points(graspmix.data_path("mug.pcd"))[0])
     collision = graspmix.CollisionExpert(gmm.hand, surface.points)
-    settings = graspmix.SynthesisSettings(sampling=graspmix.SamplingSettings(n_samples=40, n_optimise=3), seed=5)
+    settings = graspmix.SynthesizerSettings(sampling=graspmix.SamplingSettings(n_samples=40, n_optimise=3), seed=5)
     res = gmm.synthesizer.synthesize(surface.frames, surface.curvatures, collision, [], settings)
     cols = res.columns()
     assert len(cols["log_likelihood"]) == len(res.grasps) > 0

@@ -14,7 +14,7 @@ WSG50 = graspmix.data_path("hands", "wsg50.urdf")
 SETTINGS = [
     "GmmSettings",
     "KdeSettings",
-    "SceneSettings",
+    "CleanupSettings",
     "SurfaceFeatureSettings",
     "HandLoadSettings",
     "CollisionSettings",
@@ -25,7 +25,7 @@ SETTINGS = [
     "QuerySettings",
     "AnnealingSettings",
     "SamplingSettings",
-    "SynthesisSettings",
+    "SynthesizerSettings",
     "ClearApproachSettings",
     "ContactQualitySettings",
     "OccupancySettings",
@@ -135,14 +135,14 @@ def test_bad_values_are_value_errors_naming_the_setting():
     with pytest.raises(ValueError, match="seed"):
         _core.GaussianMixture(seed=-1)
     with pytest.raises(ValueError, match="crop_min"):
-        _core.SceneSettings(crop_min=[0, 0])
+        _core.CleanupSettings(crop_min=[0, 0])
     with pytest.raises(ValueError, match="orientation"):
         _core.SurfaceFeatureSettings(orientation="inward")
 
 
 def test_old_keyword_calls_give_the_numbers_of_settings_calls(wsg, cube):
     scene_kw = _core.prepare_cloud(cube, voxel_size=0.004, remove_plane=False, seed=3)
-    scene_s = _core.prepare_cloud(cube, settings=_core.SceneSettings(voxel_size=0.004, remove_plane=False, seed=3))
+    scene_s = _core.prepare_cloud(cube, settings=_core.CleanupSettings(voxel_size=0.004, remove_plane=False, seed=3))
     np.testing.assert_array_equal(scene_kw.points, scene_s.points)
     cropped = _core.prepare_cloud(cube, crop_min=[-1, -1, 0.1], voxel_size=0, remove_outliers=False, remove_plane=False)
     assert np.all(cropped.points[:, 2] >= 0.1) and len(cropped.points) < len(cube)
@@ -174,12 +174,12 @@ def test_old_keyword_calls_give_the_numbers_of_settings_calls(wsg, cube):
 
 
 def test_nested_settings_write_through():
-    s = _core.SynthesisSettings(sampling=_core.SamplingSettings(n_samples=50), seed=None)
+    s = _core.SynthesizerSettings(sampling=_core.SamplingSettings(n_samples=50), seed=None)
     assert s.seed == 0 and s.query == _core.QuerySettings() and s.sampling.n_samples == 50
     s.query.n_samples = 7  # attributes of a nested settings object write through
     assert s.query.n_samples == 7
     with pytest.raises(ValueError, match="n_samples"):
-        _core.SynthesisSettings(n_samples=50)  # the sampling's fields are in its part
+        _core.SynthesizerSettings(n_samples=50)  # the sampling's fields are in its part
 
 
 def test_results_are_attribute_classes():
@@ -187,7 +187,7 @@ def test_results_are_attribute_classes():
     cloud = _core.load_cloud(str(graspmix.data_path("mug.pcd"))).points
     surface, _ = model.features.surface(cloud, remove_plane=True)
     collision = _core.CollisionExpert(model.hand, surface.points)
-    settings = _core.SynthesisSettings(sampling=_core.SamplingSettings(n_samples=20, n_optimise=1))
+    settings = _core.SynthesizerSettings(sampling=_core.SamplingSettings(n_samples=20, n_optimise=1))
     res = model.synthesizer.synthesize(surface.frames, surface.curvatures, collision, None, settings, seed=4)
     g = res.grasps[0]
     assert isinstance(g, _core.Grasp) and len(g.T_world_wrist) == 7

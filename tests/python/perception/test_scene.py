@@ -188,7 +188,7 @@ def test_known_plane_and_bad_inputs(rendered):
 def test_defaults_come_from_cpp_and_the_dict_is_json(rendered):
     import json
 
-    assert _core.SegmentationSettings().voxel_size == _core.SceneSettings().voxel_size
+    assert _core.SegmentationSettings().voxel_size == _core.CleanupSettings().voxel_size
     points, eye, _, _, _ = rendered
     d = json.loads(json.dumps(segment_scene(points, eye).to_dict(), allow_nan=False))
     assert d["plane_found"] and len(d["objects"]) == 3 and d["candidates"][0]["accepted"]

@@ -1,4 +1,4 @@
-#include "graspmix/perception/scene.hpp"
+#include "graspmix/perception/cleanup.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -23,7 +23,7 @@ namespace {
 using detail::Cloud;
 
 /// Input rows that follow the points through every step: `origin` is a point's own input row (-1 once
-/// voxel-averaged), `source` the input row whose per-point data it carries (SceneResult::sources).
+/// voxel-averaged), `source` the input row whose per-point data it carries (CleanupResult::sources).
 struct Rows {
   std::vector<int> origin, source;
 };
@@ -45,7 +45,7 @@ Cloud::Ptr subset(const Cloud& c, const pcl::Indices& idx, Rows& rows) {
 
 [[noreturn]] void bad(const std::string& m) { throw std::invalid_argument("prepare_cloud: " + m); }
 
-void check_inputs(const Vec3Array& points, const SceneSettings& s) {
+void check_inputs(const Vec3Array& points, const CleanupSettings& s) {
   if (points.rows() == 0) bad("points: the cloud is empty");
   if (!points.allFinite()) bad("points: contains NaN or infinite values (load_cloud drops them)");
   if (s.voxel_size < 0 || !std::isfinite(s.voxel_size)) bad("voxel_size must be >= 0 (0 switches it off)");
@@ -75,7 +75,7 @@ Cloud::Ptr to_pcl(const Vec3Array& points, Rows& rows) {
   return cloud;
 }
 
-Cloud::Ptr crop(const Cloud::Ptr& cloud, const SceneSettings& s, Rows& rows) {
+Cloud::Ptr crop(const Cloud::Ptr& cloud, const CleanupSettings& s, Rows& rows) {
   pcl::CropBox<pcl::PointXYZ> box;
   const float big = std::numeric_limits<float>::max();
   Eigen::Vector4f lo, hi;
@@ -113,7 +113,7 @@ void check_voxel_count(const Cloud& cloud, double voxel) {
 /// centroid to the member of its voxel nearest to it (squared distance in float, as a FLANN search would
 /// measure it; on a tie the lowest row), so per-point data survive the averaging. Linear: one integer sort
 /// (as PCL's own, which yields each point's voxel too), no search tree.
-Cloud::Ptr voxel_down(const Cloud::Ptr& cloud, const SceneSettings& s, Rows& rows) {
+Cloud::Ptr voxel_down(const Cloud::Ptr& cloud, const CleanupSettings& s, Rows& rows) {
   check_voxel_count(*cloud, s.voxel_size);
   detail::VoxelCells cells;
   try {
@@ -142,14 +142,14 @@ Cloud::Ptr voxel_down(const Cloud::Ptr& cloud, const SceneSettings& s, Rows& row
   return down;
 }
 
-Cloud::Ptr remove_outliers(const Cloud::Ptr& cloud, const SceneSettings& s, Rows& rows) {
+Cloud::Ptr remove_outliers(const Cloud::Ptr& cloud, const CleanupSettings& s, Rows& rows) {
   return subset(*cloud, detail::statistical_inliers(cloud, s.outlier_neighbours, s.outlier_std_ratio), rows);
 }
 
 /// The support plane found and removed (with what lies below it if asked), oriented towards the
 /// object: the side most of the points off the plane are on (PlaneSide::Majority). Records the plane
 /// in r; the cloud unchanged if there is no plane with enough inliers.
-Cloud::Ptr remove_support_plane(const Cloud::Ptr& cloud, const SceneSettings& s, Rows& rows, SceneResult& r) {
+Cloud::Ptr remove_support_plane(const Cloud::Ptr& cloud, const CleanupSettings& s, Rows& rows, CleanupResult& r) {
   Eigen::VectorXf coeffs;
   pcl::Indices inliers;
   if (!detail::fit_plane(cloud, s.plane_distance, s.plane_max_iterations, s.seed, coeffs, inliers)) return cloud;
@@ -180,10 +180,10 @@ Cloud::Ptr remove_support_plane(const Cloud::Ptr& cloud, const SceneSettings& s,
 
 }  // namespace
 
-SceneResult prepare_cloud(const Vec3Array& points, const SceneSettings& s) {
+CleanupResult prepare_cloud(const Vec3Array& points, const CleanupSettings& s) {
   const auto t0 = std::chrono::steady_clock::now();
   check_inputs(points, s);
-  SceneResult r;
+  CleanupResult r;
   r.n_input = static_cast<std::size_t>(points.rows());
   Rows rows;
   Cloud::Ptr cloud = to_pcl(points, rows);

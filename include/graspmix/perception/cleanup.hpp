@@ -12,7 +12,7 @@
 
 namespace graspmix {
 
-struct SceneSettings {
+struct CleanupSettings {
   bool crop = false;  ///< keep only points inside [crop_min, crop_max] (metres, the cloud's frame)
   Eigen::Vector3d crop_min = Eigen::Vector3d::Constant(-std::numeric_limits<double>::infinity());
   Eigen::Vector3d crop_max = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
@@ -32,7 +32,7 @@ struct SceneSettings {
   std::uint64_t seed = 0;          ///< seeds RANSAC (PCL's own generators are reseeded with it)
 };
 
-struct SceneResult {
+struct CleanupResult {
   Vec3Array points;         ///< the object points that remain
   Eigen::VectorXi indices;  ///< for every remaining point, its input row (-1 when voxel-averaged)
   /// for every remaining point, the input row whose per-point data (camera viewpoint, camera index) it
@@ -49,6 +49,6 @@ struct SceneResult {
 
 /// Runs the enabled steps in the order crop, voxel grid, outliers, plane. Throws
 /// std::invalid_argument on bad settings, non-finite points, or when no point survives.
-SceneResult prepare_cloud(const Vec3Array& points, const SceneSettings& settings = {});
+CleanupResult prepare_cloud(const Vec3Array& points, const CleanupSettings& settings = {});
 
 }  // namespace graspmix

@@ -14,7 +14,7 @@
 #include <pcl/search/kdtree.h>
 #include <pcl/segmentation/extract_clusters.h>
 
-#include "graspmix/perception/scene.hpp"
+#include "graspmix/perception/cleanup.hpp"
 #include "perception/cloud_filters.hpp"
 
 using namespace graspmix;
@@ -53,9 +53,9 @@ Scene make_scene(std::uint64_t seed) {
 
 TEST(Scene, PlaneRemovalKeepsTheObjectAndFindsTheTable) {
   const Scene sc = make_scene(1);
-  SceneSettings st;
+  CleanupSettings st;
   st.voxel_size = 0.0;
-  const SceneResult r = prepare_cloud(sc.points, st);
+  const CleanupResult r = prepare_cloud(sc.points, st);
   ASSERT_TRUE(r.plane_found);
   EXPECT_NEAR(r.plane[2], 1.0, 1e-3) << "normal up, towards the object";
   EXPECT_NEAR(r.plane[3], -0.7, 1e-3);
@@ -74,22 +74,22 @@ TEST(Scene, PlaneRemovalKeepsTheObjectAndFindsTheTable) {
 
 TEST(Scene, SameSeedSameResultAndStepsSwitchOff) {
   const Scene sc = make_scene(2);
-  SceneSettings st;
-  const SceneResult a = prepare_cloud(sc.points, st), b = prepare_cloud(sc.points, st);
+  CleanupSettings st;
+  const CleanupResult a = prepare_cloud(sc.points, st), b = prepare_cloud(sc.points, st);
   EXPECT_EQ(a.points, b.points);
   EXPECT_EQ(a.plane, b.plane);
   EXPECT_LT(a.n_after_voxel, a.n_after_crop);
-  SceneSettings off;
+  CleanupSettings off;
   off.voxel_size = 0;
   off.remove_outliers = false;
   off.remove_plane = false;
-  const SceneResult c = prepare_cloud(sc.points, off);
+  const CleanupResult c = prepare_cloud(sc.points, off);
   EXPECT_EQ(c.points.rows(), sc.points.rows());
   EXPECT_FALSE(c.plane_found);
   off.crop = true;
   off.crop_min << -1, -1, 0.71;
   off.crop_max << 1, 1, 0.9;
-  const SceneResult d = prepare_cloud(sc.points, off);
+  const CleanupResult d = prepare_cloud(sc.points, off);
   int inside = 0;
   for (Eigen::Index i = 0; i < sc.points.rows(); ++i)
     inside +=
@@ -100,10 +100,10 @@ TEST(Scene, SameSeedSameResultAndStepsSwitchOff) {
 
 TEST(Scene, BadInputThrows) {
   const Scene sc = make_scene(3);
-  SceneSettings st;
+  CleanupSettings st;
   st.voxel_size = -1;
   EXPECT_THROW(prepare_cloud(sc.points, st), std::invalid_argument);
-  SceneSettings crop;
+  CleanupSettings crop;
   crop.crop = true;
   crop.crop_min << 5, 5, 5;
   crop.crop_max << 6, 6, 6;
@@ -142,14 +142,14 @@ Vec3Array random_cloud(int kind, std::uint64_t seed) {
 }  // namespace
 
 TEST(Scene, VoxelCentroidsAndSourcesMatchABruteForceGrid) {
-  SceneSettings st;
+  CleanupSettings st;
   st.voxel_size = 0.004;
   st.remove_outliers = false;
   st.remove_plane = false;
   for (int kind = 0; kind < 3; ++kind) {
     for (std::uint64_t seed = 0; seed < 3; ++seed) {
       const Vec3Array pts = random_cloud(kind, seed);
-      const SceneResult r = prepare_cloud(pts, st);
+      const CleanupResult r = prepare_cloud(pts, st);
       const auto cells = cells_of(pts, static_cast<float>(st.voxel_size));
       ASSERT_EQ(static_cast<std::size_t>(r.points.rows()), cells.size());
       std::vector<Eigen::RowVector3d> means;  // in double, for the centroids to be matched with

@@ -36,11 +36,11 @@ import graspmix
 import numpy as np
 from graspmix.io import data_path, load_points
 
-# GraspSet.timing's "features" is the total less the synthesiser's own stages (query, sampling, optimisation):
-# the segmentation, the features and whatever is timed by no stage (e.g. the conversion of every sample to a
-# Python grasp). "feat+other" (derived here) is it without the segmentation; "outside" (derived) is the whole
-# call's time less the total (what synthesize does after its timer stops: building the GraspSet).
-STAGES = ["segmentation", "features", "feat+other", "query", "sampling", "optimisation", "total", "outside"]
+# GraspSet.timing's "features" is the total less the segmentation and the synthesiser's own stages (query,
+# sampling, optimisation): the features and whatever is timed by no stage (e.g. the conversion of every sample to
+# a Python grasp). "outside" (derived here) is the whole call's time less the total (what synthesize does after
+# its timer stops: building the GraspSet).
+STAGES = ["segmentation", "features", "query", "sampling", "optimisation", "total", "outside"]
 SIZES = (5_000, 20_000, 80_000, 300_000)
 SAMPLES = (200, 1000, 5000)
 JITTER = 0.0005  # m: the standard deviation of the jitter of an upsampled copy
@@ -122,8 +122,6 @@ def time_synthesis(model, points, viewpoints, repeats: int, seed: int, **changes
         grasps = model.synthesize(points, opts, viewpoints=viewpoints, target="largest")
         whole = time.perf_counter() - t0
         timing = dict(grasps.timing)
-        if "features" in timing and "segmentation" in timing:
-            timing["feat+other"] = timing["features"] - timing["segmentation"]
         if "total" in timing:
             timing["outside"] = whole - timing["total"]
         for stage, t in {**timing, "whole": whole}.items():

@@ -204,7 +204,8 @@ void bind_perception(py::module_& m) {
       .def_readonly("behind_fraction", &PlaneCandidate::behind_fraction, "rule 3")
       .def_readonly("margin", &PlaneCandidate::margin, "m, rule 4 (NaN when not judged, inf with no object)")
       .def_readonly("accepted", &PlaneCandidate::accepted)
-      .def_readonly("reason", &PlaneCandidate::reason, "why it was refused (empty when accepted)");
+      .def_readonly("refused_by", &PlaneCandidate::refused_by, "the rule (1-4) that refused it; 0 when accepted")
+      .def_readonly("reason", &PlaneCandidate::reason, "why it was refused, in words (empty when accepted)");
 
   py::class_<Segmentation>(m, "Segmentation", "The support plane and the objects of a scene cloud (segment_scene).")
       .def_property_readonly(

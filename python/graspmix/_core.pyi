@@ -898,7 +898,12 @@ class PlaneCandidate:
     @property
     def reason(self) -> str:
         """
-        why it was refused (empty when accepted)
+        why it was refused, in words (empty when accepted)
+        """
+    @property
+    def refused_by(self) -> int:
+        """
+        the rule (1-4) that refused it; 0 when accepted
         """
 class Segmentation:
     """

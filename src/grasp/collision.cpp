@@ -94,21 +94,22 @@ namespace {
 /// is no scene a hand reaches (millimetres read as metres, a stray point): an error.
 constexpr double kMaxCloudExtent = 1e4;
 
-void require_extent(const Eigen::Ref<const Vec3Array>& cloud) {
-  if (cloud.rows() == 0) return;
-  const double extent = (cloud.colwise().maxCoeff() - cloud.colwise().minCoeff()).maxCoeff();
+/// The cloud's corners, checked to span at most kMaxCloudExtent.
+Eigen::Vector3d checked_corner(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
+  const double extent = (hi - lo).maxCoeff();
   if (extent > kMaxCloudExtent) {
     throw std::invalid_argument("cloud: its points span " + std::to_string(extent) + " m (more than " +
                                 std::to_string(static_cast<int>(kMaxCloudExtent)) +
                                 " m: are its units metres? is a point far astray?)");
   }
+  return hi;
 }
 
 }  // namespace
 
 CollisionExpert::Index::Index(const Eigen::Ref<const Vec3Array>& cloud, double cell_size)
     : lo(cloud.rows() > 0 ? Eigen::Vector3d(cloud.colwise().minCoeff().transpose()) : Eigen::Vector3d::Zero()),
-      hi(cloud.rows() > 0 ? Eigen::Vector3d(cloud.colwise().maxCoeff().transpose()) : Eigen::Vector3d::Zero()),
+      hi(cloud.rows() > 0 ? checked_corner(lo, cloud.colwise().maxCoeff().transpose()) : Eigen::Vector3d::Zero()),
       grid(cloud_grid(cloud, lo, hi, cell_size)) {}
 
 /// The hand's collision shapes with their local bounding boxes and (with a plane) their FCL geometry,
@@ -125,7 +126,6 @@ CollisionExpert::CollisionExpert(std::shared_ptr<const Hand> hand, const Eigen::
         "viewpoints), not from points alone");
   }
   require_finite(cloud, "cloud");
-  require_extent(cloud);
   index_ = std::make_shared<const Index>(cloud, settings_.cell_size);
   if (plane) plane_ = checked_plane(*plane, cloud, settings_.orient_plane);
   shapes_ = std::make_shared<const Shapes>(*hand_, plane_, settings_.plane_margin);
@@ -140,7 +140,6 @@ CollisionExpert::CollisionExpert(std::shared_ptr<const Hand> hand, std::shared_p
   settings_.model = CollisionModel::Occupancy;
   check_settings(settings_);
   require_finite(cloud, "cloud");
-  require_extent(cloud);
   index_ = std::make_shared<const Index>(cloud, settings_.cell_size);
   if (plane) {
     const Vec3Array centre = (0.5 * (occupancy_->objects_min() + occupancy_->objects_max())).transpose();

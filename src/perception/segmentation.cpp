@@ -137,10 +137,13 @@ PlaneCandidate judge(const Vec3Array& P, const Cameras& cams, const Eigen::Vecto
       static_cast<double>((h.array() < -s.plane_behind_distance).count()) / static_cast<double>(P.rows());
   c.margin = std::numeric_limits<double>::quiet_NaN();  // rule 4 is judged on the objects (segment_scene)
   if (c.inlier_fraction < s.plane_min_fraction) {
+    c.refused_by = 1;
     c.reason = "holds too few points (rule 1)";
   } else if (c.camera_height < s.plane_distance) {
+    c.refused_by = 2;
     c.reason = "passes through the cameras (rule 2)";
   } else if (c.behind_fraction > s.plane_max_behind_fraction) {
+    c.refused_by = 3;
     c.reason = "has points behind it (rule 3)";
   }
   c.accepted = c.reason.empty();
@@ -268,10 +271,10 @@ SceneObject describe(const Vec3Array& P, const std::vector<int>& rows) {
   return o;
 }
 
-/// The objects of an extraction described and ordered as documented (segmentation.hpp) into `out`.
 /// A plane holding more than this fraction of a cloud is the cloud (a table with nothing, or little, on it).
 constexpr double kCloudIsPlane = 0.9;
 
+/// The objects of an extraction described and ordered as documented (segmentation.hpp) into `out`.
 void finish(const Vec3Array& P, const Eigen::VectorXi& src, const Extraction& e, Segmentation& out) {
   out.n_plane = e.n_plane;
   out.n_outliers = e.n_outliers;
@@ -288,7 +291,7 @@ void finish(const Vec3Array& P, const Eigen::VectorXi& src, const Extraction& e,
   // the origin, in the table's own plane), not an object to grasp.
   const bool camera_in_the_cloud_plane = !out.plane_found && !out.plane_given && !out.candidates.empty() &&
                                          out.candidates.front().inlier_fraction > kCloudIsPlane &&
-                                         out.candidates.front().reason.find("rule 2") != std::string::npos;
+                                         out.candidates.front().refused_by == 2;
   if (camera_in_the_cloud_plane) {
     bad("no object found: " + std::to_string(static_cast<int>(100 * out.candidates.front().inlier_fraction)) +
         "% of the cloud lies in one plane, refused as the support only because the camera is in it; give the "
@@ -347,6 +350,7 @@ Extraction find_support(const Vec3Array& P, const Cameras& cams, const Segmentat
       return e;
     }
     c.accepted = false;
+    c.refused_by = 4;
     c.reason = "does not reach beyond the objects (rule 4)";
   }
   return extract(P, nullptr, s, out.times);

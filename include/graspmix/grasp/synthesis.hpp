@@ -127,7 +127,7 @@ struct Scoring {
   const std::vector<QueryDensity>& query;
   const CollisionExpert& collision;
   const std::vector<std::shared_ptr<const Expert>>& experts;
-  bool clear_pregrasp = true;
+  bool clear_pregrasp = SamplingSettings{}.clear_pregrasp;
 };
 
 /// Log-likelihood terms of a batch of grasps.

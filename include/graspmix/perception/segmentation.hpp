@@ -67,7 +67,7 @@ struct SegmentationSettings {
   double plane_max_behind_fraction = 0.05;  ///< rule 3: fraction of all points allowed behind it (faces: > 0.1)
   double plane_margin = 0.01;               ///< rule 4: m the inliers must reach beyond the objects' footprint
   /// m: points at most this far above the support plane (or behind it) are the table and are dropped.
-  /// The default of SynthesisOptions.table_clearance (Python) too.
+  /// Also the default of a synthesis' (SynthesisOptions().segmentation, Python).
   double table_clearance = 0.005;
   bool remove_outliers = CleanupSettings{}.remove_outliers;        ///< on the object points only
   int outlier_neighbours = CleanupSettings{}.outlier_neighbours;   ///< k of the mean-distance statistic
@@ -106,7 +106,8 @@ struct PlaneCandidate {
   double behind_fraction = 0.0;  ///< rule 3
   double margin = 0.0;           ///< rule 4: least reach of the inliers beyond the footprint (m)
   bool accepted = false;
-  std::string reason;  ///< why it was refused (empty when accepted)
+  int refused_by = 0;  ///< the rule (1-4) that refused it; 0 when accepted
+  std::string reason;  ///< why it was refused, in words (empty when accepted)
 };
 
 /// Wall time (s) of each step of segment_scene; the table cut, outliers and clusters are summed over the

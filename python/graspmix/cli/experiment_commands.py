@@ -3,11 +3,11 @@
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import shlex
 from pathlib import Path
 
 from ..io import SUMMARY_FORMAT, read_document, read_objects_file, test_objects
-from ..io.checks import MAX_SAMPLES
 from ..model.settings import METHODS
 from .common import CliError, float_in, input_path, int_in, output_folder, seed, split_list
 from .synthesis_flags import add_synthesis_arguments, synthesis_options
@@ -35,8 +35,8 @@ def _protocol(args):
         views=args.views,
         cloud=args.cloud,
     )
-    protocol.synthesis = synthesis_options(args, protocol.synthesis)
-    return protocol
+    # replace() validates the protocol again with its synthesis options.
+    return dataclasses.replace(protocol, synthesis=synthesis_options(args, protocol.synthesis))
 
 
 def _models(paths: list, methods) -> dict | None:
@@ -113,11 +113,12 @@ def cmd_benchmark(args: argparse.Namespace) -> int:
         if args.limit < 1:
             raise CliError(f"--limit must be at least 1, got {args.limit}")
         objects = objects[: args.limit]
+    from ..experiment import Protocol
+
     res = benchmark(
         objects,
         args.out,
-        n_samples=args.samples,
-        n_optimise=args.optimise_top,
+        synthesis=synthesis_options(args, Protocol.preset(args.preset).synthesis),
         seed=args.seed,
         progress=not args.quiet,
         preset=args.preset,
@@ -272,8 +273,6 @@ def add_parsers(sub) -> None:
     s = sub.add_parser("benchmark", help="the paper's runtime comparison: medians over objects per stage, GMM vs KDE")
     s.add_argument("--objects", type=input_path, help="objects file (default: the 60 test objects)")
     s.add_argument("--limit", type=int_in(1), help="only the first N objects")
-    s.add_argument("--samples", type=int_in(1, MAX_SAMPLES), help="grasps sampled per object (default: the preset's)")
-    s.add_argument("--optimise-top", type=int_in(1, MAX_SAMPLES), help="best grasps annealed (default: the preset's)")
     s.add_argument("--seed", type=seed, default=0)
     s.add_argument(
         "--preset",
@@ -288,4 +287,5 @@ def add_parsers(sub) -> None:
         help="folder for benchmark.json and benchmark.png (default ./benchmark)",
     )
     s.add_argument("--quiet", action="store_true", help="no progress bar")
+    add_synthesis_arguments(s, base="the preset's", seed=False)
     s.set_defaults(func=cmd_benchmark)

@@ -3,7 +3,8 @@ synthesises (synthesize, experiment, sweep, clutter), and one function that turn
 
 Every flag is optional: a flag not given leaves the base options' value (the library's defaults for
 `synthesize`, the preset's for `experiment`). Switches are --NAME/--no-NAME. `--set PART.FIELD=VALUE` reaches
-every other setting of SynthesisOptions (graspmix_cli synthesize --list-settings prints them).
+every other setting of SynthesisOptions (graspmix_cli synthesize --list-settings prints them). A value for an
+expert that is off (--stand-off with --no-clear-approach's options, --friction with the paper's) turns it on.
 """
 
 from __future__ import annotations
@@ -11,24 +12,23 @@ from __future__ import annotations
 import argparse
 import json
 
-from ..io.checks import MAX_COMPONENTS, MAX_ITERATIONS, MAX_SAMPLES
 from ..model.options import COLLISION_MODELS, SynthesisOptions, options_field_names
-from .common import CliError, float_in, int_in
+from .common import CliError
 from .common import seed as seed_type
 
 _D = SynthesisOptions()  # the defaults, for the help texts
 
 # (flag, option path, argparse keywords); a switch's path is a part (on/off) or a boolean field.
 VALUE_FLAGS = (
-    ("--samples", "sampling.n_samples", dict(type=int_in(1, MAX_SAMPLES), help="grasps sampled and ranked")),
-    ("--optimise-top", "sampling.n_optimise", dict(type=int_in(0, MAX_SAMPLES), help="best grasps annealed")),
-    ("--query-samples", "query.n_samples", dict(type=int_in(1, MAX_SAMPLES), help="samples per link (N_Q)")),
-    ("--query-components", "query.n_components", dict(type=int_in(1, MAX_COMPONENTS), help="K_Q of GMM's Q_i")),
-    ("--annealing-iterations", "annealing.iterations", dict(type=int_in(0, MAX_ITERATIONS), help="per grasp")),
+    ("--samples", "sampling.n_samples", dict(type=int, help="grasps sampled and ranked")),
+    ("--optimise-top", "sampling.n_optimise", dict(type=int, help="best grasps annealed")),
+    ("--query-samples", "query.n_samples", dict(type=int, help="samples per link (N_Q)")),
+    ("--query-components", "query.n_components", dict(type=int, help="K_Q of GMM's Q_i")),
+    ("--annealing-iterations", "annealing.iterations", dict(type=int, help="per grasp")),
     (
         "--table-clearance",
         "segmentation.table_clearance",
-        dict(type=float_in(0.0), help="m: points this close above the support plane (or below it) are the table"),
+        dict(type=float, help="m: points this close above the support plane (or below it) are the table"),
     ),
     (
         "--collision",
@@ -42,17 +42,17 @@ VALUE_FLAGS = (
     (
         "--stand-off",
         "approach.stand_off",
-        dict(type=float_in(0.0), help="m: where the clear approach starts, back along the approach axis"),
+        dict(type=float, help="m: where the clear approach starts, back along the approach axis"),
     ),
     (
         "--approach-clearance",
         "approach.clearance",
-        dict(type=float_in(0.0), help="m: how far the open hand keeps from every point on its approach"),
+        dict(type=float, help="m: how far the open hand keeps from every point on its approach"),
     ),
     (
         "--friction",
         "contact_quality.friction",
-        dict(type=float_in(gt=0.0), help="Coulomb friction coefficient of the contact-quality test"),
+        dict(type=float, help="Coulomb friction coefficient of the contact-quality test"),
     ),
 )
 SWITCHES = (
@@ -99,7 +99,7 @@ def add_synthesis_arguments(
             dest=_dest(path),
             action=argparse.BooleanOptionalAction,
             default=None,
-            help=f"{text} ({path}; default: {base}, on)",
+            help=f"{text} ({path}; default: {base})",
         )
     g.add_argument(
         "--set",
@@ -118,27 +118,23 @@ def _dest(path: str) -> str:
 
 def synthesis_options(args: argparse.Namespace, base: SynthesisOptions | None = None) -> SynthesisOptions:
     """`base` (default: the library's defaults) with the synthesis flags given on the command line applied, the
-    --set ones last; CliError naming the flag for a bad name or value."""
-    changes = {}
-    for _, path, _ in VALUE_FLAGS:
+    --set ones last; CliError naming the flag for a bad name or value (the bounds are the options' own)."""
+    changes, flags = {}, {}  # option path -> value; option path -> the flag that gave it
+    given = [(flag, path) for flag, path, _ in VALUE_FLAGS] + [(f"--{name}", path) for name, path, _ in SWITCHES]
+    for flag, path in given + [("--seed", "seed")]:
         value = getattr(args, _dest(path), None)
         if value is not None:
-            changes[path] = value
-    for _, path, _ in SWITCHES:
-        value = getattr(args, _dest(path), None)
-        if value is not None:
-            changes[path] = value
-    if getattr(args, "synthesis__seed", None) is not None:
-        changes["seed"] = args.synthesis__seed
+            changes[path], flags[path] = value, flag
     for text in getattr(args, "synthesis_set", None) or []:
         name, sep, value = text.partition("=")
         if not sep or not name.strip():
             raise CliError(f"--set: expected PART.FIELD=VALUE, got {text!r}")
-        changes[name.strip()] = _parse_value(value.strip())
+        changes[name.strip()], flags[name.strip()] = _parse_value(value.strip()), f"--set {text}"
     try:
         return (base or SynthesisOptions()).updated(changes)
     except ValueError as e:
-        raise CliError(f"synthesis options: {e}") from None
+        named = [flag for path, flag in flags.items() if path in str(e)]
+        raise CliError(f"{named[-1] if named else '--set'}: {e}") from None
 
 
 def _parse_value(text: str):

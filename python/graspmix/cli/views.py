@@ -7,7 +7,7 @@ import argparse
 
 import numpy as np
 
-from ..perception import camera_to_world
+from ..perception import in_world
 from .common import CliError, parse_floats
 
 
@@ -48,8 +48,7 @@ def view_inputs(args, loaded_cloud) -> tuple[np.ndarray, np.ndarray | None, np.n
     viewpoints = None if file_viewpoints is None else np.asarray(file_viewpoints, dtype=float)
     if args.camera_pose:
         pose = parse_floats(args.camera_pose, 7, "--camera-pose")
-        points, camera = camera_to_world(points, pose)  # ValueError: not a unit quaternion
-        viewpoints = camera if viewpoints is None else camera_to_world(viewpoints.reshape(-1, 3), pose)[0].squeeze()
+        points, viewpoints = in_world(points, viewpoints, pose)  # ValueError: not a unit quaternion
     elif args.viewpoint:
         viewpoints = _flag_viewpoints(args.viewpoint, points)
     plane = None

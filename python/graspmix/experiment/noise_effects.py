@@ -301,7 +301,7 @@ def unit_measures(p: Protocol, models: dict, obj: str, trial: int, setting: str,
         if key not in surfaces:
             surfaces[key] = query_surface(model, acq, opts)
         qs = surfaces[key]
-        settings = model._synthesizer_settings(opts)
+        settings = model.synthesizer_settings(opts)
         spread_seed = derive_seed(p.seed, "noise_effects", obj, trial, setting, method)
         per_link = model_measures(model, qs.surface, settings, seed, spread_seed)
         for angles, w in per_link.pop("_jitter").values():

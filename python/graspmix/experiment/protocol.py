@@ -6,6 +6,7 @@ from __future__ import annotations
 import dataclasses
 import hashlib
 from dataclasses import dataclass, field
+from operator import attrgetter
 from pathlib import Path
 
 from ..io import PROTOCOL_FORMAT, read_document, resolve_object, sha256_file, test_objects
@@ -104,6 +105,15 @@ class Protocol:
         check_seed(self.seed)
         if not isinstance(self.synthesis, SynthesisOptions):
             raise ValueError(f"synthesis must be SynthesisOptions, got {type(self.synthesis).__name__}")
+        # What each attempt decides itself (attempt_options): a value here would be recorded and not used.
+        default = SynthesisOptions()
+        for name, why in (
+            ("seed", "each attempt's seed is derived from the protocol's seed"),
+            ("sampling.optimise", "the conditions decide the optimisation"),
+            ("segmentation.find_plane", "the known table is given"),
+        ):
+            if attrgetter(name)(self.synthesis) != attrgetter(name)(default):
+                raise ValueError(f"synthesis.{name}: {why}, so the protocol does not set it")
         check_int(self.views, "views", 1, 64)
         if not isinstance(self.cloud, str) or self.cloud not in CLOUDS:
             raise ValueError(f"cloud must be one of {', '.join(CLOUDS)}, got {quote(self.cloud)}")

@@ -22,11 +22,10 @@ import numpy as np
 from ..io import SUMMARY_FORMAT
 from ..io.checks import check_output_path, quote
 from ..model.grasps import STAGE_LABELS, STAGES
-from ..model.options import SynthesisOptions
 from ..model.settings import METHOD_LABELS, METHODS
 from ..viz.experiment import plot_runtime, plot_success
 from .log import CSV_NAME, read_rows
-from .protocol import CONDITIONS, load_protocol
+from .protocol import CONDITIONS, PROTOCOL_FIELDS, load_protocol, protocol_from_json
 from .stats import mean_ci, paired_ttest
 
 REASONS = ("success", "not held", "no contact", "start in collision", "synthesis failed")
@@ -292,8 +291,11 @@ def _noise_text(proto: dict) -> str:
 
 
 def _blocks(summary: dict) -> list[tuple]:
-    prov, proto = summary["provenance"], summary["protocol"]
-    syn = SynthesisOptions.from_dict(proto["synthesis"]).to_dict()  # every field, the defaults where left out
+    prov = summary["provenance"]
+    # Every field, the defaults where the file leaves one out (as the run read it).
+    p = protocol_from_json(summary["protocol"])
+    proto = {f: getattr(p, f) for f in PROTOCOL_FIELDS}
+    syn = p.synthesis.to_dict()
     att = summary["attempts"]
     rt = summary["runtime"]
     blocks = [

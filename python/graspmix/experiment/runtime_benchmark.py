@@ -13,6 +13,7 @@ import numpy as np
 from ..io import BENCHMARK_FORMAT, git_commit, package_version
 from ..io.checks import check_output_folder
 from ..model.grasps import STAGE_LABELS, STAGES
+from ..model.options import SynthesisOptions
 from ..model.settings import METHODS
 from ..viz.experiment import plot_runtime
 from .attempt import acquire_unit, cached_model, synthesize_on
@@ -43,19 +44,16 @@ def benchmark(
     objects: list[str],
     out: str | Path | None = None,
     *,
-    n_samples: int | None = None,
-    n_optimise: int | None = None,
+    synthesis: SynthesisOptions | None = None,
     seed: int = 0,
     progress: bool = True,
     preset: str = "defaults",
 ) -> dict:
-    """Fig. runtime: per object, a noise-free acquisition and one synthesis per method (n_samples grasps,
-    the best n_optimise annealed; None: the preset's) with the experiment preset's synthesis ("paper": the
-    paper's; "defaults": the library's); stage times, their medians over objects per method and the ratio
-    KDE / GMM. Writes benchmark.json and benchmark.png into out if given."""
-    p = Protocol.preset(preset, objects=list(objects), trials=1, seed=seed)
-    given = {"sampling.n_samples": n_samples, "sampling.n_optimise": n_optimise}
-    p.synthesis = p.synthesis.updated({k: v for k, v in given.items() if v is not None})
+    """Fig. runtime: per object, a noise-free acquisition and one synthesis per method with `synthesis` (None: the
+    experiment preset's: "paper" the paper's, "defaults" the library's) on the preset's clouds; stage times, their
+    medians over objects per method and the ratio KDE / GMM. Writes benchmark.json and benchmark.png into out if
+    given."""
+    p = Protocol.preset(preset, objects=list(objects), trials=1, seed=seed, synthesis=synthesis)
     n_samples, n_optimise = p.synthesis.sampling.n_samples, p.synthesis.sampling.n_optimise
     p.check_inputs()
     if out is not None:

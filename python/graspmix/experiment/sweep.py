@@ -17,12 +17,14 @@ from __future__ import annotations
 import dataclasses
 import json
 from dataclasses import dataclass
+from operator import attrgetter
 from pathlib import Path
 
 import numpy as np
 
 from ..io import data_path
 from ..io.checks import quote
+from ..model.options import SynthesisOptions
 from ..model.settings import METHOD_LABELS, METHODS, LearnSettings
 from .protocol import CONDITIONS, Protocol
 from .stats import clustered_rate
@@ -53,18 +55,18 @@ def _option_path(name: str) -> str | None:
     return kind.partition(":")[2] if kind.startswith("synthesis:") else None
 
 
-def _protocol_value(p: Protocol, name: str):
+def _protocol_value(p, name: str):
+    """The parameter's value in a Protocol (or, with the class, its default)."""
     path = _option_path(name)
     if path is None:
         return getattr(p, name)
-    part, fld = path.split(".")
-    return getattr(getattr(p.synthesis, part), fld)
+    return attrgetter(path)(p.synthesis if isinstance(p, Protocol) else SynthesisOptions())
 
 
 def parameter_type(name: str) -> type:
     """int or float: the type of the setting's default (counts are ints)."""
-    kind = PARAMETERS[name][1]
-    default = getattr(LearnSettings, name) if kind == "learn" else _protocol_value(Protocol(objects=["x"]), name)
+    owner = LearnSettings if PARAMETERS[name][1] == "learn" else Protocol
+    default = getattr(owner, name) if owner is LearnSettings else _protocol_value(Protocol, name)
     return int if isinstance(default, int) else float
 
 

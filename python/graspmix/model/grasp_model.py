@@ -38,7 +38,7 @@ from ..io.checks import (
     check_path_text,
     check_seed,
 )
-from ..perception import camera_to_world
+from ..perception import in_world
 from .demonstration import Demonstration
 from .grasp_types import (
     GraspType,
@@ -254,7 +254,7 @@ class GraspModel:
         t0 = time.perf_counter()
         # Phase 1: the scene (support plane, objects) and the targets.
         points, name, file_viewpoints = load_points(cloud)
-        points, viewpoints = _in_world(points, file_viewpoints if viewpoints is None else viewpoints, camera_pose)
+        points, viewpoints = in_world(points, file_viewpoints if viewpoints is None else viewpoints, camera_pose)
         scene = segment_query(points, viewpoints, checked_plane(plane), opts, self.features)
         targets = scene.select(target)
         t_segment = time.perf_counter() - t0
@@ -264,7 +264,7 @@ class GraspModel:
             scene,
             targets,
             opts,
-            self._synthesizer_settings(opts),
+            self.synthesizer_settings(opts),
             approach_axis=approach_axis,
             reachable=reachable,
             experts=experts,
@@ -277,15 +277,14 @@ class GraspModel:
             out.rejected, scene=scene, targets=targets,
         )  # fmt: skip
 
-    def _synthesizer_settings(self, opts: SynthesisOptions) -> "_core.SynthesizerSettings":
-        """The GraspSynthesizer's settings: the options' sampling and annealing, and their query densities with
-        this model's KDE kernels where the options leave them at their defaults."""
+    def synthesizer_settings(self, opts: SynthesisOptions) -> "_core.SynthesizerSettings":
+        """The GraspSynthesizer's settings of `opts` for this model (its KDE kernels where the options leave the
+        query's at their defaults: SynthesisOptions.query_for)."""
         ls = self.learn_settings
-        query = opts.query_for(
+        return opts.synthesizer_settings(
             ls.get("kde_position_bandwidth", _L.kde_position_bandwidth),
             ls.get("kde_orientation_bandwidth", _L.kde_orientation_bandwidth),
         )
-        return _core.SynthesizerSettings(sampling=opts.sampling, query=query, annealing=opts.annealing, seed=opts.seed)
 
 
 def checked_options(options) -> SynthesisOptions:
@@ -297,17 +296,6 @@ def checked_options(options) -> SynthesisOptions:
             f"options must be a graspmix.SynthesisOptions (or None for the defaults), got {type(options).__name__}"
         )
     return options
-
-
-def _in_world(points, viewpoints, camera_pose):
-    """(points, viewpoints) in the world frame: a cloud in a camera's frame (camera_pose) is mapped to the world,
-    the camera becoming its viewpoint (viewpoints given in the camera's frame are mapped with it)."""
-    if camera_pose is None:
-        return points, viewpoints
-    world, camera = camera_to_world(points, camera_pose)
-    if viewpoints is None:
-        return world, camera
-    return world, camera_to_world(np.asarray(viewpoints, dtype=float).reshape(-1, 3), camera_pose)[0].squeeze()
 
 
 def _stage_times(synthesis: dict, segmentation: float, total: float) -> dict:

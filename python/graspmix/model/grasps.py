@@ -124,7 +124,9 @@ def check_grasp(grasp, what: str = "grasp") -> Grasp:
 def grasps_from_result(result, hand) -> list[Grasp]:
     """The Grasps of a C++ synthesis result, best first, with every expert's log value by name (read from
     result.columns(): one array a field, turned into Python numbers in bulk)."""
-    c = {k: v.tolist() for k, v in result.columns().items()}
+    used = ("T_world_wrist", "joints", "pregrasp", "log_likelihood", "optimised", "log_terms")
+    columns = result.columns()
+    c = {k: columns[k].tolist() for k in used}
     names = sorted(enumerate(hand.joint_names), key=lambda j: j[1])  # by name, as Hand.joints_dict orders them
     terms = result.term_names
     grasps = []

@@ -52,7 +52,7 @@ class SynthesisOptions:
 
     segmentation: the support plane and the objects (graspmix.segment_scene); its voxel_size is the model's
         (the features must match the demonstration's): left at its default it is taken from the model, another
-        value must equal the model's. Its seed is `seed`.
+        value must equal the model's. Its seed is always `seed`.
     sampling: how many grasps are drawn, kept and annealed.
     query: the contact query densities Q_i.
     annealing: the simulated annealing of the best grasps.
@@ -87,6 +87,7 @@ class SynthesisOptions:
                 raise ValueError(f"SynthesisOptions.{name}: expected {allowed}, got {type(value).__name__}")
             object.__setattr__(self, name, copy.copy(value))  # the options own their parts
         object.__setattr__(self, "seed", check_seed(self.seed, "SynthesisOptions.seed"))
+        self.segmentation.seed = self.seed  # derived: one seed seeds everything (RANSAC too)
         self._check_numbers()
 
     def _check_numbers(self) -> None:
@@ -107,10 +108,6 @@ class SynthesisOptions:
         check_float(self.occupancy.resolution, "occupancy.resolution", gt=0.0)
         check_float(self.axis_alignment.concentration, "axis_alignment.concentration", 0.0)
         check_float(self.segmentation.table_clearance, "segmentation.table_clearance", 0.0)
-        if self.segmentation.seed not in (0, self.seed):
-            raise ValueError(
-                f"segmentation.seed ({self.segmentation.seed}): the seed of a synthesis is SynthesisOptions.seed"
-            )
         if self.approach is not None:
             check_float(self.approach.stand_off, "approach.stand_off", 0.0)
             check_float(self.approach.step, "approach.step", gt=0.0)
@@ -120,7 +117,7 @@ class SynthesisOptions:
 
     def __repr__(self) -> str:
         """The parts that differ from the defaults (all of them: repr(options.part))."""
-        default = _defaults()
+        default = SynthesisOptions(seed=self.seed)  # the segmentation's seed is the options' own
         changed = [f"{n}={getattr(self, n)!r}" for n in PARTS if getattr(self, n) != getattr(default, n)]
         if self.seed:
             changed.append(f"seed={self.seed}")
@@ -197,11 +194,13 @@ class SynthesisOptions:
         return cls(**parts, seed=d.get("seed", 0))
 
     # -- what the C++ calls take
-    def synthesizer_settings(self) -> "_core.SynthesizerSettings":
-        """The GraspSynthesizer's settings: sampling, query and annealing with the seed."""
-        return _core.SynthesizerSettings(
-            sampling=self.sampling, query=self.query, annealing=self.annealing, seed=self.seed
-        )
+    def synthesizer_settings(
+        self, position_bandwidth: float, orientation_bandwidth: float
+    ) -> "_core.SynthesizerSettings":
+        """The GraspSynthesizer's settings for a model learnt with these KDE kernels: sampling, annealing, the seed,
+        and the query densities of query_for."""
+        query = self.query_for(position_bandwidth, orientation_bandwidth)
+        return _core.SynthesizerSettings(sampling=self.sampling, query=query, annealing=self.annealing, seed=self.seed)
 
     def query_for(self, position_bandwidth: float, orientation_bandwidth: float) -> "_core.QuerySettings":
         """The query densities' settings for a model learnt with these KDE kernels: query.kde left at its defaults
@@ -227,16 +226,6 @@ class SynthesisOptions:
         return s
 
 
-def _defaults() -> SynthesisOptions:
-    global _DEFAULTS
-    if _DEFAULTS is None:
-        _DEFAULTS = SynthesisOptions()
-    return _DEFAULTS
-
-
-_DEFAULTS: SynthesisOptions | None = None
-
-
 def _value(v):
     if isinstance(v, np.ndarray):
         return v.tolist()
@@ -255,49 +244,37 @@ def _fields_dict(settings) -> dict | None:
 
 def _settings_of(cls, where: str, values: Mapping):
     """A settings object of `cls` from a {field: value} mapping (nested settings from nested mappings)."""
-    s = cls()
+    return _with_fields(cls(), where, values)
+
+
+def _with_fields(settings, where: str, values: Mapping):
     for k, v in values.items():
-        s = _with_field(s, where, k, v)
-    return s
+        settings = _with_field(settings, where, k, v)
+    return settings
 
 
 def _with_field(settings, where: str, fld: str, value):
-    """A copy of `settings` with one field (nested "a.b" too) set; ValueError naming it when unknown or bad."""
+    """A copy of `settings` with one field (nested "a.b" too; a mapping for a nested settings object changes the
+    fields it names) set; ValueError naming it when unknown or bad."""
     head, _, rest = fld.partition(".")
     if head not in settings._fields:
         raise ValueError(
             f"unknown synthesis option {quote(where + '.' + fld)} ({where}'s fields: {', '.join(settings._fields)})"
         )
-    s = copy.copy(settings)
-    current = getattr(s, head)
-    if rest or (hasattr(current, "_fields") and isinstance(value, Mapping)):
-        if not hasattr(current, "_fields"):
-            raise ValueError(f"synthesis option {quote(where + '.' + fld)}: {head} has no fields")
-        value = (
-            _with_field(current, f"{where}.{head}", rest, value)
-            if rest
-            else _settings_of(type(current), f"{where}.{head}", value)
-        )
+    current = getattr(settings, head)
+    nested = hasattr(current, "_fields")
+    if rest and not nested:
+        raise ValueError(f"synthesis option {quote(where + '.' + fld)}: {head} has no fields")
+    if rest:
+        value = _with_field(current, f"{where}.{head}", rest, value)
+    elif nested and isinstance(value, Mapping):
+        value = _with_fields(current, f"{where}.{head}", value)
+    # Through the class's keyword constructor: the C++ settings_from converts and words a bad value's error.
+    fields = {f: getattr(settings, f) for f in settings._fields}
     try:
-        setattr(s, head, value)
-    except (TypeError, ValueError) as e:
-        # pybind11's TypeError lists C++ signatures: say what the field takes instead.
-        detail = str(e) if isinstance(e, ValueError) else f"expected {_kind_of(current)}"
-        raise ValueError(f"synthesis option {where}.{head}: {quote(value)} is not valid: {detail}") from None
-    return s
-
-
-def _kind_of(value) -> str:
-    """What a settings field of value's type takes, in words."""
-    if isinstance(value, bool):
-        return "true or false"
-    if isinstance(value, int):
-        return "an integer (32 bits)"
-    if isinstance(value, float):
-        return "a number"
-    if isinstance(value, np.ndarray):
-        return f"{value.size} numbers"
-    return f"a {type(value).__name__}"
+        return type(settings)(**{**fields, head: value})
+    except ValueError as e:
+        raise ValueError(f"synthesis option {where}.{head}: {e}") from None
 
 
 def options_field_names() -> list[str]:

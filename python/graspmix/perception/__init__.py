@@ -12,6 +12,7 @@ from .scene import (
     SceneObject,
     Target,
     camera_to_world,
+    in_world,
     parse_target,
     segment_scene,
 )
@@ -22,6 +23,7 @@ __all__ = [
     "SceneObject",
     "Target",
     "camera_to_world",
+    "in_world",
     "parse_target",
     "segment_scene",
 ]

@@ -187,6 +187,7 @@ class Scene:
                     "behind_fraction": c.behind_fraction,
                     "margin": _finite_or_none(c.margin),
                     "accepted": c.accepted,
+                    "refused_by": c.refused_by,
                     "reason": c.reason,
                 }
                 for c in r.candidates
@@ -245,3 +246,15 @@ def camera_to_world(points, pose) -> tuple[np.ndarray, np.ndarray]:
         raise ValueError(f"camera pose: [qx, qy, qz, qw] = {p[3:].tolist()} is not a unit quaternion (norm {norm:.6g})")
     R = _rotation(p[3:] / norm)
     return pts @ R.T + p[:3], p[:3].copy()
+
+
+def in_world(points, viewpoints, camera_pose):
+    """(points, viewpoints) in the world frame: a cloud in a camera's frame (camera_pose, as camera_to_world) is
+    mapped to the world and the camera becomes its viewpoint; viewpoints given in the camera's frame are mapped
+    with it. No camera_pose: both as they are."""
+    if camera_pose is None:
+        return points, viewpoints
+    world, camera = camera_to_world(points, camera_pose)
+    if viewpoints is None:
+        return world, camera
+    return world, camera_to_world(np.asarray(viewpoints, dtype=float).reshape(-1, 3), camera_pose)[0].squeeze()

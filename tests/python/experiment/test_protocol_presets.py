@@ -34,7 +34,7 @@ def test_an_attempt_gets_its_conditions_optimisation_its_seed_and_the_known_plan
 
 def test_protocol_json_round_trips_the_synthesis():
     for name in ("paper", "defaults"):
-        p = ex.Protocol.preset(name, synthesis=SynthesisOptions().updated({"approach.stand_off": 0.2, "seed": 4}))
+        p = ex.Protocol.preset(name, synthesis=SynthesisOptions().updated({"approach.stand_off": 0.2}))
         assert protocol_from_json(p.to_json()) == p
     d = ex.Protocol.preset("paper").to_json()
     d["synthesis"]["sampling"]["n_samples"] = 0
@@ -55,6 +55,12 @@ def test_bad_values_are_errors(capsys):
     assert cli.main(["experiment", "--out", "unused", "--stand-off", "-0.1"]) == 2
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and "--stand-off" in err
+    # What each attempt decides itself is refused, not recorded and ignored.
+    for changes, name in (({"seed": 3}, "seed"), ({"sampling.optimise": False}, "sampling.optimise")):
+        with pytest.raises(ValueError, match=name):
+            ex.Protocol(objects=objs, synthesis=SynthesisOptions().updated(changes))
+    assert cli.main(["experiment", "--out", "unused", "--no-find-plane"]) == 2
+    assert "the known table is given" in capsys.readouterr().err
 
 
 def test_the_paper_preset_still_gives_the_rows_of_results_paper(tmp_path):

@@ -165,7 +165,7 @@ def experiment_cases():
         "run-jobs=1.5": ("ex.run(ex.Protocol(objects=objs, trials=1), 'run', jobs=1.5, progress=False)", ("jobs",)),
         "report=missing": ("from graspmix.experiment.report import build_report\nbuild_report('norun')", ("norun",)),
         "benchmark-out=under-a-file": (
-            "open('file', 'w').write('x')\nex.benchmark(objs, 'file/b', n_samples=5, progress=False)",
+            "open('file', 'w').write('x')\nex.benchmark(objs, 'file/b', progress=False)",
             ("file",),
         ),
     }

@@ -109,7 +109,9 @@ def _executed(row: dict, grasps, result, t_exec: float) -> dict:
         grasp=json.dumps(_executed_grasp(best), separators=(",", ":")),
         evaluations=int(grasps.evaluations),
         rejected=int(grasps.rejected),
-        t_features=tm["features"],
+        # The paper's "features" stage: everything before the synthesiser's own stages (the segmentation, i.e. the
+        # clean-up, and the surface features), as every run in results/ recorded it.
+        t_features=tm["segmentation"] + tm["features"],
         t_query=tm["query"],
         t_sampling=tm["sampling"],
         t_optimisation=tm["optimisation"],

@@ -16,7 +16,7 @@ ALLOWED = {
     "density": {"core"},
     "perception": {"core"},
     "robot": {"core"},
-    "grasp": {"core", "density", "robot"},
+    "grasp": {"core", "density", "perception", "robot"},
     "sim": {"core", "robot"},
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s*[<"]([^>"]+)[>"]', re.M)

@@ -348,6 +348,7 @@ void bind_perception(py::module_& m) {
        "settings' radius.\n" +
        settings_doc<SurfaceFeatureSettings>())
           .c_str());
+  bind_visibility(m);
 }
 
 }  // namespace graspmix::py_bind

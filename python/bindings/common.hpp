@@ -52,6 +52,8 @@ Eigen::Isometry3d to_pose(const py::handle& obj, const char* name);
 void bind_core(py::module_& m);
 void bind_density(py::module_& m);
 void bind_perception(py::module_& m);
+/// Part of bind_perception: cameras and the visibility model (bind_perception_visibility.cpp).
+void bind_visibility(py::module_& m);
 void bind_robot(py::module_& m);
 void bind_grasp(py::module_& m);
 /// Part of bind_grasp: the synthesiser (bind_grasp_synthesis.cpp).

@@ -2,11 +2,13 @@
 graspmix C++ core: SE(3) maps, Gaussian mixtures, pose densities (GMM and KDE)
 """
 from __future__ import annotations
+import builtins
 import collections.abc
+import enum
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AnnealingSettings', 'AxisAlignmentExpert', 'AxisAlignmentSettings', 'CleanupResult', 'CleanupSettings', 'ClearApproachExpert', 'ClearApproachSettings', 'CloudData', 'CollisionBatchResult', 'CollisionExpert', 'CollisionFreeExpert', 'CollisionResult', 'CollisionSettings', 'ConfigModel', 'ConfigModelSettings', 'ContactData', 'ContactModel', 'ContactQualityExpert', 'ContactQualityResult', 'ContactQualitySettings', 'ContactSettings', 'Evaluation', 'Expert', 'FunctionExpert', 'GaussianMixture', 'GmmSettings', 'Grasp', 'GraspSynthesizer', 'Hand', 'HandLoadSettings', 'KdeSettings', 'KinematicFeasibilityExpert', 'KinematicFeasibilitySettings', 'OccupancyMap', 'OccupancySettings', 'PlaneCandidate', 'PoseDensity', 'PoseKDE', 'PoseMixture', 'QueryDensity', 'QuerySettings', 'SamplingSettings', 'SceneObject', 'SceneSimResult', 'Segmentation', 'SegmentationSettings', 'SettleResult', 'SimObject', 'SimResult', 'SimSettings', 'SurfaceCloud', 'SurfaceFeatureSettings', 'SynthesisResult', 'SynthesisTiming', 'SynthesizerSettings', 'build_info', 'compute_surface_features', 'contact_data', 'learn_contact_models', 'load_cloud', 'load_mesh', 'log_vmf_s3_normaliser', 'orient_plane', 'pose_inverse', 'pose_multiply', 'prepare_cloud', 'quat_exp', 'quat_log', 'save_cloud', 'segment_scene', 'sim_execute', 'sim_execute_scene', 'sim_settle_scene']
+__all__: list[str] = ['AnnealingSettings', 'AxisAlignmentExpert', 'AxisAlignmentSettings', 'CleanupResult', 'CleanupSettings', 'ClearApproachExpert', 'ClearApproachSettings', 'CloudData', 'CollisionBatchResult', 'CollisionExpert', 'CollisionFreeExpert', 'CollisionResult', 'CollisionSettings', 'ConfigModel', 'ConfigModelSettings', 'ContactData', 'ContactModel', 'ContactQualityExpert', 'ContactQualityResult', 'ContactQualitySettings', 'ContactSettings', 'Evaluation', 'Expert', 'FunctionExpert', 'GaussianMixture', 'GmmSettings', 'Grasp', 'GraspSynthesizer', 'Hand', 'HandLoadSettings', 'KdeSettings', 'KinematicFeasibilityExpert', 'KinematicFeasibilitySettings', 'OccupancyMap', 'OccupancySettings', 'PinholeCamera', 'PinholeFit', 'PlaneCandidate', 'PoseDensity', 'PoseKDE', 'PoseMixture', 'QueryDensity', 'QuerySettings', 'SamplingSettings', 'SceneObject', 'SceneSimResult', 'Segmentation', 'SegmentationSettings', 'SettleResult', 'SimObject', 'SimResult', 'SimSettings', 'SpaceState', 'SurfaceCloud', 'SurfaceFeatureSettings', 'SynthesisResult', 'SynthesisTiming', 'SynthesizerSettings', 'VisibilityModel', 'VisibilitySettings', 'build_info', 'compute_surface_features', 'contact_data', 'learn_contact_models', 'load_cloud', 'load_mesh', 'log_vmf_s3_normaliser', 'orient_plane', 'pose_inverse', 'pose_multiply', 'prepare_cloud', 'quat_exp', 'quat_log', 'save_cloud', 'segment_scene', 'sim_execute', 'sim_execute_scene', 'sim_settle_scene']
 class GmmSettings:
     """
     How a GaussianMixture (or PoseMixture) is fitted by EM.
@@ -1173,6 +1175,270 @@ class SurfaceCloud:
     def timings(self) -> dict:
         """
         seconds per stage
+        """
+class PinholeCamera:
+    """
+    Pinhole intrinsics of a depth camera (px), no distortion. Sensor frame: x right, y down, z forward;
+    pixel (u, v) = (column, row), pixel centres at integer coordinates.
+    """
+    __hash__: typing.ClassVar[None] = None
+    @staticmethod
+    def fit(points: typing.Any, height: typing.Any = None, width: typing.Any = None, max_rms_px: typing.SupportsFloat | typing.SupportsIndex = 0.5) -> PinholeFit:
+        """
+        The intrinsics of an organized cloud in the sensor frame, (H, W, 3) or (H * W, 3) with height and width (NaN = no return), by least squares over its valid pixels; ValueError when the RMS reprojection residual exceeds max_rms_px (not a pinhole image in the sensor frame).
+        """
+    def __eq__(self, arg0: PinholeCamera) -> bool:
+        ...
+    def __getstate__(self) -> tuple[float, float, float, float, int, int]:
+        ...
+    def __init__(self, fx: typing.SupportsFloat | typing.SupportsIndex, fy: typing.SupportsFloat | typing.SupportsIndex, cx: typing.SupportsFloat | typing.SupportsIndex, cy: typing.SupportsFloat | typing.SupportsIndex, width: typing.SupportsInt | typing.SupportsIndex, height: typing.SupportsInt | typing.SupportsIndex) -> None:
+        """
+        ValueError unless fx, fy > 0, cx, cy finite, width, height >= 1.
+        """
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
+        ...
+    def back_project(self, depth: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        The organized cloud (H, W, 3) in the sensor frame of a depth image (H, W) in metres along z; NaN, 0 and inf are no return (NaN points), a negative depth is a ValueError.
+        """
+    def project(self, points: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        """
+        (N, 2) pixel coordinates (u, v) of points (N, 3) in the sensor frame; NaN where z <= 0.
+        """
+    @property
+    def K(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 3]"]:
+        """
+        (3, 3) [[fx, 0, cx], [0, fy, cy], [0, 0, 1]]
+        """
+    @property
+    def cx(self) -> float:
+        ...
+    @property
+    def cy(self) -> float:
+        ...
+    @property
+    def fx(self) -> float:
+        ...
+    @property
+    def fy(self) -> float:
+        ...
+    @property
+    def height(self) -> int:
+        ...
+    @property
+    def width(self) -> int:
+        ...
+class PinholeFit:
+    """
+    Intrinsics fitted to an organized cloud (PinholeCamera.fit).
+    """
+    @property
+    def camera(self) -> PinholeCamera:
+        ...
+    @property
+    def n_valid(self) -> int:
+        """
+        pixels with a point
+        """
+    @property
+    def rms_px(self) -> float:
+        """
+        px: RMS reprojection residual over the valid pixels
+        """
+class SpaceState(enum.IntEnum):
+    """
+    What the views saw of a point, the codes VisibilityModel.classify returns: SeenFree (0, in front of the observed surface along the point's ray), Surface (1, within surface_tolerance of it), Unseen (2, behind it, outside every image, or on a ray with no return).
+    """
+    SeenFree: typing.ClassVar[SpaceState]
+    Surface: typing.ClassVar[SpaceState]
+    Unseen: typing.ClassVar[SpaceState]
+    _member_map_: typing.ClassVar[dict]
+    _member_names_: typing.ClassVar[list] = ['SeenFree', 'Surface', 'Unseen']
+    _unhashable_values_: typing.ClassVar[list] = list()
+    _use_args_: typing.ClassVar[bool] = True
+    _value2member_map_: typing.ClassVar[dict]
+    _member_type_ = builtins.int
+    @staticmethod
+    def _generate_next_value_(name, start, count, last_values):
+        """
+                Generate the next value when not given.
+        
+                name: the name of the member
+                start: the initial start value or None
+                count: the number of existing members
+                last_values: the list of values assigned
+                
+        """
+    @staticmethod
+    def _new_member_(type, *args, **kwargs):
+        """
+        Create and return a new object.  See help(type) for accurate signature.
+        """
+    @classmethod
+    def __new__(cls, value):
+        ...
+    def __format__(self, format_spec):
+        ...
+    def _value_repr_(self):
+        """
+        Return repr(self).
+        """
+class VisibilitySettings:
+    """
+    The visibility model (VisibilityModel).
+    
+    Settings: settings= a VisibilitySettings (None: its defaults), and/or its fields as keywords,
+    which override it (an unknown keyword is a ValueError):
+      surface_tolerance = 0.005: m: within this of the observed surface along the ray is Surface (>= 0)
+      angular_resolution = 0.005: rad: bin size of from_points' spherical range image, in (0, 0.5]
+      no_return_is_free = False: a depth pixel with no return (NaN, 0, inf) sees its whole ray free (else it says nothing)
+      max_fit_rms = 0.5: px: from_organized refuses a cloud its fitted intrinsics leave a larger RMS residual on
+      max_pixels = 10000000: the largest image one view may hold (pixels)
+    """
+    __hash__: typing.ClassVar[None] = None
+    _fields: typing.ClassVar[tuple] = ('surface_tolerance', 'angular_resolution', 'no_return_is_free', 'max_fit_rms', 'max_pixels')
+    def __copy__(self) -> VisibilitySettings:
+        ...
+    def __deepcopy__(self, memo: typing.Any) -> VisibilitySettings:
+        ...
+    def __eq__(self, arg0: typing.Any) -> typing.Any:
+        ...
+    def __getstate__(self) -> dict:
+        ...
+    @typing.overload
+    def __init__(self) -> None:
+        """
+        The defaults: those of the default-constructed C++ struct.
+        """
+    @typing.overload
+    def __init__(self, **kwargs) -> None:
+        """
+        Keyword constructor: any of the fields (surface_tolerance, angular_resolution, no_return_is_free, max_fit_rms, max_pixels); the others keep their defaults.
+        """
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    @property
+    def angular_resolution(self) -> float:
+        """
+        rad: bin size of from_points' spherical range image, in (0, 0.5]
+        """
+    @angular_resolution.setter
+    def angular_resolution(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def max_fit_rms(self) -> float:
+        """
+        px: from_organized refuses a cloud its fitted intrinsics leave a larger RMS residual on
+        """
+    @max_fit_rms.setter
+    def max_fit_rms(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def max_pixels(self) -> int:
+        """
+        the largest image one view may hold (pixels)
+        """
+    @max_pixels.setter
+    def max_pixels(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def no_return_is_free(self) -> bool:
+        """
+        a depth pixel with no return (NaN, 0, inf) sees its whole ray free (else it says nothing)
+        """
+    @no_return_is_free.setter
+    def no_return_is_free(self, arg0: bool) -> None:
+        ...
+    @property
+    def surface_tolerance(self) -> float:
+        """
+        m: within this of the observed surface along the ray is Surface (>= 0)
+        """
+    @surface_tolerance.setter
+    def surface_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class VisibilityModel:
+    """
+    What the cameras saw, as space: each point SeenFree, Surface or Unseen, from one image per view (O(1) per
+    point). Views combine by: Surface if any view has the point within surface_tolerance of its surface; else
+    SeenFree if any view sees it in front; else Unseen. The rule: include/graspmix/perception/visibility.hpp.
+    """
+    @staticmethod
+    def from_depth(depth: typing.Any, camera: PinholeCamera, T_world_camera: typing.Any, *, settings: typing.Any = None, **kwargs) -> VisibilityModel:
+        """
+        One view from a depth image (H, W) in metres along z (NaN, 0, inf: no return) of `camera`, posed at
+        T_world_camera [x, y, z, qx, qy, qz, qw] (a unit quaternion).
+        Settings: settings= a VisibilitySettings (None: its defaults), and/or its fields as keywords,
+        which override it (an unknown keyword is a ValueError):
+          surface_tolerance = 0.005: m: within this of the observed surface along the ray is Surface (>= 0)
+          angular_resolution = 0.005: rad: bin size of from_points' spherical range image, in (0, 0.5]
+          no_return_is_free = False: a depth pixel with no return (NaN, 0, inf) sees its whole ray free (else it says nothing)
+          max_fit_rms = 0.5: px: from_organized refuses a cloud its fitted intrinsics leave a larger RMS residual on
+          max_pixels = 10000000: the largest image one view may hold (pixels)
+        """
+    @staticmethod
+    def from_organized(points: typing.Any, T_world_camera: typing.Any, *, height: typing.Any = None, width: typing.Any = None, settings: typing.Any = None, **kwargs) -> VisibilityModel:
+        """
+        One view from an organized cloud in the sensor frame (x right, y down, z forward; NaN = no return),
+        (H, W, 3) or (H * W, 3) with height and width; its pinhole intrinsics are fitted (views[i]['camera']).
+        Settings: settings= a VisibilitySettings (None: its defaults), and/or its fields as keywords,
+        which override it (an unknown keyword is a ValueError):
+          surface_tolerance = 0.005: m: within this of the observed surface along the ray is Surface (>= 0)
+          angular_resolution = 0.005: rad: bin size of from_points' spherical range image, in (0, 0.5]
+          no_return_is_free = False: a depth pixel with no return (NaN, 0, inf) sees its whole ray free (else it says nothing)
+          max_fit_rms = 0.5: px: from_organized refuses a cloud its fitted intrinsics leave a larger RMS residual on
+          max_pixels = 10000000: the largest image one view may hold (pixels)
+        """
+    @staticmethod
+    def from_points(points: typing.Any, viewpoint: typing.Any, *, settings: typing.Any = None, **kwargs) -> VisibilityModel:
+        """
+        One view from an unorganized cloud (N, 3) in the world frame seen from viewpoint (3,): a spherical range
+        image (pcl::RangeImage) at angular_resolution, each bin its nearest point; empty bins are unseen.
+        Settings: settings= a VisibilitySettings (None: its defaults), and/or its fields as keywords,
+        which override it (an unknown keyword is a ValueError):
+          surface_tolerance = 0.005: m: within this of the observed surface along the ray is Surface (>= 0)
+          angular_resolution = 0.005: rad: bin size of from_points' spherical range image, in (0, 0.5]
+          no_return_is_free = False: a depth pixel with no return (NaN, 0, inf) sees its whole ray free (else it says nothing)
+          max_fit_rms = 0.5: px: from_organized refuses a cloud its fitted intrinsics leave a larger RMS residual on
+          max_pixels = 10000000: the largest image one view may hold (pixels)
+        """
+    def __init__(self, *, settings: typing.Any = None, **kwargs) -> None:
+        """
+        A model of no view (every point Unseen), to add views to (add_view) built with the same settings.
+        """
+    def __len__(self) -> int:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def add_view(self, other: VisibilityModel) -> None:
+        """
+        Adds the views of another model built with equal settings (ValueError otherwise).
+        """
+    def classify(self, points: typing.Any) -> numpy.typing.NDArray[numpy.uint8]:
+        """
+        (N,) uint8 SpaceState of points (N, 3) or (3,): 0 SeenFree, 1 Surface, 2 Unseen.
+        """
+    def signed_distance(self, points: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        (N,) m along each point's ray to the observed surface, positive in front, chosen over the views by the
+        classification's rule (|d| <= surface_tolerance: Surface, d > it: SeenFree, else Unseen); inf on a
+        no-return ray taken as free, NaN where no view says anything.
+        """
+    @property
+    def n_views(self) -> int:
+        ...
+    @property
+    def settings(self) -> VisibilitySettings:
+        ...
+    @property
+    def views(self) -> list:
+        """
+        Per view: kind ('pinhole' | 'spherical'), T_world_sensor (7,), camera (PinholeCamera or None), width,
+        height, n_returns, angular_resolution (rad), fit_rms_px, seconds.
         """
 class HandLoadSettings:
     """

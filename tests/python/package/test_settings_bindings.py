@@ -29,6 +29,7 @@ SETTINGS = [
     "ClearApproachSettings",
     "ContactQualitySettings",
     "OccupancySettings",
+    "VisibilitySettings",
     "SimSettings",
 ]
 

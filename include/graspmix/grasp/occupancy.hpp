@@ -1,7 +1,7 @@
 #pragma once
-// What the cameras saw of a scene, as occupancy (grasp layer: it is the collision expert's model of the scene,
-// and the grasp layer may not use perception): OctoMap's ray insertion of the cloud, each point from its
-// own viewpoint (the camera that saw it), baked into a dense grid over a region of interest for O(1)
+// What the cameras saw of a scene, as occupancy (the collision expert's model of the scene; perception's
+// VisibilityModel answers the same question per view from the depth images): OctoMap's ray insertion of the cloud, each
+// point from its own viewpoint (the camera that saw it), baked into a dense grid over a region of interest for O(1)
 // queries.
 //
 // Each ray marks the cells it crosses free and the cell of its point occupied (a cell a ray ends in stays

@@ -301,8 +301,9 @@ void bind_density(py::module_& m) {
                              [](const PoseKDE& d) { return d.settings().orientation_bandwidth; })
       .def_property_readonly("feature_bandwidth", &PoseKDE::feature_bandwidth);
 
-  m.def("log_vmf_s3_normaliser", &log_vmf_s3_normaliser, py::arg("kappa"),
-        "log of the hemisphere-restricted antipodal vMF normaliser on S^3 used by PoseKDE.");
+  m.def(
+      "log_vmf_s3_normaliser", [](const py::object& kappa) { return log_vmf_s3_normaliser(to_number(kappa, "kappa")); },
+      py::arg("kappa"), "log of the hemisphere-restricted antipodal vMF normaliser on S^3 used by PoseKDE.");
 }
 
 }  // namespace graspmix::py_bind

@@ -92,7 +92,9 @@ void bind_collision(py::module_& m) {
   SettingsClass<CollisionSettings>(m, "CollisionSettings", "The collision expert W(h) (eq:opt_criterion_std_col).")
       .property(
           "model", [](const CollisionSettings& s) { return to_string(s.model); },
-          [](CollisionSettings& s, const std::string& v) { s.model = collision_model_from_string(v); },
+          [](CollisionSettings& s, const py::object& v) {
+            s.model = collision_model_from_string(setting_value<std::string>(v, "model"));
+          },
           "surface (the cloud's points) | occupancy (an OccupancyMap of what the cameras saw)")
       .field("beta", &CollisionSettings::beta,
              "1/m: log W = -beta * total depth (2000: 0.5 mm of penetration costs one nat)")
@@ -240,11 +242,13 @@ void bind_models(py::module_& m) {
 
   m.def(
       "contact_data",
-      [](const HandPtr& hand, int link, const py::object& wrist, const py::object& joints, const py::object& frames,
-         const py::object& features, const py::object& settings, const py::kwargs& kw) {
+      [](const HandPtr& hand, const py::object& link, const py::object& wrist, const py::object& joints,
+         const py::object& frames, const py::object& features, const py::object& settings, const py::kwargs& kw) {
+        const int link_index = to_int(link, "contact_data: link");
         const ContactSettings s = settings_from<ContactSettings>(settings, kw, "contact_data");
-        return contact_data(*hand, link, to_pose(wrist, "T_world_wrist"), to_configuration(*hand, joints, "joints"),
-                            to_poses(frames, "frames"), to_matrix(features, "features"), s);
+        return contact_data(*hand, link_index, to_pose(wrist, "T_world_wrist"),
+                            to_configuration(*hand, joints, "joints"), to_poses(frames, "frames"),
+                            to_matrix(features, "features"), s);
       },
       py::arg("hand"), py::arg("link"), py::arg("T_world_wrist"), py::arg("joints"), py::arg("frames"),
       py::arg("features"), py::arg("settings") = py::none(),
@@ -253,8 +257,10 @@ void bind_models(py::module_& m) {
           .c_str());
 
   py::class_<ContactModel>(m, "ContactModel", "M_i: one link's contact density.")
-      .def(py::init([](int link, std::string name, std::shared_ptr<PoseDensity> density, int n_points) {
-             return ContactModel{link, std::move(name), std::move(density), n_points};
+      .def(py::init([](const py::object& link, std::string name, std::shared_ptr<PoseDensity> density,
+                       const py::object& n_points) {
+             return ContactModel{to_int(link, "ContactModel: link"), std::move(name), std::move(density),
+                                 to_count(n_points, "ContactModel: n_points", 0, std::numeric_limits<int>::max())};
            }),
            py::arg("link"), py::arg("link_name"), py::arg("density"), py::arg("n_points") = 0)
       .def_readonly("link", &ContactModel::link)

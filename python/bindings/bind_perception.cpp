@@ -276,7 +276,9 @@ void bind_perception(py::module_& m) {
       .field("flat_curvature", &SurfaceFeatureSettings::flat_curvature, "... and k1 >= flat_curvature (dimensionless)")
       .property(
           "orientation", [](const SurfaceFeatureSettings& s) { return to_string(s.orientation); },
-          [](SurfaceFeatureSettings& s, const std::string& v) { s.orientation = normal_orientation_from_string(v); },
+          [](SurfaceFeatureSettings& s, const py::object& v) {
+            s.orientation = normal_orientation_from_string(setting_value<std::string>(v, "orientation"));
+          },
           "how normals are turned outward: auto | viewpoint | propagate | centroid | given")
       .field("orientation_neighbours", &SurfaceFeatureSettings::orientation_neighbours, "k of the propagation graph")
       .field("n_threads", &SurfaceFeatureSettings::n_threads,

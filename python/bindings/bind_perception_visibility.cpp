@@ -87,8 +87,12 @@ void bind_camera(py::module_& m) {
       "down, z forward;\npixel (u, v) = (column, row), pixel centres at integer coordinates.");
   py::class_<PinholeFit> fit(m, "PinholeFit", "Intrinsics fitted to an organized cloud (PinholeCamera.fit).");
   camera
-      .def(py::init<double, double, double, double, int, int>(), py::arg("fx"), py::arg("fy"), py::arg("cx"),
-           py::arg("cy"), py::arg("width"), py::arg("height"),
+      .def(py::init([](const py::object& fx, const py::object& fy, const py::object& cx, const py::object& cy,
+                       const py::object& width, const py::object& height) {
+             return PinholeCamera(to_number(fx, "fx"), to_number(fy, "fy"), to_number(cx, "cx"), to_number(cy, "cy"),
+                                  to_int(width, "width"), to_int(height, "height"));
+           }),
+           py::arg("fx"), py::arg("fy"), py::arg("cx"), py::arg("cy"), py::arg("width"), py::arg("height"),
            "ValueError unless fx, fy > 0, cx, cy finite, width, height >= 1.")
       .def_property_readonly("fx", &PinholeCamera::fx)
       .def_property_readonly("fy", &PinholeCamera::fy)
@@ -125,7 +129,9 @@ void bind_camera(py::module_& m) {
           "inf are no return (NaN points), a negative depth is a ValueError.")
       .def_static(
           "fit",
-          [](const py::object& points, const py::object& height, const py::object& width, double max_rms_px) {
+          [](const py::object& points, const py::object& height, const py::object& width,
+             const py::object& max_rms_px_obj) {
+            const double max_rms_px = to_number(max_rms_px_obj, "max_rms_px");
             int h = 0, w = 0;
             const Vec3Array P = to_organized(points, height, width, h, w);
             py::gil_scoped_release release;

@@ -83,8 +83,9 @@ void bind_scene_sim(py::module_& m) {
 
   m.def(
       "sim_settle_scene",
-      [](const py::object& objects, const py::object& object_poses, const py::object& settings_obj, double seconds,
-         const py::object& walls) {
+      [](const py::object& objects, const py::object& object_poses, const py::object& settings_obj,
+         const py::object& seconds_obj, const py::object& walls) {
+        const double seconds = to_number(seconds_obj, "sim_settle_scene: seconds");
         const SimSettings settings = settings_from<SimSettings>(settings_obj, py::kwargs(), "sim_settle_scene");
         const auto objs = scene_objects(objects);
         const std::vector<Eigen::Isometry3d> poses = scene_poses(object_poses, objs.size());
@@ -155,14 +156,15 @@ void bind_sim(py::module_& m) {
           "The object as a (one-link) Hand: its collision geometry.")
       .def(
           "rest_pose",
-          [](const SimObject& o, double x, double y, const py::object& q) {
+          [](const SimObject& o, const py::object& x, const py::object& y, const py::object& q) {
             Eigen::Quaterniond quat = Eigen::Quaterniond::Identity();
             if (!q.is_none()) {
               const Eigen::VectorXd v = to_vector(q, "orientation", 4);
               quat = Eigen::Quaterniond(v[3], v[0], v[1], v[2]);
               if (!(quat.norm() > 0)) throw py::value_error("orientation: zero quaternion");
             }
-            return Eigen::Matrix<double, 7, 1>(pose_to_vector(o.rest_pose(x, y, quat)));
+            const double px = to_number(x, "rest_pose: x"), py_ = to_number(y, "rest_pose: y");
+            return Eigen::Matrix<double, 7, 1>(pose_to_vector(o.rest_pose(px, py_, quat)));
           },
           py::arg("x") = 0.0, py::arg("y") = 0.0, py::arg("orientation") = py::none(),
           "The link pose (7,) resting the object on z = 0 at (x, y) with orientation [qx, qy, qz, qw].");

@@ -3,6 +3,7 @@
 // wrong shape is a ValueError that says which argument and what was expected, never a TypeError from
 // overload resolution.
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -30,6 +31,13 @@ inline constexpr long long kMaxDraws = 10'000'000;
 /// A count (an int, not a bool) in [lo, hi]; ValueError naming `name` otherwise (never pybind11's TypeError
 /// listing C++ signatures, never a cast that wraps or a std::bad_alloc).
 int to_count(const py::handle& obj, const char* name, long long lo, long long hi);
+/// A real number (an int or a float, not a bool), finite; ValueError naming `name` otherwise.
+double to_number(const py::handle& obj, const char* name);
+/// A C++ int: an integer (not a bool) in int's range; ValueError naming `name` otherwise (the callee checks
+/// the range that makes sense).
+inline int to_int(const py::handle& obj, const char* name) {
+  return to_count(obj, name, std::numeric_limits<int>::min(), std::numeric_limits<int>::max());
+}
 /// Features for n rows: None means no features; a 1-D vector is repeated for every row.
 RowMatrixXd to_features(const py::object& obj, Eigen::Index n_rows, int n_features, const char* name);
 /// Optional weights: None -> empty.

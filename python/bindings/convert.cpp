@@ -1,4 +1,5 @@
 // Conversions at the Python boundary (declared in common.hpp): shapes checked, inputs named in errors.
+#include <cmath>
 #include <limits>
 #include <map>
 
@@ -70,16 +71,38 @@ std::uint64_t to_seed(const py::object& seed) {
 
 int to_count(const py::handle& obj, const char* name, long long lo, long long hi) {
   const std::string range = "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
-  if (!py::isinstance<py::int_>(obj) || py::isinstance<py::bool_>(obj)) {
+  // Any integer (a numpy one too: operator.index), never a bool or a float.
+  py::object index;
+  if (!py::isinstance<py::bool_>(obj) && PyIndex_Check(obj.ptr())) {
+    index = py::reinterpret_steal<py::object>(PyNumber_Index(obj.ptr()));
+    if (!index) PyErr_Clear();
+  }
+  if (!index) {
     throw py::value_error(std::string(name) + " must be an integer in " + range + ", got " +
                           std::string(py::str(py::type::of(obj).attr("__name__"))));
   }
-  const py::int_ value = py::reinterpret_borrow<py::int_>(obj);
+  const py::int_ value = py::reinterpret_borrow<py::int_>(index);
   if (value < py::int_(lo) || value > py::int_(hi)) {
     throw py::value_error(std::string(name) + " must be an integer in " + range + ", got " +
                           std::string(py::str(obj)).substr(0, 80));
   }
   return static_cast<int>(value.cast<long long>());
+}
+
+double to_number(const py::handle& obj, const char* name) {
+  const auto fail = [&]() {
+    return py::value_error(std::string(name) + " must be a finite number, got " +
+                           std::string(py::repr(obj)).substr(0, 80));
+  };
+  if (py::isinstance<py::bool_>(obj)) throw fail();  // pybind11's cast would take it as 0 or 1
+  double v = 0.0;
+  try {
+    v = obj.cast<double>();
+  } catch (const py::cast_error&) {
+    throw fail();
+  }
+  if (!std::isfinite(v)) throw fail();
+  return v;
 }
 
 RowMatrixXd to_features(const py::object& obj, Eigen::Index n_rows, int n_features, const char* name) {

@@ -11,7 +11,9 @@
 // Settings classes get no public methods: Python code lists their fields as the public names of the
 // class (graspmix.sim.make_settings). The field names are in the class attribute `_fields`.
 #include <cstdint>
+#include <limits>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -56,6 +58,55 @@ inline std::string kind_of(const py::handle& value) {
   return "a value like " + std::string(py::repr(value)).substr(0, 40);
 }
 
+/// What a settings field of C++ type D takes, in words.
+template <class D>
+std::string expected_kind() {
+  if constexpr (std::is_same_v<D, bool>) {
+    return "true or false";
+  } else if constexpr (std::is_integral_v<D>) {
+    return "an integer in [" + std::to_string(std::numeric_limits<D>::min()) + ", " +
+           std::to_string(std::numeric_limits<D>::max()) + "]";
+  } else if constexpr (std::is_floating_point_v<D>) {
+    return "a number";
+  } else if constexpr (std::is_same_v<D, std::string>) {
+    return "text";
+  } else {
+    return "a " + std::string(py::str(py::type::of<D>().attr("__name__")));
+  }
+}
+
+/// Whether `value` is of a kind a field of C++ type D takes, before pybind11 converts it: a bool field takes true
+/// or false (numpy's too) and the integers 0 and 1, not None or any number (pybind11 takes both); a number
+/// field takes no bool (pybind11 would take it as 0 or 1).
+template <class D>
+bool is_kind_of(const py::handle& value) {
+  if constexpr (std::is_same_v<D, bool>) {
+    if (py::isinstance<py::bool_>(value) || py::isinstance(value, py::module_::import("numpy").attr("bool_"))) {
+      return true;
+    }
+    return py::isinstance<py::int_>(value) && (value.equal(py::int_(0)) || value.equal(py::int_(1)));
+  } else if constexpr (std::is_arithmetic_v<D>) {
+    return !py::isinstance<py::bool_>(value);
+  } else {
+    return true;
+  }
+}
+
+/// `value` as the C++ type D of the settings field `name`: what attribute assignment converts (an int or float
+/// for a number, an int for an integer, a str for text; see is_kind_of). Anything else, an integer beyond D's
+/// range included, is a ValueError naming the field, never pybind11's TypeError listing C++ signatures.
+template <class D>
+D setting_value(const py::handle& value, const std::string& name) {
+  if (is_kind_of<D>(value)) {
+    try {
+      return value.cast<D>();
+    } catch (const py::cast_error&) {
+    }
+  }
+  throw py::value_error("setting '" + name + "': " + std::string(py::repr(value)).substr(0, 80) +
+                        " is not valid: expected " + expected_kind<D>());
+}
+
 /// A copy of `settings` (an instance of T, or None for `base`, by default T's defaults) with the keyword
 /// overrides applied through the bound attributes, so they convert exactly as attribute assignment
 /// does. An unknown keyword is a ValueError naming it and listing the valid ones; `where` names the
@@ -82,9 +133,12 @@ T settings_from(const py::handle& settings, const py::dict& overrides, const std
       obj.attr(key.c_str()) = item.second;
     } catch (py::error_already_set& e) {
       if (!e.matches(PyExc_TypeError) && !e.matches(PyExc_ValueError)) throw;
+      const std::string message = py::str(e.value());
+      if (e.matches(PyExc_ValueError) && message.rfind("setting '" + key + "'", 0) == 0) {
+        throw py::value_error(where + ": " + message);  // setting_value's, which names the field already
+      }
       // pybind11's TypeError lists C++ signatures: say what the field takes instead.
-      const std::string why =
-          e.matches(PyExc_ValueError) ? std::string(py::str(e.value())) : "expected " + kind_of(obj.attr(key.c_str()));
+      const std::string why = e.matches(PyExc_ValueError) ? message : "expected " + kind_of(obj.attr(key.c_str()));
       throw py::value_error(where + ": setting '" + key + "': " + std::string(py::repr(item.second)).substr(0, 80) +
                             " is not valid: " + why);
     }
@@ -120,10 +174,17 @@ class SettingsClass {
     cls_.def(py::init<>(), "The defaults: those of the default-constructed C++ struct.");
   }
 
-  /// A plain member; `doc` gives its unit.
+  /// A plain member; `doc` gives its unit. A value of the wrong type is a ValueError naming it (setting_value).
   template <class D>
   SettingsClass& field(const char* name, D T::* member, const char* doc = "") {
-    cls_.def_readwrite(name, member, doc);
+    // As def_readwrite (a nested settings object is returned by reference, so its attributes write through),
+    // with the value converted by setting_value.
+    const std::string field_name = name;
+    const py::cpp_function get([member](const T& s) -> const D& { return s.*member; }, py::is_method(cls_));
+    const py::cpp_function set(
+        [member, field_name](T& s, const py::object& v) { s.*member = setting_value<D>(v, field_name); },
+        py::is_method(cls_));
+    cls_.def_property(name, get, set, py::return_value_policy::reference_internal, doc);
     Info::fields().push_back({name, doc});
     return *this;
   }

@@ -52,7 +52,7 @@ class GmmSettings:
         EM iterations per initialisation
         """
     @max_iter.setter
-    def max_iter(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+    def max_iter(self, arg0: typing.Any) -> None:
         ...
     @property
     def n_components(self) -> int:
@@ -60,7 +60,7 @@ class GmmSettings:
         K, the number of components
         """
     @n_components.setter
-    def n_components(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+    def n_components(self, arg0: typing.Any) -> None:
         ...
     @property
     def n_init(self) -> int:
@@ -68,7 +68,7 @@ class GmmSettings:
         initialisations; the best lower bound wins
         """
     @n_init.setter
-    def n_init(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+    def n_init(self, arg0: typing.Any) -> None:
         ...
     @property
     def reg_covar(self) -> float:
@@ -76,7 +76,7 @@ class GmmSettings:
         added to every covariance diagonal (units of the data squared)
         """
     @reg_covar.setter
-    def reg_covar(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def reg_covar(self, arg0: typing.Any) -> None:
         ...
     @property
     def seed(self) -> int:
@@ -92,7 +92,7 @@ class GmmSettings:
         convergence threshold on the change of the mean log-likelihood
         """
     @tol.setter
-    def tol(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def tol(self, arg0: typing.Any) -> None:
         ...
 class KdeSettings:
     """
@@ -142,7 +142,7 @@ class KdeSettings:
         rad: approximate std of the rotation angle of the kernel
         """
     @orientation_bandwidth.setter
-    def orientation_bandwidth(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def orientation_bandwidth(self, arg0: typing.Any) -> None:
         ...
     @property
     def position_bandwidth(self) -> float:
@@ -150,7 +150,7 @@ class KdeSettings:
         m: std of the position kernel
         """
     @position_bandwidth.setter
-    def position_bandwidth(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def position_bandwidth(self, arg0: typing.Any) -> None:
         ...
 class GaussianMixture:
     """
@@ -465,7 +465,7 @@ class CleanupSettings:
         keep only points inside [crop_min, crop_max]
         """
     @crop.setter
-    def crop(self, arg0: bool) -> None:
+    def crop(self, arg0: typing.Any) -> None:
         ...
     @property
     def crop_max(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
@@ -489,7 +489,7 @@ class CleanupSettings:
         k of the mean-distance statistic
         """
     @outlier_neighbours.setter
-    def outlier_neighbours(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+    def outlier_neighbours(self, arg0: typing.Any) -> None:
         ...
     @property
     def outlier_std_ratio(self) -> float:
@@ -497,7 +497,7 @@ class CleanupSettings:
         drop points whose mean k-distance exceeds mean + ratio * std
         """
     @outlier_std_ratio.setter
-    def outlier_std_ratio(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def outlier_std_ratio(self, arg0: typing.Any) -> None:
         ...
     @property
     def plane_distance(self) -> float:
@@ -505,7 +505,7 @@ class CleanupSettings:
         m: RANSAC inlier threshold
         """
     @plane_distance.setter
-    def plane_distance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def plane_distance(self, arg0: typing.Any) -> None:
         ...
     @property
     def plane_max_iterations(self) -> int:
@@ -513,7 +513,7 @@ class CleanupSettings:
         RANSAC iterations
         """
     @plane_max_iterations.setter
-    def plane_max_iterations(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+    def plane_max_iterations(self, arg0: typing.Any) -> None:
         ...
     @property
     def plane_min_fraction(self) -> float:
@@ -521,7 +521,7 @@ class CleanupSettings:
         fraction of the cleaned points a plane needs to count as the support
         """
     @plane_min_fraction.setter
-    def plane_min_fraction(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def plane_min_fraction(self, arg0: typing.Any) -> None:
         ...
     @property
     def remove_below_plane(self) -> bool:
@@ -529,7 +529,7 @@ class CleanupSettings:
         also drop points on the far side of the plane from the object
         """
     @remove_below_plane.setter
-    def remove_below_plane(self, arg0: bool) -> None:
+    def remove_below_plane(self, arg0: typing.Any) -> None:
         ...
     @property
     def remove_outliers(self) -> bool:
@@ -537,7 +537,7 @@ class CleanupSettings:
         PCL StatisticalOutlierRemoval
         """
     @remove_outliers.setter
-    def remove_outliers(self, arg0: bool) -> None:
+    def remove_outliers(self, arg0: typing.Any) -> None:
         ...
     @property
     def remove_plane(self) -> bool:
@@ -545,7 +545,7 @@ class CleanupSettings:
         find the dominant plane by RANSAC and remove it
         """
     @remove_plane.setter
-    def remove_plane(self, arg0: bool) -> None:
+    def remove_plane(self, arg0: typing.Any) -> None:
         ...
     @property
     def seed(self) -> int:
@@ -561,7 +561,7 @@ class CleanupSettings:
         m: voxel-grid leaf size, 0 = off (demonstration and query clouds must share it)
         """
     @voxel_size.setter
-    def voxel_size(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def voxel_size(self, arg0: typing.Any) -> None:
         ...
 class CleanupResult:
     """
@@ -671,7 +671,7 @@ class SegmentationSettings:
         m: object points closer than this are one object (Euclidean clusters)
         """
     @cluster_tolerance.setter
-    def cluster_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def cluster_tolerance(self, arg0: typing.Any) -> None:
         ...
     @property
     def find_plane(self) -> bool:
@@ -679,7 +679,7 @@ class SegmentationSettings:
         search for the support plane (false: objects only)
         """
     @find_plane.setter
-    def find_plane(self, arg0: bool) -> None:
+    def find_plane(self, arg0: typing.Any) -> None:
         ...
     @property
     def max_cluster_size(self) -> int:
@@ -687,7 +687,7 @@ class SegmentationSettings:
         larger clusters are dropped; 0 = no limit
         """
     @max_cluster_size.setter
-    def max_cluster_size(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+    def max_cluster_size(self, arg0: typing.Any) -> None:
         ...
     @property
     def merge_inset(self) -> float:
@@ -695,7 +695,7 @@ class SegmentationSettings:
         m: the larger cluster's envelope is inset by this
         """
     @merge_inset.setter
-    def merge_inset(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def merge_inset(self, arg0: typing.Any) -> None:
         ...
     @property
     def merge_seen_through(self) -> bool:
@@ -703,7 +703,7 @@ class SegmentationSettings:
         a cluster seen through a larger one joins it (a container's inside seen over its rim)
         """
     @merge_seen_through.setter
-    def merge_seen_through(self, arg0: bool) -> None:
+    def merge_seen_through(self, arg0: typing.Any) -> None:
         ...
     @property
     def merge_through_fraction(self) -> float:
@@ -711,7 +711,7 @@ class SegmentationSettings:
         fraction of a cluster's lines of sight that must cross the larger one's envelope
         """
     @merge_through_fraction.setter
-    def merge_through_fraction(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def merge_through_fraction(self, arg0: typing.Any) -> None:
         ...
     @property
     def min_cluster_size(self) -> int:
@@ -719,7 +719,7 @@ class SegmentationSettings:
         smaller clusters are noise, dropped
         """
     @min_cluster_size.setter
-    def min_cluster_size(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+    def min_cluster_size(self, arg0: typing.Any) -> None:
         ...
     @property
     def outlier_neighbours(self) -> int:
@@ -727,7 +727,7 @@ class SegmentationSettings:
         k of the mean-distance statistic
         """
     @outlier_neighbours.setter
-    def outlier_neighbours(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+    def outlier_neighbours(self, arg0: typing.Any) -> None:
         ...
     @property
     def outlier_std_ratio(self) -> float:
@@ -735,7 +735,7 @@ class SegmentationSettings:
         drop points whose mean k-distance exceeds mean + ratio * std
         """
     @outlier_std_ratio.setter
-    def outlier_std_ratio(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def outlier_std_ratio(self, arg0: typing.Any) -> None:
         ...
     @property
     def plane_behind_distance(self) -> float:
@@ -743,7 +743,7 @@ class SegmentationSettings:
         m, rule 3: how far behind the plane a point counts as behind it
         """
     @plane_behind_distance.setter
-    def plane_behind_distance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def plane_behind_distance(self, arg0: typing.Any) -> None:
         ...
     @property
     def plane_candidates(self) -> int:
@@ -751,7 +751,7 @@ class SegmentationSettings:
         planes tried, each on the points the previous ones left
         """
     @plane_candidates.setter
-    def plane_candidates(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+    def plane_candidates(self, arg0: typing.Any) -> None:
         ...
     @property
     def plane_distance(self) -> float:
@@ -759,7 +759,7 @@ class SegmentationSettings:
         m: RANSAC inlier threshold
         """
     @plane_distance.setter
-    def plane_distance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def plane_distance(self, arg0: typing.Any) -> None:
         ...
     @property
     def plane_margin(self) -> float:
@@ -767,7 +767,7 @@ class SegmentationSettings:
         m, rule 4: how far the plane's inliers must reach beyond the objects' footprint
         """
     @plane_margin.setter
-    def plane_margin(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def plane_margin(self, arg0: typing.Any) -> None:
         ...
     @property
     def plane_max_behind_fraction(self) -> float:
@@ -775,7 +775,7 @@ class SegmentationSettings:
         rule 3: fraction of all points allowed behind the plane
         """
     @plane_max_behind_fraction.setter
-    def plane_max_behind_fraction(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def plane_max_behind_fraction(self, arg0: typing.Any) -> None:
         ...
     @property
     def plane_max_iterations(self) -> int:
@@ -783,7 +783,7 @@ class SegmentationSettings:
         RANSAC iterations per candidate
         """
     @plane_max_iterations.setter
-    def plane_max_iterations(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+    def plane_max_iterations(self, arg0: typing.Any) -> None:
         ...
     @property
     def plane_min_fraction(self) -> float:
@@ -791,7 +791,7 @@ class SegmentationSettings:
         rule 1: fraction of the voxelised points a candidate holds
         """
     @plane_min_fraction.setter
-    def plane_min_fraction(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def plane_min_fraction(self, arg0: typing.Any) -> None:
         ...
     @property
     def remove_outliers(self) -> bool:
@@ -799,7 +799,7 @@ class SegmentationSettings:
         statistical outlier removal on the object points
         """
     @remove_outliers.setter
-    def remove_outliers(self, arg0: bool) -> None:
+    def remove_outliers(self, arg0: typing.Any) -> None:
         ...
     @property
     def seed(self) -> int:
@@ -815,7 +815,7 @@ class SegmentationSettings:
         m: points at most this far above the support plane (or behind it) are the table
         """
     @table_clearance.setter
-    def table_clearance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def table_clearance(self, arg0: typing.Any) -> None:
         ...
     @property
     def voxel_size(self) -> float:
@@ -823,7 +823,7 @@ class SegmentationSettings:
         m: voxel-grid leaf size, 0 = off (CleanupSettings')
         """
     @voxel_size.setter
-    def voxel_size(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def voxel_size(self, arg0: typing.Any) -> None:
         ...
 class SceneObject:
     """
@@ -1029,7 +1029,7 @@ class SurfaceFeatureSettings:
         ... and k1 >= flat_curvature (dimensionless)
         """
     @flat_curvature.setter
-    def flat_curvature(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def flat_curvature(self, arg0: typing.Any) -> None:
         ...
     @property
     def max_neighbours(self) -> int:
@@ -1037,7 +1037,7 @@ class SurfaceFeatureSettings:
         a neighbourhood holding more points is refused (voxel-downsample such a dense cloud first); 0: no cap
         """
     @max_neighbours.setter
-    def max_neighbours(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+    def max_neighbours(self, arg0: typing.Any) -> None:
         ...
     @property
     def min_anisotropy(self) -> float:
@@ -1045,7 +1045,7 @@ class SurfaceFeatureSettings:
         the principal direction is x only where (k1 - k2) / k1 >= min_anisotropy ...
         """
     @min_anisotropy.setter
-    def min_anisotropy(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def min_anisotropy(self, arg0: typing.Any) -> None:
         ...
     @property
     def min_neighbours(self) -> int:
@@ -1053,7 +1053,7 @@ class SurfaceFeatureSettings:
         points with fewer neighbours within radius (itself included) are dropped
         """
     @min_neighbours.setter
-    def min_neighbours(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+    def min_neighbours(self, arg0: typing.Any) -> None:
         ...
     @property
     def n_threads(self) -> int:
@@ -1061,7 +1061,7 @@ class SurfaceFeatureSettings:
         0 = OpenMP's default, else 1..256; results do not depend on it
         """
     @n_threads.setter
-    def n_threads(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+    def n_threads(self, arg0: typing.Any) -> None:
         ...
     @property
     def orientation(self) -> str:
@@ -1069,7 +1069,7 @@ class SurfaceFeatureSettings:
         how normals are turned outward: auto | viewpoint | propagate | centroid | given
         """
     @orientation.setter
-    def orientation(self, arg1: str) -> None:
+    def orientation(self, arg1: typing.Any) -> None:
         ...
     @property
     def orientation_neighbours(self) -> int:
@@ -1077,7 +1077,7 @@ class SurfaceFeatureSettings:
         k of the propagation graph
         """
     @orientation_neighbours.setter
-    def orientation_neighbours(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+    def orientation_neighbours(self, arg0: typing.Any) -> None:
         ...
     @property
     def radius(self) -> float:
@@ -1085,7 +1085,7 @@ class SurfaceFeatureSettings:
         m: neighbourhood radius of normals and curvatures (paper: 1 cm)
         """
     @radius.setter
-    def radius(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def radius(self, arg0: typing.Any) -> None:
         ...
 class SurfaceCloud:
     """
@@ -1183,7 +1183,7 @@ class PinholeCamera:
     """
     __hash__: typing.ClassVar[None] = None
     @staticmethod
-    def fit(points: typing.Any, height: typing.Any = None, width: typing.Any = None, max_rms_px: typing.SupportsFloat | typing.SupportsIndex = 0.5) -> PinholeFit:
+    def fit(points: typing.Any, height: typing.Any = None, width: typing.Any = None, max_rms_px: typing.Any = 0.5) -> PinholeFit:
         """
         The intrinsics of an organized cloud in the sensor frame, (H, W, 3) or (H * W, 3) with height and width (NaN = no return), by least squares over its valid pixels; ValueError when the RMS reprojection residual exceeds max_rms_px (not a pinhole image in the sensor frame).
         """
@@ -1191,7 +1191,7 @@ class PinholeCamera:
         ...
     def __getstate__(self) -> tuple[float, float, float, float, int, int]:
         ...
-    def __init__(self, fx: typing.SupportsFloat | typing.SupportsIndex, fy: typing.SupportsFloat | typing.SupportsIndex, cx: typing.SupportsFloat | typing.SupportsIndex, cy: typing.SupportsFloat | typing.SupportsIndex, width: typing.SupportsInt | typing.SupportsIndex, height: typing.SupportsInt | typing.SupportsIndex) -> None:
+    def __init__(self, fx: typing.Any, fy: typing.Any, cx: typing.Any, cy: typing.Any, width: typing.Any, height: typing.Any) -> None:
         """
         ValueError unless fx, fy > 0, cx, cy finite, width, height >= 1.
         """
@@ -1327,7 +1327,7 @@ class VisibilitySettings:
         rad: bin size of from_points' spherical range image, in (0, 0.5]
         """
     @angular_resolution.setter
-    def angular_resolution(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def angular_resolution(self, arg0: typing.Any) -> None:
         ...
     @property
     def max_fit_rms(self) -> float:
@@ -1335,7 +1335,7 @@ class VisibilitySettings:
         px: from_organized refuses a cloud its fitted intrinsics leave a larger RMS residual on
         """
     @max_fit_rms.setter
-    def max_fit_rms(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def max_fit_rms(self, arg0: typing.Any) -> None:
         ...
     @property
     def max_pixels(self) -> int:
@@ -1343,7 +1343,7 @@ class VisibilitySettings:
         the largest image one view may hold (pixels)
         """
     @max_pixels.setter
-    def max_pixels(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+    def max_pixels(self, arg0: typing.Any) -> None:
         ...
     @property
     def no_return_is_free(self) -> bool:
@@ -1351,7 +1351,7 @@ class VisibilitySettings:
         a depth pixel with no return (NaN, 0, inf) sees its whole ray free (else it says nothing)
         """
     @no_return_is_free.setter
-    def no_return_is_free(self, arg0: bool) -> None:
+    def no_return_is_free(self, arg0: typing.Any) -> None:
         ...
     @property
     def surface_tolerance(self) -> float:
@@ -1359,7 +1359,7 @@ class VisibilitySettings:
         m: within this of the observed surface along the ray is Surface (>= 0)
         """
     @surface_tolerance.setter
-    def surface_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def surface_tolerance(self, arg0: typing.Any) -> None:
         ...
 class VisibilityModel:
     """
@@ -1479,7 +1479,7 @@ class HandLoadSettings:
         False: mesh shapes keep only their file names (no geometry)
         """
     @load_meshes.setter
-    def load_meshes(self, arg0: bool) -> None:
+    def load_meshes(self, arg0: typing.Any) -> None:
         ...
     @property
     def package_dirs(self) -> list[str]:
@@ -1646,7 +1646,7 @@ class OccupancySettings:
         m: the objects' bounding box grown by this is the mapped region
         """
     @margin.setter
-    def margin(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def margin(self, arg0: typing.Any) -> None:
         ...
     @property
     def max_cells(self) -> int:
@@ -1654,7 +1654,7 @@ class OccupancySettings:
         the dense grid's largest size (cells)
         """
     @max_cells.setter
-    def max_cells(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+    def max_cells(self, arg0: typing.Any) -> None:
         ...
     @property
     def resolution(self) -> float:
@@ -1662,7 +1662,7 @@ class OccupancySettings:
         m: cell size (OctoMap's resolution), > 0
         """
     @resolution.setter
-    def resolution(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def resolution(self, arg0: typing.Any) -> None:
         ...
     @property
     def unknown_is_occupied(self) -> bool:
@@ -1670,7 +1670,7 @@ class OccupancySettings:
         cells no ray reached are obstacles (space the cameras did not see is not free)
         """
     @unknown_is_occupied.setter
-    def unknown_is_occupied(self, arg0: bool) -> None:
+    def unknown_is_occupied(self, arg0: typing.Any) -> None:
         ...
 class OccupancyMap:
     """
@@ -1770,7 +1770,7 @@ class CollisionSettings:
         1/m: log W = -beta * total depth (2000: 0.5 mm of penetration costs one nat)
         """
     @beta.setter
-    def beta(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def beta(self, arg0: typing.Any) -> None:
         ...
     @property
     def cell_size(self) -> float:
@@ -1778,7 +1778,7 @@ class CollisionSettings:
         m: grid cell of the cloud index; 0 picks one from the cloud
         """
     @cell_size.setter
-    def cell_size(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def cell_size(self, arg0: typing.Any) -> None:
         ...
     @property
     def contact_tolerance(self) -> float:
@@ -1786,7 +1786,7 @@ class CollisionSettings:
         m: depths up to this count as touching, not penetrating (a cloud is a noisy surface)
         """
     @contact_tolerance.setter
-    def contact_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def contact_tolerance(self, arg0: typing.Any) -> None:
         ...
     @property
     def inside_weight(self) -> float:
@@ -1794,7 +1794,7 @@ class CollisionSettings:
         m per point: each cloud point inside a link adds this much to the total depth (0: depths alone)
         """
     @inside_weight.setter
-    def inside_weight(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def inside_weight(self, arg0: typing.Any) -> None:
         ...
     @property
     def model(self) -> str:
@@ -1802,7 +1802,7 @@ class CollisionSettings:
         surface (the cloud's points) | occupancy (an OccupancyMap of what the cameras saw)
         """
     @model.setter
-    def model(self, arg1: str) -> None:
+    def model(self, arg1: typing.Any) -> None:
         ...
     @property
     def orient_plane(self) -> bool:
@@ -1810,7 +1810,7 @@ class CollisionSettings:
         flip the plane's sign so the cloud's mean lies on its free (positive) side
         """
     @orient_plane.setter
-    def orient_plane(self, arg0: bool) -> None:
+    def orient_plane(self, arg0: typing.Any) -> None:
         ...
     @property
     def plane_margin(self) -> float:
@@ -1818,7 +1818,7 @@ class CollisionSettings:
         m: the support plane is raised by this much (negative: tolerate contact)
         """
     @plane_margin.setter
-    def plane_margin(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def plane_margin(self, arg0: typing.Any) -> None:
         ...
     @property
     def point_radius(self) -> float:
@@ -1826,7 +1826,7 @@ class CollisionSettings:
         m: cloud points are balls of this radius (>= 0)
         """
     @point_radius.setter
-    def point_radius(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def point_radius(self, arg0: typing.Any) -> None:
         ...
     @property
     def reference_area(self) -> float:
@@ -1834,7 +1834,7 @@ class CollisionSettings:
         m^2: the occupancy model charges a link's volume in blocked cells divided by this
         """
     @reference_area.setter
-    def reference_area(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def reference_area(self, arg0: typing.Any) -> None:
         ...
 class CollisionResult:
     """
@@ -2024,7 +2024,7 @@ class ContactSettings:
         1/m^2: a contact at distance d weighs exp(-lambda d^2)
         """
     @lambda_.setter
-    def lambda_(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def lambda_(self, arg0: typing.Any) -> None:
         ...
     @property
     def max_distance(self) -> float:
@@ -2032,7 +2032,7 @@ class ContactSettings:
         m: object points farther than this from a link's geometry are not its contacts
         """
     @max_distance.setter
-    def max_distance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def max_distance(self, arg0: typing.Any) -> None:
         ...
     @property
     def min_points(self) -> int:
@@ -2040,7 +2040,7 @@ class ContactSettings:
         a link with fewer contact points gets no contact model
         """
     @min_points.setter
-    def min_points(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+    def min_points(self, arg0: typing.Any) -> None:
         ...
 class ContactData:
     """
@@ -2080,7 +2080,7 @@ class ContactModel:
     """
     M_i: one link's contact density.
     """
-    def __init__(self, link: typing.SupportsInt | typing.SupportsIndex, link_name: str, density: PoseDensity, n_points: typing.SupportsInt | typing.SupportsIndex = 0) -> None:
+    def __init__(self, link: typing.Any, link_name: str, density: PoseDensity, n_points: typing.Any = 0) -> None:
         ...
     @property
     def density(self) -> PoseDensity:
@@ -2136,7 +2136,7 @@ class ConfigModelSettings:
         decay of the kernel weights away from h_g (unitless)
         """
     @alpha.setter
-    def alpha(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def alpha(self, arg0: typing.Any) -> None:
         ...
     @property
     def bandwidth(self) -> float:
@@ -2144,7 +2144,7 @@ class ConfigModelSettings:
         kernel std as a fraction of |h_e - h_g|
         """
     @bandwidth.setter
-    def bandwidth(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def bandwidth(self, arg0: typing.Any) -> None:
         ...
     @property
     def beta(self) -> float:
@@ -2152,7 +2152,7 @@ class ConfigModelSettings:
         gamma range: configurations up to beta (h_e - h_g) either side of h_g
         """
     @beta.setter
-    def beta(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def beta(self, arg0: typing.Any) -> None:
         ...
     @property
     def min_bandwidth(self) -> float:
@@ -2160,7 +2160,7 @@ class ConfigModelSettings:
         floor of the kernel std (joint units: m or rad)
         """
     @min_bandwidth.setter
-    def min_bandwidth(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def min_bandwidth(self, arg0: typing.Any) -> None:
         ...
     @property
     def n_kernels(self) -> int:
@@ -2168,7 +2168,7 @@ class ConfigModelSettings:
         kernels along the line (odd keeps one on h_g)
         """
     @n_kernels.setter
-    def n_kernels(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+    def n_kernels(self, arg0: typing.Any) -> None:
         ...
 class ConfigModel:
     """
@@ -2258,7 +2258,7 @@ class KinematicFeasibilitySettings:
         joint units (m or rad): slack allowed past the joint limits
         """
     @limit_tolerance.setter
-    def limit_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def limit_tolerance(self, arg0: typing.Any) -> None:
         ...
     @property
     def plane_margin(self) -> float:
@@ -2266,7 +2266,7 @@ class KinematicFeasibilitySettings:
         m: links must stay this far above the support plane
         """
     @plane_margin.setter
-    def plane_margin(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def plane_margin(self, arg0: typing.Any) -> None:
         ...
     @property
     def plane_tolerance(self) -> float:
@@ -2274,7 +2274,7 @@ class KinematicFeasibilitySettings:
         m: a link this little below the (raised) plane still counts as clear (rounding, not penetration)
         """
     @plane_tolerance.setter
-    def plane_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def plane_tolerance(self, arg0: typing.Any) -> None:
         ...
 class KinematicFeasibilityExpert(Expert):
     """
@@ -2328,7 +2328,7 @@ class AxisAlignmentSettings:
         nats: log E = concentration (cos theta - 1), so a 90-degree deviation costs this much
         """
     @concentration.setter
-    def concentration(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def concentration(self, arg0: typing.Any) -> None:
         ...
     @property
     def hand_axis(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
@@ -2344,7 +2344,7 @@ class AxisAlignmentSettings:
         the key of its term in a grasp's experts table
         """
     @name.setter
-    def name(self, arg0: str) -> None:
+    def name(self, arg0: typing.Any) -> None:
         ...
 class AxisAlignmentExpert(Expert):
     """
@@ -2409,7 +2409,7 @@ class ClearApproachSettings:
         m: the open hand keeps this far from every point on its way (the points of the collision expert the path is checked against are balls of this radius; scene synthesis builds it so)
         """
     @clearance.setter
-    def clearance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def clearance(self, arg0: typing.Any) -> None:
         ...
     @property
     def hand_axis(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
@@ -2425,7 +2425,7 @@ class ClearApproachSettings:
         the key of its term in a grasp's experts table
         """
     @name.setter
-    def name(self, arg0: str) -> None:
+    def name(self, arg0: typing.Any) -> None:
         ...
     @property
     def stand_off(self) -> float:
@@ -2433,7 +2433,7 @@ class ClearApproachSettings:
         m: the hand starts this far back along its approach axis from the pre-grasp (>= 0)
         """
     @stand_off.setter
-    def stand_off(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def stand_off(self, arg0: typing.Any) -> None:
         ...
     @property
     def step(self) -> float:
@@ -2441,7 +2441,7 @@ class ClearApproachSettings:
         m: the path is checked at poses this far apart (> 0)
         """
     @step.setter
-    def step(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def step(self, arg0: typing.Any) -> None:
         ...
 class ClearApproachExpert(Expert):
     """
@@ -2512,7 +2512,7 @@ class ContactQualitySettings:
         nats per finger that closes on nothing
         """
     @air_penalty.setter
-    def air_penalty(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def air_penalty(self, arg0: typing.Any) -> None:
         ...
     @property
     def closing_steps(self) -> int:
@@ -2520,7 +2520,7 @@ class ContactQualitySettings:
         steps of the closing motion before bisection (links that do not translate)
         """
     @closing_steps.setter
-    def closing_steps(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+    def closing_steps(self, arg0: typing.Any) -> None:
         ...
     @property
     def concentration(self) -> float:
@@ -2528,7 +2528,7 @@ class ContactQualitySettings:
         nats per radian beyond the friction cone, per contact
         """
     @concentration.setter
-    def concentration(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def concentration(self, arg0: typing.Any) -> None:
         ...
     @property
     def contact_tolerance(self) -> float:
@@ -2536,7 +2536,7 @@ class ContactQualitySettings:
         m: points within this of a link's surface are in contact
         """
     @contact_tolerance.setter
-    def contact_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def contact_tolerance(self, arg0: typing.Any) -> None:
         ...
     @property
     def friction(self) -> float:
@@ -2544,7 +2544,7 @@ class ContactQualitySettings:
         Coulomb coefficient mu (> 0): the friction cone's half-angle is atan(mu)
         """
     @friction.setter
-    def friction(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def friction(self, arg0: typing.Any) -> None:
         ...
     @property
     def name(self) -> str:
@@ -2552,7 +2552,7 @@ class ContactQualitySettings:
         the key of its term in a grasp's experts table
         """
     @name.setter
-    def name(self, arg0: str) -> None:
+    def name(self, arg0: typing.Any) -> None:
         ...
 class ContactQualityResult:
     """
@@ -2684,7 +2684,7 @@ class QuerySettings:
         rotate each sampled surface frame about its normal by up to pi exp(-jitter_sharpness ((k1 - k2) / k1)^2)
         """
     @frame_jitter.setter
-    def frame_jitter(self, arg0: bool) -> None:
+    def frame_jitter(self, arg0: typing.Any) -> None:
         ...
     @property
     def jitter_sharpness(self) -> float:
@@ -2692,7 +2692,7 @@ class QuerySettings:
         s of Kopicki's rule above
         """
     @jitter_sharpness.setter
-    def jitter_sharpness(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def jitter_sharpness(self, arg0: typing.Any) -> None:
         ...
     @property
     def kde(self) -> KdeSettings:
@@ -2700,7 +2700,7 @@ class QuerySettings:
         KdeSettings of KDE query densities (features unused)
         """
     @kde.setter
-    def kde(self, arg0: KdeSettings) -> None:
+    def kde(self, arg0: typing.Any) -> None:
         ...
     @property
     def max_iter(self) -> int:
@@ -2708,7 +2708,7 @@ class QuerySettings:
         EM iterations of the query mixtures
         """
     @max_iter.setter
-    def max_iter(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+    def max_iter(self, arg0: typing.Any) -> None:
         ...
     @property
     def n_components(self) -> int:
@@ -2716,7 +2716,7 @@ class QuerySettings:
         K_Q: components of each query mixture (GMM models)
         """
     @n_components.setter
-    def n_components(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+    def n_components(self, arg0: typing.Any) -> None:
         ...
     @property
     def n_samples(self) -> int:
@@ -2724,7 +2724,7 @@ class QuerySettings:
         N_Q: samples per link to fit each query density from
         """
     @n_samples.setter
-    def n_samples(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+    def n_samples(self, arg0: typing.Any) -> None:
         ...
     @property
     def reg_covar(self) -> float:
@@ -2732,7 +2732,7 @@ class QuerySettings:
         added to the query mixtures' covariance diagonals
         """
     @reg_covar.setter
-    def reg_covar(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def reg_covar(self, arg0: typing.Any) -> None:
         ...
 class AnnealingSettings:
     """
@@ -2776,7 +2776,7 @@ class AnnealingSettings:
         the paper's 1.0, falling linearly to 0
         """
     @initial_temperature.setter
-    def initial_temperature(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def initial_temperature(self, arg0: typing.Any) -> None:
         ...
     @property
     def iterations(self) -> int:
@@ -2784,7 +2784,7 @@ class AnnealingSettings:
         the paper's 100
         """
     @iterations.setter
-    def iterations(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+    def iterations(self, arg0: typing.Any) -> None:
         ...
     @property
     def joint_step(self) -> float:
@@ -2792,7 +2792,7 @@ class AnnealingSettings:
         std of joint proposals at temperature 1, in units of the config model's kernel std
         """
     @joint_step.setter
-    def joint_step(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def joint_step(self, arg0: typing.Any) -> None:
         ...
     @property
     def position_step(self) -> float:
@@ -2800,7 +2800,7 @@ class AnnealingSettings:
         m: std of wrist translation proposals at temperature 1
         """
     @position_step.setter
-    def position_step(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def position_step(self, arg0: typing.Any) -> None:
         ...
     @property
     def rotation_step(self) -> float:
@@ -2808,7 +2808,7 @@ class AnnealingSettings:
         rad: std of wrist rotation proposals at temperature 1
         """
     @rotation_step.setter
-    def rotation_step(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def rotation_step(self, arg0: typing.Any) -> None:
         ...
 class SamplingSettings:
     """
@@ -2852,7 +2852,7 @@ class SamplingSettings:
         an extra collision expert on the pre-grasp configuration (log W of the opened hand)
         """
     @clear_pregrasp.setter
-    def clear_pregrasp(self, arg0: bool) -> None:
+    def clear_pregrasp(self, arg0: typing.Any) -> None:
         ...
     @property
     def max_sampling_rounds(self) -> int:
@@ -2860,7 +2860,7 @@ class SamplingSettings:
         batches of n_samples drawn at most until n_samples grasps pass every hard expert
         """
     @max_sampling_rounds.setter
-    def max_sampling_rounds(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+    def max_sampling_rounds(self, arg0: typing.Any) -> None:
         ...
     @property
     def n_optimise(self) -> int:
@@ -2868,7 +2868,7 @@ class SamplingSettings:
         the best this many are optimised
         """
     @n_optimise.setter
-    def n_optimise(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+    def n_optimise(self, arg0: typing.Any) -> None:
         ...
     @property
     def n_samples(self) -> int:
@@ -2876,7 +2876,7 @@ class SamplingSettings:
         grasps sampled and ranked
         """
     @n_samples.setter
-    def n_samples(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+    def n_samples(self, arg0: typing.Any) -> None:
         ...
     @property
     def optimise(self) -> bool:
@@ -2884,7 +2884,7 @@ class SamplingSettings:
         anneal the best n_optimise
         """
     @optimise.setter
-    def optimise(self, arg0: bool) -> None:
+    def optimise(self, arg0: typing.Any) -> None:
         ...
 class SynthesizerSettings:
     """
@@ -2927,7 +2927,7 @@ class SynthesizerSettings:
         AnnealingSettings
         """
     @annealing.setter
-    def annealing(self, arg0: AnnealingSettings) -> None:
+    def annealing(self, arg0: typing.Any) -> None:
         ...
     @property
     def query(self) -> QuerySettings:
@@ -2935,7 +2935,7 @@ class SynthesizerSettings:
         QuerySettings
         """
     @query.setter
-    def query(self, arg0: QuerySettings) -> None:
+    def query(self, arg0: typing.Any) -> None:
         ...
     @property
     def sampling(self) -> SamplingSettings:
@@ -2943,7 +2943,7 @@ class SynthesizerSettings:
         SamplingSettings
         """
     @sampling.setter
-    def sampling(self, arg0: SamplingSettings) -> None:
+    def sampling(self, arg0: typing.Any) -> None:
         ...
     @property
     def seed(self) -> int:
@@ -3221,7 +3221,7 @@ class SimSettings:
         motor targets lie this fraction of (grasp - pregrasp) past the grasp joints
         """
     @close_overshoot.setter
-    def close_overshoot(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def close_overshoot(self, arg0: typing.Any) -> None:
         ...
     @property
     def close_speed(self) -> float:
@@ -3229,7 +3229,7 @@ class SimSettings:
         m/s (rad/s): joint speed limit while closing
         """
     @close_speed.setter
-    def close_speed(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def close_speed(self, arg0: typing.Any) -> None:
         ...
     @property
     def close_time(self) -> float:
@@ -3237,7 +3237,7 @@ class SimSettings:
         s spent closing before the lift
         """
     @close_time.setter
-    def close_time(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def close_time(self, arg0: typing.Any) -> None:
         ...
     @property
     def contact_distance(self) -> float:
@@ -3245,7 +3245,7 @@ class SimSettings:
         m: contact points closer than this count as touching
         """
     @contact_distance.setter
-    def contact_distance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def contact_distance(self, arg0: typing.Any) -> None:
         ...
     @property
     def gravity(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
@@ -3261,7 +3261,7 @@ class SimSettings:
         N (N m): force limit of every finger joint motor
         """
     @grip_force.setter
-    def grip_force(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def grip_force(self, arg0: typing.Any) -> None:
         ...
     @property
     def hand_friction(self) -> float:
@@ -3269,7 +3269,7 @@ class SimSettings:
         lateral friction coefficient of every hand link
         """
     @hand_friction.setter
-    def hand_friction(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def hand_friction(self, arg0: typing.Any) -> None:
         ...
     @property
     def hold_time(self) -> float:
@@ -3277,7 +3277,7 @@ class SimSettings:
         s held at the top
         """
     @hold_time.setter
-    def hold_time(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def hold_time(self, arg0: typing.Any) -> None:
         ...
     @property
     def lift_force(self) -> float:
@@ -3285,7 +3285,7 @@ class SimSettings:
         N: force limit of the lift joint
         """
     @lift_force.setter
-    def lift_force(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def lift_force(self, arg0: typing.Any) -> None:
         ...
     @property
     def lift_height(self) -> float:
@@ -3293,7 +3293,7 @@ class SimSettings:
         m
         """
     @lift_height.setter
-    def lift_height(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def lift_height(self, arg0: typing.Any) -> None:
         ...
     @property
     def lift_speed(self) -> float:
@@ -3301,7 +3301,7 @@ class SimSettings:
         m/s
         """
     @lift_speed.setter
-    def lift_speed(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def lift_speed(self, arg0: typing.Any) -> None:
         ...
     @property
     def object_friction(self) -> float:
@@ -3309,7 +3309,7 @@ class SimSettings:
         < 0: the URDF's <contact><lateral_friction> (0.5 if absent)
         """
     @object_friction.setter
-    def object_friction(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def object_friction(self, arg0: typing.Any) -> None:
         ...
     @property
     def object_mass(self) -> float:
@@ -3317,7 +3317,7 @@ class SimSettings:
         kg; < 0: the URDF's
         """
     @object_mass.setter
-    def object_mass(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def object_mass(self, arg0: typing.Any) -> None:
         ...
     @property
     def position_gain(self) -> float:
@@ -3325,7 +3325,7 @@ class SimSettings:
         1/s: joint velocity command = gain * position error
         """
     @position_gain.setter
-    def position_gain(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def position_gain(self, arg0: typing.Any) -> None:
         ...
     @property
     def solver_iterations(self) -> int:
@@ -3333,7 +3333,7 @@ class SimSettings:
         constraint solver iterations per step
         """
     @solver_iterations.setter
-    def solver_iterations(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+    def solver_iterations(self, arg0: typing.Any) -> None:
         ...
     @property
     def start_penetration(self) -> float:
@@ -3341,7 +3341,7 @@ class SimSettings:
         m: a start penetrating deeper than this is 'start in collision'
         """
     @start_penetration.setter
-    def start_penetration(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def start_penetration(self, arg0: typing.Any) -> None:
         ...
     @property
     def success_fraction(self) -> float:
@@ -3349,7 +3349,7 @@ class SimSettings:
         the object must rise by this fraction of lift_height
         """
     @success_fraction.setter
-    def success_fraction(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def success_fraction(self, arg0: typing.Any) -> None:
         ...
     @property
     def support_friction(self) -> float:
@@ -3357,7 +3357,7 @@ class SimSettings:
         lateral friction of the support plane
         """
     @support_friction.setter
-    def support_friction(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def support_friction(self, arg0: typing.Any) -> None:
         ...
     @property
     def time_step(self) -> float:
@@ -3365,7 +3365,7 @@ class SimSettings:
         s (pybullet's default)
         """
     @time_step.setter
-    def time_step(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def time_step(self, arg0: typing.Any) -> None:
         ...
 class SimObject:
     """
@@ -3376,7 +3376,7 @@ class SimObject:
         """
         Reads a one-link object URDF; ValueError names a missing or unusable file.
         """
-    def rest_pose(self, x: typing.SupportsFloat | typing.SupportsIndex = 0.0, y: typing.SupportsFloat | typing.SupportsIndex = 0.0, orientation: typing.Any = None) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[7, 1]"]:
+    def rest_pose(self, x: typing.Any = 0.0, y: typing.Any = 0.0, orientation: typing.Any = None) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[7, 1]"]:
         """
         The link pose (7,) resting the object on z = 0 at (x, y) with orientation [qx, qy, qz, qw].
         """
@@ -3519,7 +3519,7 @@ def compute_surface_features(points: typing.Any, radius: typing.Any = None, norm
       n_threads = 0: 0 = OpenMP's default, else 1..256; results do not depend on it
       max_neighbours = 5000: a neighbourhood holding more points is refused (voxel-downsample such a dense cloud first); 0: no cap
     """
-def contact_data(hand: Hand, link: typing.SupportsInt | typing.SupportsIndex, T_world_wrist: typing.Any, joints: typing.Any, frames: typing.Any, features: typing.Any, settings: typing.Any = None, **kwargs) -> ContactData:
+def contact_data(hand: Hand, link: typing.Any, T_world_wrist: typing.Any, joints: typing.Any, frames: typing.Any, features: typing.Any, settings: typing.Any = None, **kwargs) -> ContactData:
     """
     eq:relative_pose_u_mixture: the contact points of one link in a demonstrated grasp, u = v^-1 o s.
     Settings: settings= a ContactSettings (None: its defaults), and/or its fields as keywords,
@@ -3545,7 +3545,7 @@ def load_mesh(path: typing.Any, scale: typing.Any = None) -> tuple[typing.Annota
     """
     (vertices (V, 3), triangles (T, 3)) of every triangle in a mesh file (STL, OBJ, ... via assimp), scaled.
     """
-def log_vmf_s3_normaliser(kappa: typing.SupportsFloat | typing.SupportsIndex) -> float:
+def log_vmf_s3_normaliser(kappa: typing.Any) -> float:
     """
     log of the hemisphere-restricted antipodal vMF normaliser on S^3 used by PoseKDE.
     """
@@ -3649,7 +3649,7 @@ def sim_execute_scene(hand: Hand, objects: typing.Any, object_poses: typing.Any,
     """
     Executes one grasp among several objects (link poses (N, 7)); see graspmix.sim.scenes.execute_in_scene.
     """
-def sim_settle_scene(objects: typing.Any, object_poses: typing.Any, settings: typing.Any = None, seconds: typing.SupportsFloat | typing.SupportsIndex = 2.0, walls: typing.Any = None) -> SettleResult:
+def sim_settle_scene(objects: typing.Any, object_poses: typing.Any, settings: typing.Any = None, seconds: typing.Any = 2.0, walls: typing.Any = None) -> SettleResult:
     """
     Simulates the objects without a hand until they rest (at most `seconds`); walls: [xmin, ymin, xmax, ymax, height] of a box standing around them, or None.
     """

@@ -193,4 +193,46 @@ def gmm_cases():
     ]
 
 
-CASES = synthesize_cases() + learn_cases() + grasps_cases() + sim_cases() + experiment_cases() + gmm_cases()
+HAND = "hand = graspmix.Hand.from_urdf(str(graspmix.data_path('hands', 'wsg50.urdf')))\nimport numpy as np\n"
+
+
+def conversion_cases():
+    """Integers beyond C++'s and text where a number goes, at the binding layer: a ValueError naming the argument
+    or field, never pybind11's TypeError listing C++ signatures."""
+    bad = {
+        "settings-attribute=2p70": ("graspmix.SegmentationSettings().min_cluster_size = 2**70", ("min_cluster_size",)),
+        "settings-attribute=str": ("graspmix.SamplingSettings().n_samples = '10'", ("n_samples",)),
+        "settings-attribute=bool-for-number": ("graspmix.SegmentationSettings().voxel_size = True", ("voxel_size",)),
+        "settings-keyword=2p70": ("graspmix.SegmentationSettings(min_cluster_size=2**70)", ("min_cluster_size",)),
+        "settings-keyword=str": ("graspmix.QuerySettings(n_samples='500')", ("n_samples",)),
+        "options-updated=str": ("graspmix.SynthesisOptions().updated({'sampling.n_samples': '10'})", ("n_samples",)),
+        "contact_data-link=str": ("graspmix.contact_data(hand, '0', None, None, None, None)", ("link",)),
+        "contact_data-link=2p70": ("graspmix.contact_data(hand, 2**70, None, None, None, None)", ("link",)),
+        "ContactModel-n_points=2p70": (
+            "graspmix.ContactModel(0, 'palm', graspmix.PoseKDE(), n_points=2**70)",
+            ("n_points",),
+        ),
+        "rest_pose-x=str": (f"graspmix.sim.load_object('{BOX_URDF}').rest_pose(x='left')", ("rest_pose: x",)),
+    }
+    cases = _group("conversion", "conversion", bad, HAND)
+    cases.append(
+        api(
+            "api/conversion/ok-numpy-integers",
+            "import numpy as np\ns = graspmix.SamplingSettings()\ns.n_samples = np.int64(10)\n"
+            "assert s.n_samples == 10 and graspmix.SamplingSettings(n_samples=np.int32(7)).n_samples == 7",
+            expect="ok",
+            group="conversion",
+        )
+    )
+    return cases
+
+
+CASES = (
+    synthesize_cases()
+    + learn_cases()
+    + grasps_cases()
+    + sim_cases()
+    + experiment_cases()
+    + gmm_cases()
+    + conversion_cases()
+)

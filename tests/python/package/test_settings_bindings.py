@@ -141,6 +141,52 @@ def test_bad_values_are_value_errors_naming_the_setting():
         _core.SurfaceFeatureSettings(orientation="inward")
 
 
+WRONG = {
+    bool: ["yes", 2, None, 0.5],
+    int: [2**70, -(2**70), "3", 1.5, True, None],
+    float: ["0.1", True, [1.0], None],
+    str: [5, None, ["surface"]],
+}
+
+
+@pytest.mark.parametrize("name", [*SETTINGS, "SegmentationSettings"])
+def test_a_field_given_a_value_of_another_kind_is_a_value_error_naming_it(name):
+    """By attribute and by keyword: an integer beyond C++'s, text for a number, a bool for a number, a number for
+    a flag are ValueErrors naming the field and saying what it takes, never pybind11's TypeError listing C++
+    signatures; numpy scalars of the right kind are taken."""
+    cls = getattr(_core, name)
+    checked = 0
+    for field in cls._fields:
+        default = getattr(cls(), field)
+        kind = type(default) if type(default) in WRONG else None
+        if kind is None or field == "seed":  # arrays and seeds have converters of their own (tested elsewhere)
+            continue
+        for value in WRONG[kind]:
+            s = cls()
+            with pytest.raises(ValueError, match=f"setting '{field}': .* is not valid: expected ") as e:
+                setattr(s, field, value)
+            assert "\n" not in str(e.value) and "Supports" not in str(e.value)
+            assert getattr(s, field) == default  # unchanged
+            with pytest.raises(ValueError, match=f"{name}: setting '{field}'"):
+                cls(**{field: value})
+        numpy_value = {bool: np.bool_, int: np.int64, float: np.float64}.get(kind, str)(default)
+        s = cls()
+        setattr(s, field, numpy_value)
+        assert getattr(s, field) == default and type(getattr(s, field)) is kind
+        checked += 1
+    assert checked > 0 or name == "SynthesizerSettings"  # its fields are its parts (below) and its seed
+
+
+def test_a_nested_settings_field_takes_only_its_class():
+    s = _core.SynthesizerSettings()
+    with pytest.raises(ValueError, match="setting 'sampling': 5 is not valid: expected a SamplingSettings"):
+        s.sampling = 5
+    s.sampling = _core.SamplingSettings(n_samples=9)
+    assert s.sampling.n_samples == 9
+    s.sampling.n_samples = 11  # a part is still returned by reference: its attributes write through
+    assert s.sampling.n_samples == 11
+
+
 def test_old_keyword_calls_give_the_numbers_of_settings_calls(wsg, cube):
     scene_kw = _core.prepare_cloud(cube, voxel_size=0.004, remove_plane=False, seed=3)
     scene_s = _core.prepare_cloud(cube, settings=_core.CleanupSettings(voxel_size=0.004, remove_plane=False, seed=3))

@@ -14,12 +14,15 @@
 
 #include "cloud_filters.hpp"
 #include "cluster_merge.hpp"
+#include "table_noise.hpp"
 
 namespace graspmix {
 
 namespace {
 
 using detail::Cloud;
+using detail::table_noise;
+using detail::TableNoise;
 
 [[noreturn]] void bad(const std::string& m) { throw std::invalid_argument("segment_scene: " + m); }
 
@@ -211,6 +214,27 @@ struct Extraction {
   std::size_t n_plane = 0, n_outliers = 0, n_small = 0;
 };
 
+/// The clusters above the support plane that rise no higher than the table's own noise reaches (a noisy table's
+/// tail above table_clearance falls apart into such fragments) go with the table. Done once the support is
+/// chosen: rule 4 still judges each candidate on every cluster above it, so that the face of an object seen
+/// without a table, whose own noise stands above it, is still no support.
+void drop_table_noise(const Vec3Array& P, const Eigen::Vector4d& plane, const SegmentationSettings& s, Extraction& e) {
+  const Eigen::VectorXd h = heights(P, plane);
+  const TableNoise noise = table_noise(h, s.plane_distance);
+  if (!noise.known) return;
+  std::vector<std::vector<int>> kept;
+  for (auto& g : e.groups) {
+    double top = -std::numeric_limits<double>::infinity();
+    for (const int r : g) top = std::max(top, h[r]);
+    if (noise.holds(top)) {
+      e.n_plane += g.size();
+    } else {
+      kept.push_back(std::move(g));
+    }
+  }
+  e.groups.swap(kept);
+}
+
 /// Rows above the clearance (all without a plane), outliers removed, then Euclidean clusters; the clusters
 /// smaller than min_cluster_size (or larger than a set maximum) are dropped.
 Extraction extract(const Vec3Array& P, const Eigen::Vector4d* plane, const SegmentationSettings& s,
@@ -271,32 +295,42 @@ SceneObject describe(const Vec3Array& P, const std::vector<int>& rows) {
   return o;
 }
 
-/// A plane holding more than this fraction of a cloud is the cloud (a table with nothing, or little, on it).
+/// A plane holding more than this fraction of a cloud (within its noise) is the cloud: a table with nothing, or
+/// little, on it.
 constexpr double kCloudIsPlane = 0.9;
 
-/// The objects of an extraction described and ordered as documented (segmentation.hpp) into `out`.
-void finish(const Vec3Array& P, const Eigen::VectorXi& src, const Extraction& e, Segmentation& out) {
-  out.n_plane = e.n_plane;
-  out.n_outliers = e.n_outliers;
-  out.n_small_clusters = e.n_small;
-  if (e.groups.empty()) {
-    bad(out.plane_found || out.plane_given ? "no object above the support plane (every point is within table_clearance "
-                                             "of it, behind it, or in a cluster under min_cluster_size)"
-                                           : "no object in the cloud (every cluster is under min_cluster_size)");
-  }
-  std::vector<SceneObject> described;
-  for (const auto& g : e.groups) described.push_back(describe(P, g));
-  // No support plane was accepted, and the plane that holds most of the cloud was refused only because the
-  // camera lies in it (rule 2): the cloud is a table seen by no camera it knows (the PCD convention's camera at
-  // the origin, in the table's own plane), not an object to grasp.
-  const bool camera_in_the_cloud_plane = !out.plane_found && !out.plane_given && !out.candidates.empty() &&
-                                         out.candidates.front().inlier_fraction > kCloudIsPlane &&
-                                         out.candidates.front().refused_by == 2;
-  if (camera_in_the_cloud_plane) {
-    bad("no object found: " + std::to_string(static_cast<int>(100 * out.candidates.front().inlier_fraction)) +
+/// No support plane was accepted, and the plane that holds most of the cloud within its noise was refused only
+/// because the camera lies in it (rule 2): the cloud is a table seen by no camera it knows (the PCD convention's
+/// camera at the origin, in a world-frame table's own plane), not objects to grasp. An error saying so.
+void refuse_a_table_seen_from_its_plane(const Vec3Array& P, const Segmentation& out, double plane_distance) {
+  if (out.plane_found || out.plane_given || out.candidates.empty() || out.candidates.front().refused_by != 2) return;
+  const Eigen::VectorXd h = heights(P, out.candidates.front().plane);
+  const TableNoise noise = table_noise(h, plane_distance);
+  Eigen::Index in = 0;
+  for (Eigen::Index r = 0; r < h.size(); ++r) in += noise.holds(h[r], plane_distance) ? 1 : 0;
+  const double fraction = static_cast<double>(in) / static_cast<double>(std::max<Eigen::Index>(h.size(), 1));
+  if (fraction > kCloudIsPlane) {
+    bad("no object found: " + std::to_string(static_cast<int>(100 * fraction)) +
         "% of the cloud lies in one plane, refused as the support only because the camera is in it; give the "
         "camera's position (viewpoints, --viewpoint or --camera-pose)");
   }
+}
+
+/// The objects of an extraction described and ordered as documented (segmentation.hpp) into `out`.
+void finish(const Vec3Array& P, const Eigen::VectorXi& src, const Extraction& e, const SegmentationSettings& s,
+            Segmentation& out) {
+  out.n_plane = e.n_plane;
+  out.n_outliers = e.n_outliers;
+  out.n_small_clusters = e.n_small;
+  refuse_a_table_seen_from_its_plane(P, out, s.plane_distance);
+  if (e.groups.empty()) {
+    bad(out.plane_found || out.plane_given
+            ? "no object above the support plane (every point is within table_clearance of it, behind it, in a "
+              "cluster under min_cluster_size, or in one no higher than the table's own noise)"
+            : "no object in the cloud (every cluster is under min_cluster_size)");
+  }
+  std::vector<SceneObject> described;
+  for (const auto& g : e.groups) described.push_back(describe(P, g));
   std::vector<std::size_t> order(e.groups.size());
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
@@ -393,13 +427,15 @@ Segmentation segment_scene(const Vec3Array& points, const Vec3Array& viewpoints,
     e = extract(P, nullptr, s, out.times);
   }
   lap = Lap();
+  if (out.plane_found || out.plane_given) drop_table_noise(P, out.plane, s, e);
+  lap.add_to(out.times.clusters);
   if (s.merge_seen_through && e.groups.size() > 1) {
     const Vec3Array one = cams.single.transpose();
     const Vec3Array& seen_from = cams.per_point.rows() > 0 ? cams.per_point : one;
     out.n_merged = detail::merge_seen_through(P, seen_from, e.groups, s.merge_through_fraction, s.merge_inset);
   }
   lap.add_to(out.times.merge);
-  finish(P, down.sources, e, out);
+  finish(P, down.sources, e, s, out);
   lap.add_to(out.times.objects);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;

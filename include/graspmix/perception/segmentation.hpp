@@ -4,7 +4,11 @@
 // Steps: voxel grid (prepare_cloud's, so per-point data follow through `sources`); the support plane,
 // given or searched for (rule below); points within table_clearance of it or behind it dropped;
 // statistical outlier removal on the object points only (after the cut: cheaper, and the table's
-// points cannot make an object's edge look like an outlier); Euclidean clusters of what is left.
+// points cannot make an object's edge look like an outlier); Euclidean clusters of what is left. Once the
+// support is chosen, a cluster whose highest point is within 5 sigma of the table's own scatter (robust: the
+// median and MAD of the heights near the plane, when they look like a table's noise) is a fragment of a noisy
+// table's tail, not an object, and goes with the table (rule 4 below still sees it, so the noise above an
+// object's face keeps that face no support).
 //
 // Which side of a plane is "up": the side the cameras are on, decided by the viewpoints, never by
 // where most points lie (far-field noise can outnumber an object). Per-point viewpoints (N, 3): the mean
@@ -24,7 +28,8 @@
 //     more than table_clearance above it), so a table reaches past what stands on it.
 // Among the accepted candidates the support is the lowest: the one farthest from the cameras.
 // An object-only cloud (no extended surface under it) therefore yields no plane, and then every
-// point is an object point.
+// point is an object point. A cloud over 90% of which lies within the noise of a plane refused only by rule 2
+// (the camera in it: a world-frame table seen from no camera given) is a table with nothing on it: an error.
 //
 // The merge rule (objects seen through another): a cluster A is part of a larger cluster B when at least
 // merge_through_fraction of A's lines of sight (from the camera that saw each point to the point) pass
@@ -134,7 +139,8 @@ struct Segmentation {
   std::vector<SceneObject> objects;
   std::vector<PlaneCandidate> candidates;  ///< the rule's figures (empty with a given plane)
   std::size_t n_input = 0, n_after_voxel = 0;
-  std::size_t n_plane = 0;           ///< dropped as the table (within table_clearance of it, or behind it)
+  /// dropped as the table: within table_clearance of it, behind it, or in a cluster within its noise
+  std::size_t n_plane = 0;
   std::size_t n_outliers = 0;        ///< dropped by the outlier removal
   std::size_t n_small_clusters = 0;  ///< points of clusters under min_cluster_size (or over the maximum)
   std::size_t n_merged = 0;          ///< clusters joined to another by the merge rule

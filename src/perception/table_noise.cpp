@@ -1,0 +1,66 @@
+#include "table_noise.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+namespace graspmix::detail {
+
+namespace {
+
+/// Of the points near a plane, at least this fraction lies behind it when they are a table's (a plane fitted
+/// 1.6 spreads off the table's centre still has it; a cloud cropped above its plane has none).
+constexpr double kMinBehind = 0.05;
+/// The fewer of the two sides' counts between 1 and 3 spreads of the centre is at least this fraction of the
+/// other for a table's noise (equal for Gaussian noise, up to sampling; the bases of objects standing on the
+/// table add to the side above). Below it the noise is not measured, and nothing is dropped for it.
+constexpr double kMinSymmetry = 0.7;
+
+double median(std::vector<double>& v) {
+  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  return *mid;
+}
+
+std::vector<double> within(const Eigen::VectorXd& h, double centre, double half) {
+  std::vector<double> out;
+  for (Eigen::Index r = 0; r < h.size(); ++r)
+    if (std::abs(h[r] - centre) <= half) out.push_back(h[r]);
+  return out;
+}
+
+bool symmetric(const Eigen::VectorXd& h, const TableNoise& t) {
+  double above = 0, below = 0;
+  for (Eigen::Index r = 0; r < h.size(); ++r) {
+    const double z = (h[r] - t.centre) / t.spread;
+    above += (z > 1 && z <= 3) ? 1 : 0;
+    below += (z < -1 && z >= -3) ? 1 : 0;
+  }
+  return std::min(above, below) >= kMinSymmetry * std::max(above, below);
+}
+
+}  // namespace
+
+TableNoise table_noise(const Eigen::VectorXd& h, double band) {
+  std::vector<double> near = within(h, 0.0, band), dev;
+  const auto behind = std::count_if(near.begin(), near.end(), [](double v) { return v < 0.0; });
+  TableNoise t;
+  if (near.size() < 3 || static_cast<double>(behind) < kMinBehind * static_cast<double>(near.size())) return t;
+  for (int it = 0; it < 30 && near.size() >= 3; ++it) {
+    const double c = median(near);
+    dev.resize(near.size());
+    for (std::size_t i = 0; i < near.size(); ++i) dev[i] = std::abs(near[i] - c);
+    const double spread = 1.4826 * median(dev);
+    const bool settled =
+        it > 0 && std::abs(c - t.centre) <= 1e-3 * spread && std::abs(spread - t.spread) <= 1e-3 * spread;
+    t.centre = c;
+    t.spread = spread;
+    if (settled || !(spread > 0)) break;
+    near = within(h, c, 3.0 * spread);
+  }
+  t.known = !(t.spread > 0) || symmetric(h, t);
+  return t;
+}
+
+}  // namespace graspmix::detail

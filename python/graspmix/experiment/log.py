@@ -46,6 +46,11 @@ INT_COLUMNS = {
     "rejected",
 }
 FLOAT_COLUMNS = {"lift_height", "log_likelihood", *TIME_COLUMNS}
+# The numbers a failed synthesis leaves empty (experiment/attempt.py); every attempt records the others.
+EMPTY_IF_SYNTHESIS_FAILED = {"log_likelihood", "t_features", "t_query", "t_sampling", "t_optimisation"}
+RECORDED_COLUMNS = tuple(
+    c for c in COLUMNS if (c in INT_COLUMNS or c in FLOAT_COLUMNS) and c not in EMPTY_IF_SYNTHESIS_FAILED
+)
 
 
 @dataclass(frozen=True)

@@ -24,7 +24,7 @@ from ..io.checks import check_output_path, quote
 from ..model.grasps import STAGE_LABELS, STAGES
 from ..model.settings import METHOD_LABELS, METHODS
 from ..viz.experiment import plot_runtime, plot_success
-from .log import CSV_NAME, read_rows
+from .log import CSV_NAME, RECORDED_COLUMNS, read_rows
 from .protocol import CONDITIONS, PROTOCOL_FIELDS, load_protocol, protocol_from_json
 from .stats import mean_ci, paired_ttest
 
@@ -393,6 +393,9 @@ def check_rows(rows: list[dict], proto: dict, path: Path) -> None:
     a CSV edited by hand is an error naming its row, not a wrong summary."""
     known = {"object": set(proto["objects"]), "condition": set(proto["conditions"]), "method": set(proto["methods"])}
     for i, r in enumerate(rows, start=1):
+        empty = [c for c in RECORDED_COLUMNS if r[c] is None]
+        if empty:
+            raise ValueError(f"{path}: row {i}: {', '.join(empty)} empty (every attempt records it)")
         for col, values in known.items():
             if r[col] not in values:
                 raise ValueError(f"{path}: row {i}: {col} {quote(r[col])} is not in the run's protocol")

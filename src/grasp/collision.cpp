@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -98,9 +99,11 @@ constexpr double kMaxCloudExtent = 1e4;
 Eigen::Vector3d checked_corner(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
   const double extent = (hi - lo).maxCoeff();
   if (extent > kMaxCloudExtent) {
-    throw std::invalid_argument("cloud: its points span " + std::to_string(extent) + " m (more than " +
-                                std::to_string(static_cast<int>(kMaxCloudExtent)) +
-                                " m: are its units metres? is a point far astray?)");
+    std::ostringstream os;
+    os.precision(3);
+    os << "cloud: its points span " << extent << " m (more than " << kMaxCloudExtent / 1000
+       << " km: are its units metres? is a point far astray?)";
+    throw std::invalid_argument(os.str());
   }
   return hi;
 }

@@ -172,15 +172,23 @@ def _check_hand_matches(hand: _core.Hand, doc_hand: str | None, grasps_path=".")
 def grasp_arrays(hand: _core.Hand, grasp: Grasp) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(wrist (7,), pre-grasp joints, grasp joints) of a Grasp, checked against the hand."""
     grasp = check_grasp(grasp)
-    wrist = np.asarray(grasp.T_world_wrist, dtype=float)
-    if wrist.shape != (7,):
-        raise ValueError(f"T_world_wrist: expected 7 values [x, y, z, qx, qy, qz, qw], got shape {wrist.shape}")
     try:
-        pre = hand.joints_array(grasp.pregrasp_joints)
-        fin = hand.joints_array(grasp.grasp_joints)
-    except ValueError as e:
-        raise ValueError(f"the grasp does not fit hand {hand.name!r} (joints {hand.joint_names}): {e}") from None
-    return wrist, pre, fin
+        wrist = np.asarray(grasp.T_world_wrist, dtype=float)
+    except (TypeError, ValueError):
+        wrist = None
+    if wrist is None or wrist.shape != (7,):
+        raise ValueError(
+            f"T_world_wrist: expected 7 numbers [x, y, z, qx, qy, qz, qw], got {quote(grasp.T_world_wrist)}"
+        )
+    joints = []
+    for name in ("pregrasp_joints", "grasp_joints"):
+        try:
+            joints.append(hand.joints_array(getattr(grasp, name)))
+        except ValueError as e:
+            raise ValueError(
+                f"{name}: the grasp does not fit hand {hand.name!r} (joints {hand.joint_names}): {e}"
+            ) from None
+    return wrist, joints[0], joints[1]
 
 
 def execute(

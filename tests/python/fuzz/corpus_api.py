@@ -194,6 +194,42 @@ def gmm_cases():
 
 
 HAND = "hand = graspmix.Hand.from_urdf(str(graspmix.data_path('hands', 'wsg50.urdf')))\nimport numpy as np\n"
+WRIST = "[0, 0, .2, 1, 0, 0, 0]"
+JOINTS = "{'finger_left_joint': .02}"
+
+
+def grasp_cases():
+    """A cloud spread over kilometres (its index grid would lose the points' places), and grasps that are not a
+    Grasp or lack a field, given to the functions that execute one."""
+    bad = {
+        "collision-cloud=1e30": (
+            "graspmix.CollisionExpert(hand, np.r_[np.zeros((10, 3)), [[1e30, 0, 0]]])",
+            ("cloud", "span", "1e+30"),
+        ),
+        "collision-cloud=2e4": ("graspmix.CollisionExpert(hand, [[0, 0, 0], [0, 2e4, 0]])", ("cloud", "span")),
+        "execute-grasp=dict-without-pregrasp": (
+            f"graspmix.sim.execute('{BOX_URDF}', {{'T_world_wrist': {WRIST}, 'grasp_joints': {JOINTS}}})",
+            ("grasp", "dict"),
+        ),
+        "execute-grasp=list": (f"graspmix.sim.execute('{BOX_URDF}', {WRIST})", ("grasp", "list")),
+        "execute-grasp=without-pregrasp": (
+            f"graspmix.sim.execute('{BOX_URDF}', graspmix.Grasp({WRIST}, None, {JOINTS}))",
+            ("pregrasp_joints",),
+        ),
+        "execute-grasp=wrist-text": (
+            f"graspmix.sim.execute('{BOX_URDF}', graspmix.Grasp('abcdefg', {JOINTS}, {JOINTS}))",
+            ("T_world_wrist",),
+        ),
+        "pybullet-grasp=dict": (
+            f"graspmix.sim.execute_pybullet('{BOX_URDF}', {{'T_world_wrist': {WRIST}}})",
+            ("grasp", "dict"),
+        ),
+        "from_dict=without-pregrasp": (
+            f"graspmix.Grasp.from_dict({{'T_world_wrist': {WRIST}, 'grasp_joints': {JOINTS}}})",
+            ("pregrasp_joints",),
+        ),
+    }
+    return _group("grasp", "grasp", bad, HAND)
 
 
 def conversion_cases():
@@ -234,5 +270,6 @@ CASES = (
     + sim_cases()
     + experiment_cases()
     + gmm_cases()
+    + grasp_cases()
     + conversion_cases()
 )

@@ -193,6 +193,85 @@ def gmm_cases():
     ]
 
 
+# Fitted densities of each kind: a GaussianMixture, the bundled models' PoseMixture (GMM) and PoseKDE.
+DENSITIES = (
+    "import numpy as np\n"
+    "gm = graspmix.GaussianMixture(n_components=1, seed=0).fit(np.random.default_rng(0).normal(size=(40, 2)))\n"
+    "pm, kde = (graspmix.GraspModel.load(graspmix.default_model_path(m)).synthesizer.contact_models[0].density\n"
+    "           for m in ('gmm', 'kde'))\n"
+)
+
+
+def density_cases():
+    """Sample counts beyond what memory holds, and pickling, on every density class."""
+    bad = {
+        "gmm-sample=1e12": ("gm.sample(10**12)", ("sample: n", "10000000")),
+        "pose-mixture-sample=1e12": ("pm.sample(10**12, np.zeros(pm.n_features))", ("sample: n", "10000000")),
+        "pose-kde-sample=1e12": ("kde.sample(10**12, np.zeros(kde.n_features))", ("sample: n", "10000000")),
+        "gmm-sample=str": ("gm.sample('3')", ("sample: n",)),
+        "gmm-sample-seed=2p70": ("gm.sample(3, seed=2**70)", ("seed",)),
+    }
+    cases = _group("density", "density", bad, DENSITIES)
+    ok = {
+        # scikit-learn pickles an unfitted estimator; so does graspmix, and it comes back unfitted.
+        "ok-pickle-unfitted": "import pickle\n"
+        "g = pickle.loads(pickle.dumps(graspmix.GaussianMixture(n_components=3, max_iter=7)))\n"
+        "assert (g.settings.n_components, g.settings.max_iter) == (3, 7) and 'not fitted' in repr(g)\n"
+        "try:\n    g.sample(2)\nexcept ValueError:\n    pass\nelse:\n    raise AssertionError('fitted')",
+        "ok-pickle-fitted": "import pickle\nassert np.array_equal(pickle.loads(pickle.dumps(gm)).means_, gm.means_)",
+        "ok-sample-numpy-count": "assert gm.sample(np.int64(3)).shape == (3, 2)",
+    }
+    cases += [api(f"api/density/{k}", DENSITIES + code, expect="ok", group="density") for k, code in ok.items()]
+    return cases
+
+
+def cloud_cases():
+    """File names that are not UTF-8 (bytes, or str with lone surrogates: what Python makes of such bytes) reach
+    the file they name; crop bounds that are NaN."""
+    pts = "import numpy as np\npts = np.random.default_rng(0).normal(size=(50, 3))\n"
+    return [
+        api("api/cloud/load=not-utf8-str", "graspmix.load_cloud('\\udcff.pcd')", names=("no such file",)),
+        api("api/cloud/load=not-utf8-bytes", "graspmix.load_cloud(b'\\xff.pcd')", names=("no such file",)),
+        api(
+            "api/cloud/ok-save-and-load-not-utf8",
+            pts + "graspmix.save_cloud('\\udcff.pcd', pts)\n"
+            "assert np.allclose(graspmix.load_cloud(b'\\xff.pcd').points, pts, atol=1e-6)",
+            expect="ok",
+        ),
+        api("api/cloud/crop_min=nan", pts + "graspmix.prepare_cloud(pts, crop_min=[np.nan, 0, 0])", names=("crop",)),
+        api("api/cloud/crop_max=nan", pts + "graspmix.prepare_cloud(pts, crop_max=[0, 0, np.nan])", names=("crop",)),
+    ]
+
+
+def core_cases():
+    """The exp map of long rotation vectors: the angle wraps (half-angle convention: scipy's rotation by 2 w), so
+    the result is a unit quaternion however long the vector (beyond about 1e16 rad one ulp of the angle exceeds
+    2 pi, and only that is asserted); a vector whose length is no double is an error."""
+    setup = "import numpy as np\nfrom scipy.spatial.transform import Rotation\n"
+    return [
+        api(
+            "api/core/ok-quat_exp-long-vectors",
+            setup + "w = np.random.default_rng(1).normal(size=(40, 3)) * np.repeat([1e3, 1e6], 20)[:, None]\n"
+            "ref = Rotation.from_rotvec(2 * w).as_quat()\n"
+            "assert np.allclose(np.abs(np.sum(graspmix.quat_exp(w) * ref, axis=1)), 1, atol=1e-8)",
+            expect="ok",
+            group="core",
+        ),
+        api(
+            "api/core/ok-quat_exp-1e300",
+            setup + "w = np.random.default_rng(2).normal(size=(30, 3)) * np.repeat([1e20, 1e150, 1e300], 10)[:, None]\n"
+            "q = graspmix.quat_exp(np.r_[w, [[1e300, 0, 0], [-3e300, 4e300, 0]]])\n"
+            "assert np.all(np.isfinite(q)) and np.allclose(np.linalg.norm(q, axis=1), 1, atol=1e-12)",
+            expect="ok",
+            group="core",
+        ),
+        api(
+            "api/core/quat_exp=1.7e308", "graspmix.quat_exp([[1.7e308, 1.7e308, 0]])", names=("quat_exp",), group="core"
+        ),
+        api("api/core/quat_exp=inf", "graspmix.quat_exp([[float('inf'), 0, 0]])", names=("quat_exp",), group="core"),
+    ]
+
+
 HAND = "hand = graspmix.Hand.from_urdf(str(graspmix.data_path('hands', 'wsg50.urdf')))\nimport numpy as np\n"
 WRIST = "[0, 0, .2, 1, 0, 0, 0]"
 JOINTS = "{'finger_left_joint': .02}"
@@ -270,6 +349,9 @@ CASES = (
     + sim_cases()
     + experiment_cases()
     + gmm_cases()
+    + density_cases()
+    + cloud_cases()
+    + core_cases()
     + grasp_cases()
     + conversion_cases()
 )

@@ -10,6 +10,8 @@ The corpus
         corpus_cli.py     bad option values of every graspmix_cli subcommand: numbers out of range or not
                           finite, unwritable outputs, paths too long or not UTF-8, missing inputs
         corpus_api.py     the public Python entry points with bad values of each class
+        corpus_reports.py attempts.csv with a column or a recorded value missing, through report and the API
+        corpus_scenes.py  clouds of a table with nothing on it (noisy, seen from above or from its own plane)
 
     The file corpora, many cheap cases of one command each, are dicts run by their own forking runners
     (one interpreter imports graspmix once and forks a child per case, so a crash still ends only its

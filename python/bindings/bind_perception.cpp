@@ -15,12 +15,6 @@ namespace {
 
 py::object optional_rows(const Vec3Array& a) { return a.rows() ? py::cast(a) : py::none(); }
 
-/// (3,) as one row, (M, 3) as given; None -> empty.
-Vec3Array to_points3(const py::object& obj, const char* name) {
-  if (obj.is_none()) return Vec3Array(0, 3);
-  return Vec3Array(to_matrix(obj, name, 3, true));
-}
-
 }  // namespace
 
 void bind_perception(py::module_& m) {
@@ -184,6 +178,10 @@ void bind_perception(py::module_& m) {
       .field("merge_through_fraction", &SegmentationSettings::merge_through_fraction,
              "fraction of a cluster's lines of sight that must cross the larger one's envelope")
       .field("merge_inset", &SegmentationSettings::merge_inset, "m: the larger cluster's envelope is inset by this")
+      .field("visibility_tolerance", &SegmentationSettings::visibility_tolerance,
+             "m: Segmentation.visibility's surface_tolerance (within this of the observed surface is Surface)")
+      .field("visibility_resolution", &SegmentationSettings::visibility_resolution,
+             "rad: the bin of Segmentation.visibility's range images (VisibilitySettings.angular_resolution)")
       .done();
 
   py::class_<SceneObject>(m, "SceneObject", "One object of a segmented scene: a Euclidean cluster above the plane.")
@@ -219,6 +217,13 @@ void bind_perception(py::module_& m) {
       .def_readonly("sources", &Segmentation::sources, "(M) input row whose per-point data every point carries")
       .def_readonly("objects", &Segmentation::objects, "by decreasing point count, ties by centroid x, y, z")
       .def_readonly("candidates", &Segmentation::candidates, "the support rule's figures, in the order found")
+      .def_property_readonly(
+          "visibility",
+          [](const Segmentation& r) -> py::object {
+            if (!r.visibility) return py::none();
+            return py::cast(std::const_pointer_cast<VisibilityModel>(r.visibility));
+          },
+          "VisibilityModel of what the cameras saw (one view per distinct viewpoint); None without viewpoints")
       .def_readonly("n_input", &Segmentation::n_input)
       .def_readonly("n_after_voxel", &Segmentation::n_after_voxel)
       .def_readonly("n_plane", &Segmentation::n_plane, "dropped as the table")
@@ -233,6 +238,7 @@ void bind_perception(py::module_& m) {
             const SegmentationTimes& t = r.times;
             py::dict d;
             d["voxel"] = t.voxel;
+            d["visibility"] = t.visibility;
             d["candidates"] = t.candidates;
             d["table_cut"] = t.table_cut;
             d["outliers"] = t.outliers;
@@ -241,7 +247,8 @@ void bind_perception(py::module_& m) {
             d["objects"] = t.objects;
             return d;
           },
-          "wall time (s) of each step: voxel, candidates (RANSAC, rules 1-3), table_cut, outliers, clusters "
+          "wall time (s) of each step: voxel, visibility, candidates (RANSAC, rules 1-3), table_cut, outliers, "
+          "clusters "
           "(and rule 4), merge, objects; the middle three summed over the candidates tried");
   m.def(
       "segment_scene",

@@ -249,6 +249,20 @@ void bind_visibility(py::module_& m) {
            "image (pcl::RangeImage) at angular_resolution, each bin its nearest point; empty bins are unseen.\n" +
            settings_doc<VisibilitySettings>())
               .c_str())
+      .def_static(
+          "from_views",
+          [](const py::object& points, const py::object& viewpoints, const py::object& settings, const py::kwargs& kw) {
+            const Vec3Array P(to_matrix(points, "points", 3));
+            const Vec3Array V = to_points3(viewpoints, "viewpoints");
+            const auto s = settings_from<VisibilitySettings>(settings, kw, "VisibilityModel.from_views");
+            py::gil_scoped_release release;
+            return std::make_shared<VisibilityModel>(VisibilityModel::from_views(P, V, s));
+          },
+          py::arg("points"), py::arg("viewpoints"), py::kw_only(), py::arg("settings") = py::none(),
+          ("Every view of an unorganized cloud (N, 3) in the world frame: viewpoints (3,) for one camera or (N, 3),\n"
+           "the camera that saw each point; the points of each distinct viewpoint make one from_points view.\n" +
+           settings_doc<VisibilitySettings>())
+              .c_str())
       .def("add_view", &VisibilityModel::add_view, py::arg("other"),
            "Adds the views of another model built with equal settings (ValueError otherwise).")
       .def(

@@ -22,6 +22,8 @@ namespace py = pybind11;
 /// A (N, cols) float64 matrix from any array-like; cols < 0 accepts any width. A 1-D input of
 /// length cols is taken as one row when one_d_as_row is true.
 RowMatrixXd to_matrix(const py::handle& obj, const char* name, int cols = -1, bool one_d_as_row = false);
+/// Points (M, 3), a (3,) array as one row; None -> 0 rows.
+Vec3Array to_points3(const py::object& obj, const char* name);
 /// A 1-D float64 vector of length n (n < 0: any).
 Eigen::VectorXd to_vector(const py::handle& obj, const char* name, Eigen::Index n = -1);
 /// None -> 0; otherwise a non-negative integer.

@@ -36,6 +36,11 @@ RowMatrixXd to_matrix(const py::handle& obj, const char* name, int cols, bool on
   return Eigen::Map<const RowMatrixXd>(a.data(), rows, width);
 }
 
+Vec3Array to_points3(const py::object& obj, const char* name) {
+  if (obj.is_none()) return Vec3Array(0, 3);
+  return Vec3Array(to_matrix(obj, name, 3, true));
+}
+
 Eigen::VectorXd to_vector(const py::handle& obj, const char* name, Eigen::Index n) {
   auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(obj);
   if (!a) throw py::value_error(std::string(name) + ": could not be read as an array of numbers");

@@ -640,9 +640,11 @@ class SegmentationSettings:
       merge_seen_through = True: a cluster seen through a larger one joins it (a container's inside seen over its rim)
       merge_through_fraction = 0.2: fraction of a cluster's lines of sight that must cross the larger one's envelope
       merge_inset = 0.006: m: the larger cluster's envelope is inset by this
+      visibility_tolerance = 0.005: m: Segmentation.visibility's surface_tolerance (within this of the observed surface is Surface)
+      visibility_resolution = 0.005: rad: the bin of Segmentation.visibility's range images (VisibilitySettings.angular_resolution)
     """
     __hash__: typing.ClassVar[None] = None
-    _fields: typing.ClassVar[tuple] = ('voxel_size', 'plane_distance', 'plane_max_iterations', 'seed', 'find_plane', 'plane_candidates', 'plane_min_fraction', 'plane_behind_distance', 'plane_max_behind_fraction', 'plane_margin', 'table_clearance', 'remove_outliers', 'outlier_neighbours', 'outlier_std_ratio', 'cluster_tolerance', 'min_cluster_size', 'max_cluster_size', 'merge_seen_through', 'merge_through_fraction', 'merge_inset')
+    _fields: typing.ClassVar[tuple] = ('voxel_size', 'plane_distance', 'plane_max_iterations', 'seed', 'find_plane', 'plane_candidates', 'plane_min_fraction', 'plane_behind_distance', 'plane_max_behind_fraction', 'plane_margin', 'table_clearance', 'remove_outliers', 'outlier_neighbours', 'outlier_std_ratio', 'cluster_tolerance', 'min_cluster_size', 'max_cluster_size', 'merge_seen_through', 'merge_through_fraction', 'merge_inset', 'visibility_tolerance', 'visibility_resolution')
     def __copy__(self) -> SegmentationSettings:
         ...
     def __deepcopy__(self, memo: typing.Any) -> SegmentationSettings:
@@ -659,7 +661,7 @@ class SegmentationSettings:
     @typing.overload
     def __init__(self, **kwargs) -> None:
         """
-        Keyword constructor: any of the fields (voxel_size, plane_distance, plane_max_iterations, seed, find_plane, plane_candidates, plane_min_fraction, plane_behind_distance, plane_max_behind_fraction, plane_margin, table_clearance, remove_outliers, outlier_neighbours, outlier_std_ratio, cluster_tolerance, min_cluster_size, max_cluster_size, merge_seen_through, merge_through_fraction, merge_inset); the others keep their defaults.
+        Keyword constructor: any of the fields (voxel_size, plane_distance, plane_max_iterations, seed, find_plane, plane_candidates, plane_min_fraction, plane_behind_distance, plane_max_behind_fraction, plane_margin, table_clearance, remove_outliers, outlier_neighbours, outlier_std_ratio, cluster_tolerance, min_cluster_size, max_cluster_size, merge_seen_through, merge_through_fraction, merge_inset, visibility_tolerance, visibility_resolution); the others keep their defaults.
         """
     def __repr__(self) -> str:
         ...
@@ -816,6 +818,22 @@ class SegmentationSettings:
         """
     @table_clearance.setter
     def table_clearance(self, arg0: typing.Any) -> None:
+        ...
+    @property
+    def visibility_resolution(self) -> float:
+        """
+        rad: the bin of Segmentation.visibility's range images (VisibilitySettings.angular_resolution)
+        """
+    @visibility_resolution.setter
+    def visibility_resolution(self, arg0: typing.Any) -> None:
+        ...
+    @property
+    def visibility_tolerance(self) -> float:
+        """
+        m: Segmentation.visibility's surface_tolerance (within this of the observed surface is Surface)
+        """
+    @visibility_tolerance.setter
+    def visibility_tolerance(self, arg0: typing.Any) -> None:
         ...
     @property
     def voxel_size(self) -> float:
@@ -982,7 +1000,12 @@ class Segmentation:
     @property
     def step_seconds(self) -> dict:
         """
-        wall time (s) of each step: voxel, candidates (RANSAC, rules 1-3), table_cut, outliers, clusters (and rule 4), merge, objects; the middle three summed over the candidates tried
+        wall time (s) of each step: voxel, visibility, candidates (RANSAC, rules 1-3), table_cut, outliers, clusters (and rule 4), merge, objects; the middle three summed over the candidates tried
+        """
+    @property
+    def visibility(self) -> typing.Any:
+        """
+        VisibilityModel of what the cameras saw (one view per distinct viewpoint); None without viewpoints
         """
 class SurfaceFeatureSettings:
     """
@@ -1398,6 +1421,19 @@ class VisibilityModel:
         """
         One view from an unorganized cloud (N, 3) in the world frame seen from viewpoint (3,): a spherical range
         image (pcl::RangeImage) at angular_resolution, each bin its nearest point; empty bins are unseen.
+        Settings: settings= a VisibilitySettings (None: its defaults), and/or its fields as keywords,
+        which override it (an unknown keyword is a ValueError):
+          surface_tolerance = 0.005: m: within this of the observed surface along the ray is Surface (>= 0)
+          angular_resolution = 0.005: rad: bin size of from_points' spherical range image, in (0, 0.5]
+          no_return_is_free = False: a depth pixel with no return (NaN, 0, inf) sees its whole ray free (else it says nothing)
+          max_fit_rms = 0.5: px: from_organized refuses a cloud its fitted intrinsics leave a larger RMS residual on
+          max_pixels = 10000000: the largest image one view may hold (pixels)
+        """
+    @staticmethod
+    def from_views(points: typing.Any, viewpoints: typing.Any, *, settings: typing.Any = None, **kwargs) -> VisibilityModel:
+        """
+        Every view of an unorganized cloud (N, 3) in the world frame: viewpoints (3,) for one camera or (N, 3),
+        the camera that saw each point; the points of each distinct viewpoint make one from_points view.
         Settings: settings= a VisibilitySettings (None: its defaults), and/or its fields as keywords,
         which override it (an unknown keyword is a ValueError):
           surface_tolerance = 0.005: m: within this of the observed surface along the ray is Surface (>= 0)
@@ -3619,6 +3655,8 @@ def segment_scene(points: typing.Any, viewpoints: typing.Any = None, plane: typi
       merge_seen_through = True: a cluster seen through a larger one joins it (a container's inside seen over its rim)
       merge_through_fraction = 0.2: fraction of a cluster's lines of sight that must cross the larger one's envelope
       merge_inset = 0.006: m: the larger cluster's envelope is inset by this
+      visibility_tolerance = 0.005: m: Segmentation.visibility's surface_tolerance (within this of the observed surface is Surface)
+      visibility_resolution = 0.005: rad: the bin of Segmentation.visibility's range images (VisibilitySettings.angular_resolution)
     """
 def sim_execute(hand: Hand, object: SimObject, T_world_object: typing.Any, T_world_wrist: typing.Any, pregrasp: typing.Any, grasp: typing.Any, settings: typing.Any = None, **kwargs) -> SimResult:
     """

@@ -63,6 +63,14 @@ void check_settings(const SegmentationSettings& s) {
     bad("merge_through_fraction must be in [0, 1]");
   }
   if (!finite_ge(s.merge_inset, 0)) bad("merge_inset must be a finite distance >= 0 (m)");
+  VisibilitySettings vs;
+  vs.surface_tolerance = s.visibility_tolerance;
+  vs.angular_resolution = s.visibility_resolution;
+  try {
+    check_visibility_settings(vs);
+  } catch (const std::invalid_argument&) {
+    bad("visibility_tolerance must be a finite distance >= 0 (m) and visibility_resolution in (0, 0.5] rad");
+  }
   if (s.max_cluster_size < 0 || (s.max_cluster_size > 0 && s.max_cluster_size < s.min_cluster_size)) {
     bad("max_cluster_size must be 0 (no limit) or >= min_cluster_size");
   }
@@ -415,6 +423,15 @@ Segmentation segment_scene(const Vec3Array& points, const Vec3Array& viewpoints,
     for (Eigen::Index i = 0; i < P.rows(); ++i) cams.per_point.row(i) = viewpoints.row(down.sources[i]);
   }
   lap.add_to(out.times.voxel);
+  if (cams.given) {
+    VisibilitySettings vs;
+    vs.surface_tolerance = s.visibility_tolerance;
+    vs.angular_resolution = s.visibility_resolution;
+    const Vec3Array one = cams.single.transpose();
+    out.visibility = std::make_shared<const VisibilityModel>(
+        VisibilityModel::from_views(P, cams.per_point.rows() ? cams.per_point : one, vs));
+  }
+  lap.add_to(out.times.visibility);
   Extraction e;
   if (plane) {
     out.plane = orient_given(*plane, P, cams, s);

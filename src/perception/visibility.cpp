@@ -1,12 +1,15 @@
 // The visibility model: pinhole views (depth images, organized clouds) and the rule that combines views.
 #include "graspmix/perception/visibility.hpp"
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "perception/visibility_view.hpp"
 
@@ -126,6 +129,35 @@ VisibilityModel VisibilityModel::from_points(const Eigen::Ref<const Vec3Array>& 
                                              const Eigen::Vector3d& viewpoint, const VisibilitySettings& settings) {
   VisibilityModel model(settings);
   model.views_.push_back(detail::make_spherical_view(points, viewpoint, settings));
+  return model;
+}
+
+VisibilityModel VisibilityModel::from_views(const Eigen::Ref<const Vec3Array>& points,
+                                            const Eigen::Ref<const Vec3Array>& viewpoints,
+                                            const VisibilitySettings& settings) {
+  const Eigen::Index n = viewpoints.rows();
+  if (n != 1 && n != points.rows()) {
+    throw std::invalid_argument("viewpoints: expected 1 or " + std::to_string(points.rows()) +
+                                " rows (one per point), got " + std::to_string(n));
+  }
+  if (!viewpoints.allFinite()) throw std::invalid_argument("viewpoints: contains NaN or infinite values");
+  if (n == 1) return from_points(points, viewpoints.row(0).transpose(), settings);
+  // The rows of each distinct viewpoint, in the order the viewpoints first appear.
+  std::map<std::array<double, 3>, std::vector<Eigen::Index>> rows;
+  std::vector<std::array<double, 3>> order;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const std::array<double, 3> key{viewpoints(i, 0), viewpoints(i, 1), viewpoints(i, 2)};
+    auto [it, inserted] = rows.try_emplace(key);
+    if (inserted) order.push_back(key);
+    it->second.push_back(i);
+  }
+  VisibilityModel model(settings);
+  for (const auto& key : order) {
+    const auto& r = rows[key];
+    Vec3Array seen(static_cast<Eigen::Index>(r.size()), 3);
+    for (std::size_t j = 0; j < r.size(); ++j) seen.row(static_cast<Eigen::Index>(j)) = points.row(r[j]);
+    model.add_view(from_points(seen, Eigen::Vector3d(key[0], key[1], key[2]), settings));
+  }
   return model;
 }
 

@@ -47,6 +47,7 @@
 // thinner than twice merge_inset, is crossed by no line of sight.
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -55,6 +56,7 @@
 
 #include "graspmix/core/types.hpp"
 #include "graspmix/perception/cleanup.hpp"
+#include "graspmix/perception/visibility.hpp"
 
 namespace graspmix {
 
@@ -88,6 +90,10 @@ struct SegmentationSettings {
   /// m the other's envelope is inset by: lines of sight grazing its edge (flying pixels at an occluding edge
   /// stretch the envelope towards what it hides) do not count; the cluster tolerance's 6 mm.
   double merge_inset = 0.006;
+  /// The model of what the cameras saw (Segmentation::visibility, built when viewpoints are given): m within
+  /// which a point is on the observed surface, and rad per bin of each view's range image (VisibilitySettings).
+  double visibility_tolerance = VisibilitySettings{}.surface_tolerance;
+  double visibility_resolution = VisibilitySettings{}.angular_resolution;
 };
 
 /// One object: a Euclidean cluster above the support plane.
@@ -123,6 +129,7 @@ struct SegmentationTimes {
   double table_cut = 0;   ///< the points above the table_clearance
   double outliers = 0;    ///< statistical outlier removal on them
   double clusters = 0;    ///< Euclidean clusters (and rule 4's footprint)
+  double visibility = 0;  ///< the model of what the cameras saw
   double merge = 0;       ///< the merge rule
   double objects = 0;     ///< the objects described, ordered and written out
 };
@@ -138,6 +145,9 @@ struct Segmentation {
   /// Ordered by decreasing point count, ties by centroid x, then y, then z: index 0 is the largest.
   std::vector<SceneObject> objects;
   std::vector<PlaneCandidate> candidates;  ///< the rule's figures (empty with a given plane)
+  /// What the cameras saw (one view per distinct viewpoint, from the voxelised cloud, table included); null
+  /// when no viewpoint was given (a cloud's own frame says nothing of where its camera was looking from).
+  std::shared_ptr<const VisibilityModel> visibility;
   std::size_t n_input = 0, n_after_voxel = 0;
   /// dropped as the table: within table_clearance of it, behind it, or in a cluster within its noise
   std::size_t n_plane = 0;

@@ -95,6 +95,14 @@ class VisibilityModel {
   static VisibilityModel from_points(const Eigen::Ref<const Vec3Array>& points, const Eigen::Vector3d& viewpoint,
                                      const VisibilitySettings& settings = {});
 
+  /// Every view of an unorganized cloud (N, 3) in the world frame: `viewpoints` is one row (every point seen
+  /// from there) or N rows (the camera that saw each point); the rows seen from one viewpoint make one
+  /// from_points view. Throws std::invalid_argument for another number of rows, no viewpoint, a non-finite
+  /// viewpoint, and as from_points does.
+  static VisibilityModel from_views(const Eigen::Ref<const Vec3Array>& points,
+                                    const Eigen::Ref<const Vec3Array>& viewpoints,
+                                    const VisibilitySettings& settings = {});
+
   /// Adds the views of `other` (shared, not copied). Throws std::invalid_argument when other's settings
   /// differ from this model's (its views would be judged by another tolerance).
   void add_view(const VisibilityModel& other);

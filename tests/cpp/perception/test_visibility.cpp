@@ -274,6 +274,45 @@ TEST(Visibility, TwoCamerasAroundABoxSeeBothSides) {
   EXPECT_EQ(model.state(Eigen::Vector3d(0.0, 0.2, 0.0)), SpaceState::Unseen);
 }
 
+TEST(Visibility, FromViewsMakesOneViewPerCamera) {
+  // Two spheres' halves, each seen from its own side: per-point viewpoints give two views, each the one
+  // from_points makes of that camera's rows, so the answers equal the views added one by one.
+  std::mt19937_64 rng(4);
+  std::normal_distribution<double> g;
+  const Eigen::Vector3d A(-0.6, 0.0, 0.0), B(0.6, 0.0, 0.0);
+  // 40k points: 1.8 mm apart on the 10 cm sphere, finer than the 2.5 mm bins at 0.5 m (no empty bin inside).
+  Vec3Array points(40000, 3), cams(40000, 3), seen_a(20000, 3), seen_b(20000, 3);
+  for (Eigen::Index i = 0; i < 40000; ++i) {
+    Eigen::Vector3d d = Eigen::Vector3d(g(rng), g(rng), g(rng)).normalized();
+    const bool from_a = i % 2 == 0;
+    if ((d.x() < 0) != from_a) d.x() = -d.x();  // the half facing its camera
+    points.row(i) = 0.1 * d.transpose();
+    cams.row(i) = (from_a ? A : B).transpose();
+    (from_a ? seen_a : seen_b).row(i / 2) = points.row(i);
+  }
+  const VisibilityModel both = VisibilityModel::from_views(points, cams);
+  ASSERT_EQ(both.n_views(), 2);
+  EXPECT_TRUE(both.view(0).T_world_sensor.translation().isApprox(A));
+  VisibilityModel one_by_one = VisibilityModel::from_points(seen_a, A);
+  one_by_one.add_view(VisibilityModel::from_points(seen_b, B));
+  std::uniform_real_distribution<double> x(-0.3, 0.3);
+  for (int i = 0; i < 2000; ++i) {
+    const Eigen::Vector3d p(x(rng), x(rng), x(rng));
+    const double d1 = both.signed_distance(p), d2 = one_by_one.signed_distance(p);
+    ASSERT_TRUE(d1 == d2 || (std::isnan(d1) && std::isnan(d2))) << p.transpose();
+  }
+  EXPECT_EQ(both.state(Eigen::Vector3d(0.2, 0, 0)), SpaceState::SeenFree);   // B's side, seen by B
+  EXPECT_EQ(both.state(Eigen::Vector3d(-0.2, 0, 0)), SpaceState::SeenFree);  // A's side
+  EXPECT_EQ(both.state(Eigen::Vector3d(0, 0, 0)), SpaceState::Unseen);       // inside
+  // One row: every point from that camera.
+  EXPECT_EQ(VisibilityModel::from_views(points, Vec3Array(A.transpose())).n_views(), 1);
+  EXPECT_THROW(VisibilityModel::from_views(points, Vec3Array(3, 3)), std::invalid_argument);
+  EXPECT_THROW(VisibilityModel::from_views(points, Vec3Array(0, 3)), std::invalid_argument);
+  Vec3Array bad = cams;
+  bad(7, 1) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(VisibilityModel::from_views(points, bad), std::invalid_argument);
+}
+
 TEST(Visibility, BatchAnswersEqualSinglePointAnswers) {
   const VisibilityModel model = VisibilityModel::from_depth(render(kCam, kPose, box_on_table), kCam, kPose);
   std::mt19937_64 rng(8);

@@ -6,7 +6,7 @@ import graspmix
 import numpy as np
 import pybullet as p
 import pytest
-from graspmix import _core
+from graspmix import SpaceState, _core
 from graspmix.perception import POINT_TARGET_MAX_DISTANCE, camera_to_world, parse_target, segment_scene
 from graspmix.sim.acquisition import (
     AcquisitionSettings,
@@ -299,8 +299,27 @@ def test_step_seconds_add_up():
     )
     r = segment_scene(acq.points, acq.viewpoints).result
     steps = r.step_seconds
-    assert set(steps) == {"voxel", "candidates", "table_cut", "outliers", "clusters", "merge", "objects"}
+    assert set(steps) == {"voxel", "visibility", "candidates", "table_cut", "outliers", "clusters", "merge", "objects"}
     assert all(v >= 0 for v in steps.values()) and sum(steps.values()) <= r.seconds
+
+
+def test_the_scene_models_what_its_cameras_saw():
+    """segment_scene's visibility model: one spherical view per distinct camera, built from the voxelised cloud.
+    What it says is checked against the geometry of the scene: the mug's points are on the surface, a point
+    between the camera and the mug is seen free, a point under the table's top (behind its seen surface) is
+    unseen. No viewpoint: no model."""
+    cams = [Camera(eye=EYE), Camera(eye=(-EYE[0], -EYE[1], EYE[2]))]
+    acq = acquire("objects/mug.urdf", noise=False, seed=1, settings=AcquisitionSettings(cameras=cams, keep="scene"))
+    scene = segment_scene(acq.points, acq.viewpoints)
+    v = scene.result.visibility
+    assert v.n_views == 2 and [w["kind"] for w in v.views] == ["spherical", "spherical"]
+    states = v.classify(scene.points)
+    assert np.mean(states != SpaceState.SeenFree) > 0.99  # nothing the cameras saw is in front of itself
+    c = scene.objects[0].centroid
+    eye = np.asarray(EYE, dtype=float)
+    assert v.classify(c + 0.8 * (eye - c) / np.linalg.norm(eye - c) * 0.3)[0] == SpaceState.SeenFree
+    assert v.classify(np.array([0.3, 0.3, -0.05]))[0] == SpaceState.Unseen  # under the table's top
+    assert segment_scene(acq.points, plane=[0, 0, 1, 0]).result.visibility is None
 
 
 def test_a_cloud_of_only_a_table_has_no_object(tmp_path, capsys):

@@ -75,6 +75,8 @@ void bind_synthesis(py::module_& m) {
       .field("frame_jitter", &QuerySettings::frame_jitter,
              "rotate each sampled surface frame about its normal by up to pi exp(-jitter_sharpness ((k1 - k2) / k1)^2)")
       .field("jitter_sharpness", &QuerySettings::jitter_sharpness, "s of Kopicki's rule above")
+      .field("completed_weight", &QuerySettings::completed_weight,
+             "prior weight of a completed (unseen) point in the query densities, an observed one's being 1")
       .done();
 
   SettingsClass<AnnealingSettings>(m, "AnnealingSettings", "Simulated annealing of the best candidates.")
@@ -173,32 +175,38 @@ void bind_synthesis(py::module_& m) {
           "synthesize",
           [](const GraspSynthesizer& g, const py::object& frames, const py::object& features,
              const CollisionExpert& collision, const py::object& experts, const py::object& settings,
-             const py::kwargs& kw) {
+             const py::object& weights, const py::kwargs& kw) {
             const SynthesizerSettings s = settings_from<SynthesizerSettings>(settings, kw, "synthesize");
             const PoseArray v = to_poses(frames, "frames");
             const RowMatrixXd r = to_matrix(features, "features");
+            const Eigen::VectorXd w = weights.is_none() ? Eigen::VectorXd() : to_vector(weights, "weights");
             const ExpertList e = to_experts(experts);
             py::gil_scoped_release release;
-            return g.synthesize(v, r, collision, e, s);
+            return g.synthesize(v, r, collision, e, s, w);
           },
           py::arg("frames"), py::arg("features"), py::arg("collision"), py::arg("experts") = py::none(),
-          py::arg("settings") = py::none(),
-          ("Query densities, sampling, ranking and annealing on an object's frames (N, 7) and features (N, n).\n" +
+          py::arg("settings") = py::none(), py::kw_only(), py::arg("weights") = py::none(),
+          ("Query densities, sampling, ranking and annealing on an object's frames (N, 7) and features (N, n);\n"
+           "weights (N,): each point's prior weight in the query densities (None: all 1).\n" +
            settings_doc<SynthesizerSettings>())
               .c_str())
       .def(
           "query_densities",
           [](const GraspSynthesizer& g, const py::object& frames, const py::object& features,
-             const py::object& settings, const py::object& seed, const py::kwargs& kw) {
+             const py::object& settings, const py::object& seed, const py::object& weights, const py::kwargs& kw) {
             const QuerySettings s = settings_from<QuerySettings>(settings, kw, "query_densities");
             std::mt19937_64 rng(to_seed(seed));
             const PoseArray v = to_poses(frames, "frames");
             const RowMatrixXd r = to_matrix(features, "features");
+            const Eigen::VectorXd w = weights.is_none() ? Eigen::VectorXd() : to_vector(weights, "weights");
             py::gil_scoped_release release;
-            return g.query_densities(v, r, s, rng);
+            return g.query_densities(v, r, s, rng, w);
           },
           py::arg("frames"), py::arg("features"), py::arg("settings") = py::none(), py::arg("seed") = py::none(),
-          ("The query densities Q_i on an object.\n" + settings_doc<QuerySettings>()).c_str())
+          py::kw_only(), py::arg("weights") = py::none(),
+          ("The query densities Q_i on an object; weights (N,): each point's prior weight (None: all 1).\n" +
+           settings_doc<QuerySettings>())
+              .c_str())
       .def(
           "sample_grasps",
           [](const GraspSynthesizer& g, const std::vector<QueryDensity>& q, const py::object& n,

@@ -2689,9 +2689,10 @@ class QuerySettings:
       kde = KdeSettings(position_bandwidth=0.005, orientation_bandwidth=0.15, feature_bandwidth=array([0.005])): KdeSettings of KDE query densities (features unused)
       frame_jitter = True: rotate each sampled surface frame about its normal by up to pi exp(-jitter_sharpness ((k1 - k2) / k1)^2)
       jitter_sharpness = 100.0: s of Kopicki's rule above
+      completed_weight = 0.5: prior weight of a completed (unseen) point in the query densities, an observed one's being 1
     """
     __hash__: typing.ClassVar[None] = None
-    _fields: typing.ClassVar[tuple] = ('n_samples', 'n_components', 'max_iter', 'reg_covar', 'kde', 'frame_jitter', 'jitter_sharpness')
+    _fields: typing.ClassVar[tuple] = ('n_samples', 'n_components', 'max_iter', 'reg_covar', 'kde', 'frame_jitter', 'jitter_sharpness', 'completed_weight')
     def __copy__(self) -> QuerySettings:
         ...
     def __deepcopy__(self, memo: typing.Any) -> QuerySettings:
@@ -2708,11 +2709,19 @@ class QuerySettings:
     @typing.overload
     def __init__(self, **kwargs) -> None:
         """
-        Keyword constructor: any of the fields (n_samples, n_components, max_iter, reg_covar, kde, frame_jitter, jitter_sharpness); the others keep their defaults.
+        Keyword constructor: any of the fields (n_samples, n_components, max_iter, reg_covar, kde, frame_jitter, jitter_sharpness, completed_weight); the others keep their defaults.
         """
     def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: dict) -> None:
+        ...
+    @property
+    def completed_weight(self) -> float:
+        """
+        prior weight of a completed (unseen) point in the query densities, an observed one's being 1
+        """
+    @completed_weight.setter
+    def completed_weight(self, arg0: typing.Any) -> None:
         ...
     @property
     def frame_jitter(self) -> bool:
@@ -2929,7 +2938,7 @@ class SynthesizerSettings:
     Settings: settings= a SynthesizerSettings (None: its defaults), and/or its fields as keywords,
     which override it (an unknown keyword is a ValueError):
       sampling = SamplingSettings(n_samples=200, n_optimise=10, optimise=True, clear_pregrasp=True, max_sampling_rounds=10): SamplingSettings
-      query = QuerySettings(n_samples=500, n_components=5, max_iter=100, reg_covar=1e-06, kde=KdeSettings(position_bandwidth=0.005, orientation_bandwidth=0.15, feature_bandwidth=array([0.005])), frame_jitter=True, jitter_sharpness=100.0): QuerySettings
+      query = QuerySettings(n_samples=500, n_components=5, max_iter=100, reg_covar=1e-06, kde=KdeSettings(position_bandwidth=0.005, orientation_bandwidth=0.15, feature_bandwidth=array([0.005])), frame_jitter=True, jitter_sharpness=100.0, completed_weight=0.5): QuerySettings
       annealing = AnnealingSettings(iterations=100, initial_temperature=1.0, position_step=0.005, rotation_step=0.1, joint_step=0.5): AnnealingSettings
       seed = 0: seeds everything random in synthesis (None: 0)
     """
@@ -3165,9 +3174,9 @@ class GraspSynthesizer:
         """
         log L and its terms (an Evaluation) for a batch of grasps; clear_pregrasp=None: SamplingSettings' default.
         """
-    def query_densities(self, frames: typing.Any, features: typing.Any, settings: typing.Any = None, seed: typing.Any = None, **kwargs) -> list[QueryDensity]:
+    def query_densities(self, frames: typing.Any, features: typing.Any, settings: typing.Any = None, seed: typing.Any = None, *, weights: typing.Any = None, **kwargs) -> list[QueryDensity]:
         """
-        The query densities Q_i on an object.
+        The query densities Q_i on an object; weights (N,): each point's prior weight (None: all 1).
         Settings: settings= a QuerySettings (None: its defaults), and/or its fields as keywords,
         which override it (an unknown keyword is a ValueError):
           n_samples = 500: N_Q: samples per link to fit each query density from
@@ -3177,18 +3186,20 @@ class GraspSynthesizer:
           kde = KdeSettings(position_bandwidth=0.005, orientation_bandwidth=0.15, feature_bandwidth=array([0.005])): KdeSettings of KDE query densities (features unused)
           frame_jitter = True: rotate each sampled surface frame about its normal by up to pi exp(-jitter_sharpness ((k1 - k2) / k1)^2)
           jitter_sharpness = 100.0: s of Kopicki's rule above
+          completed_weight = 0.5: prior weight of a completed (unseen) point in the query densities, an observed one's being 1
         """
     def sample_grasps(self, query: collections.abc.Sequence[QueryDensity], n: typing.Any, seed: typing.Any = None) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 7]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]]:
         """
         (wrists (n, 7), joints (n, D)).
         """
-    def synthesize(self, frames: typing.Any, features: typing.Any, collision: CollisionExpert, experts: typing.Any = None, settings: typing.Any = None, **kwargs) -> SynthesisResult:
+    def synthesize(self, frames: typing.Any, features: typing.Any, collision: CollisionExpert, experts: typing.Any = None, settings: typing.Any = None, *, weights: typing.Any = None, **kwargs) -> SynthesisResult:
         """
-        Query densities, sampling, ranking and annealing on an object's frames (N, 7) and features (N, n).
+        Query densities, sampling, ranking and annealing on an object's frames (N, 7) and features (N, n);
+        weights (N,): each point's prior weight in the query densities (None: all 1).
         Settings: settings= a SynthesizerSettings (None: its defaults), and/or its fields as keywords,
         which override it (an unknown keyword is a ValueError):
           sampling = SamplingSettings(n_samples=200, n_optimise=10, optimise=True, clear_pregrasp=True, max_sampling_rounds=10): SamplingSettings
-          query = QuerySettings(n_samples=500, n_components=5, max_iter=100, reg_covar=1e-06, kde=KdeSettings(position_bandwidth=0.005, orientation_bandwidth=0.15, feature_bandwidth=array([0.005])), frame_jitter=True, jitter_sharpness=100.0): QuerySettings
+          query = QuerySettings(n_samples=500, n_components=5, max_iter=100, reg_covar=1e-06, kde=KdeSettings(position_bandwidth=0.005, orientation_bandwidth=0.15, feature_bandwidth=array([0.005])), frame_jitter=True, jitter_sharpness=100.0, completed_weight=0.5): QuerySettings
           annealing = AnnealingSettings(iterations=100, initial_temperature=1.0, position_step=0.005, rotation_step=0.1, joint_step=0.5): AnnealingSettings
           seed = 0: seeds everything random in synthesis (None: 0)
         """

@@ -87,8 +87,20 @@ std::string GraspSynthesizer::method() const { return contact_models_.front().de
 
 std::vector<QueryDensity> GraspSynthesizer::query_densities(const Eigen::Ref<const PoseArray>& frames,
                                                             const Eigen::Ref<const RowMatrixXd>& features,
-                                                            const QuerySettings& s, std::mt19937_64& rng) const {
+                                                            const QuerySettings& s, std::mt19937_64& rng,
+                                                            const Eigen::Ref<const Eigen::VectorXd>& weights) const {
   if (frames.rows() == 0) throw std::invalid_argument("query densities: the object has no surface points");
+  if (weights.size() != 0) {
+    if (weights.size() != frames.rows()) {
+      throw std::invalid_argument("query densities: " + std::to_string(frames.rows()) + " frames but " +
+                                  std::to_string(weights.size()) + " weights");
+    }
+    if (!weights.allFinite() || (weights.array() < 0).any() || !(weights.maxCoeff() > 0)) {
+      throw std::invalid_argument("query densities: weights must be finite, >= 0 and not all 0");
+    }
+  }
+  const Eigen::VectorXd log_weights =
+      weights.size() ? Eigen::VectorXd(weights.array().log()) : Eigen::VectorXd::Zero(frames.rows());
   if (features.rows() != frames.rows()) {
     throw std::invalid_argument("query densities: " + std::to_string(frames.rows()) + " frames but " +
                                 std::to_string(features.rows()) + " feature rows");
@@ -103,7 +115,7 @@ std::vector<QueryDensity> GraspSynthesizer::query_densities(const Eigen::Ref<con
   std::vector<std::shared_ptr<PoseDensity>> densities;
   for (const ContactModel& m : contact_models_) {
     // Importance resampling: surface points in proportion to M_i(r).
-    auto pick = distribution_from_logs(m.density->feature_log_density(features));
+    auto pick = distribution_from_logs(m.density->feature_log_density(features) + log_weights);
     PoseArray v(s.n_samples, 7);
     RowMatrixXd r(s.n_samples, features.cols());
     for (int k = 0; k < s.n_samples; ++k) {
@@ -421,7 +433,8 @@ SynthesisResult GraspSynthesizer::synthesize(const Eigen::Ref<const PoseArray>& 
                                              const Eigen::Ref<const RowMatrixXd>& features,
                                              const CollisionExpert& collision,
                                              const std::vector<std::shared_ptr<const Expert>>& experts,
-                                             const SynthesizerSettings& s) const {
+                                             const SynthesizerSettings& s,
+                                             const Eigen::Ref<const Eigen::VectorXd>& weights) const {
   if (s.sampling.n_samples < 1) throw std::invalid_argument("synthesize: n_samples must be >= 1");
   if (s.sampling.n_optimise < 0) throw std::invalid_argument("synthesize: n_optimise must be >= 0");
   if (s.sampling.max_sampling_rounds < 1) throw std::invalid_argument("synthesize: max_sampling_rounds must be >= 1");
@@ -433,7 +446,7 @@ SynthesisResult GraspSynthesizer::synthesize(const Eigen::Ref<const PoseArray>& 
   const auto t0 = std::chrono::steady_clock::now();
   std::mt19937_64 rng(s.seed);
   SynthesisResult res;
-  const std::vector<QueryDensity> query = query_densities(frames, features, s.query, rng);
+  const std::vector<QueryDensity> query = query_densities(frames, features, s.query, rng, weights);
   res.timing.query = seconds_since(t0);
 
   const auto t1 = std::chrono::steady_clock::now();

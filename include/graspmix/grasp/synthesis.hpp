@@ -2,7 +2,8 @@
 // Grasp synthesis for a novel object (sections "Grasp synthesis for novel objects" and "Grasp
 // optimisation" of the paper), identical for both methods but for the density type:
 //   1. contact query densities Q_i (eq:query_density_approx): sample surface frames v with probability
-//      proportional to M_i(r) (importance resampling of the paper's weights w = M_i(r)), draw
+//      proportional to M_i(r) (importance resampling of the paper's weights w = M_i(r); times each point's
+//      prior weight where one is given: completed points the camera did not see weigh less), draw
 //      u ~ M_i(u | r), form s = v o u, and fit a PoseMixture with K_Q components (GMM models) or a PoseKDE
 //      with one kernel per sample (KDE models);
 //   2. grasp sampling: a link pose s ~ Q_i for a random link i, joints h_c ~ C, the wrist through fk;
@@ -41,6 +42,10 @@ struct QuerySettings {
   /// direction is arbitrary, so the frame's heading carries no information. Needs features [k1, k2].
   bool frame_jitter = true;
   double jitter_sharpness = kKopickiJitterSharpness;
+  /// The prior weight of a completed point (one the cameras did not see: perception/completion.hpp) in the query
+  /// densities, an observed point's being 1; in (0, 1]. The scene synthesis passes it as query_densities'
+  /// weights.
+  double completed_weight = 0.5;
 };
 
 struct AnnealingSettings {
@@ -141,17 +146,22 @@ class GraspSynthesizer {
  public:
   GraspSynthesizer(std::shared_ptr<const Hand> hand, std::vector<ContactModel> contact_models, ConfigModel config);
 
-  /// Everything: query densities on the object (frames (N, 7), features (N, n)), sampling, ranking,
-  /// optimisation. The collision expert is built on the same object's cloud (and support plane).
+  /// Everything: query densities on the object (frames (N, 7), features (N, n), each point's prior weight
+  /// (N), empty: all 1), sampling, ranking, optimisation. The collision expert is built on the same object's
+  /// cloud (and support plane).
   SynthesisResult synthesize(const Eigen::Ref<const PoseArray>& frames, const Eigen::Ref<const RowMatrixXd>& features,
                              const CollisionExpert& collision,
                              const std::vector<std::shared_ptr<const Expert>>& experts,
-                             const SynthesizerSettings& settings) const;
+                             const SynthesizerSettings& settings,
+                             const Eigen::Ref<const Eigen::VectorXd>& weights = Eigen::VectorXd()) const;
 
   // ---- the stages, for tests, benchmarks and custom pipelines ----
+  /// The surface points are drawn in proportion to weights[j] M_i(r_j): weights (N) >= 0, finite, not all 0 (a
+  /// completed point the camera did not see weighs less than an observed one); empty: all 1.
   std::vector<QueryDensity> query_densities(const Eigen::Ref<const PoseArray>& frames,
                                             const Eigen::Ref<const RowMatrixXd>& features,
-                                            const QuerySettings& settings, std::mt19937_64& rng) const;
+                                            const QuerySettings& settings, std::mt19937_64& rng,
+                                            const Eigen::Ref<const Eigen::VectorXd>& weights = Eigen::VectorXd()) const;
   /// n grasps: wrists (n, 7) and joints (n, D).
   void sample_grasps(const std::vector<QueryDensity>& query, int n, std::mt19937_64& rng, PoseArray& wrists,
                      RowMatrixXd& joints) const;

@@ -179,6 +179,52 @@ TEST(Synthesis, SampledLinkPosesFollowTheQueryDensityThroughFk) {
   EXPECT_GT(e.log_contact.rowwise().maxCoeff().mean(), g.log_contact.rowwise().maxCoeff().mean() + 20.0);
 }
 
+TEST(Synthesis, PointWeightsSteerTheQueryDensities) {
+  // Weight 0 on every face but the +x side: each link's query density then lies on +x faces' frames moved by
+  // its contact model, so its mean position is the same as that of densities fitted on the +x face alone,
+  // and far from the unweighted one's (which spans the box).
+  const Fixture f = make_fixture();
+  const Eigen::Index n = f.box.frames.rows();
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(n);
+  std::vector<Eigen::Index> rows;
+  for (Eigen::Index i = 0; i < n; ++i)
+    if (f.box.frames(i, 0) > 0.0299) {
+      w[i] = 1.0;
+      rows.push_back(i);
+    }
+  PoseArray face(static_cast<Eigen::Index>(rows.size()), 7);
+  RowMatrixXd face_features(face.rows(), 2);
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    face.row(static_cast<Eigen::Index>(j)) = f.box.frames.row(rows[j]);
+    face_features.row(static_cast<Eigen::Index>(j)) = f.box.features.row(rows[j]);
+  }
+  std::mt19937_64 a(3), b(3), c(3);
+  const auto weighted = f.synth->query_densities(f.box.frames, f.box.features, QuerySettings{}, a, w);
+  const auto alone = f.synth->query_densities(face, face_features, QuerySettings{}, b);
+  const auto all = f.synth->query_densities(f.box.frames, f.box.features, QuerySettings{}, c);
+  std::mt19937_64 draw(5);
+  for (std::size_t l = 0; l < weighted.size(); ++l) {
+    const Eigen::Vector3d mw = weighted[l].density->sample(RowMatrixXd(2000, 0), draw).leftCols<3>().colwise().mean();
+    const Eigen::Vector3d ma = alone[l].density->sample(RowMatrixXd(2000, 0), draw).leftCols<3>().colwise().mean();
+    const Eigen::Vector3d mu = all[l].density->sample(RowMatrixXd(2000, 0), draw).leftCols<3>().colwise().mean();
+    EXPECT_LT((mw - ma).norm(), 0.01) << l;
+    EXPECT_GT((mw - mu).norm(), 0.02) << l;
+  }
+  // Uniform weights change nothing: the same draws as none.
+  std::mt19937_64 d(3);
+  const auto ones =
+      f.synth->query_densities(f.box.frames, f.box.features, QuerySettings{}, d, Eigen::VectorXd::Ones(n));
+  std::mt19937_64 r1(1), r2(1);
+  EXPECT_TRUE(ones[0].density->sample(RowMatrixXd(10, 0), r1).isApprox(all[0].density->sample(RowMatrixXd(10, 0), r2)));
+  std::mt19937_64 e(1);
+  EXPECT_THROW(f.synth->query_densities(f.box.frames, f.box.features, QuerySettings{}, e, Eigen::VectorXd::Ones(3)),
+               std::invalid_argument);
+  EXPECT_THROW(f.synth->query_densities(f.box.frames, f.box.features, QuerySettings{}, e, Eigen::VectorXd::Zero(n)),
+               std::invalid_argument);
+  EXPECT_THROW(f.synth->query_densities(f.box.frames, f.box.features, QuerySettings{}, e, -Eigen::VectorXd::Ones(n)),
+               std::invalid_argument);
+}
+
 TEST(Synthesis, BadInputThrows) {
   const Fixture f = make_fixture();
   EXPECT_THROW(f.synth->synthesize(PoseArray(0, 7), RowMatrixXd(0, 2), *f.collision, {}, small_settings(0)),

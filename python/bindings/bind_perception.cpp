@@ -178,6 +178,13 @@ void bind_perception(py::module_& m) {
       .field("merge_through_fraction", &SegmentationSettings::merge_through_fraction,
              "fraction of a cluster's lines of sight that must cross the larger one's envelope")
       .field("merge_inset", &SegmentationSettings::merge_inset, "m: the larger cluster's envelope is inset by this")
+      .field("join_occluded", &SegmentationSettings::join_occluded,
+             "clusters whose gap the view leaves unseen (a shadow between them) join: pieces of one object")
+      .field("join_max_gap", &SegmentationSettings::join_max_gap, "m, join rule 1: clusters farther apart never join")
+      .field("join_seen_margin", &SegmentationSettings::join_seen_margin,
+             "m, join rule 2: the gap was seen empty when the views saw more than this beyond it (median)")
+      .field("join_max_size", &SegmentationSettings::join_max_size,
+             "m, join rule 3: the joined cluster's largest principal-box side")
       .field("visibility_tolerance", &SegmentationSettings::visibility_tolerance,
              "m: Segmentation.visibility's surface_tolerance (within this of the observed surface is Surface)")
       .field("visibility_resolution", &SegmentationSettings::visibility_resolution,
@@ -230,6 +237,7 @@ void bind_perception(py::module_& m) {
       .def_readonly("n_outliers", &Segmentation::n_outliers)
       .def_readonly("n_small_clusters", &Segmentation::n_small_clusters, "points of clusters dropped as noise")
       .def_readonly("n_merged", &Segmentation::n_merged, "clusters joined to a larger one (seen through it)")
+      .def_readonly("n_joined", &Segmentation::n_joined, "clusters joined to another (a shadow between them)")
       .def_readonly("n_output", &Segmentation::n_output)
       .def_readonly("seconds", &Segmentation::seconds, "wall time of the whole segmentation")
       .def_property_readonly(
@@ -244,12 +252,13 @@ void bind_perception(py::module_& m) {
             d["outliers"] = t.outliers;
             d["clusters"] = t.clusters;
             d["merge"] = t.merge;
+            d["join"] = t.join;
             d["objects"] = t.objects;
             return d;
           },
           "wall time (s) of each step: voxel, visibility, candidates (RANSAC, rules 1-3), table_cut, outliers, "
           "clusters "
-          "(and rule 4), merge, objects; the middle three summed over the candidates tried");
+          "(and rule 4), merge, join, objects; the middle three summed over the candidates tried");
   m.def(
       "segment_scene",
       [](const py::object& points, const py::object& viewpoints, const py::object& plane, const py::object& settings,

@@ -640,11 +640,15 @@ class SegmentationSettings:
       merge_seen_through = True: a cluster seen through a larger one joins it (a container's inside seen over its rim)
       merge_through_fraction = 0.2: fraction of a cluster's lines of sight that must cross the larger one's envelope
       merge_inset = 0.006: m: the larger cluster's envelope is inset by this
+      join_occluded = True: clusters whose gap the view leaves unseen (a shadow between them) join: pieces of one object
+      join_max_gap = 0.03: m, join rule 1: clusters farther apart never join
+      join_seen_margin = 0.005: m, join rule 2: the gap was seen empty when the views saw more than this beyond it (median)
+      join_max_size = 0.15: m, join rule 3: the joined cluster's largest principal-box side
       visibility_tolerance = 0.005: m: Segmentation.visibility's surface_tolerance (within this of the observed surface is Surface)
       visibility_resolution = 0.005: rad: the bin of Segmentation.visibility's range images (VisibilitySettings.angular_resolution)
     """
     __hash__: typing.ClassVar[None] = None
-    _fields: typing.ClassVar[tuple] = ('voxel_size', 'plane_distance', 'plane_max_iterations', 'seed', 'find_plane', 'plane_candidates', 'plane_min_fraction', 'plane_behind_distance', 'plane_max_behind_fraction', 'plane_margin', 'table_clearance', 'remove_outliers', 'outlier_neighbours', 'outlier_std_ratio', 'cluster_tolerance', 'min_cluster_size', 'max_cluster_size', 'merge_seen_through', 'merge_through_fraction', 'merge_inset', 'visibility_tolerance', 'visibility_resolution')
+    _fields: typing.ClassVar[tuple] = ('voxel_size', 'plane_distance', 'plane_max_iterations', 'seed', 'find_plane', 'plane_candidates', 'plane_min_fraction', 'plane_behind_distance', 'plane_max_behind_fraction', 'plane_margin', 'table_clearance', 'remove_outliers', 'outlier_neighbours', 'outlier_std_ratio', 'cluster_tolerance', 'min_cluster_size', 'max_cluster_size', 'merge_seen_through', 'merge_through_fraction', 'merge_inset', 'join_occluded', 'join_max_gap', 'join_seen_margin', 'join_max_size', 'visibility_tolerance', 'visibility_resolution')
     def __copy__(self) -> SegmentationSettings:
         ...
     def __deepcopy__(self, memo: typing.Any) -> SegmentationSettings:
@@ -661,7 +665,7 @@ class SegmentationSettings:
     @typing.overload
     def __init__(self, **kwargs) -> None:
         """
-        Keyword constructor: any of the fields (voxel_size, plane_distance, plane_max_iterations, seed, find_plane, plane_candidates, plane_min_fraction, plane_behind_distance, plane_max_behind_fraction, plane_margin, table_clearance, remove_outliers, outlier_neighbours, outlier_std_ratio, cluster_tolerance, min_cluster_size, max_cluster_size, merge_seen_through, merge_through_fraction, merge_inset, visibility_tolerance, visibility_resolution); the others keep their defaults.
+        Keyword constructor: any of the fields (voxel_size, plane_distance, plane_max_iterations, seed, find_plane, plane_candidates, plane_min_fraction, plane_behind_distance, plane_max_behind_fraction, plane_margin, table_clearance, remove_outliers, outlier_neighbours, outlier_std_ratio, cluster_tolerance, min_cluster_size, max_cluster_size, merge_seen_through, merge_through_fraction, merge_inset, join_occluded, join_max_gap, join_seen_margin, join_max_size, visibility_tolerance, visibility_resolution); the others keep their defaults.
         """
     def __repr__(self) -> str:
         ...
@@ -682,6 +686,38 @@ class SegmentationSettings:
         """
     @find_plane.setter
     def find_plane(self, arg0: typing.Any) -> None:
+        ...
+    @property
+    def join_max_gap(self) -> float:
+        """
+        m, join rule 1: clusters farther apart never join
+        """
+    @join_max_gap.setter
+    def join_max_gap(self, arg0: typing.Any) -> None:
+        ...
+    @property
+    def join_max_size(self) -> float:
+        """
+        m, join rule 3: the joined cluster's largest principal-box side
+        """
+    @join_max_size.setter
+    def join_max_size(self, arg0: typing.Any) -> None:
+        ...
+    @property
+    def join_occluded(self) -> bool:
+        """
+        clusters whose gap the view leaves unseen (a shadow between them) join: pieces of one object
+        """
+    @join_occluded.setter
+    def join_occluded(self, arg0: typing.Any) -> None:
+        ...
+    @property
+    def join_seen_margin(self) -> float:
+        """
+        m, join rule 2: the gap was seen empty when the views saw more than this beyond it (median)
+        """
+    @join_seen_margin.setter
+    def join_seen_margin(self, arg0: typing.Any) -> None:
         ...
     @property
     def max_cluster_size(self) -> int:
@@ -946,6 +982,11 @@ class Segmentation:
     def n_input(self) -> int:
         ...
     @property
+    def n_joined(self) -> int:
+        """
+        clusters joined to another (a shadow between them)
+        """
+    @property
     def n_merged(self) -> int:
         """
         clusters joined to a larger one (seen through it)
@@ -1000,7 +1041,7 @@ class Segmentation:
     @property
     def step_seconds(self) -> dict:
         """
-        wall time (s) of each step: voxel, visibility, candidates (RANSAC, rules 1-3), table_cut, outliers, clusters (and rule 4), merge, objects; the middle three summed over the candidates tried
+        wall time (s) of each step: voxel, visibility, candidates (RANSAC, rules 1-3), table_cut, outliers, clusters (and rule 4), merge, join, objects; the middle three summed over the candidates tried
         """
     @property
     def visibility(self) -> typing.Any:
@@ -3666,6 +3707,10 @@ def segment_scene(points: typing.Any, viewpoints: typing.Any = None, plane: typi
       merge_seen_through = True: a cluster seen through a larger one joins it (a container's inside seen over its rim)
       merge_through_fraction = 0.2: fraction of a cluster's lines of sight that must cross the larger one's envelope
       merge_inset = 0.006: m: the larger cluster's envelope is inset by this
+      join_occluded = True: clusters whose gap the view leaves unseen (a shadow between them) join: pieces of one object
+      join_max_gap = 0.03: m, join rule 1: clusters farther apart never join
+      join_seen_margin = 0.005: m, join rule 2: the gap was seen empty when the views saw more than this beyond it (median)
+      join_max_size = 0.15: m, join rule 3: the joined cluster's largest principal-box side
       visibility_tolerance = 0.005: m: Segmentation.visibility's surface_tolerance (within this of the observed surface is Surface)
       visibility_resolution = 0.005: rad: the bin of Segmentation.visibility's range images (VisibilitySettings.angular_resolution)
     """

@@ -14,6 +14,7 @@
 
 #include "cloud_filters.hpp"
 #include "cluster_merge.hpp"
+#include "occlusion_merge.hpp"
 #include "table_noise.hpp"
 
 namespace graspmix {
@@ -63,6 +64,9 @@ void check_settings(const SegmentationSettings& s) {
     bad("merge_through_fraction must be in [0, 1]");
   }
   if (!finite_ge(s.merge_inset, 0)) bad("merge_inset must be a finite distance >= 0 (m)");
+  if (!finite_ge(s.join_max_gap, 0)) bad("join_max_gap must be a finite distance >= 0 (m)");
+  if (!std::isfinite(s.join_seen_margin)) bad("join_seen_margin must be a finite distance (m)");
+  if (!(finite_ge(s.join_max_size, 0) && s.join_max_size > 0)) bad("join_max_size must be a finite size > 0 (m)");
   VisibilitySettings vs;
   vs.surface_tolerance = s.visibility_tolerance;
   vs.angular_resolution = s.visibility_resolution;
@@ -452,6 +456,11 @@ Segmentation segment_scene(const Vec3Array& points, const Vec3Array& viewpoints,
     out.n_merged = detail::merge_seen_through(P, seen_from, e.groups, s.merge_through_fraction, s.merge_inset);
   }
   lap.add_to(out.times.merge);
+  if (s.join_occluded && out.visibility && e.groups.size() > 1) {
+    out.n_joined = detail::join_occluded(P, *out.visibility, e.groups,
+                                         detail::JoinRule{s.join_max_gap, s.join_seen_margin, s.join_max_size});
+  }
+  lap.add_to(out.times.join);
   finish(P, down.sources, e, s, out);
   lap.add_to(out.times.objects);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -45,6 +45,23 @@
 // 16 x 16 x 8 cm box with 5 mm walls, seen from 45 degrees, stays its own object, because the container falls
 // apart into its walls (its floor is within table_clearance and goes with the table) and a wall's envelope,
 // thinner than twice merge_inset, is crossed by no line of sight.
+//
+// The join rule (pieces of one object cut apart by a shadow in the view; only with viewpoints, which build the
+// visibility model, and after the merge rule): two clusters A and B are one object when
+//  1. their gap (least distance between their points) is at most join_max_gap;
+//  2. the views did not see the gap empty: over A's and B's facing segments (each point within 5 mm of the least
+//     gap joined to its nearest point of the other, the 16 nearest), the median of how far each segment's
+//     interior samples lie in front of the observed surface (Segmentation::visibility's signed distance; the
+//     largest over 9 samples, unseen counts as behind) is at most join_seen_margin. A gap in the shadow of a
+//     nearer object or of the object itself lies behind what the camera saw; between objects standing apart
+//     the camera sees the table (or a farther object) beyond the gap;
+//  3. the joined cluster stays the size of one object: its principal box's largest side is at most
+//     join_max_size.
+// Pairs that pass are joined nearest first (the pairs with the joined cluster judged again) until none passes.
+// Chosen on one-view clutter scenes of the development objects (docs/clutter.md, "Objects found"). What it cannot
+// tell apart: an object seen in front of another with the gap between them hidden (objects touching in a pile)
+// passes rule 2 as pieces do, and only rule 3 keeps them apart; a piece that is itself the occluder (a bar of an
+// object lying across the rest of it) stands in front of the gap, which the camera then sees, and stays apart.
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -90,6 +107,20 @@ struct SegmentationSettings {
   /// m the other's envelope is inset by: lines of sight grazing its edge (flying pixels at an occluding edge
   /// stretch the envelope towards what it hides) do not count; the cluster tolerance's 6 mm.
   double merge_inset = 0.006;
+  /// The join rule (above): clusters whose gap the view leaves unseen are pieces of one object. Off without
+  /// viewpoints (no visibility model).
+  bool join_occluded = true;
+  /// m: rule 1, clusters farther apart are never joined: an occluder's shadow on a one-view clutter scene's
+  /// development objects cut pieces at most 3-4 cm apart; wider gaps joined mostly objects that stand apart.
+  double join_max_gap = 0.03;
+  /// m: rule 2, the views saw the gap empty when they saw more than this beyond it (the median over the facing
+  /// segments): the visibility model's own tolerance, so a segment counts as seen when a sample of it is
+  /// SeenFree. 1-1.5 cm joined a few more pieces on the development scenes but also two 5 cm cubes packed 1 cm
+  /// apart seen along their row, whose slot the camera sees only about 1 cm deep.
+  double join_seen_margin = VisibilitySettings{}.surface_tolerance;
+  /// m: rule 3, the joined cluster's largest principal-box side: the largest object the clutter lists hold
+  /// (150 mm across, data/objects/clutter_dev.txt).
+  double join_max_size = 0.15;
   /// The model of what the cameras saw (Segmentation::visibility, built when viewpoints are given): m within
   /// which a point is on the observed surface, and rad per bin of each view's range image (VisibilitySettings).
   double visibility_tolerance = VisibilitySettings{}.surface_tolerance;
@@ -131,6 +162,7 @@ struct SegmentationTimes {
   double clusters = 0;    ///< Euclidean clusters (and rule 4's footprint)
   double visibility = 0;  ///< the model of what the cameras saw
   double merge = 0;       ///< the merge rule
+  double join = 0;        ///< the join rule
   double objects = 0;     ///< the objects described, ordered and written out
 };
 
@@ -154,6 +186,7 @@ struct Segmentation {
   std::size_t n_outliers = 0;        ///< dropped by the outlier removal
   std::size_t n_small_clusters = 0;  ///< points of clusters under min_cluster_size (or over the maximum)
   std::size_t n_merged = 0;          ///< clusters joined to another by the merge rule
+  std::size_t n_joined = 0;          ///< clusters joined to another by the join rule
   std::size_t n_output = 0;
   double seconds = 0.0;     ///< wall time of the whole segmentation
   SegmentationTimes times;  ///< and of each step

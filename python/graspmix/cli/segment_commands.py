@@ -57,7 +57,7 @@ def cmd_segment(args) -> int:
     print(
         f"points: {r.n_input} in, {r.n_after_voxel} after the voxel grid, {r.n_plane} table, {r.n_outliers} outliers, "
         f"{r.n_small_clusters} in clusters too small (noise), {r.n_merged} clusters joined to a larger one seen through it, "
-        f"{r.n_output} on objects"
+        f"{r.n_joined} joined to another across a gap the camera did not see (a shadow), {r.n_output} on objects"
     )
     steps = ", ".join(f"{k} {v * 1e3:.1f}" for k, v in scene.result.step_seconds.items())
     print(f"time: {scene.timing['segmentation'] * 1e3:.1f} ms ({steps})")

@@ -200,6 +200,7 @@ class Scene:
                 "outliers": r.n_outliers,
                 "small_clusters": r.n_small_clusters,
                 "merged": r.n_merged,
+                "joined": r.n_joined,
                 "output": r.n_output,
             },
             "timing_s": dict(self.timing),

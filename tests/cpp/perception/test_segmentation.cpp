@@ -263,6 +263,45 @@ TEST(Segmentation, ObbOfABoxIsTheBox) {
   EXPECT_TRUE(o.obb_center.isApprox(Eigen::Vector3d(0.01, 0.02, 0.015), 0.003 / 0.02));
 }
 
+// The join rule (segmentation.hpp) on exact ray casting: a long low box whose middle a narrow tall box in front
+// hides, so that its visible parts are two clusters 2-3 cm apart, and two boxes side by side with the table seen
+// through the 2 cm slot between them.
+const Box kLong = box_at(0.0, 0.10, 0.14, 0.04, 0.04), kPost = box_at(0.0, 0.035, 0.02, 0.03, 0.12);
+const Eigen::Vector3d kFront(0.0, -0.55, 0.35), kFrontTarget(0.0, 0.1, 0.03);
+
+TEST(Segmentation, AnObjectCutInTwoByANearerOnesShadowIsJoined) {
+  const Render r = render(kFront, kFrontTarget, {kLong, kPost}, 1.0, 0.0, 0.0, 0, 640, 480);
+  SegmentationSettings off;
+  off.join_occluded = false;
+  const Segmentation apart = segment_scene(r.points, one(kFront), off);
+  ASSERT_EQ(apart.objects.size(), 3u) << "the long box's visible parts are two clusters without the rule";
+  EXPECT_EQ(apart.n_joined, 0u);
+  const Segmentation s = segment_scene(r.points, one(kFront));
+  EXPECT_EQ(s.n_joined, 1u);
+  expect_objects_are_the_boxes(s, {kLong, kPost});
+  std::size_t long_points = 0;  // every point of the long box is in one object
+  for (const auto& o : apart.objects) long_points += kLong.contains(o.centroid, 0.0) ? o.n_points : 0;
+  for (const auto& o : s.objects)
+    if (kLong.contains(o.centroid, 0.0)) EXPECT_EQ(o.n_points, long_points);
+  EXPECT_GE(s.times.join, 0.0);
+  // Without viewpoints there is no visibility model, and the rule is off.
+  const Segmentation blind = segment_scene(r.points, Vec3Array(0, 3), {}, Eigen::Vector4d(0, 0, 1, 0));
+  EXPECT_EQ(blind.visibility, nullptr);
+  EXPECT_EQ(blind.n_joined, 0u);
+  EXPECT_EQ(blind.objects.size(), 3u);
+}
+
+TEST(Segmentation, TwoBoxesWithTheTableSeenBetweenThemStayTwo) {
+  const std::vector<Box> pair = {box_at(-0.035, 0.0, 0.05, 0.05, 0.05), box_at(0.035, 0.0, 0.05, 0.05, 0.05)};
+  for (const Eigen::Vector3d& eye : {kFront, Eigen::Vector3d(0.1, -0.45, 0.5), Eigen::Vector3d(-0.2, -0.4, 0.3)}) {
+    const Render r = render(eye, kTarget, pair, 1.0, 1.0, 0.001, 5);
+    const Segmentation s = segment_scene(r.points, one(eye));
+    // (a sliver of a box's face seen edge-on may come apart and be joined back: only the boxes must stay two)
+    SCOPED_TRACE("eye " + std::to_string(eye.x()) + " " + std::to_string(eye.y()) + " " + std::to_string(eye.z()));
+    expect_objects_are_the_boxes(s, pair);
+  }
+}
+
 TEST(Segmentation, BadInputsNameTheCause) {
   const Render r = render(kEye, kTarget, kThreeBoxes, 1.0);
   auto message = [&](const Vec3Array& p, const Vec3Array& v, const SegmentationSettings& st,
@@ -283,6 +322,12 @@ TEST(Segmentation, BadInputsNameTheCause) {
   SegmentationSettings st;
   st.cluster_tolerance = 0;
   EXPECT_NE(message(r.points, one(kEye), st).find("cluster_tolerance"), std::string::npos);
+  st = {};
+  st.join_max_size = 0;
+  EXPECT_NE(message(r.points, one(kEye), st).find("join_max_size"), std::string::npos);
+  st = {};
+  st.join_max_gap = -1;
+  EXPECT_NE(message(r.points, one(kEye), st).find("join_max_gap"), std::string::npos);
   st = {};
   st.max_cluster_size = 5;
   EXPECT_NE(message(r.points, one(kEye), st).find("max_cluster_size"), std::string::npos);

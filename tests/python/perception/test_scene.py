@@ -242,7 +242,10 @@ def test_a_mug_seen_into_is_one_object(eye, seed):
     )
     scene = segment_scene(acq.points, acq.viewpoints)
     assert len(scene.objects) == 1, scene.to_dict()["objects"]
-    assert scene.result.n_merged == len(segment_scene(acq.points, acq.viewpoints, merge_seen_through=False)) - 1
+    assert (
+        scene.result.n_merged
+        == len(segment_scene(acq.points, acq.viewpoints, merge_seen_through=False, join_occluded=False)) - 1
+    )
 
 
 def test_the_merge_rule_did_the_work_on_a_split_mug():
@@ -250,7 +253,7 @@ def test_the_merge_rule_did_the_work_on_a_split_mug():
     acq = acquire(
         "objects/mug.urdf", noise=True, seed=0, settings=AcquisitionSettings(cameras=[Camera(eye=EYE)], keep="scene")
     )
-    apart = segment_scene(acq.points, acq.viewpoints, merge_seen_through=False)
+    apart = segment_scene(acq.points, acq.viewpoints, merge_seen_through=False, join_occluded=False)
     assert len(apart.objects) == 2
     inner = apart.objects[1]  # the inner wall: on the far side of the mug's axis from the camera
     towards_camera = np.asarray(EYE[:2]) / np.linalg.norm(EYE[:2])
@@ -271,7 +274,9 @@ def test_boxes_1cm_apart_are_not_merged(eye, sizes):
     # the rule joins nothing: the clusters are those found without it (flying pixels at the boxes' edges
     # sometimes bridge the gap for the Euclidean clustering itself, before the rule)
     assert scene.result.n_merged == 0
-    assert len(scene.objects) == len(segment_scene(points, np.asarray(eye), merge_seen_through=False).objects)
+    assert len(scene.objects) == len(
+        segment_scene(points, np.asarray(eye), merge_seen_through=False, join_occluded=False).objects
+    )
     # each object is one box: (nearly) every point on its side of the gap (the geometry is the ground truth)
     if len(scene.objects) == 2:
         for o in scene.objects:
@@ -299,7 +304,17 @@ def test_step_seconds_add_up():
     )
     r = segment_scene(acq.points, acq.viewpoints).result
     steps = r.step_seconds
-    assert set(steps) == {"voxel", "visibility", "candidates", "table_cut", "outliers", "clusters", "merge", "objects"}
+    assert set(steps) == {
+        "voxel",
+        "visibility",
+        "candidates",
+        "table_cut",
+        "outliers",
+        "clusters",
+        "merge",
+        "join",
+        "objects",
+    }
     assert all(v >= 0 for v in steps.values()) and sum(steps.values()) <= r.seconds
 
 

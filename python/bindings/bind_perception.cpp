@@ -367,6 +367,7 @@ void bind_perception(py::module_& m) {
        settings_doc<SurfaceFeatureSettings>())
           .c_str());
   bind_visibility(m);
+  bind_completion(m);
 }
 
 }  // namespace graspmix::py_bind

@@ -64,6 +64,8 @@ void bind_density(py::module_& m);
 void bind_perception(py::module_& m);
 /// Part of bind_perception: cameras and the visibility model (bind_perception_visibility.cpp).
 void bind_visibility(py::module_& m);
+/// Part of bind_perception: completing an object's unseen side (bind_perception_completion.cpp).
+void bind_completion(py::module_& m);
 void bind_robot(py::module_& m);
 void bind_grasp(py::module_& m);
 /// Part of bind_grasp: the synthesiser (bind_grasp_synthesis.cpp).

@@ -40,6 +40,10 @@ from ._core import (
     CollisionFreeExpert,
     CollisionResult,
     CollisionSettings,
+    # the unseen side of an object
+    Completion,
+    CompletionKind,
+    CompletionSettings,
     ConfigModel,
     ConfigModelSettings,
     ContactModel,
@@ -74,6 +78,7 @@ from ._core import (
     VisibilityModel,
     VisibilitySettings,
     build_info,
+    complete_object,
     compute_surface_features,
     contact_data,
     learn_contact_models,

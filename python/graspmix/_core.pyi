@@ -8,7 +8,7 @@ import enum
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AnnealingSettings', 'AxisAlignmentExpert', 'AxisAlignmentSettings', 'CleanupResult', 'CleanupSettings', 'ClearApproachExpert', 'ClearApproachSettings', 'CloudData', 'CollisionBatchResult', 'CollisionExpert', 'CollisionFreeExpert', 'CollisionResult', 'CollisionSettings', 'ConfigModel', 'ConfigModelSettings', 'ContactData', 'ContactModel', 'ContactQualityExpert', 'ContactQualityResult', 'ContactQualitySettings', 'ContactSettings', 'Evaluation', 'Expert', 'FunctionExpert', 'GaussianMixture', 'GmmSettings', 'Grasp', 'GraspSynthesizer', 'Hand', 'HandLoadSettings', 'KdeSettings', 'KinematicFeasibilityExpert', 'KinematicFeasibilitySettings', 'OccupancyMap', 'OccupancySettings', 'PinholeCamera', 'PinholeFit', 'PlaneCandidate', 'PoseDensity', 'PoseKDE', 'PoseMixture', 'QueryDensity', 'QuerySettings', 'SamplingSettings', 'SceneObject', 'SceneSimResult', 'Segmentation', 'SegmentationSettings', 'SettleResult', 'SimObject', 'SimResult', 'SimSettings', 'SpaceState', 'SurfaceCloud', 'SurfaceFeatureSettings', 'SynthesisResult', 'SynthesisTiming', 'SynthesizerSettings', 'VisibilityModel', 'VisibilitySettings', 'build_info', 'compute_surface_features', 'contact_data', 'learn_contact_models', 'load_cloud', 'load_mesh', 'log_vmf_s3_normaliser', 'orient_plane', 'pose_inverse', 'pose_multiply', 'prepare_cloud', 'quat_exp', 'quat_log', 'save_cloud', 'segment_scene', 'sim_execute', 'sim_execute_scene', 'sim_settle_scene']
+__all__: list[str] = ['AnnealingSettings', 'AxisAlignmentExpert', 'AxisAlignmentSettings', 'CleanupResult', 'CleanupSettings', 'ClearApproachExpert', 'ClearApproachSettings', 'CloudData', 'CollisionBatchResult', 'CollisionExpert', 'CollisionFreeExpert', 'CollisionResult', 'CollisionSettings', 'Completion', 'CompletionKind', 'CompletionSettings', 'ConfigModel', 'ConfigModelSettings', 'ContactData', 'ContactModel', 'ContactQualityExpert', 'ContactQualityResult', 'ContactQualitySettings', 'ContactSettings', 'Evaluation', 'Expert', 'FunctionExpert', 'GaussianMixture', 'GmmSettings', 'Grasp', 'GraspSynthesizer', 'Hand', 'HandLoadSettings', 'KdeSettings', 'KinematicFeasibilityExpert', 'KinematicFeasibilitySettings', 'OccupancyMap', 'OccupancySettings', 'PinholeCamera', 'PinholeFit', 'PlaneCandidate', 'PoseDensity', 'PoseKDE', 'PoseMixture', 'QueryDensity', 'QuerySettings', 'SamplingSettings', 'SceneObject', 'SceneSimResult', 'Segmentation', 'SegmentationSettings', 'SettleResult', 'SimObject', 'SimResult', 'SimSettings', 'SpaceState', 'SurfaceCloud', 'SurfaceFeatureSettings', 'SynthesisResult', 'SynthesisTiming', 'SynthesizerSettings', 'VisibilityModel', 'VisibilitySettings', 'build_info', 'complete_object', 'compute_surface_features', 'contact_data', 'learn_contact_models', 'load_cloud', 'load_mesh', 'log_vmf_s3_normaliser', 'orient_plane', 'pose_inverse', 'pose_multiply', 'prepare_cloud', 'quat_exp', 'quat_log', 'save_cloud', 'segment_scene', 'sim_execute', 'sim_execute_scene', 'sim_settle_scene']
 class GmmSettings:
     """
     How a GaussianMixture (or PoseMixture) is fitted by EM.
@@ -1516,6 +1516,236 @@ class VisibilityModel:
         """
         Per view: kind ('pinhole' | 'spherical'), T_world_sensor (7,), camera (PinholeCamera or None), width,
         height, n_returns, angular_resolution (rad), fit_rms_px, seconds.
+        """
+class CompletionKind(enum.IntEnum):
+    """
+    Which hypothesis completed an object (complete_object): None_ (0, none accepted), Mirror (1, a vertical plane), Rotation (2, a vertical axis), Extrusion (3, walls down to the table).
+    """
+    Extrusion: typing.ClassVar[CompletionKind]
+    Mirror: typing.ClassVar[CompletionKind]
+    None_: typing.ClassVar[CompletionKind]
+    Rotation: typing.ClassVar[CompletionKind]
+    _member_map_: typing.ClassVar[dict]
+    _member_names_: typing.ClassVar[list] = ['None_', 'Mirror', 'Rotation', 'Extrusion']
+    _unhashable_values_: typing.ClassVar[list] = list()
+    _use_args_: typing.ClassVar[bool] = True
+    _value2member_map_: typing.ClassVar[dict]
+    _member_type_ = builtins.int
+    @staticmethod
+    def _generate_next_value_(name, start, count, last_values):
+        """
+                Generate the next value when not given.
+        
+                name: the name of the member
+                start: the initial start value or None
+                count: the number of existing members
+                last_values: the list of values assigned
+                
+        """
+    @staticmethod
+    def _new_member_(type, *args, **kwargs):
+        """
+        Create and return a new object.  See help(type) for accurate signature.
+        """
+    @classmethod
+    def __new__(cls, value):
+        ...
+    def __format__(self, format_spec):
+        ...
+    def _value_repr_(self):
+        """
+        Return repr(self).
+        """
+class CompletionSettings:
+    """
+    The completion of an object's unseen side.
+    
+    Settings: settings= a CompletionSettings (None: its defaults), and/or its fields as keywords,
+    which override it (an unknown keyword is a ValueError):
+      spacing = 0.003: m: the completed points' spacing, the profile's and footprint's bins
+      max_free_fraction = 0.05: a hypothesis with more of its points in seen-free space is refused, in [0, 1]
+      min_unseen_fraction = 0.15: a hypothesis with less of its points in unseen space is refused, in [0, 1]
+      free_weight = 4.0: score = surface_fraction - free_weight * free_fraction (>= 0)
+      mirror_angle_step = 0.07: rad: the step between mirror planes' orientations around each principal axis
+      mirror_angle_steps = 3: orientations each side of each principal axis (0..20)
+      mirror_max_depth = 0.05: m: a mirror plane lies at most this far behind the footprint's far edge
+      circle_max_rms = 0.003: m: a rotation needs the outline's inliers within this RMS of their circle
+      circle_min_inliers = 0.7: the fraction of the outline within 2 circle_max_rms of its circle for a rotation
+      max_radius = 0.25: m: no rotation about a larger circle
+      normal_radius = 0.01: m: the neighbourhood of the observed points' normals (> spacing)
+      max_scoring_points = 160: points each hypothesis is scored on (>= 16)
+      border_margin = 2.0: px: an observed point this close to a pinhole image's edge sets the border warning
+    """
+    __hash__: typing.ClassVar[None] = None
+    _fields: typing.ClassVar[tuple] = ('spacing', 'max_free_fraction', 'min_unseen_fraction', 'free_weight', 'mirror_angle_step', 'mirror_angle_steps', 'mirror_max_depth', 'circle_max_rms', 'circle_min_inliers', 'max_radius', 'normal_radius', 'max_scoring_points', 'border_margin')
+    def __copy__(self) -> CompletionSettings:
+        ...
+    def __deepcopy__(self, memo: typing.Any) -> CompletionSettings:
+        ...
+    def __eq__(self, arg0: typing.Any) -> typing.Any:
+        ...
+    def __getstate__(self) -> dict:
+        ...
+    @typing.overload
+    def __init__(self) -> None:
+        """
+        The defaults: those of the default-constructed C++ struct.
+        """
+    @typing.overload
+    def __init__(self, **kwargs) -> None:
+        """
+        Keyword constructor: any of the fields (spacing, max_free_fraction, min_unseen_fraction, free_weight, mirror_angle_step, mirror_angle_steps, mirror_max_depth, circle_max_rms, circle_min_inliers, max_radius, normal_radius, max_scoring_points, border_margin); the others keep their defaults.
+        """
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    @property
+    def border_margin(self) -> float:
+        """
+        px: an observed point this close to a pinhole image's edge sets the border warning
+        """
+    @border_margin.setter
+    def border_margin(self, arg0: typing.Any) -> None:
+        ...
+    @property
+    def circle_max_rms(self) -> float:
+        """
+        m: a rotation needs the outline's inliers within this RMS of their circle
+        """
+    @circle_max_rms.setter
+    def circle_max_rms(self, arg0: typing.Any) -> None:
+        ...
+    @property
+    def circle_min_inliers(self) -> float:
+        """
+        the fraction of the outline within 2 circle_max_rms of its circle for a rotation
+        """
+    @circle_min_inliers.setter
+    def circle_min_inliers(self, arg0: typing.Any) -> None:
+        ...
+    @property
+    def free_weight(self) -> float:
+        """
+        score = surface_fraction - free_weight * free_fraction (>= 0)
+        """
+    @free_weight.setter
+    def free_weight(self, arg0: typing.Any) -> None:
+        ...
+    @property
+    def max_free_fraction(self) -> float:
+        """
+        a hypothesis with more of its points in seen-free space is refused, in [0, 1]
+        """
+    @max_free_fraction.setter
+    def max_free_fraction(self, arg0: typing.Any) -> None:
+        ...
+    @property
+    def max_radius(self) -> float:
+        """
+        m: no rotation about a larger circle
+        """
+    @max_radius.setter
+    def max_radius(self, arg0: typing.Any) -> None:
+        ...
+    @property
+    def max_scoring_points(self) -> int:
+        """
+        points each hypothesis is scored on (>= 16)
+        """
+    @max_scoring_points.setter
+    def max_scoring_points(self, arg0: typing.Any) -> None:
+        ...
+    @property
+    def min_unseen_fraction(self) -> float:
+        """
+        a hypothesis with less of its points in unseen space is refused, in [0, 1]
+        """
+    @min_unseen_fraction.setter
+    def min_unseen_fraction(self, arg0: typing.Any) -> None:
+        ...
+    @property
+    def mirror_angle_step(self) -> float:
+        """
+        rad: the step between mirror planes' orientations around each principal axis
+        """
+    @mirror_angle_step.setter
+    def mirror_angle_step(self, arg0: typing.Any) -> None:
+        ...
+    @property
+    def mirror_angle_steps(self) -> int:
+        """
+        orientations each side of each principal axis (0..20)
+        """
+    @mirror_angle_steps.setter
+    def mirror_angle_steps(self, arg0: typing.Any) -> None:
+        ...
+    @property
+    def mirror_max_depth(self) -> float:
+        """
+        m: a mirror plane lies at most this far behind the footprint's far edge
+        """
+    @mirror_max_depth.setter
+    def mirror_max_depth(self, arg0: typing.Any) -> None:
+        ...
+    @property
+    def normal_radius(self) -> float:
+        """
+        m: the neighbourhood of the observed points' normals (> spacing)
+        """
+    @normal_radius.setter
+    def normal_radius(self, arg0: typing.Any) -> None:
+        ...
+    @property
+    def spacing(self) -> float:
+        """
+        m: the completed points' spacing, the profile's and footprint's bins
+        """
+    @spacing.setter
+    def spacing(self, arg0: typing.Any) -> None:
+        ...
+class Completion:
+    """
+    The completed unseen side of one object (complete_object).
+    """
+    def __repr__(self) -> str:
+        ...
+    @property
+    def hypotheses(self) -> list:
+        """
+        Every hypothesis scored, the winner first when there is one: dicts of kind, score, free_fraction,
+        surface_fraction, unseen_fraction, known_fraction, accepted, plane_or_axis (a mirror's plane [a, b, c, d];
+        a rotation's axis foot on the table and radius [x, y, z, r]).
+        """
+    @property
+    def kind(self) -> typing.Any:
+        """
+        the winner's CompletionKind
+        """
+    @property
+    def normals(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        """
+        (M, 3) unit normals, out of the object
+        """
+    @property
+    def points(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        """
+        (M, 3) the completed points only (m, world frame)
+        """
+    @property
+    def score(self) -> float:
+        """
+        the winner's score (0 for None_)
+        """
+    @property
+    def seconds(self) -> float:
+        """
+        s, wall time
+        """
+    @property
+    def warning(self) -> str:
+        """
+        why completion was limited, empty if nothing
         """
 class HandLoadSettings:
     """
@@ -3592,6 +3822,28 @@ class SettleResult:
 def build_info() -> dict[str, str]:
     """
     Versions of graspmix and of every library it was built against.
+    """
+def complete_object(points: typing.Any, plane: typing.Any, visibility: VisibilityModel, *, settings: typing.Any = None, **kwargs) -> Completion:
+    """
+    The unseen side of one object: its observed points (N, 3; voxelised, world frame), the support plane
+    [a, b, c, d] ((a, b, c) unit, towards the cameras) and the VisibilityModel of what the cameras saw
+    (scene.result.visibility). Mirror, rotation and extrusion hypotheses are scored by the views (the rule:
+    include/graspmix/perception/completion.hpp); ValueError naming the cause for bad input.
+    Settings: settings= a CompletionSettings (None: its defaults), and/or its fields as keywords,
+    which override it (an unknown keyword is a ValueError):
+      spacing = 0.003: m: the completed points' spacing, the profile's and footprint's bins
+      max_free_fraction = 0.05: a hypothesis with more of its points in seen-free space is refused, in [0, 1]
+      min_unseen_fraction = 0.15: a hypothesis with less of its points in unseen space is refused, in [0, 1]
+      free_weight = 4.0: score = surface_fraction - free_weight * free_fraction (>= 0)
+      mirror_angle_step = 0.07: rad: the step between mirror planes' orientations around each principal axis
+      mirror_angle_steps = 3: orientations each side of each principal axis (0..20)
+      mirror_max_depth = 0.05: m: a mirror plane lies at most this far behind the footprint's far edge
+      circle_max_rms = 0.003: m: a rotation needs the outline's inliers within this RMS of their circle
+      circle_min_inliers = 0.7: the fraction of the outline within 2 circle_max_rms of its circle for a rotation
+      max_radius = 0.25: m: no rotation about a larger circle
+      normal_radius = 0.01: m: the neighbourhood of the observed points' normals (> spacing)
+      max_scoring_points = 160: points each hypothesis is scored on (>= 16)
+      border_margin = 2.0: px: an observed point this close to a pinhole image's edge sets the border warning
     """
 def compute_surface_features(points: typing.Any, radius: typing.Any = None, normals: typing.Any = None, viewpoints: typing.Any = None, *, settings: typing.Any = None, **kwargs) -> SurfaceCloud:
     """

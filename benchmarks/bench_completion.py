@@ -86,7 +86,7 @@ def main() -> None:
                 segment_scene(acq.points, acq.viewpoints).result.step_seconds["visibility"] for _ in range(args.repeats)
             ]
             build = statistics.median(step)
-            run = median_seconds(lambda o=obj, s=scene: complete_object(o.points, s.plane, vis), args.repeats)
+            run = median_seconds(lambda o=obj, s=scene, v=vis: complete_object(o.points, s.plane, v), args.repeats)
             c = complete_object(obj.points, scene.plane, vis)
             totals.append(build + run)
             print(

@@ -138,17 +138,16 @@ bool kasa(const std::vector<Eigen::Vector2d>& q, Eigen::Vector2d& centre, double
 Circle fit_outline_circle(const TableFrame& f, const Footprint& fp, const CompletionSettings& s) {
   Circle c;
   const Eigen::Vector2d mid = f.u.colwise().mean().transpose();
-  // Each outline cell's point farthest from the footprint's centroid.
-  std::vector<Eigen::Vector2d> q;
-  std::vector<double> far(fp.state.size(), -1.0);
-  std::vector<int> far_row(fp.state.size(), -1);
+  // Each outline cell's points' mean (the outermost point of a cell would carry the noise's extreme outwards).
+  std::vector<Eigen::Vector2d> sum(fp.state.size(), Eigen::Vector2d::Zero());
+  std::vector<int> count(fp.state.size(), 0);
   for (Eigen::Index i = 0; i < f.u.rows(); ++i) {
     const int cell = fp.index(static_cast<int>((f.u(i, 0) - fp.origin.x()) / fp.cell),
                               static_cast<int>((f.u(i, 1) - fp.origin.y()) / fp.cell));
-    const double r = (f.u.row(i).transpose() - mid).norm();
-    if (r > far[cell]) far[cell] = r, far_row[cell] = static_cast<int>(i);
+    sum[cell] += f.u.row(i).transpose(), ++count[cell];
   }
-  for (const int cell : fp.outline) q.emplace_back(f.u.row(far_row[cell]).transpose());
+  std::vector<Eigen::Vector2d> q;
+  for (const int cell : fp.outline) q.emplace_back(sum[cell] / count[cell]);
   if (q.size() < 8) return c;
   std::vector<Eigen::Vector2d> in = q;
   const double band = 2 * s.circle_max_rms;
@@ -177,8 +176,9 @@ Shape revolution_shape(const TableFrame& f, const Circle& c, const Vec3Array& N,
   const double r_max = c.radius + 2 * spacing;
   for (Eigen::Index i = 0; i < f.u.rows(); ++i) {
     const Eigen::Vector2d radial = f.u.row(i).transpose() - c.centre;
-    const double r = radial.norm(), h = std::max(f.h[i], 0.0);
-    if (r > r_max) continue;  // a handle or a neighbour's point: not part of the body of revolution
+    const double h = std::max(f.h[i], 0.0);
+    if (radial.norm() > r_max) continue;  // a handle or a neighbour's point: not part of the body of revolution
+    const double r = std::min(radial.norm(), c.radius);  // beyond the outline's circle: the noise
     Bin& b = bins[{std::lround(h / spacing), std::lround(r / spacing)}];
     b.h += h, b.r += r, ++b.count;
     if (N.rows() == f.u.rows()) {

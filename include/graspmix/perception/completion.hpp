@@ -47,7 +47,8 @@ struct CompletionSettings {
   /// cells; segment_scene's voxel (3 mm), so completed and observed points are alike.
   double spacing = 0.003;
   /// A hypothesis with more of its points in seen-free space is refused, in [0, 1]: a few points for the depth
-  /// noise at silhouettes, none beyond.
+  /// and pixel noise at silhouettes. (0.1 admits the true cylinder under the simulated camera's noise, 4-8 %, but
+  /// also a rotation about a 9 x 6 cm box; see docs/design.md, "Completion".)
   double max_free_fraction = 0.05;
   /// A hypothesis with less of its points in unseen space adds too little to be one, in [0, 1] (keeps the
   /// mirror from planes that map the visible side onto itself).

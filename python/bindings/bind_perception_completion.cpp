@@ -61,6 +61,10 @@ void bind_completion(py::module_& m) {
              "points each hypothesis is scored on (>= 16)")
       .field("border_margin", &CompletionSettings::border_margin,
              "px: an observed point this close to a pinhole image's edge sets the border warning")
+      .field("min_height", &CompletionSettings::min_height,
+             "m: completed points lower than this above the support plane are dropped (the table's clearance)")
+      .field("observed_clearance", &CompletionSettings::observed_clearance,
+             "m: no completed point within this of an observed point (the seen surface is not doubled)")
       .done();
 
   py::class_<Completion>(m, "Completion", "The completed unseen side of one object (complete_object).")

@@ -1575,9 +1575,11 @@ class CompletionSettings:
       normal_radius = 0.01: m: the neighbourhood of the observed points' normals (> spacing)
       max_scoring_points = 160: points each hypothesis is scored on (>= 16)
       border_margin = 2.0: px: an observed point this close to a pinhole image's edge sets the border warning
+      min_height = 0.005: m: completed points lower than this above the support plane are dropped (the table's clearance)
+      observed_clearance = 0.006: m: no completed point within this of an observed point (the seen surface is not doubled)
     """
     __hash__: typing.ClassVar[None] = None
-    _fields: typing.ClassVar[tuple] = ('spacing', 'max_free_fraction', 'min_unseen_fraction', 'free_weight', 'mirror_angle_step', 'mirror_angle_steps', 'mirror_max_depth', 'circle_max_rms', 'circle_min_inliers', 'max_radius', 'normal_radius', 'max_scoring_points', 'border_margin')
+    _fields: typing.ClassVar[tuple] = ('spacing', 'max_free_fraction', 'min_unseen_fraction', 'free_weight', 'mirror_angle_step', 'mirror_angle_steps', 'mirror_max_depth', 'circle_max_rms', 'circle_min_inliers', 'max_radius', 'normal_radius', 'max_scoring_points', 'border_margin', 'min_height', 'observed_clearance')
     def __copy__(self) -> CompletionSettings:
         ...
     def __deepcopy__(self, memo: typing.Any) -> CompletionSettings:
@@ -1594,7 +1596,7 @@ class CompletionSettings:
     @typing.overload
     def __init__(self, **kwargs) -> None:
         """
-        Keyword constructor: any of the fields (spacing, max_free_fraction, min_unseen_fraction, free_weight, mirror_angle_step, mirror_angle_steps, mirror_max_depth, circle_max_rms, circle_min_inliers, max_radius, normal_radius, max_scoring_points, border_margin); the others keep their defaults.
+        Keyword constructor: any of the fields (spacing, max_free_fraction, min_unseen_fraction, free_weight, mirror_angle_step, mirror_angle_steps, mirror_max_depth, circle_max_rms, circle_min_inliers, max_radius, normal_radius, max_scoring_points, border_margin, min_height, observed_clearance); the others keep their defaults.
         """
     def __repr__(self) -> str:
         ...
@@ -1657,6 +1659,14 @@ class CompletionSettings:
     def max_scoring_points(self, arg0: typing.Any) -> None:
         ...
     @property
+    def min_height(self) -> float:
+        """
+        m: completed points lower than this above the support plane are dropped (the table's clearance)
+        """
+    @min_height.setter
+    def min_height(self, arg0: typing.Any) -> None:
+        ...
+    @property
     def min_unseen_fraction(self) -> float:
         """
         a hypothesis with less of its points in unseen space is refused, in [0, 1]
@@ -1695,6 +1705,14 @@ class CompletionSettings:
         """
     @normal_radius.setter
     def normal_radius(self, arg0: typing.Any) -> None:
+        ...
+    @property
+    def observed_clearance(self) -> float:
+        """
+        m: no completed point within this of an observed point (the seen surface is not doubled)
+        """
+    @observed_clearance.setter
+    def observed_clearance(self, arg0: typing.Any) -> None:
         ...
     @property
     def spacing(self) -> float:
@@ -2960,7 +2978,7 @@ class QuerySettings:
       kde = KdeSettings(position_bandwidth=0.005, orientation_bandwidth=0.15, feature_bandwidth=array([0.005])): KdeSettings of KDE query densities (features unused)
       frame_jitter = True: rotate each sampled surface frame about its normal by up to pi exp(-jitter_sharpness ((k1 - k2) / k1)^2)
       jitter_sharpness = 100.0: s of Kopicki's rule above
-      completed_weight = 0.5: prior weight of a completed (unseen) point in the query densities, an observed one's being 1
+      completed_weight = 1.0: prior weight of a completed (unseen) point in the query densities, an observed one's being 1
     """
     __hash__: typing.ClassVar[None] = None
     _fields: typing.ClassVar[tuple] = ('n_samples', 'n_components', 'max_iter', 'reg_covar', 'kde', 'frame_jitter', 'jitter_sharpness', 'completed_weight')
@@ -3209,7 +3227,7 @@ class SynthesizerSettings:
     Settings: settings= a SynthesizerSettings (None: its defaults), and/or its fields as keywords,
     which override it (an unknown keyword is a ValueError):
       sampling = SamplingSettings(n_samples=200, n_optimise=10, optimise=True, clear_pregrasp=True, max_sampling_rounds=10): SamplingSettings
-      query = QuerySettings(n_samples=500, n_components=5, max_iter=100, reg_covar=1e-06, kde=KdeSettings(position_bandwidth=0.005, orientation_bandwidth=0.15, feature_bandwidth=array([0.005])), frame_jitter=True, jitter_sharpness=100.0, completed_weight=0.5): QuerySettings
+      query = QuerySettings(n_samples=500, n_components=5, max_iter=100, reg_covar=1e-06, kde=KdeSettings(position_bandwidth=0.005, orientation_bandwidth=0.15, feature_bandwidth=array([0.005])), frame_jitter=True, jitter_sharpness=100.0, completed_weight=1.0): QuerySettings
       annealing = AnnealingSettings(iterations=100, initial_temperature=1.0, position_step=0.005, rotation_step=0.1, joint_step=0.5): AnnealingSettings
       seed = 0: seeds everything random in synthesis (None: 0)
     """
@@ -3457,7 +3475,7 @@ class GraspSynthesizer:
           kde = KdeSettings(position_bandwidth=0.005, orientation_bandwidth=0.15, feature_bandwidth=array([0.005])): KdeSettings of KDE query densities (features unused)
           frame_jitter = True: rotate each sampled surface frame about its normal by up to pi exp(-jitter_sharpness ((k1 - k2) / k1)^2)
           jitter_sharpness = 100.0: s of Kopicki's rule above
-          completed_weight = 0.5: prior weight of a completed (unseen) point in the query densities, an observed one's being 1
+          completed_weight = 1.0: prior weight of a completed (unseen) point in the query densities, an observed one's being 1
         """
     def sample_grasps(self, query: collections.abc.Sequence[QueryDensity], n: typing.Any, seed: typing.Any = None) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 7]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]]:
         """
@@ -3470,7 +3488,7 @@ class GraspSynthesizer:
         Settings: settings= a SynthesizerSettings (None: its defaults), and/or its fields as keywords,
         which override it (an unknown keyword is a ValueError):
           sampling = SamplingSettings(n_samples=200, n_optimise=10, optimise=True, clear_pregrasp=True, max_sampling_rounds=10): SamplingSettings
-          query = QuerySettings(n_samples=500, n_components=5, max_iter=100, reg_covar=1e-06, kde=KdeSettings(position_bandwidth=0.005, orientation_bandwidth=0.15, feature_bandwidth=array([0.005])), frame_jitter=True, jitter_sharpness=100.0, completed_weight=0.5): QuerySettings
+          query = QuerySettings(n_samples=500, n_components=5, max_iter=100, reg_covar=1e-06, kde=KdeSettings(position_bandwidth=0.005, orientation_bandwidth=0.15, feature_bandwidth=array([0.005])), frame_jitter=True, jitter_sharpness=100.0, completed_weight=1.0): QuerySettings
           annealing = AnnealingSettings(iterations=100, initial_temperature=1.0, position_step=0.005, rotation_step=0.1, joint_step=0.5): AnnealingSettings
           seed = 0: seeds everything random in synthesis (None: 0)
         """
@@ -3844,6 +3862,8 @@ def complete_object(points: typing.Any, plane: typing.Any, visibility: Visibilit
       normal_radius = 0.01: m: the neighbourhood of the observed points' normals (> spacing)
       max_scoring_points = 160: points each hypothesis is scored on (>= 16)
       border_margin = 2.0: px: an observed point this close to a pinhole image's edge sets the border warning
+      min_height = 0.005: m: completed points lower than this above the support plane are dropped (the table's clearance)
+      observed_clearance = 0.006: m: no completed point within this of an observed point (the seen surface is not doubled)
     """
 def compute_surface_features(points: typing.Any, radius: typing.Any = None, normals: typing.Any = None, viewpoints: typing.Any = None, *, settings: typing.Any = None, **kwargs) -> SurfaceCloud:
     """

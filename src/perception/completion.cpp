@@ -7,6 +7,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <unordered_map>
 #include <unordered_set>
 #include <utility>
 #include <vector>
@@ -198,21 +199,43 @@ Shape clipped_extrusion(const TableFrame& f, const detail::Footprint& fp, const 
   return out;
 }
 
-/// The winner's points where the views say Unseen or Surface, one per spacing cell, none in an observed one.
-void keep_completed(const Shape& shape, const Eigen::Ref<const Vec3Array>& P, const VisibilityModel& vis,
-                    double spacing, Completion& out) {
-  const auto key = [spacing](const Eigen::Vector3d& p) {
-    const auto c = [spacing](double x) { return static_cast<std::uint64_t>(std::llround(x / spacing) + (1 << 20)); };
-    return (c(p.x()) << 42) ^ (c(p.y()) << 21) ^ c(p.z());
+/// Cell key of p at cell size `spacing`.
+std::uint64_t cell_key(const Eigen::Vector3d& p, double spacing, int dx = 0, int dy = 0, int dz = 0) {
+  const auto c = [spacing](double x, int o) {
+    return static_cast<std::uint64_t>(std::llround(x / spacing) + o + (1 << 20));
   };
+  return (c(p.x(), dx) << 42) ^ (c(p.y(), dy) << 21) ^ c(p.z(), dz);
+}
+
+/// Whether an observed point (indexed by cells of size `radius`) lies within `radius` of p.
+bool near_observed(const Eigen::Vector3d& p, const std::unordered_multimap<std::uint64_t, Eigen::Index>& cells,
+                   const Eigen::Ref<const Vec3Array>& P, double radius) {
+  for (int dx = -1; dx <= 1; ++dx)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dz = -1; dz <= 1; ++dz) {
+        const auto range = cells.equal_range(cell_key(p, radius, dx, dy, dz));
+        for (auto it = range.first; it != range.second; ++it)
+          if ((P.row(it->second).transpose() - p).squaredNorm() < radius * radius) return true;
+      }
+  return false;
+}
+
+/// The winner's points where the views say Unseen or Surface, min_height above the plane, one per spacing cell,
+/// none within observed_clearance of an observed point.
+void keep_completed(const Shape& shape, const Eigen::Ref<const Vec3Array>& P, const TableFrame& f,
+                    const VisibilityModel& vis, const CompletionSettings& s, Completion& out) {
+  std::unordered_multimap<std::uint64_t, Eigen::Index> observed;
+  for (Eigen::Index i = 0; i < P.rows(); ++i) observed.emplace(cell_key(P.row(i).transpose(), s.observed_clearance), i);
   std::unordered_set<std::uint64_t> taken;
-  for (Eigen::Index i = 0; i < P.rows(); ++i) taken.insert(key(P.row(i).transpose()));
   const Eigen::VectorXd d = vis.signed_distances(shape.points);
   const double tol = vis.settings().surface_tolerance;
   std::vector<Eigen::Index> keep;
-  for (Eigen::Index i = 0; i < shape.points.rows(); ++i)
-    if (std::isfinite(d[i]) && d[i] <= tol && taken.insert(key(shape.points.row(i).transpose())).second)
-      keep.push_back(i);
+  for (Eigen::Index i = 0; i < shape.points.rows(); ++i) {
+    const Eigen::Vector3d p = shape.points.row(i).transpose();
+    if (!(std::isfinite(d[i]) && d[i] <= tol) || f.n.dot(p) + f.d < s.min_height) continue;
+    if (near_observed(p, observed, P, s.observed_clearance) || !taken.insert(cell_key(p, s.spacing)).second) continue;
+    keep.push_back(i);
+  }
   out.points.resize(static_cast<Eigen::Index>(keep.size()), 3);
   out.normals.resize(out.points.rows(), 3);
   for (Eigen::Index j = 0; j < out.points.rows(); ++j) {
@@ -241,6 +264,8 @@ void check_completion_settings(const CompletionSettings& s) {
   need(in(s.normal_radius, s.spacing * (1 + 1e-9), 1.0), "normal_radius must be larger than spacing (and <= 1 m)");
   need(s.max_scoring_points >= 16 && s.max_scoring_points <= 1'000'000, "max_scoring_points must be in [16, 1e6]");
   need(in(s.border_margin, 0, 1e4), "border_margin must be in [0, 10000] px");
+  need(in(s.min_height, 0, 1.0), "min_height must be in [0, 1] m");
+  need(in(s.observed_clearance, 1e-4, 0.1), "observed_clearance must be in [0.0001, 0.1] m");
 }
 
 Completion complete_object(const Eigen::Ref<const Vec3Array>& points, const Eigen::Vector4d& plane,
@@ -287,7 +312,7 @@ Completion complete_object(const Eigen::Ref<const Vec3Array>& points, const Eige
                   ? detail::revolution_shape(f, circle, N, settings.spacing)
                   : detail::mirror_shape(points, N, win.plane_or_axis.head<3>(), -win.plane_or_axis[3]);
     }
-    keep_completed(shape, points, visibility, settings.spacing, out);
+    keep_completed(shape, points, f, visibility, settings, out);
     out.kind = win.kind;
     out.score = win.score;
   }

@@ -7,6 +7,10 @@
 
 namespace graspmix {
 
+/// m: what lies at most this far above a support plane is the table, not an object: the segmentation drops
+/// observed points there and the completion adds none (the plane has its own term in the collision expert).
+inline constexpr double kTableClearance = 0.005;
+
 /// How orient_plane decides the side of the points, with h_i = a x_i + b y_i + c z_i + d their signed
 /// heights over the plane [a, b, c, d]. Each rule keeps the plane as given on a tie.
 enum class PlaneSide {

@@ -26,8 +26,9 @@
 // taken), else the best-scoring accepted mirror, else the extrusion if it adds any point, else None.
 //
 // The completion is the winner's points where the views say Unseen or Surface (never SeenFree, never where
-// no view says anything: nothing beyond what the images could have seen), thinned to one per `spacing` cell
-// and without the cells of observed points. An object the image border cuts (a pinhole view whose image edge
+// no view says anything: nothing beyond what the images could have seen), at least min_height above the
+// plane, thinned to one per `spacing` cell and none within observed_clearance of an observed point (the surface the
+// camera saw is not doubled). An object the image border cuts (a pinhole view whose image edge
 // lies within border_margin px of an observed point) is completed all the same, with a warning.
 #include <cstdint>
 #include <string>
@@ -35,6 +36,7 @@
 
 #include <Eigen/Core>
 
+#include "graspmix/core/plane.hpp"
 #include "graspmix/core/types.hpp"
 #include "graspmix/perception/visibility.hpp"
 
@@ -74,6 +76,12 @@ struct CompletionSettings {
   int max_scoring_points = 160;
   /// px: an observed point this close to a pinhole view's image edge sets the border warning (>= 0).
   double border_margin = 2.0;
+  /// m: completed points lower than this above the support plane are dropped, as the segmentation drops observed
+  /// ones (the table's clearance: a finger reaching the table is the plane term's to judge). >= 0.
+  double min_height = kTableClearance;
+  /// m: no completed point within this of an observed point (> 0): the surface the camera saw is not doubled by
+  /// a layer just behind it (two voxels: the observed surface's own thickness with the depth noise).
+  double observed_clearance = 0.006;
 };
 
 struct CompletionHypothesis {

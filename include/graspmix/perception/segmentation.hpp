@@ -71,6 +71,7 @@
 
 #include <Eigen/Core>
 
+#include "graspmix/core/plane.hpp"
 #include "graspmix/core/types.hpp"
 #include "graspmix/perception/cleanup.hpp"
 #include "graspmix/perception/visibility.hpp"
@@ -92,7 +93,7 @@ struct SegmentationSettings {
   double plane_margin = 0.01;               ///< rule 4: m the inliers must reach beyond the objects' footprint
   /// m: points at most this far above the support plane (or behind it) are the table and are dropped.
   /// Also the default of a synthesis' (SynthesisOptions().segmentation, Python).
-  double table_clearance = 0.005;
+  double table_clearance = kTableClearance;
   bool remove_outliers = CleanupSettings{}.remove_outliers;        ///< on the object points only
   int outlier_neighbours = CleanupSettings{}.outlier_neighbours;   ///< k of the mean-distance statistic
   double outlier_std_ratio = CleanupSettings{}.outlier_std_ratio;  ///< mean + ratio * std cut

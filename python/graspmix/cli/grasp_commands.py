@@ -117,8 +117,9 @@ def describe_scene(scene, targets: list) -> str:
     objects = ", ".join(
         f"{o.index}{'*' if o.index in targets else ''} ({o.n_points} pts at "
         + ",".join(f"{v:+.3f}" for v in o.centroid)
+        + (f"; {c.kind.name.lower()} +{len(c.points)} pts" if c is not None and len(c.points) else "")
         + ")"
-        for o in scene.objects
+        for o, c in zip(scene.objects, scene.completions)
     )
     return f"support plane {plane}; {len(scene.objects)} objects (* = target): {objects}"
 
@@ -160,6 +161,8 @@ def cmd_synthesize(args: argparse.Namespace) -> int:
     t = grasps.timing
     print(f"{model.method} model '{model_path.name}' on {args.cloud}: {len(grasps.surface.points)} surface points")
     print(describe_scene(grasps.scene, grasps.targets))
+    for note in grasps.scene.notes:
+        print(f"graspmix_cli synthesize: note: {note}", file=sys.stderr)
     print(
         f"time: features {t['features'] * 1e3:.0f} ms (segmentation {t['segmentation'] * 1e3:.0f} ms), "
         f"query densities {t['query'] * 1e3:.0f} ms, "

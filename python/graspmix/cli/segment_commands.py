@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import argparse
 import json
+import sys
 
 import numpy as np
 
@@ -37,6 +39,10 @@ def cmd_segment(args) -> int:
     points, viewpoints, plane = view_inputs(args, load_points(args.cloud))
     settings = given(args, "cluster_tolerance", "min_cluster_size", "table_clearance", "voxel_size", "seed")
     scene = segment_scene(points, viewpoints, plane, **settings)
+    if args.completion:
+        scene.complete()
+    for note in scene.notes:
+        print(f"graspmix_cli segment: note: {note}", file=sys.stderr)
     if args.png:
         from ..viz import plot_scene
 
@@ -51,7 +57,7 @@ def cmd_segment(args) -> int:
         c, e = o.centroid, o.obb_extents
         print(
             f"  {o.index}: {o.n_points} points, centroid [{c[0]:.3f}, {c[1]:.3f}, {c[2]:.3f}] m, "
-            f"box {e[0] * 100:.1f} x {e[1] * 100:.1f} x {e[2] * 100:.1f} cm"
+            f"box {e[0] * 100:.1f} x {e[1] * 100:.1f} x {e[2] * 100:.1f} cm" + completion_text(scene, o.index)
         )
     r = scene.result
     print(
@@ -66,6 +72,15 @@ def cmd_segment(args) -> int:
     return 0
 
 
+def completion_text(scene, index: int) -> str:
+    """ ", completed: <kind> (score s) +k points[; warning]" for an object Scene.complete completed, else ""."""
+    c = scene.completions[index]
+    if c is None:
+        return ""
+    text = f"; completed: {c.kind.name.rstrip('_').lower()} (score {c.score:.2f}) +{len(c.points)} points"
+    return text + (f"; {c.warning}" if c.warning else "")
+
+
 COMMANDS = ("segment",)
 
 
@@ -75,6 +90,12 @@ def add_parsers(sub) -> None:
     add_view_arguments(s)
     s.add_argument("--png", type=output_file, help="write a picture of the objects over the plane")
     s.add_argument("--json", action="store_true", help="print the segmentation as JSON instead")
+    s.add_argument(
+        "--completion",
+        action=argparse.BooleanOptionalAction,
+        default=True,
+        help="complete each object's unseen side from what the camera saw (graspmix.complete_object; default on)",
+    )
     tuning = s.add_argument_group("settings (default: SegmentationSettings')")
     tuning.add_argument("--cluster-tolerance", type=float_in(gt=0.0), help="m: points closer are one object")
     tuning.add_argument("--min-cluster-size", type=int_in(1), help="smaller clusters are noise")

@@ -70,6 +70,12 @@ SWITCHES = (
         "the soft contact-quality expert: the fingers close from the pre-grasp onto the object, the contacts "
         "scored by the antipodal friction-cone test",
     ),
+    (
+        "completion",
+        "completion",
+        "complete the unseen side of every object from what the camera saw (mirror or rotation symmetry, else the "
+        "footprint extruded to the table) and grasp the completed objects",
+    ),
 )
 
 

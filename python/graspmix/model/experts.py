@@ -62,12 +62,12 @@ def collision_expert(
     return _core.CollisionExpert(hand, points, plane=plane, occupancy=occupancy, settings=opts.collision, **extra)
 
 
-def approach_collision(hand, scene, opts: SynthesisOptions, occupancy=None):
-    """What the clear approach keeps clear of: the scene's points as balls of opts.approach.clearance, its plane
-    and occupancy; None when the clear approach is off."""
+def approach_collision(hand, points, plane, opts: SynthesisOptions, occupancy=None):
+    """What the clear approach keeps clear of: the scene's points (observed and completed) as balls of
+    opts.approach.clearance, its plane and occupancy; None when the clear approach is off."""
     if opts.approach is None:
         return None
-    return collision_expert(hand, scene.points, scene.plane, opts, occupancy, point_radius=opts.approach.clearance)
+    return collision_expert(hand, points, plane, opts, occupancy, point_radius=opts.approach.clearance)
 
 
 def clear_approach_expert(collision, config, opts: SynthesisOptions):

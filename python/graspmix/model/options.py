@@ -35,6 +35,7 @@ PARTS = {
     "axis_alignment": (_core.AxisAlignmentSettings, False),
     "approach": (_core.ClearApproachSettings, True),
     "contact_quality": (_core.ContactQualitySettings, True),
+    "completion": (_core.CompletionSettings, True),
 }
 COLLISION_MODELS = ("surface", "occupancy")
 # m: the default table clearance, for the tools that crop a table outside a synthesis (plots, the top-down planner)
@@ -62,6 +63,10 @@ class SynthesisOptions:
     axis_alignment: the preference for an approach axis, used when synthesize(approach_axis=...) is given.
     approach: the hard clear approach of the open hand from the stand-off (None: off).
     contact_quality: the soft antipodal contact test of the closing hand (None: off).
+    completion: the unseen side of every object completed from what the cameras saw (graspmix.complete_object;
+        None: off). The completed points join the target's surface, weighing query.completed_weight in the query
+        densities, and the points the hand keeps out of (collision, clear approach, contact quality). Without a
+        viewpoint or a support plane nothing is completed, and the grasp set's notes say so.
     seed: seeds everything random (RANSAC, sampling, annealing).
     """
 
@@ -75,6 +80,7 @@ class SynthesisOptions:
     axis_alignment: _core.AxisAlignmentSettings = _part("axis_alignment")
     approach: _core.ClearApproachSettings | None = _part("approach")
     contact_quality: _core.ContactQualitySettings | None = _part("contact_quality")
+    completion: _core.CompletionSettings | None = _part("completion")
     seed: int = 0
 
     def __post_init__(self):
@@ -114,6 +120,11 @@ class SynthesisOptions:
             check_float(self.approach.clearance, "approach.clearance", 0.0)
         if self.contact_quality is not None:
             check_float(self.contact_quality.friction, "contact_quality.friction", gt=0.0)
+        check_float(q.completed_weight, "query.completed_weight", gt=0.0)
+        if q.completed_weight > 1.0:
+            raise ValueError(
+                f"query.completed_weight must be in (0, 1] (an observed point weighs 1), got {q.completed_weight}"
+            )
 
     def __repr__(self) -> str:
         """The parts that differ from the defaults (all of them: repr(options.part))."""
@@ -127,12 +138,13 @@ class SynthesisOptions:
     @classmethod
     def paper(cls, **parts) -> "SynthesisOptions":
         """The paper's synthesis: the collision expert on the cloud's points, no clear approach, no contact
-        quality (the experiment's "paper" preset); `parts` as the constructor's."""
+        quality, no completion (the experiment's "paper" preset); `parts` as the constructor's."""
         return cls(
             **{
                 "collision": _core.CollisionSettings(model="surface"),
                 "approach": None,
                 "contact_quality": None,
+                "completion": None,
                 **parts,
             }
         )

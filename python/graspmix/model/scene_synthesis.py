@@ -56,17 +56,41 @@ class SurfaceUnion:
 
 def segment_query(points, viewpoints, plane, opts: SynthesisOptions, features: FeatureScale) -> Scene:
     """The scene of a query cloud: the known plane (or the one found, opts.segmentation.find_plane), the objects
-    above it, at the model's voxel size."""
-    return segment_scene(
+    above it, at the model's voxel size, each completed (opts.completion; Scene.complete)."""
+    scene = segment_scene(
         points, viewpoints=viewpoints, plane=plane, settings=opts.segmentation_for(features.voxel_size)
     )
+    return scene if opts.completion is None else scene.complete(opts.completion)
+
+
+# m: a completed point's normal is oriented towards a virtual viewpoint this far out along its outward normal
+COMPLETED_VIEW_DISTANCE = 1.0
 
 
 def object_surface(scene: Scene, index: int, features: FeatureScale):
-    """The surface features of one segmented object, its normals oriented towards its viewpoints."""
+    """The surface features of one segmented object, its normals oriented towards its viewpoints; with its
+    completion (scene.completed(index)), the observed and completed points together, each completed point's
+    normal turned outward as the completion says (towards a viewpoint on its outside)."""
     rows = scene.objects[index].rows
     vp = None if scene.viewpoints is None else scene.viewpoints[rows]
-    return _core.compute_surface_features(scene.points[rows], radius=features.radius, viewpoints=vp)
+    points, normals = scene.completed(index)
+    if len(points) == 0 or vp is None:
+        return _core.compute_surface_features(scene.points[rows], radius=features.radius, viewpoints=vp)
+    return _core.compute_surface_features(
+        np.vstack([scene.points[rows], points]),
+        radius=features.radius,
+        viewpoints=np.vstack([vp, points + COMPLETED_VIEW_DISTANCE * normals]),
+    )
+
+
+def query_weights(scene: Scene, index: int, surface, opts: SynthesisOptions):
+    """Each surface point's prior weight in the query densities: 1 where observed, opts.query.completed_weight
+    where completed (object_surface put the completed points after the observed ones); None without completion."""
+    n_observed = len(scene.objects[index].rows)
+    completed = np.asarray(surface.indices) >= n_observed
+    if not np.any(completed):
+        return None
+    return np.where(completed, opts.query.completed_weight, 1.0)
 
 
 def clear_of_neighbours(model, scene: Scene, target: int, opts: SynthesisOptions, config=None):
@@ -76,7 +100,8 @@ def clear_of_neighbours(model, scene: Scene, target: int, opts: SynthesisOptions
     others = scene.labels != target
     if not np.any(others):
         return None
-    collision = collision_expert(model.hand, scene.points[others], None, opts)
+    completed = [scene.completed(o.index)[0] for o in scene.objects if o.index != target]
+    collision = collision_expert(model.hand, np.vstack([scene.points[others], *completed]), None, opts)
     config = model.synthesizer.config_model if config is None else config
     return _core.CollisionFreeExpert(collision, config, name="clear_of_neighbours")
 
@@ -118,8 +143,9 @@ def synthesize_targets(
         points, viewpoints = (scene.points, scene.viewpoints) if cloud is None else cloud
         occupancy = occupancy_map(points, viewpoints, scene.points, scene.plane, opts)
         timing["occupancy"] = occupancy.stats["seconds"]
-    collision = collision_expert(model.hand, scene.points, scene.plane, opts, occupancy)
-    approach = approach_collision(model.hand, scene, opts, occupancy)
+    solid = scene.solid_points()  # observed and completed: the hand stays out of both
+    collision = collision_expert(model.hand, solid, scene.plane, opts, occupancy)
+    approach = approach_collision(model.hand, solid, scene.plane, opts, occupancy)
     # The same for every target; each target adds its own neighbours' expert at the end.
     shared = constraint_experts(
         model.hand, scene.points, scene.plane, opts, approach_axis=approach_axis, reachable=reachable, experts=experts
@@ -137,7 +163,10 @@ def synthesize_targets(
                 contact_quality_expert(model.hand, surface, config, opts),
             )
             extra = shared + [e for e in own if e is not None]
-            res = t.synthesizer.synthesize(surface.frames, surface.curvatures, collision, extra, settings)
+            weights = query_weights(scene, i, surface, opts)
+            res = t.synthesizer.synthesize(
+                surface.frames, surface.curvatures, collision, extra, settings, weights=weights
+            )
             for g in grasps_from_result(res, model.hand):
                 g.object = on
                 g.type = t.name

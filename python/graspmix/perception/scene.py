@@ -4,6 +4,7 @@ a JSON form; camera_to_world for clouds given in a camera's frame."""
 from __future__ import annotations
 
 import math
+import time
 from dataclasses import dataclass
 
 import numpy as np
@@ -120,12 +121,53 @@ class Scene:
             )
             for o in result.objects
         ]
+        # per object: its Completion (graspmix.complete_object) once Scene.complete ran, else None
+        self.completions: list = [None] * len(self.objects)
+        self.notes: list[str] = []  # what a user should know of this scene (e.g. why nothing was completed)
         # the whole segmentation, then each of its steps (Segmentation.step_seconds)
         self.timing = {"segmentation": float(result.seconds)}
         self.timing.update({f"segmentation.{k}": float(v) for k, v in result.step_seconds.items()})
 
     def __len__(self) -> int:
         return len(self.objects)
+
+    @property
+    def visibility(self):
+        """The VisibilityModel of what the cameras saw (None without viewpoints)."""
+        return self.result.visibility
+
+    def complete(self, settings=None) -> "Scene":
+        """Completes every object's unseen side (graspmix.complete_object, by its rule) from what the cameras
+        saw; completions[i] holds object i's. Without viewpoints or a support plane nothing is completed and
+        `notes` says why. Returns the scene."""
+        why = None
+        if self.visibility is None:
+            why = "no viewpoint given: the unseen side of the objects is not completed"
+        elif self.plane is None:
+            why = "no support plane: the unseen side of the objects is not completed"
+        if why is not None:
+            self.notes.append(why)
+            return self
+        t0 = time.perf_counter()
+        self.completions = [
+            _core.complete_object(o.points, self.plane, self.visibility, settings=settings) for o in self.objects
+        ]
+        for o, c in zip(self.objects, self.completions):
+            if c.warning:
+                self.notes.append(f"object {o.index}: {c.warning}")
+        self.timing["completion"] = time.perf_counter() - t0
+        return self
+
+    def completed(self, index: int) -> tuple[np.ndarray, np.ndarray]:
+        """(points (k, 3), outward normals (k, 3)) completed on object `index`; (0, 3) arrays when none."""
+        c = self.completions[index]
+        if c is None or len(c.points) == 0:
+            return np.zeros((0, 3)), np.zeros((0, 3))
+        return np.asarray(c.points), np.asarray(c.normals)
+
+    def solid_points(self) -> np.ndarray:
+        """The objects' observed points and every completed point: what a hand must stay out of."""
+        return np.vstack([self.points, *(self.completed(o.index)[0] for o in self.objects)])
 
     def __repr__(self) -> str:
         plane = "given" if self.plane_given else ("found" if self.plane_found else "none")
@@ -192,7 +234,10 @@ class Scene:
                 }
                 for c in r.candidates
             ],
-            "objects": [o.to_dict() for o in self.objects],
+            "objects": [
+                {**o.to_dict(), "completion": completion_dict(c)} for o, c in zip(self.objects, self.completions)
+            ],
+            "notes": list(self.notes),
             "counts": {
                 "input": r.n_input,
                 "after_voxel": r.n_after_voxel,
@@ -205,6 +250,31 @@ class Scene:
             },
             "timing_s": dict(self.timing),
         }
+
+
+def completion_dict(c) -> dict | None:
+    """A Completion's summary: the winning hypothesis, its score, the points it added, every hypothesis scored (its
+    time is in the scene's timing, "completion")."""
+    if c is None:
+        return None
+    return {
+        "kind": c.kind.name.rstrip("_").lower(),
+        "score": float(c.score),
+        "n_points": len(c.points),
+        "warning": c.warning,
+        "hypotheses": [
+            {k: (v.name.rstrip("_").lower() if k == "kind" else _json_value(v)) for k, v in h.items()}
+            for h in c.hypotheses
+        ],
+    }
+
+
+def _json_value(v):
+    if isinstance(v, np.ndarray):
+        return v.tolist()
+    if isinstance(v, (bool, np.bool_)):
+        return bool(v)
+    return float(v)
 
 
 def segment_scene(points, viewpoints=None, plane=None, **settings) -> Scene:

@@ -1,4 +1,4 @@
-"""A picture of a segmented scene: the objects coloured by label over the support plane."""
+"""A picture of a segmented scene: the objects coloured by label over the support plane, completed points hollow."""
 
 from __future__ import annotations
 
@@ -10,8 +10,9 @@ from .plots import plane_frame, pyplot
 
 
 def plot_scene(scene, path: str | Path, cloud: np.ndarray | None = None, max_background: int = 20000) -> None:
-    """Top view (on the plane) and side view (height over it) of scene.objects in colour, with the rest of
-    `cloud` (the input points, subsampled) in grey. scene: a graspmix.Scene."""
+    """Top view (on the plane) and side view (height over it) of scene.objects in colour (their completed points, if
+    Scene.complete ran, as hollow markers of the same colour), with the rest of `cloud` (the input points,
+    subsampled) in grey. scene: a graspmix.Scene."""
     plt = pyplot()
     o, u, v, n = plane_frame(scene.plane)
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.8))
@@ -28,6 +29,13 @@ def plot_scene(scene, path: str | Path, cloud: np.ndarray | None = None, max_bac
         axes[1].scatter(q @ u, q @ n, s=1.5, color=colour)
         c = obj.centroid - o
         axes[0].annotate(str(obj.index), (c @ u, c @ v), fontsize=11, weight="bold")
+        done, _ = scene.completed(obj.index)
+        if len(done):  # completed points: hollow markers of the object's colour
+            q = done - o
+            kind = scene.completions[obj.index].kind.name.lower()
+            style = dict(s=4, facecolors="none", edgecolors=[colour], linewidths=0.4)
+            axes[0].scatter(q @ u, q @ v, label=f"{obj.index}: {kind} +{len(done)} pts (hollow)", **style)
+            axes[1].scatter(q @ u, q @ n, **style)
     if scene.objects:  # frame the objects, with a margin of table around them
         q = scene.points - o
         for ax, (a, b) in zip(axes, ((u, v), (u, n))):

@@ -63,6 +63,8 @@ void bind_completion(py::module_& m) {
              "px: an observed point this close to a pinhole image's edge sets the border warning")
       .field("min_height", &CompletionSettings::min_height,
              "m: completed points lower than this above the support plane are dropped (the table's clearance)")
+      .field("rotation_margin", &CompletionSettings::rotation_margin,
+             "the rotation wins unless the best accepted mirror scores more than this above it")
       .field("observed_clearance", &CompletionSettings::observed_clearance,
              "m: no completed point within this of an observed point (the seen surface is not doubled)")
       .done();

@@ -644,7 +644,7 @@ class SegmentationSettings:
       join_max_gap = 0.03: m, join rule 1: clusters farther apart never join
       join_seen_margin = 0.005: m, join rule 2: the gap was seen empty when the views saw more than this beyond it (median)
       join_max_size = 0.15: m, join rule 3: the joined cluster's largest principal-box side
-      visibility_tolerance = 0.005: m: Segmentation.visibility's surface_tolerance (within this of the observed surface is Surface)
+      visibility_tolerance = 0.008: m: Segmentation.visibility's surface_tolerance (within this of the observed surface is Surface)
       visibility_resolution = 0.005: rad: the bin of Segmentation.visibility's range images (VisibilitySettings.angular_resolution)
     """
     __hash__: typing.ClassVar[None] = None
@@ -1576,10 +1576,11 @@ class CompletionSettings:
       max_scoring_points = 160: points each hypothesis is scored on (>= 16)
       border_margin = 2.0: px: an observed point this close to a pinhole image's edge sets the border warning
       min_height = 0.005: m: completed points lower than this above the support plane are dropped (the table's clearance)
+      rotation_margin = 0.05: the rotation wins unless the best accepted mirror scores more than this above it
       observed_clearance = 0.006: m: no completed point within this of an observed point (the seen surface is not doubled)
     """
     __hash__: typing.ClassVar[None] = None
-    _fields: typing.ClassVar[tuple] = ('spacing', 'max_free_fraction', 'min_unseen_fraction', 'free_weight', 'mirror_angle_step', 'mirror_angle_steps', 'mirror_max_depth', 'circle_max_rms', 'circle_min_inliers', 'max_radius', 'normal_radius', 'max_scoring_points', 'border_margin', 'min_height', 'observed_clearance')
+    _fields: typing.ClassVar[tuple] = ('spacing', 'max_free_fraction', 'min_unseen_fraction', 'free_weight', 'mirror_angle_step', 'mirror_angle_steps', 'mirror_max_depth', 'circle_max_rms', 'circle_min_inliers', 'max_radius', 'normal_radius', 'max_scoring_points', 'border_margin', 'min_height', 'rotation_margin', 'observed_clearance')
     def __copy__(self) -> CompletionSettings:
         ...
     def __deepcopy__(self, memo: typing.Any) -> CompletionSettings:
@@ -1596,7 +1597,7 @@ class CompletionSettings:
     @typing.overload
     def __init__(self, **kwargs) -> None:
         """
-        Keyword constructor: any of the fields (spacing, max_free_fraction, min_unseen_fraction, free_weight, mirror_angle_step, mirror_angle_steps, mirror_max_depth, circle_max_rms, circle_min_inliers, max_radius, normal_radius, max_scoring_points, border_margin, min_height, observed_clearance); the others keep their defaults.
+        Keyword constructor: any of the fields (spacing, max_free_fraction, min_unseen_fraction, free_weight, mirror_angle_step, mirror_angle_steps, mirror_max_depth, circle_max_rms, circle_min_inliers, max_radius, normal_radius, max_scoring_points, border_margin, min_height, rotation_margin, observed_clearance); the others keep their defaults.
         """
     def __repr__(self) -> str:
         ...
@@ -1713,6 +1714,14 @@ class CompletionSettings:
         """
     @observed_clearance.setter
     def observed_clearance(self, arg0: typing.Any) -> None:
+        ...
+    @property
+    def rotation_margin(self) -> float:
+        """
+        the rotation wins unless the best accepted mirror scores more than this above it
+        """
+    @rotation_margin.setter
+    def rotation_margin(self, arg0: typing.Any) -> None:
         ...
     @property
     def spacing(self) -> float:
@@ -3863,6 +3872,7 @@ def complete_object(points: typing.Any, plane: typing.Any, visibility: Visibilit
       max_scoring_points = 160: points each hypothesis is scored on (>= 16)
       border_margin = 2.0: px: an observed point this close to a pinhole image's edge sets the border warning
       min_height = 0.005: m: completed points lower than this above the support plane are dropped (the table's clearance)
+      rotation_margin = 0.05: the rotation wins unless the best accepted mirror scores more than this above it
       observed_clearance = 0.006: m: no completed point within this of an observed point (the seen surface is not doubled)
     """
 def compute_surface_features(points: typing.Any, radius: typing.Any = None, normals: typing.Any = None, viewpoints: typing.Any = None, *, settings: typing.Any = None, **kwargs) -> SurfaceCloud:
@@ -3983,7 +3993,7 @@ def segment_scene(points: typing.Any, viewpoints: typing.Any = None, plane: typi
       join_max_gap = 0.03: m, join rule 1: clusters farther apart never join
       join_seen_margin = 0.005: m, join rule 2: the gap was seen empty when the views saw more than this beyond it (median)
       join_max_size = 0.15: m, join rule 3: the joined cluster's largest principal-box side
-      visibility_tolerance = 0.005: m: Segmentation.visibility's surface_tolerance (within this of the observed surface is Surface)
+      visibility_tolerance = 0.008: m: Segmentation.visibility's surface_tolerance (within this of the observed surface is Surface)
       visibility_resolution = 0.005: rad: the bin of Segmentation.visibility's range images (VisibilitySettings.angular_resolution)
     """
 def sim_execute(hand: Hand, object: SimObject, T_world_object: typing.Any, T_world_wrist: typing.Any, pregrasp: typing.Any, grasp: typing.Any, settings: typing.Any = None, **kwargs) -> SimResult:

@@ -265,6 +265,7 @@ void check_completion_settings(const CompletionSettings& s) {
   need(s.max_scoring_points >= 16 && s.max_scoring_points <= 1'000'000, "max_scoring_points must be in [16, 1e6]");
   need(in(s.border_margin, 0, 1e4), "border_margin must be in [0, 10000] px");
   need(in(s.min_height, 0, 1.0), "min_height must be in [0, 1] m");
+  need(in(s.rotation_margin, 0, 1.0), "rotation_margin must be in [0, 1]");
   need(in(s.observed_clearance, 1e-4, 0.1), "observed_clearance must be in [0.0001, 0.1] m");
 }
 
@@ -295,9 +296,13 @@ Completion complete_object(const Eigen::Ref<const Vec3Array>& points, const Eige
 
   const auto by_score = [](const CompletionHypothesis& a, const CompletionHypothesis& b) { return a.score > b.score; };
   std::sort(mirrors.begin(), mirrors.end(), by_score);
-  if (rotation.accepted) out.hypotheses.push_back(rotation);
+  // The rotation wins unless an accepted mirror explains the views better by more than rotation_margin.
+  const auto best_mirror = std::find_if(mirrors.begin(), mirrors.end(), [](const auto& m) { return m.accepted; });
+  const bool rotation_first = rotation.accepted && (best_mirror == mirrors.end() ||
+                                                    rotation.score >= best_mirror->score - settings.rotation_margin);
+  if (rotation_first) out.hypotheses.push_back(rotation);
   for (const auto& m : mirrors) out.hypotheses.push_back(m);
-  if (circle.ok && !rotation.accepted) out.hypotheses.push_back(rotation);
+  if (circle.ok && !rotation_first) out.hypotheses.push_back(rotation);
   out.hypotheses.push_back(extrusion);
   std::stable_partition(out.hypotheses.begin(), out.hypotheses.end(),
                         [](const CompletionHypothesis& h) { return h.accepted; });

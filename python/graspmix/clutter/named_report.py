@@ -111,12 +111,22 @@ def _pct(e: dict) -> str:
 
 def named_results_table(summary: dict) -> list[list[str]]:
     """Rows (a header first): per mode and method the success rate and the neighbours lifted instead."""
-    out = [["mode", "method", "scenes", "attempts", "success (95% CI)", "a neighbour instead", "excluded picks"]]
+    head = [
+        "mode",
+        "method",
+        "scenes",
+        "attempts",
+        "success (95% CI)",
+        "a neighbour instead (95% CI)",
+        "excluded picks",
+    ]
+    out = [head]
     for mode, per in summary["results"].items():
         for method, c in per.items():
-            n, wrong = len(c["per_scene"]), c["outcomes"].get("wrong object", 0)
-            x = c["excluded"]
-            out.append([mode, method, str(n), str(c["attempts"]), _pct(c["success"]), str(wrong), str(x["picks"])])
+            n, wrong = len(c["per_scene"]), f"{c['outcomes'].get('wrong object', 0)}: {_pct(c['wrong_object'])}"
+            out.append(
+                [mode, method, str(n), str(c["attempts"]), _pct(c["success"]), wrong, str(c["excluded"]["picks"])]
+            )
     return out
 
 

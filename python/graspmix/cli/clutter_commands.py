@@ -1,4 +1,5 @@
-"""clutter: the clutter-removal protocol (VGN, GIGA) in the simulation, GSR and DR with 95% intervals."""
+"""clutter: the clutter-removal protocol (VGN, GIGA) in the simulation, GSR and DR with 95% intervals; or,
+with --task named, one object per scene named by a point on it and lifted (or not)."""
 
 from __future__ import annotations
 
@@ -26,20 +27,25 @@ def _protocol(args):
         max_attempts=ClutterProtocol.max_attempts if args.max_attempts is None else args.max_attempts,
         seed=args.seed,
         synthesis=synthesis_options(args),
+        task=args.task,
+        targets=1 if args.targets is None else args.targets,
     )
 
 
 def _print_results(res: dict, out: Path) -> None:
     from ..clutter import CLUTTER_CSV_NAME, results_table
+    from ..clutter.named import NAMED_CSV_NAME
     from ..io import CLUTTER_SUMMARY_FORMAT, read_document
 
-    done = f"{res['rounds']}/{res['total']} rounds in {out / CLUTTER_CSV_NAME}"
-    print(f"ran {res['ran']} attempts in {res['seconds']:.1f} s ({res['skipped']} rounds already done); {done}")
+    units, csv = ("attempts", NAMED_CSV_NAME) if res.get("task") == "named" else ("rounds", CLUTTER_CSV_NAME)
+    done = f"{res['rounds']}/{res['total']} {units} in {out / csv}"
+    print(f"ran {res['ran']} attempts in {res['seconds']:.1f} s ({res['skipped']} {units} already done); {done}")
     if res["rounds"] == 0:
         return
     for row in results_table(read_document(out / "summary.json", CLUTTER_SUMMARY_FORMAT)):
         print("  " + " | ".join(row))
-    print(f"wrote {out / 'summary.json'}, {out / 'report.md'}, {out / 'clutter.png'}")
+    plot = "" if res.get("task") == "named" else f", {out / 'clutter.png'}"
+    print(f"wrote {out / 'summary.json'}, {out / 'report.md'}{plot}")
 
 
 def cmd_clutter(args: argparse.Namespace) -> int:
@@ -48,8 +54,10 @@ def cmd_clutter(args: argparse.Namespace) -> int:
     p = _protocol(args)
     what = f"{p.scenes} scenes x modes {','.join(p.modes)} x methods {','.join(p.methods)}, {p.objects} objects each"
     seen = f"{p.views} view(s), {'noise' if p.noise else 'no noise'}"
-    print(f"clutter: {what} from {p.object_list}; {seen}; {args.jobs} job(s); into {args.out}", flush=True)
-    _print_results(run_clutter(p, args.out, **run_options(args)), Path(args.out))
+    task = f"; {p.targets} named object(s) per scene" if p.task == "named" else ""
+    print(f"clutter: {what} from {p.object_list}; {seen}{task}; {args.jobs} job(s); into {args.out}", flush=True)
+    res = run_clutter(p, args.out, **run_options(args))
+    _print_results({**res, "task": p.task}, Path(args.out))
     return 0
 
 
@@ -74,6 +82,17 @@ def add_parsers(sub) -> None:
         "--object-list",
         type=input_path,
         help="objects to draw scenes from, one URDF a line (default: data/objects/clutter_test.txt)",
+    )
+    s.add_argument(
+        "--task",
+        choices=["clear", "named"],
+        default="clear",
+        help="clear the scenes (default), or lift one object per scene named by a point on it (point:x,y,z)",
+    )
+    s.add_argument(
+        "--targets",
+        type=int_in(1, 50),
+        help="--task named: objects named per scene, each on the untouched scene (default 1)",
     )
     s.add_argument("--closing", choices=["full", "learnt"], default="full", help="how grasps close (default full)")
     s.add_argument(

@@ -12,6 +12,10 @@ scene index, shared by every method), repeat: observe (acquire_scene), plan (a m
 scene that remains; stop when the table is clear, after 2 failures in a row, or when the planner finds
 no grasp (VGN's rules). Modules: protocol (settings, seeds, CSV columns), rounds (the loop with injectable
 stages, the real stages), runner, report (GSR, DR with Wilson intervals), topdown (the baseline).
+
+ClutterProtocol(task="named", targets=K) measures instead what a user asks for most: per scene, K objects
+named by a point on their visible surface, each lifted or not on the untouched scene (modules named: the
+target rule, the point, the outcome "wrong object", the unit; named_report: its summary and report).
 """
 
 from .protocol import (

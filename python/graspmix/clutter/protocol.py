@@ -7,6 +7,10 @@ failed; a planner that finds no grasp ends the round. VGN has no cap on the numb
 bound it by 2N: every success removes an object and no two failures follow each other). The cap of
 Jiang et al.'s protocol description and of graspmix's issue, N + 2 attempts, is the default here
 (max_attempts = -1); 0 keeps VGN's rules alone, any other number caps the attempts at it.
+
+task "named" is the other measurement on the same scenes: no clearing, but one object named by a point on
+its visible surface (what a user clicks), lifted or not (graspmix.clutter.named); `targets` named objects per
+scene, each on the untouched scene.
 """
 
 from __future__ import annotations
@@ -35,6 +39,8 @@ CLOSING = tuple(EXPERIMENT_CLOSING)  # how executed grasps close: see graspmix.e
 OUTCOMES = ("success", "start in collision", "no contact", "not held", "two objects lifted", "synthesis failed")
 # Why a round ended (the "stop" column of its last row).
 STOPS = ("clear", "two failures", "no grasp", "attempt limit")
+# What a run measures: "clear" the scenes (VGN's rounds), or lift a "named" object (graspmix.clutter.named).
+TASKS = ("clear", "named")
 CLUTTER_NAME = "clutter.json"
 CLUTTER_CSV_NAME = "clutter_attempts.csv"
 
@@ -60,6 +66,8 @@ class ClutterProtocol:
     max_attempts: int = -1  # per round; -1: objects + 2; 0: VGN's rules alone (no cap)
     seed: int = 0
     models: dict = field(default_factory=dict)  # method -> model file; empty: the bundled box models
+    task: str = "clear"  # TASKS: clear the scenes, or lift a named object per scene
+    targets: int = 1  # task "named": objects named per scene (each on the untouched scene)
 
     def __post_init__(self):
         if not self.object_list:  # named as bundled data, so the run's files name no machine's path
@@ -85,6 +93,7 @@ class ClutterProtocol:
         if not isinstance(self.synthesis, SynthesisOptions):
             raise ValueError(f"synthesis must be SynthesisOptions, got {type(self.synthesis).__name__}")
         check_int(self.max_attempts, "max_attempts", -1, 10_000)
+        self._check_task()
         check_seed(self.seed)
         if not isinstance(self.noise, bool):
             raise ValueError(f"noise must be true or false, got {quote(self.noise)}")
@@ -100,6 +109,17 @@ class ClutterProtocol:
                 raise ValueError(f"a {what} is listed twice: {','.join(values)}")
         if not isinstance(self.models, dict) or any(m not in METHODS for m in self.models):
             raise ValueError(f"models must be a dict method (gmm|kde) -> model file, got {quote(self.models)}")
+
+    def _check_task(self) -> None:
+        if self.task not in TASKS:
+            raise ValueError(f"task must be one of {', '.join(TASKS)}, got {quote(self.task)}")
+        check_int(self.targets, "targets", 1, 50)
+        if self.task == "clear" and self.targets != 1:
+            raise ValueError(f"targets ({self.targets}) is for the named task only (task is clear)")
+        if self.task == "named" and self.max_attempts != -1:
+            raise ValueError(f"max_attempts ({self.max_attempts}) is for the clear task only (named: one attempt each)")
+        if self.task == "named" and self.targets > self.objects:
+            raise ValueError(f"targets ({self.targets}) must not exceed the objects per scene ({self.objects})")
 
     def check_inputs(self) -> None:
         """The object list has at least `objects` entries and every model file exists: before any work."""
@@ -119,6 +139,8 @@ class ClutterProtocol:
     def to_json(self) -> dict:
         """clutter.json's "protocol": files identified by content (sha256) as well as by name."""
         d = {f: getattr(self, f) for f in PROTOCOL_FIELDS}
+        if self.task == "clear":  # a clearing run's clutter.json as before the task existed: its folders resume
+            del d["task"], d["targets"]
         d["synthesis"] = self.synthesis.to_dict()
         d["object_list_sha256"] = sha256_file(self.object_list_path)
         d["models"] = {
@@ -127,8 +149,17 @@ class ClutterProtocol:
         }
         return d
 
-    # -- the work: one round per (mode, scene, method); all methods share a mode's scenes
-    def rounds(self) -> list[tuple[str, int, str]]:
+    # -- the work: one round per (mode, scene, method), or per (mode, scene, method, pick) named object;
+    # all methods share a mode's scenes
+    def rounds(self) -> list[tuple]:
+        if self.task == "named":
+            return [
+                (mode, s, m, k)
+                for mode in self.modes
+                for s in range(self.scenes)
+                for m in self.methods
+                for k in range(self.targets)
+            ]
         return [(mode, s, m) for mode in self.modes for s in range(self.scenes) for m in self.methods]
 
     def scene_seed(self, mode: str, scene: int) -> int:

@@ -22,6 +22,8 @@ from ..experiment.report import finite_json, render_markdown
 from ..experiment.stats import clustered_rate
 from ..io import CLUTTER_SUMMARY_FORMAT
 from ..io.checks import check_output_path, quote
+from .named import NAMED_CSV_NAME
+from .named_report import named_blocks, named_results_table, read_named_rows, summarize_named
 from .protocol import CLUTTER_CSV, CLUTTER_CSV_NAME, OUTCOMES, STOPS, TIME_COLUMNS, load_clutter_protocol
 
 
@@ -112,6 +114,8 @@ def _pct(e: dict) -> str:
 
 def results_table(summary: dict) -> list[list[str]]:
     """Rows (a header first) of the findings: per mode and method GSR, DR, cleared with 95% CIs."""
+    if summary.get("task") == "named":
+        return named_results_table(summary)
     out = [["mode", "method", "scenes", "attempts", "GSR (95% CI)", "DR (95% CI)", "cleared (95% CI)"]]
     for mode, per in summary["results"].items():
         for method, c in per.items():
@@ -198,20 +202,23 @@ def check_rows(rows: list[dict], proto: dict, path: Path) -> None:
 
 
 def build_clutter_report(run_dir) -> dict:
-    """Reads a clutter run folder; writes summary.json, clutter.png and report.md; returns the summary."""
+    """Reads a clutter run folder; writes summary.json, clutter.png (not for the named task) and report.md;
+    returns the summary."""
     from ..viz.clutter import plot_clutter
 
     run_dir = Path(run_dir)
     doc = load_clutter_protocol(run_dir)
-    rows = read_rows_checked(run_dir, doc)
-    for name in ("summary.json", "clutter.png", "report.md"):
+    named = doc["protocol"].get("task", "clear") == "named"
+    rows = (read_named_rows if named else read_rows_checked)(run_dir, doc)
+    for name in ("summary.json", "report.md") + (() if named else ("clutter.png",)):
         check_output_path(run_dir / name, "report")
-    summary = summarize(rows, doc)
+    summary = (summarize_named if named else summarize)(rows, doc)
     if not summary["results"]:
-        raise ValueError(f"{run_dir / CLUTTER_CSV_NAME}: no round has ended yet")
+        raise ValueError(f"{run_dir / (NAMED_CSV_NAME if named else CLUTTER_CSV_NAME)}: no round has ended yet")
     (run_dir / "summary.json").write_text(json.dumps(summary, indent=1) + "\n")
-    plot_clutter(summary, run_dir / "clutter.png")
-    (run_dir / "report.md").write_text(render_markdown(_blocks(summary)))
+    if not named:
+        plot_clutter(summary, run_dir / "clutter.png")
+    (run_dir / "report.md").write_text(render_markdown((named_blocks if named else _blocks)(summary)))
     return summary
 
 

@@ -14,6 +14,7 @@ from pathlib import Path
 from ..experiment.log import AttemptLog, read_rows
 from ..experiment.progress import Progress
 from ..experiment.runner import check_run_options, execute_work, prepare_folder
+from .named import NAMED_CSV, NAMED_CSV_NAME, done_named, run_named
 from .protocol import CLUTTER_CSV, CLUTTER_CSV_NAME, CLUTTER_FOLDER, ClutterProtocol
 from .report import build_clutter_report
 from .rounds import run_round
@@ -37,16 +38,20 @@ def run_clutter(
     ray_address: str | None = None,
     max_rounds: int | None = None,
     command: str | None = None,
-    round_fn=run_round,
+    round_fn=None,
 ) -> dict:
     """Runs (or resumes) the protocol into the folder out; returns {"rounds": rounds done, "ran": attempts
     written now, "skipped": rounds done before, "total": rounds of the protocol, "seconds"}. jobs, executor, ray_address: as graspmix.experiment.run. max_rounds: stop after this many
     rounds (tests of resuming). round_fn(pdoc, unit, todo) -> rows: the round (a module-level function,
-    for workers to import; tests give one with fake stages)."""
+    for workers to import; tests give one with fake stages; None: run_round, or run_named for the named
+    task, whose units are (mode, scene, method, pick) and whose log is named_attempts.csv)."""
     check_run_options(executor, jobs)
     out = prepare_folder(protocol, out, command, CLUTTER_FOLDER)
-    log = AttemptLog(out / CLUTTER_CSV_NAME, CLUTTER_CSV)
-    done = done_rounds(log.path)
+    named = protocol.task == "named"
+    done_fn = done_named if named else done_rounds
+    round_fn = round_fn or (run_named if named else run_round)
+    log = AttemptLog(out / (NAMED_CSV_NAME if named else CLUTTER_CSV_NAME), NAMED_CSV if named else CLUTTER_CSV)
+    done = done_fn(log.path)
     rounds = protocol.rounds()
     work = [(u, None) for u in rounds if u not in done]
     work = work if max_rounds is None else work[:max_rounds]
@@ -58,7 +63,7 @@ def run_clutter(
         pdoc, work, log, bar, jobs=jobs, executor=executor, ray_address=ray_address, fn=round_fn, count=_one
     )
     result = {
-        "rounds": len(done_rounds(log.path)),
+        "rounds": len(done_fn(log.path)),
         "ran": ran,
         "skipped": len(done),
         "total": len(rounds),

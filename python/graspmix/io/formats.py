@@ -298,6 +298,8 @@ _CLUTTER = Obj(
                 "max_attempts": Int(lo=-1),
                 "seed": _COUNT,
                 "models": Map(Obj({"file": Str(), "sha256": Str()})),
+                "task": Str(),
+                "targets": Int(lo=1),
             },
             required=["object_list", "objects", "scenes", "modes", "methods", "synthesis"],
         ),
@@ -309,13 +311,20 @@ _RATE_CI = Obj(
     {"rate": _RATE, "low": _RATE, "high": _RATE, "successes": _COUNT, "trials": _COUNT, "clusters": _COUNT},
     required=["rate", "low", "high"],
 )
+_NAMED_RATE = Obj({"trials": _COUNT, "successes": _COUNT}, required=["trials"])  # rate null without attempts
+_NAMED_CELL = Obj(
+    {"success": _NAMED_RATE, "wrong_object": _NAMED_RATE, "outcomes": Map(_COUNT)},
+    required=["success", "wrong_object", "outcomes"],
+)
 _CLUTTER_SUMMARY = Obj(
     {
         "format": Str(),
         "protocol": _CLUTTER.fields["protocol"],
         "provenance": Map(Any()),
         "rounds": Obj({"done": _COUNT, "expected": _COUNT, "complete": Bool()}, required=["done", "expected"]),
-        "results": Map(Map(Obj({"gsr": _RATE_CI, "dr": _RATE_CI}, required=["gsr", "dr"]))),
+        "task": Str(),
+        # the clearing task's GSR and DR, or the named task's success and neighbours lifted instead
+        "results": Map(Map(Either(Obj({"gsr": _RATE_CI, "dr": _RATE_CI}, required=["gsr", "dr"]), _NAMED_CELL))),
     },
     required=["protocol", "rounds", "results"],
 )

@@ -1,5 +1,5 @@
-"""The tables of docs/experiment.md come from results/: the render commands the page gives beside them, run
-again on the stored runs, write the page unchanged."""
+"""The tables of docs/experiment.md and docs/one-view.md come from results/: the render commands each page gives
+beside them, run again on the stored runs, write the page unchanged."""
 
 import re
 import shlex
@@ -7,13 +7,19 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 REPO = Path(__file__).resolve().parents[3]
-PAGE = "docs/experiment.md"
-SCRIPTS = ("scripts/findings_table.py", "scripts/ablation_table.py")
+# page -> the tables (markers) it holds
+PAGES = {
+    "docs/experiment.md": {"findings", "defaults", "ablation", "heldout", "heldout-paper"},
+    "docs/one-view.md": {"dev", "heldout", "four-views", "paper", "clutter"},
+}
+SCRIPTS = ("scripts/findings_table.py", "scripts/ablation_table.py", "scripts/clutter_table.py")
 
 
 def render_commands(text: str) -> list[list[str]]:
-    """The page's `python scripts/... --doc docs/experiment.md` commands, continuation lines joined and the
+    """The page's `python scripts/... --doc PAGE` commands, continuation lines joined and the
     shell variables its blocks set (NAME=value lines) expanded."""
     commands = []
     for block in re.findall(r"```bash\n(.*?)```", text, re.S):
@@ -32,15 +38,17 @@ def expand(word: str, variables: dict) -> str:
     return re.sub(r"\$(\w+)", lambda v: variables[v.group(1)], word)
 
 
-def test_the_render_commands_of_the_experiment_page_reproduce_its_tables(tmp_path):
-    text = (REPO / PAGE).read_text()
+@pytest.mark.parametrize("page", sorted(PAGES))
+def test_the_render_commands_of_a_page_reproduce_its_tables(tmp_path, page):
+    text = (REPO / page).read_text()
     commands = render_commands(text)
     markers = set(re.findall(r"<!-- ([\w-]+):begin -->", text))
     rendered = {c[c.index("--marker") + 1] if "--marker" in c else "findings" for c in commands}
-    assert markers == {"findings", "defaults", "ablation", "heldout", "heldout-paper"} and rendered == markers
-    copy = tmp_path / "experiment.md"
+    assert markers == PAGES[page] and rendered == markers
+    copy = tmp_path / Path(page).name
     copy.write_text(text)
     for words in commands:
+        assert words[words.index("--doc") + 1] == page
         words = [sys.executable, *words[1:]]
         words[words.index("--doc") + 1] = str(copy)
         subprocess.run(words, cwd=REPO, check=True, capture_output=True, text=True)

@@ -138,8 +138,9 @@ class Scene:
 
     def complete(self, settings=None) -> "Scene":
         """Completes every object's unseen side (graspmix.complete_object, by its rule) from what the cameras
-        saw; completions[i] holds object i's. Without viewpoints or a support plane nothing is completed and
-        `notes` says why. Returns the scene."""
+        saw; completions[i] holds object i's. Without viewpoints or a support plane nothing is completed, and an
+        object complete_object refuses (e.g. seen by a camera in the support plane) stays as seen: `notes` says
+        why. Bad settings are a ValueError. Returns the scene."""
         why = None
         if self.visibility is None:
             why = "no viewpoint given: the unseen side of the objects is not completed"
@@ -149,10 +150,15 @@ class Scene:
             self.notes.append(why)
             return self
         t0 = time.perf_counter()
-        self.completions = [
-            _core.complete_object(o.points, self.plane, self.visibility, settings=settings) for o in self.objects
-        ]
-        for o, c in zip(self.objects, self.completions):
+        for o in self.objects:
+            try:
+                c = _core.complete_object(o.points, self.plane, self.visibility, settings=settings)
+            except ValueError as e:  # e.g. a camera in the support plane: that object stays as seen
+                if "CompletionSettings" in str(e):  # bad settings: the caller's error
+                    raise
+                self.notes.append(f"object {o.index} is not completed: {e}")
+                continue
+            self.completions[o.index] = c
             if c.warning:
                 self.notes.append(f"object {o.index}: {c.warning}")
         self.timing["completion"] = time.perf_counter() - t0

@@ -119,3 +119,16 @@ def test_completion_options():
     for bad in (0.0, 1.5):
         with pytest.raises(ValueError, match="completed_weight"):
             opts.updated({"query.completed_weight": bad})
+
+
+def test_a_camera_in_the_support_plane_leaves_the_objects_as_seen_and_says_so(seen_box):
+    """A camera in the given support plane: no object can be completed (complete_object refuses the view), the
+    synthesis goes on with the observed points, and each object's note names it and the cause; bad completion
+    settings stay an error."""
+    acq, model = seen_box
+    grasps = model.synthesize(acq.points, viewpoints=np.array([0.5, 0.1, 0.0]), plane=[0, 0, 1, 0])
+    assert len(grasps) and grasps.scene.completions == [None]
+    assert grasps.scene.notes and grasps.scene.notes[0].startswith("object 0 is not completed: ")
+    assert "in or below the plane" in grasps.scene.notes[0]
+    with pytest.raises(ValueError, match="spacing"):
+        model.synthesize(acq.points, SynthesisOptions().updated({"completion.spacing": 5.0}), viewpoints=acq.viewpoints)

@@ -13,7 +13,7 @@ from ..io import data_path, load_points
 from ..io.checks import MAX_COMPONENTS, MAX_ITERATIONS
 from ..model import GraspModel, default_model_path, learn
 from ..model.settings import METHODS, LearnSettings
-from ..perception import parse_target
+from ..perception import kind_name, parse_target
 from .common import CliError, float_in, input_path, int_in, output_file, parse_floats, parse_joints, seed
 from .synthesis_flags import add_synthesis_arguments, list_settings, synthesis_options
 from .views import add_view_arguments, view_inputs
@@ -117,7 +117,7 @@ def describe_scene(scene, targets: list) -> str:
     objects = ", ".join(
         f"{o.index}{'*' if o.index in targets else ''} ({o.n_points} pts at "
         + ",".join(f"{v:+.3f}" for v in o.centroid)
-        + (f"; {c.kind.name.lower()} +{len(c.points)} pts" if c is not None and len(c.points) else "")
+        + (f"; {kind_name(c.kind)} +{len(c.points)} pts" if c is not None and len(c.points) else "")
         + ")"
         for o, c in zip(scene.objects, scene.completions)
     )

@@ -9,7 +9,7 @@ import sys
 import numpy as np
 
 from ..io import load_points
-from ..perception import segment_scene
+from ..perception import kind_name, segment_scene
 from .common import float_in, given, input_path, int_in, output_file, seed
 from .views import add_view_arguments, view_inputs
 
@@ -77,7 +77,7 @@ def completion_text(scene, index: int) -> str:
     c = scene.completions[index]
     if c is None:
         return ""
-    text = f"; completed: {c.kind.name.rstrip('_').lower()} (score {c.score:.2f}) +{len(c.points)} points"
+    text = f"; completed: {kind_name(c.kind)} (score {c.score:.2f}) +{len(c.points)} points"
     return text + (f"; {c.warning}" if c.warning else "")
 
 

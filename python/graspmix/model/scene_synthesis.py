@@ -97,11 +97,9 @@ def clear_of_neighbours(model, scene: Scene, target: int, opts: SynthesisOptions
     """The hard expert that keeps a grasp on `target` out of every other object of the scene, at the grasp
     and at its pre-grasp (where the hand starts, by `config`: a grasp type's ConfigModel, default the
     model's first); None in a scene of one object."""
-    others = scene.labels != target
-    if not np.any(others):
+    if len(scene.objects) < 2:
         return None
-    completed = [scene.completed(o.index)[0] for o in scene.objects if o.index != target]
-    collision = collision_expert(model.hand, np.vstack([scene.points[others], *completed]), None, opts)
+    collision = collision_expert(model.hand, scene.solid_points(without=target), None, opts)
     config = model.synthesizer.config_model if config is None else config
     return _core.CollisionFreeExpert(collision, config, name="clear_of_neighbours")
 

@@ -13,6 +13,7 @@ from .scene import (
     Target,
     camera_to_world,
     in_world,
+    kind_name,
     parse_target,
     segment_scene,
 )
@@ -24,6 +25,7 @@ __all__ = [
     "Target",
     "camera_to_world",
     "in_world",
+    "kind_name",
     "parse_target",
     "segment_scene",
 ]

@@ -171,9 +171,12 @@ class Scene:
             return np.zeros((0, 3)), np.zeros((0, 3))
         return np.asarray(c.points), np.asarray(c.normals)
 
-    def solid_points(self) -> np.ndarray:
-        """The objects' observed points and every completed point: what a hand must stay out of."""
-        return np.vstack([self.points, *(self.completed(o.index)[0] for o in self.objects)])
+    def solid_points(self, without: int | None = None) -> np.ndarray:
+        """The objects' observed points and every completed point, but object `without`'s: what a hand must stay
+        out of."""
+        kept = [o for o in self.objects if o.index != without]
+        observed = self.points if without is None else self.points[self.labels != without]
+        return np.vstack([observed, *(self.completed(o.index)[0] for o in kept)])
 
     def __repr__(self) -> str:
         plane = "given" if self.plane_given else ("found" if self.plane_found else "none")
@@ -258,19 +261,23 @@ class Scene:
         }
 
 
+def kind_name(kind) -> str:
+    """A CompletionKind as a word: "mirror", "rotation", "extrusion", "none"."""
+    return kind.name.rstrip("_").lower()
+
+
 def completion_dict(c) -> dict | None:
     """A Completion's summary: the winning hypothesis, its score, the points it added, every hypothesis scored (its
     time is in the scene's timing, "completion")."""
     if c is None:
         return None
     return {
-        "kind": c.kind.name.rstrip("_").lower(),
+        "kind": kind_name(c.kind),
         "score": float(c.score),
         "n_points": len(c.points),
         "warning": c.warning,
         "hypotheses": [
-            {k: (v.name.rstrip("_").lower() if k == "kind" else _json_value(v)) for k, v in h.items()}
-            for h in c.hypotheses
+            {k: (kind_name(v) if k == "kind" else _json_value(v)) for k, v in h.items()} for h in c.hypotheses
         ],
     }
 

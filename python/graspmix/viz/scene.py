@@ -6,6 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..perception import kind_name
 from .plots import plane_frame, pyplot
 
 
@@ -32,7 +33,7 @@ def plot_scene(scene, path: str | Path, cloud: np.ndarray | None = None, max_bac
         done, _ = scene.completed(obj.index)
         if len(done):  # completed points: hollow markers of the object's colour
             q = done - o
-            kind = scene.completions[obj.index].kind.name.lower()
+            kind = kind_name(scene.completions[obj.index].kind)
             style = dict(s=4, facecolors="none", edgecolors=[colour], linewidths=0.4)
             axes[0].scatter(q @ u, q @ v, label=f"{obj.index}: {kind} +{len(done)} pts (hollow)", **style)
             axes[1].scatter(q @ u, q @ n, **style)

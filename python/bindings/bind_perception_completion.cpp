@@ -24,17 +24,14 @@ py::dict hypothesis_dict(const CompletionHypothesis& h, const py::object& kind) 
 
 void bind_completion(py::module_& m) {
   const auto code = [](CompletionKind k) { return static_cast<int>(k); };
-  py::object kind = py::module_::import("enum").attr("IntEnum")(
-      "CompletionKind",
-      py::make_tuple(py::make_tuple("None_", code(CompletionKind::None)),
-                     py::make_tuple("Mirror", code(CompletionKind::Mirror)),
-                     py::make_tuple("Rotation", code(CompletionKind::Rotation)),
-                     py::make_tuple("Extrusion", code(CompletionKind::Extrusion))),
-      py::arg("module") = m.attr("__name__"));
-  kind.attr("__doc__") =
+  const py::object kind = int_enum(
+      m, "CompletionKind",
+      {{"None_", code(CompletionKind::None)},
+       {"Mirror", code(CompletionKind::Mirror)},
+       {"Rotation", code(CompletionKind::Rotation)},
+       {"Extrusion", code(CompletionKind::Extrusion)}},
       "Which hypothesis completed an object (complete_object): None_ (0, none accepted), Mirror (1, a vertical "
-      "plane), Rotation (2, a vertical axis), Extrusion (3, walls down to the table).";
-  m.attr("CompletionKind") = kind;
+      "plane), Rotation (2, a vertical axis), Extrusion (3, walls down to the table).");
   SettingsClass<CompletionSettings>(m, "CompletionSettings", "The completion of an object's unseen side.")
       .field("spacing", &CompletionSettings::spacing,
              "m: the completed points' spacing, the profile's and footprint's bins")

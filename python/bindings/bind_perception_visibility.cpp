@@ -165,20 +165,14 @@ void bind_camera(py::module_& m) {
 
 void bind_visibility(py::module_& m) {
   bind_camera(m);
-  // A Python enum.IntEnum made from the C++ values (no pybind11 enum type: numpy compares an IntEnum with the
-  // uint8 codes classify returns, states == SpaceState.Unseen; pybind11 2's enums it compares as objects).
   const auto code = [](SpaceState s) { return static_cast<int>(s); };
-  py::object space_state =
-      py::module_::import("enum").attr("IntEnum")("SpaceState",
-                                                  py::make_tuple(py::make_tuple("SeenFree", code(SpaceState::SeenFree)),
-                                                                 py::make_tuple("Surface", code(SpaceState::Surface)),
-                                                                 py::make_tuple("Unseen", code(SpaceState::Unseen))),
-                                                  py::arg("module") = m.attr("__name__"));
-  space_state.attr("__doc__") =
-      "What the views saw of a point, the codes VisibilityModel.classify returns: SeenFree (0, in front of the "
-      "observed surface along the point's ray), Surface (1, within surface_tolerance of it), Unseen (2, behind it, "
-      "outside every image, or on a ray with no return).";
-  m.attr("SpaceState") = space_state;
+  int_enum(m, "SpaceState",
+           {{"SeenFree", code(SpaceState::SeenFree)},
+            {"Surface", code(SpaceState::Surface)},
+            {"Unseen", code(SpaceState::Unseen)}},
+           "What the views saw of a point, the codes VisibilityModel.classify returns: SeenFree (0, in front of the "
+           "observed surface along the point's ray), Surface (1, within surface_tolerance of it), Unseen (2, behind "
+           "it, outside every image, or on a ray with no return).");
   SettingsClass<VisibilitySettings>(m, "VisibilitySettings", "The visibility model (VisibilityModel).")
       .field("surface_tolerance", &VisibilitySettings::surface_tolerance,
              "m: within this of the observed surface along the ray is Surface (>= 0)")

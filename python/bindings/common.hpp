@@ -6,6 +6,8 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
@@ -22,6 +24,10 @@ namespace py = pybind11;
 /// A (N, cols) float64 matrix from any array-like; cols < 0 accepts any width. A 1-D input of
 /// length cols is taken as one row when one_d_as_row is true.
 RowMatrixXd to_matrix(const py::handle& obj, const char* name, int cols = -1, bool one_d_as_row = false);
+/// A Python enum.IntEnum `name` of (member, value) pairs, with its docstring, set as m.<name> and returned (no
+/// pybind11 enum type: numpy compares an IntEnum with the uint8 codes an array holds).
+py::object int_enum(py::module_& m, const char* name, const std::vector<std::pair<const char*, int>>& members,
+                    const char* doc);
 /// Points (M, 3), a (3,) array as one row; None -> 0 rows.
 Vec3Array to_points3(const py::object& obj, const char* name);
 /// A 1-D float64 vector of length n (n < 0: any).

@@ -36,6 +36,16 @@ RowMatrixXd to_matrix(const py::handle& obj, const char* name, int cols, bool on
   return Eigen::Map<const RowMatrixXd>(a.data(), rows, width);
 }
 
+py::object int_enum(py::module_& m, const char* name, const std::vector<std::pair<const char*, int>>& members,
+                    const char* doc) {
+  py::tuple pairs(members.size());
+  for (std::size_t i = 0; i < members.size(); ++i) pairs[i] = py::make_tuple(members[i].first, members[i].second);
+  py::object e = py::module_::import("enum").attr("IntEnum")(name, pairs, py::arg("module") = m.attr("__name__"));
+  e.attr("__doc__") = doc;
+  m.attr(name) = e;
+  return e;
+}
+
 Vec3Array to_points3(const py::object& obj, const char* name) {
   if (obj.is_none()) return Vec3Array(0, 3);
   return Vec3Array(to_matrix(obj, name, 3, true));

@@ -42,6 +42,14 @@ class Lap {
 
 bool finite_ge(double v, double lo) { return std::isfinite(v) && v >= lo; }
 
+/// The settings of the scene's visibility model (Segmentation::visibility).
+VisibilitySettings visibility_settings(const SegmentationSettings& s) {
+  VisibilitySettings vs;
+  vs.surface_tolerance = s.visibility_tolerance;
+  vs.angular_resolution = s.visibility_resolution;
+  return vs;
+}
+
 void check_settings(const SegmentationSettings& s) {
   if (!finite_ge(s.voxel_size, 0)) bad("voxel_size must be a finite size >= 0 (m; 0 switches it off)");
   if (!(finite_ge(s.plane_distance, 0) && s.plane_distance > 0)) bad("plane_distance must be > 0 (m)");
@@ -67,11 +75,8 @@ void check_settings(const SegmentationSettings& s) {
   if (!finite_ge(s.join_max_gap, 0)) bad("join_max_gap must be a finite distance >= 0 (m)");
   if (!std::isfinite(s.join_seen_margin)) bad("join_seen_margin must be a finite distance (m)");
   if (!(finite_ge(s.join_max_size, 0) && s.join_max_size > 0)) bad("join_max_size must be a finite size > 0 (m)");
-  VisibilitySettings vs;
-  vs.surface_tolerance = s.visibility_tolerance;
-  vs.angular_resolution = s.visibility_resolution;
   try {
-    check_visibility_settings(vs);
+    check_visibility_settings(visibility_settings(s));
   } catch (const std::invalid_argument&) {
     bad("visibility_tolerance must be a finite distance >= 0 (m) and visibility_resolution in (0, 0.5] rad");
   }
@@ -428,12 +433,9 @@ Segmentation segment_scene(const Vec3Array& points, const Vec3Array& viewpoints,
   }
   lap.add_to(out.times.voxel);
   if (cams.given) {
-    VisibilitySettings vs;
-    vs.surface_tolerance = s.visibility_tolerance;
-    vs.angular_resolution = s.visibility_resolution;
     const Vec3Array one = cams.single.transpose();
     out.visibility = std::make_shared<const VisibilityModel>(
-        VisibilityModel::from_views(P, cams.per_point.rows() ? cams.per_point : one, vs));
+        VisibilityModel::from_views(P, cams.per_point.rows() ? cams.per_point : one, visibility_settings(s)));
   }
   lap.add_to(out.times.visibility);
   Extraction e;

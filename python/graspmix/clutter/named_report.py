@@ -18,6 +18,7 @@ from ..experiment.stats import RateCI, clustered_rate, wilson_ci
 from ..io import CLUTTER_SUMMARY_FORMAT
 from ..io.checks import quote
 from .named import NAMED_CSV, NAMED_CSV_NAME, NAMED_OUTCOMES, NO_TARGET, TARGET_RULE, TIME_COLUMNS
+from .protocol import check_row
 
 
 def _rate(successes: list[int], trials: list[int]) -> dict:
@@ -192,16 +193,9 @@ def named_blocks(summary: dict) -> list[tuple]:
 def check_named_rows(rows: list[dict], proto: dict, path: Path) -> None:
     """Every row belongs to the protocol and has a known outcome: a CSV edited by hand is an error."""
     for i, r in enumerate(rows, start=1):
-        if r["mode"] not in proto["modes"] or r["method"] not in proto["methods"]:
-            raise ValueError(
-                f"{path}: row {i}: mode/method {quote(r['mode'])}/{quote(r['method'])} not in the protocol"
-            )
-        if r["scene"] is None or not 0 <= r["scene"] < proto["scenes"]:
-            raise ValueError(f"{path}: row {i}: scene {quote(r['scene'])} is not in 0..{proto['scenes'] - 1}")
+        check_row(r, i, proto, (*NAMED_OUTCOMES, NO_TARGET), path)
         if r["pick"] is None or not 0 <= r["pick"] < proto["targets"]:
             raise ValueError(f"{path}: row {i}: pick {quote(r['pick'])} is not in 0..{proto['targets'] - 1}")
-        if r["outcome"] not in (*NAMED_OUTCOMES, NO_TARGET) or r["success"] != int(r["outcome"] == "success"):
-            raise ValueError(f"{path}: row {i}: outcome {quote(r['outcome'])} with success {quote(r['success'])}")
         if r["placed"] is None or r["eligible"] is None:
             raise ValueError(f"{path}: row {i}: placed {quote(r['placed'])}, eligible {quote(r['eligible'])}")
 

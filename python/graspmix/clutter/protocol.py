@@ -225,3 +225,14 @@ CLUTTER_CSV = CsvSchema(
     FLOAT_COLUMNS,
     "clutter attempts",
 )
+
+
+def check_row(r: dict, i: int, proto: dict, outcomes, path: Path) -> None:
+    """Row i (1-based) of a run's CSV has the protocol's mode, method and scene, and one of `outcomes` that agrees
+    with its success: a CSV edited by hand is an error (ValueError naming the file, the row and the column)."""
+    if r["mode"] not in proto["modes"] or r["method"] not in proto["methods"]:
+        raise ValueError(f"{path}: row {i}: mode/method {quote(r['mode'])}/{quote(r['method'])} not in the protocol")
+    if r["scene"] is None or not 0 <= r["scene"] < proto["scenes"]:
+        raise ValueError(f"{path}: row {i}: scene {quote(r['scene'])} is not in 0..{proto['scenes'] - 1}")
+    if r["outcome"] not in outcomes or r["success"] != int(r["outcome"] == "success"):
+        raise ValueError(f"{path}: row {i}: outcome {quote(r['outcome'])} with success {quote(r['success'])}")

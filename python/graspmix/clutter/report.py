@@ -24,7 +24,7 @@ from ..io import CLUTTER_SUMMARY_FORMAT
 from ..io.checks import check_output_path, quote
 from .named import NAMED_CSV_NAME
 from .named_report import named_blocks, named_results_table, read_named_rows, summarize_named
-from .protocol import CLUTTER_CSV, CLUTTER_CSV_NAME, OUTCOMES, STOPS, TIME_COLUMNS, load_clutter_protocol
+from .protocol import CLUTTER_CSV, CLUTTER_CSV_NAME, OUTCOMES, STOPS, TIME_COLUMNS, check_row, load_clutter_protocol
 
 
 def rounds_of(rows: list[dict]) -> dict:
@@ -189,14 +189,7 @@ def _blocks(summary: dict) -> list[tuple]:
 def check_rows(rows: list[dict], proto: dict, path: Path) -> None:
     """Every row belongs to the protocol and has a known outcome: a CSV edited by hand is an error."""
     for i, r in enumerate(rows, start=1):
-        if r["mode"] not in proto["modes"] or r["method"] not in proto["methods"]:
-            raise ValueError(
-                f"{path}: row {i}: mode/method {quote(r['mode'])}/{quote(r['method'])} not in the protocol"
-            )
-        if r["scene"] is None or not 0 <= r["scene"] < proto["scenes"]:
-            raise ValueError(f"{path}: row {i}: scene {quote(r['scene'])} is not in 0..{proto['scenes'] - 1}")
-        if r["outcome"] not in OUTCOMES or r["success"] != int(r["outcome"] == "success"):
-            raise ValueError(f"{path}: row {i}: outcome {quote(r['outcome'])} with success {quote(r['success'])}")
+        check_row(r, i, proto, OUTCOMES, path)
         if r["stop"] not in ("", *STOPS) or not r["placed"]:
             raise ValueError(f"{path}: row {i}: stop {quote(r['stop'])}, placed {quote(r['placed'])}")
 

@@ -15,8 +15,9 @@ import argparse
 import os
 import statistics
 import tempfile
-import time
 from pathlib import Path
+
+from bench_common import load_average, machine_line, median_seconds
 
 SHAPE_URDF = """<?xml version="1.0"?>
 <robot name="shape"><link name="base">
@@ -25,16 +26,6 @@ SHAPE_URDF = """<?xml version="1.0"?>
 </link></robot>"""
 
 EYE = (0.0, -0.39, 0.44)
-
-
-def median_seconds(fn, repeats):
-    fn()  # warm-up
-    runs = []
-    for _ in range(repeats):
-        t = time.perf_counter()
-        fn()
-        runs.append(time.perf_counter() - t)
-    return statistics.median(runs)
 
 
 def objects(folder: Path) -> dict[str, tuple[str, float]]:
@@ -66,11 +57,7 @@ def main() -> None:
     from graspmix.perception import segment_scene
     from graspmix.sim.acquisition import AcquisitionSettings, Camera, acquire
 
-    print(
-        f"graspmix {graspmix.__version__}, OMP_NUM_THREADS={os.environ['OMP_NUM_THREADS']}, "
-        f"OMP_WAIT_POLICY={os.environ.get('OMP_WAIT_POLICY', 'unset')}, {os.cpu_count()} CPUs, "
-        f"load average {', '.join(f'{v:.2f}' for v in os.getloadavg())}"
-    )
+    print(machine_line(graspmix.__version__))
     print(f"one view from {EYE}; medians of {args.repeats} runs")
     print(f"{'object':<20}{'points':>8}{'visibility ms':>15}{'completion ms':>15}{'total ms':>10}  winner, completed")
     totals = []
@@ -95,7 +82,7 @@ def main() -> None:
                 flush=True,
             )
     print(f"median over objects: {1e3 * statistics.median(totals):.2f} ms (target < 5 ms)")
-    print(f"load average after: {', '.join(f'{v:.2f}' for v in os.getloadavg())}")
+    print(f"load average after: {load_average()}")
 
 
 if __name__ == "__main__":

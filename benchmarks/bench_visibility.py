@@ -11,10 +11,9 @@ from __future__ import annotations
 
 import argparse
 import os
-import statistics
-import time
 
 import numpy as np
+from bench_common import load_average, machine_line, median_seconds
 
 BOXES = [
     ((-0.10, -0.05, 0.0), (0.0, 0.05, 0.12)),
@@ -51,16 +50,6 @@ def render(K, T):
     return depth
 
 
-def median_seconds(fn, repeats):
-    fn()  # warm-up
-    runs = []
-    for _ in range(repeats):
-        t = time.perf_counter()
-        fn()
-        runs.append(time.perf_counter() - t)
-    return statistics.median(runs)
-
-
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--repeats", type=int, default=7)
@@ -82,11 +71,7 @@ def main() -> None:
     rng = np.random.default_rng(0)
     points = rng.uniform([-0.15, -0.15, -0.02], [0.17, 0.2, 0.25], size=(args.points, 3))
 
-    print(
-        f"graspmix {graspmix.__version__}, OMP_NUM_THREADS={os.environ['OMP_NUM_THREADS']}, "
-        f"OMP_WAIT_POLICY={os.environ.get('OMP_WAIT_POLICY', 'unset')}, {os.cpu_count()} CPUs, "
-        f"load average {', '.join(f'{v:.2f}' for v in os.getloadavg())}"
-    )
+    print(machine_line(graspmix.__version__))
     print(f"view: 640x480, {len(world)} returns; {args.points} query points; medians of {args.repeats} runs")
     models = {
         "from_depth": lambda: VisibilityModel.from_depth(depth, K, pose),
@@ -108,7 +93,7 @@ def main() -> None:
             f"{1e9 * classify / args.points:>10.1f}  {counts[0]:.3f}, {counts[1]:.3f}, {counts[2]:.3f}",
             flush=True,
         )
-    print(f"load average after: {', '.join(f'{v:.2f}' for v in os.getloadavg())}")
+    print(f"load average after: {load_average()}")
 
 
 if __name__ == "__main__":

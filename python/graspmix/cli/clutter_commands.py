@@ -69,7 +69,7 @@ def add_parsers(sub) -> None:
 
     s = sub.add_parser(
         "clutter",
-        help="clutter removal (VGN/GIGA protocol): scenes of N objects, grasp until clear; GSR and DR with 95% CIs",
+        help="clutter removal (VGN/GIGA protocol): scenes of N objects, grasp until clear; GSR and DR with 95%% CIs",
     )
     s.add_argument("--out", type=output_folder, required=True, help="run folder; running again into it resumes")
     s.add_argument("--mode", default="pile", help="pile, packed, or both comma-separated (default pile)")

@@ -106,6 +106,23 @@ Vec3Array PinholeCamera::back_project(const Eigen::Ref<const DepthImage>& depth,
   return out;
 }
 
+DepthImage depth_of_organized(const Eigen::Ref<const Vec3Array>& points, int height, int width, const char* what) {
+  check_side(height, "height");
+  check_side(width, "width");
+  if (points.rows() != static_cast<Eigen::Index>(height) * width) {
+    throw std::invalid_argument(std::string(what) + ": an organized cloud of " + std::to_string(height) + " x " +
+                                std::to_string(width) + " needs " + std::to_string(std::int64_t{height} * width) +
+                                " rows (height * width), got " + std::to_string(points.rows()));
+  }
+  DepthImage depth(height, width);
+  for (int v = 0; v < height; ++v)
+    for (int u = 0; u < width; ++u) {
+      const auto row = points.row(static_cast<Eigen::Index>(v) * width + u);
+      depth(v, u) = row.allFinite() ? row.z() : std::numeric_limits<double>::quiet_NaN();
+    }
+  return depth;
+}
+
 PinholeFit fit_pinhole(const Eigen::Ref<const Vec3Array>& points, int height, int width, double max_rms_px,
                        const char* what) {
   const std::string w(what);

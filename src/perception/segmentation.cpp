@@ -15,12 +15,14 @@
 #include "cloud_filters.hpp"
 #include "cluster_merge.hpp"
 #include "occlusion_merge.hpp"
+#include "segmentation_steps.hpp"
 #include "table_noise.hpp"
 
 namespace graspmix {
 
 namespace {
 
+using detail::Cameras;
 using detail::Cloud;
 using detail::table_noise;
 using detail::TableNoise;
@@ -42,15 +44,16 @@ class Lap {
 
 bool finite_ge(double v, double lo) { return std::isfinite(v) && v >= lo; }
 
-/// The settings of the scene's visibility model (Segmentation::visibility).
-VisibilitySettings visibility_settings(const SegmentationSettings& s) {
+}  // namespace
+
+VisibilitySettings detail::visibility_settings(const SegmentationSettings& s) {
   VisibilitySettings vs;
   vs.surface_tolerance = s.visibility_tolerance;
   vs.angular_resolution = s.visibility_resolution;
   return vs;
 }
 
-void check_settings(const SegmentationSettings& s) {
+void detail::check_segmentation_settings(const SegmentationSettings& s) {
   if (!finite_ge(s.voxel_size, 0)) bad("voxel_size must be a finite size >= 0 (m; 0 switches it off)");
   if (!(finite_ge(s.plane_distance, 0) && s.plane_distance > 0)) bad("plane_distance must be > 0 (m)");
   if (s.plane_max_iterations < 1) bad("plane_max_iterations must be >= 1");
@@ -83,7 +86,10 @@ void check_settings(const SegmentationSettings& s) {
   if (s.max_cluster_size < 0 || (s.max_cluster_size > 0 && s.max_cluster_size < s.min_cluster_size)) {
     bad("max_cluster_size must be 0 (no limit) or >= min_cluster_size");
   }
+  if (s.image_stride < 0) bad("image_stride must be >= 0 (0: chosen from voxel_size)");
 }
+
+namespace {
 
 void check_inputs(const Vec3Array& points, const Vec3Array& viewpoints) {
   if (points.rows() == 0) bad("points: the cloud is empty");
@@ -95,24 +101,6 @@ void check_inputs(const Vec3Array& points, const Vec3Array& viewpoints) {
   }
   if (!viewpoints.allFinite()) bad("viewpoints: contains NaN or infinite values");
 }
-
-/// The cameras as the voxelised points see them: one per point (input viewpoints indexed by sources), or
-/// one for all (the given one, or the origin when none is given).
-struct Cameras {
-  Vec3Array per_point;
-  Eigen::Vector3d single = Eigen::Vector3d::Zero();
-  bool given = false;
-
-  /// Mean height above `plane` of the cameras that saw `rows` (all cameras when rows is empty).
-  double height(const Eigen::Vector4d& plane, const std::vector<int>& rows) const {
-    const Eigen::Vector3d n = plane.head<3>();
-    if (per_point.rows() == 0) return n.dot(single) + plane[3];
-    double sum = 0;
-    if (rows.empty()) return (per_point * n).array().mean() + plane[3];
-    for (const int r : rows) sum += per_point.row(r).dot(n);
-    return sum / static_cast<double>(rows.size()) + plane[3];
-  }
-};
 
 pcl::PointXYZ to_pcl(const Vec3Array& P, int r) {
   return {static_cast<float>(P(r, 0)), static_cast<float>(P(r, 1)), static_cast<float>(P(r, 2))};
@@ -409,35 +397,10 @@ Extraction find_support(const Vec3Array& P, const Cameras& cams, const Segmentat
 
 }  // namespace
 
-Segmentation segment_scene(const Vec3Array& points, const Vec3Array& viewpoints, const SegmentationSettings& s,
-                           const std::optional<Eigen::Vector4d>& plane) {
-  const auto t0 = std::chrono::steady_clock::now();
-  check_settings(s);
-  check_inputs(points, viewpoints);
-  Segmentation out;
-  out.n_input = static_cast<std::size_t>(points.rows());
-  CleanupSettings voxel;  // prepare_cloud's voxel grid only: the sources follow every centroid
-  voxel.voxel_size = s.voxel_size;
-  voxel.remove_outliers = false;
-  voxel.remove_plane = false;
+void detail::segment_voxelised(const Vec3Array& P, const Eigen::VectorXi& sources, const Cameras& cams,
+                               const SegmentationSettings& s, const std::optional<Eigen::Vector4d>& plane,
+                               Segmentation& out) {
   Lap lap;
-  const CleanupResult down = prepare_cloud(points, voxel);
-  const Vec3Array& P = down.points;
-  out.n_after_voxel = static_cast<std::size_t>(P.rows());
-  Cameras cams;
-  cams.given = viewpoints.rows() > 0;
-  if (viewpoints.rows() == 1) cams.single = viewpoints.row(0).transpose();
-  if (viewpoints.rows() > 1) {
-    cams.per_point.resize(P.rows(), 3);
-    for (Eigen::Index i = 0; i < P.rows(); ++i) cams.per_point.row(i) = viewpoints.row(down.sources[i]);
-  }
-  lap.add_to(out.times.voxel);
-  if (cams.given) {
-    const Vec3Array one = cams.single.transpose();
-    out.visibility = std::make_shared<const VisibilityModel>(
-        VisibilityModel::from_views(P, cams.per_point.rows() ? cams.per_point : one, visibility_settings(s)));
-  }
-  lap.add_to(out.times.visibility);
   Extraction e;
   if (plane) {
     out.plane = orient_given(*plane, P, cams, s);
@@ -463,8 +426,40 @@ Segmentation segment_scene(const Vec3Array& points, const Vec3Array& viewpoints,
                                          detail::JoinRule{s.join_max_gap, s.join_seen_margin, s.join_max_size});
   }
   lap.add_to(out.times.join);
-  finish(P, down.sources, e, s, out);
+  finish(P, sources, e, s, out);
   lap.add_to(out.times.objects);
+}
+
+Segmentation segment_scene(const Vec3Array& points, const Vec3Array& viewpoints, const SegmentationSettings& s,
+                           const std::optional<Eigen::Vector4d>& plane) {
+  const auto t0 = std::chrono::steady_clock::now();
+  detail::check_segmentation_settings(s);
+  check_inputs(points, viewpoints);
+  Segmentation out;
+  out.n_input = static_cast<std::size_t>(points.rows());
+  CleanupSettings voxel;  // prepare_cloud's voxel grid only: the sources follow every centroid
+  voxel.voxel_size = s.voxel_size;
+  voxel.remove_outliers = false;
+  voxel.remove_plane = false;
+  Lap lap;
+  const CleanupResult down = prepare_cloud(points, voxel);
+  const Vec3Array& P = down.points;
+  out.n_after_voxel = static_cast<std::size_t>(P.rows());
+  Cameras cams;
+  cams.given = viewpoints.rows() > 0;
+  if (viewpoints.rows() == 1) cams.single = viewpoints.row(0).transpose();
+  if (viewpoints.rows() > 1) {
+    cams.per_point.resize(P.rows(), 3);
+    for (Eigen::Index i = 0; i < P.rows(); ++i) cams.per_point.row(i) = viewpoints.row(down.sources[i]);
+  }
+  lap.add_to(out.times.voxel);
+  if (cams.given) {
+    const Vec3Array one = cams.single.transpose();
+    out.visibility = std::make_shared<const VisibilityModel>(
+        VisibilityModel::from_views(P, cams.per_point.rows() ? cams.per_point : one, detail::visibility_settings(s)));
+  }
+  lap.add_to(out.times.visibility);
+  detail::segment_voxelised(P, down.sources, cams, s, plane, out);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
 }

@@ -115,13 +115,8 @@ VisibilityModel VisibilityModel::from_organized(const Eigen::Ref<const Vec3Array
   const auto t0 = std::chrono::steady_clock::now();
   VisibilityModel model(settings);
   const PinholeFit fit = fit_pinhole(points, height, width, settings.max_fit_rms, "points");
-  DepthImage depth(height, width);
-  for (int v = 0; v < height; ++v)
-    for (int u = 0; u < width; ++u) {
-      const auto row = points.row(static_cast<Eigen::Index>(v) * width + u);
-      depth(v, u) = row.allFinite() ? row.z() : kNaN;
-    }
-  model.views_.push_back(make_pinhole_view(depth, fit.camera, T_world_camera, settings, fit.rms_px, t0));
+  model.views_.push_back(make_pinhole_view(depth_of_organized(points, height, width), fit.camera, T_world_camera,
+                                           settings, fit.rms_px, t0));
   return model;
 }
 

@@ -102,6 +102,12 @@ struct PinholeFit {
 PinholeFit fit_pinhole(const Eigen::Ref<const Vec3Array>& points, int height, int width, double max_rms_px = 0.5,
                        const char* what = "points");
 
+/// The depth image (height x width, the points' z; NaN where a row is not finite) of an organized cloud
+/// (height * width, 3) in the sensor frame, row v * width + u. Throws std::invalid_argument naming `what` for a
+/// wrong row count.
+DepthImage depth_of_organized(const Eigen::Ref<const Vec3Array>& points, int height, int width,
+                              const char* what = "points");
+
 /// T_world_camera from [x, y, z, qx, qy, qz, qw]; throws std::invalid_argument naming `what` for a
 /// non-finite value or a quaternion whose norm is off 1 by more than kUnitQuaternionTolerance (then
 /// normalised).

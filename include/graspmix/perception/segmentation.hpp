@@ -129,6 +129,9 @@ struct SegmentationSettings {
   /// (one view, clutter_dev, GMM: 71.7% at 5 mm, 80.8% at 8, 76.7% at 10, 74.2% at 12; docs/one-view.md).
   double visibility_tolerance = 0.008;
   double visibility_resolution = VisibilitySettings{}.angular_resolution;
+  /// A depth image's scene (segment_depth): pixels per block side of the image-space subsampling, 0 = chosen
+  /// per image, the largest block whose side at the median depth of the returns stays within half a voxel_size.
+  int image_stride = 0;
 };
 
 /// One object: a Euclidean cluster above the support plane.

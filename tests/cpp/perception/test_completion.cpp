@@ -14,22 +14,15 @@
 #include <vector>
 
 #include "graspmix/perception/completion.hpp"
+#include "raycast.hpp"
 
 using namespace graspmix;
+using graspmix::test::looking_at;
 
 namespace {
 
 const double kInf = std::numeric_limits<double>::infinity();
 const PinholeCamera kCam(300.0, 300.0, 159.5, 119.5, 320, 240);
-
-Eigen::Isometry3d looking_at(const Eigen::Vector3d& eye, const Eigen::Vector3d& target) {
-  const Eigen::Vector3d z = (target - eye).normalized();
-  const Eigen::Vector3d x = z.cross(Eigen::Vector3d::UnitZ()).normalized();
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() << x, z.cross(x), z;
-  T.translation() = eye;
-  return T;
-}
 
 // 55 cm from the object's middle, 45 degrees above the table, in front (-y).
 const Eigen::Vector3d kTarget(0.0, 0.0, 0.05);

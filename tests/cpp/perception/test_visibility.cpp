@@ -11,8 +11,10 @@
 #include <string>
 
 #include "graspmix/perception/visibility.hpp"
+#include "raycast.hpp"
 
 using namespace graspmix;
+using namespace graspmix::test;
 
 namespace {
 
@@ -20,49 +22,6 @@ const double kNaN = std::numeric_limits<double>::quiet_NaN();
 const double kInf = std::numeric_limits<double>::infinity();
 const PinholeCamera kCam(60.0, 62.0, 31.7, 24.2, 64, 48);
 constexpr double kTol = VisibilitySettings{}.surface_tolerance;
-
-/// A camera at `eye` looking at `target`, world z up: x right, y down, z forward.
-Eigen::Isometry3d looking_at(const Eigen::Vector3d& eye, const Eigen::Vector3d& target) {
-  const Eigen::Vector3d z = (target - eye).normalized();
-  const Eigen::Vector3d x = z.cross(Eigen::Vector3d::UnitZ()).normalized();
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() << x, z.cross(x), z;
-  T.translation() = eye;
-  return T;
-}
-
-/// The world direction of pixel coordinates (u, v) scaled so its camera z is 1: a point at depth s is eye + s dir.
-Eigen::Vector3d ray(const PinholeCamera& cam, const Eigen::Isometry3d& T, double u, double v) {
-  return T.linear() * cam.back_project(u, v, 1.0);
-}
-
-/// First hit t > 0 of o + t d with what the scene holds, inf for none.
-using Scene = std::function<double(const Eigen::Vector3d& o, const Eigen::Vector3d& d)>;
-
-double hit_plane(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Eigen::Vector3d& n, double c) {
-  const double t = (c - n.dot(o)) / n.dot(d);
-  return t > 0 ? t : kInf;
-}
-
-double hit_box(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Eigen::Vector3d& lo,
-               const Eigen::Vector3d& hi) {
-  double t0 = 0, t1 = kInf;
-  for (int k = 0; k < 3; ++k) {
-    double a = (lo[k] - o[k]) / d[k], b = (hi[k] - o[k]) / d[k];
-    if (a > b) std::swap(a, b);
-    t0 = std::max(t0, a);
-    t1 = std::min(t1, b);
-  }
-  return t0 <= t1 && t0 > 0 ? t0 : kInf;
-}
-
-/// The depth image of `scene` seen by cam at T: at each pixel centre, the depth (camera z) of the first hit.
-DepthImage render(const PinholeCamera& cam, const Eigen::Isometry3d& T, const Scene& scene) {
-  DepthImage out(cam.height(), cam.width());
-  for (int v = 0; v < cam.height(); ++v)
-    for (int u = 0; u < cam.width(); ++u) out(v, u) = scene(T.translation(), ray(cam, T, u, v));
-  return out;
-}
 
 const Eigen::Isometry3d kPose = looking_at({0.15, -0.35, 0.45}, {0.0, 0.02, 0.05});
 const Eigen::Vector3d kBoxLo(-0.05, -0.04, 0.0), kBoxHi(0.05, 0.04, 0.12);

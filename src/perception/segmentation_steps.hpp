@@ -1,0 +1,44 @@
+#pragma once
+// segment_scene's steps after its input is made points (segmentation.cpp), shared by the scene of a depth image
+// (depth_scene.cpp), which makes its points in image space instead of by the voxel grid alone.
+#include <optional>
+
+#include <Eigen/Core>
+
+#include "graspmix/core/types.hpp"
+#include "graspmix/perception/segmentation.hpp"
+#include "graspmix/perception/visibility.hpp"
+
+namespace graspmix::detail {
+
+/// The cameras as the voxelised points see them: one per point (input viewpoints indexed by sources), or
+/// one for all (the given one, or the origin when none is given).
+struct Cameras {
+  Vec3Array per_point;
+  Eigen::Vector3d single = Eigen::Vector3d::Zero();
+  bool given = false;
+
+  /// Mean height above `plane` of the cameras that saw `rows` (all cameras when rows is empty).
+  double height(const Eigen::Vector4d& plane, const std::vector<int>& rows) const {
+    const Eigen::Vector3d n = plane.head<3>();
+    if (per_point.rows() == 0) return n.dot(single) + plane[3];
+    double sum = 0;
+    if (rows.empty()) return (per_point * n).array().mean() + plane[3];
+    for (const int r : rows) sum += per_point.row(r).dot(n);
+    return sum / static_cast<double>(rows.size()) + plane[3];
+  }
+};
+
+/// Throws std::invalid_argument ("segment_scene: ...") naming the first setting out of range.
+void check_segmentation_settings(const SegmentationSettings& s);
+
+/// The settings of the scene's visibility model (Segmentation::visibility).
+VisibilitySettings visibility_settings(const SegmentationSettings& s);
+
+/// The support plane (given, found by the rule, or none), the objects above it, the merge and join rules, and the
+/// objects described into `out`, from the voxelised points P whose rows carry the input rows `sources`, seen by
+/// `cams`; out.visibility (when set) serves the join rule. Adds each step's time to out.times.
+void segment_voxelised(const Vec3Array& P, const Eigen::VectorXi& sources, const Cameras& cams,
+                       const SegmentationSettings& s, const std::optional<Eigen::Vector4d>& plane, Segmentation& out);
+
+}  // namespace graspmix::detail

@@ -189,6 +189,8 @@ void bind_perception(py::module_& m) {
              "m: Segmentation.visibility's surface_tolerance (within this of the observed surface is Surface)")
       .field("visibility_resolution", &SegmentationSettings::visibility_resolution,
              "rad: the bin of Segmentation.visibility's range images (VisibilitySettings.angular_resolution)")
+      .field("image_stride", &SegmentationSettings::image_stride,
+             "px: segment_depth's block side, 0 = the largest within half a voxel_size at the median depth")
       .done();
 
   py::class_<SceneObject>(m, "SceneObject", "One object of a segmented scene: a Euclidean cluster above the plane.")

@@ -1,4 +1,5 @@
-// Part of bind_perception: pinhole cameras and the visibility model (what the cameras saw, as space).
+// Part of bind_perception: pinhole cameras, the visibility model (what the cameras saw, as space) and the scene of
+// one depth image (segment_depth, segment_organized).
 #include <pybind11/operators.h>
 
 #include <algorithm>
@@ -6,6 +7,7 @@
 #include "common.hpp"
 #include "graspmix/core/se3.hpp"
 #include "graspmix/perception/camera.hpp"
+#include "graspmix/perception/depth_scene.hpp"
 #include "graspmix/perception/visibility.hpp"
 #include "settings.hpp"
 
@@ -127,6 +129,15 @@ void bind_camera(py::module_& m) {
           py::arg("depth"),
           "The organized cloud (H, W, 3) in the sensor frame of a depth image (H, W) in metres along z; NaN, 0 and "
           "inf are no return (NaN points), a negative depth is a ValueError.")
+      .def(
+          "check_image",
+          [](const PinholeCamera& c, const py::object& depth) {
+            const DepthImage D(to_matrix(depth, "depth"));
+            return c.check_image(D, "depth");
+          },
+          py::arg("depth"),
+          "The number of pixels of a depth image (H, W) with a return; ValueError for an image of another size or a "
+          "negative depth.")
       .def_static(
           "fit",
           [](const py::object& points, const py::object& height, const py::object& width,
@@ -298,6 +309,52 @@ void bind_visibility(py::module_& m) {
       .def("__len__", &VisibilityModel::n_views)
       .def("__repr__",
            [](const VisibilityModel& v) { return "<VisibilityModel " + std::to_string(v.n_views()) + " view(s)>"; });
+
+  m.def(
+      "camera_pose_matrix",
+      [](const py::object& pose) { return Eigen::Matrix4d(to_camera_pose(pose, "camera pose").matrix()); },
+      py::arg("pose"),
+      "The 4x4 T_world_camera of [x, y, z, qx, qy, qz, qw], its quaternion normalised; ValueError for a non-finite "
+      "value or a quaternion whose norm is off 1 by more than 1e-3 (kUnitQuaternionTolerance).");
+  m.def(
+      "segment_depth",
+      [](const py::object& depth, const PinholeCamera& camera, const py::object& pose, const py::object& plane,
+         const py::object& settings, const py::kwargs& kw) {
+        const DepthImage D(to_matrix(depth, "segment_depth: depth"));
+        const Eigen::Isometry3d T = to_camera_pose(pose, "T_world_camera");
+        std::optional<Eigen::Vector4d> known;
+        if (!plane.is_none()) known = Eigen::Vector4d(to_vector(plane, "segment_depth: plane", 4));
+        const auto s = settings_from<SegmentationSettings>(settings, kw, "segment_depth");
+        py::gil_scoped_release release;
+        return segment_depth(D, camera, T, s, known);
+      },
+      py::arg("depth"), py::arg("camera"), py::arg("T_world_camera"), py::arg("plane") = py::none(), py::kw_only(),
+      py::arg("settings") = py::none(),
+      ("The support plane and the objects of one depth image (H, W) in metres along z (NaN, 0, inf: no return)\n"
+       "of `camera` (PinholeCamera) posed at T_world_camera [x, y, z, qx, qy, qz, qw]: segment_scene's scene in the\n"
+       "world frame, made in image space (include/graspmix/perception/depth_scene.hpp); sources are pixel indices.\n" +
+       settings_doc<SegmentationSettings>())
+          .c_str());
+  m.def(
+      "segment_organized",
+      [](const py::object& points, const py::object& pose, const py::object& plane, const py::object& height,
+         const py::object& width, const py::object& settings, const py::kwargs& kw) {
+        int h = 0, w = 0;
+        const Vec3Array P = to_organized(points, height, width, h, w);
+        const Eigen::Isometry3d T = to_camera_pose(pose, "T_world_camera");
+        std::optional<Eigen::Vector4d> known;
+        if (!plane.is_none()) known = Eigen::Vector4d(to_vector(plane, "segment_organized: plane", 4));
+        const auto s = settings_from<SegmentationSettings>(settings, kw, "segment_organized");
+        py::gil_scoped_release release;
+        return segment_organized(P, h, w, T, s, known);
+      },
+      py::arg("points"), py::arg("T_world_camera"), py::arg("plane") = py::none(), py::kw_only(),
+      py::arg("height") = py::none(), py::arg("width") = py::none(), py::arg("settings") = py::none(),
+      ("The support plane and the objects of an organized cloud in the sensor frame (x right, y down, z forward;\n"
+       "NaN = no return), (H, W, 3) or (H * W, 3) with height and width, from a camera posed at T_world_camera: its\n"
+       "intrinsics fitted, then as segment_depth.\n" +
+       settings_doc<SegmentationSettings>())
+          .c_str());
 }
 
 }  // namespace graspmix::py_bind

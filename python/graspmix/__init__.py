@@ -100,7 +100,7 @@ from .model import (
     expert,
     learn,
 )
-from .perception import Scene, segment_scene
+from .perception import CameraView, Scene, depth_view, organized_view, segment_scene, segment_view
 
 # Loaded on first use (PEP 562), so that `import graspmix` and a command that needs neither pictures nor the
 # simulator do not pay for matplotlib, pybullet and their modules: the layers above the model, the two

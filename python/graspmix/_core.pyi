@@ -8,7 +8,7 @@ import enum
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AnnealingSettings', 'AxisAlignmentExpert', 'AxisAlignmentSettings', 'CleanupResult', 'CleanupSettings', 'ClearApproachExpert', 'ClearApproachSettings', 'CloudData', 'CollisionBatchResult', 'CollisionExpert', 'CollisionFreeExpert', 'CollisionResult', 'CollisionSettings', 'Completion', 'CompletionKind', 'CompletionSettings', 'ConfigModel', 'ConfigModelSettings', 'ContactData', 'ContactModel', 'ContactQualityExpert', 'ContactQualityResult', 'ContactQualitySettings', 'ContactSettings', 'Evaluation', 'Expert', 'FunctionExpert', 'GaussianMixture', 'GmmSettings', 'Grasp', 'GraspSynthesizer', 'Hand', 'HandLoadSettings', 'KdeSettings', 'KinematicFeasibilityExpert', 'KinematicFeasibilitySettings', 'OccupancyMap', 'OccupancySettings', 'PinholeCamera', 'PinholeFit', 'PlaneCandidate', 'PoseDensity', 'PoseKDE', 'PoseMixture', 'QueryDensity', 'QuerySettings', 'SamplingSettings', 'SceneObject', 'SceneSimResult', 'Segmentation', 'SegmentationSettings', 'SettleResult', 'SimObject', 'SimResult', 'SimSettings', 'SpaceState', 'SurfaceCloud', 'SurfaceFeatureSettings', 'SynthesisResult', 'SynthesisTiming', 'SynthesizerSettings', 'VisibilityModel', 'VisibilitySettings', 'build_info', 'complete_object', 'compute_surface_features', 'contact_data', 'learn_contact_models', 'load_cloud', 'load_mesh', 'log_vmf_s3_normaliser', 'orient_plane', 'pose_inverse', 'pose_multiply', 'prepare_cloud', 'quat_exp', 'quat_log', 'save_cloud', 'segment_scene', 'sim_execute', 'sim_execute_scene', 'sim_settle_scene']
+__all__: list[str] = ['AnnealingSettings', 'AxisAlignmentExpert', 'AxisAlignmentSettings', 'CleanupResult', 'CleanupSettings', 'ClearApproachExpert', 'ClearApproachSettings', 'CloudData', 'CollisionBatchResult', 'CollisionExpert', 'CollisionFreeExpert', 'CollisionResult', 'CollisionSettings', 'Completion', 'CompletionKind', 'CompletionSettings', 'ConfigModel', 'ConfigModelSettings', 'ContactData', 'ContactModel', 'ContactQualityExpert', 'ContactQualityResult', 'ContactQualitySettings', 'ContactSettings', 'Evaluation', 'Expert', 'FunctionExpert', 'GaussianMixture', 'GmmSettings', 'Grasp', 'GraspSynthesizer', 'Hand', 'HandLoadSettings', 'KdeSettings', 'KinematicFeasibilityExpert', 'KinematicFeasibilitySettings', 'OccupancyMap', 'OccupancySettings', 'PinholeCamera', 'PinholeFit', 'PlaneCandidate', 'PoseDensity', 'PoseKDE', 'PoseMixture', 'QueryDensity', 'QuerySettings', 'SamplingSettings', 'SceneObject', 'SceneSimResult', 'Segmentation', 'SegmentationSettings', 'SettleResult', 'SimObject', 'SimResult', 'SimSettings', 'SpaceState', 'SurfaceCloud', 'SurfaceFeatureSettings', 'SynthesisResult', 'SynthesisTiming', 'SynthesizerSettings', 'VisibilityModel', 'VisibilitySettings', 'build_info', 'camera_pose_matrix', 'complete_object', 'compute_surface_features', 'contact_data', 'learn_contact_models', 'load_cloud', 'load_mesh', 'log_vmf_s3_normaliser', 'orient_plane', 'pose_inverse', 'pose_multiply', 'prepare_cloud', 'quat_exp', 'quat_log', 'save_cloud', 'segment_depth', 'segment_organized', 'segment_scene', 'sim_execute', 'sim_execute_scene', 'sim_settle_scene']
 class GmmSettings:
     """
     How a GaussianMixture (or PoseMixture) is fitted by EM.
@@ -646,9 +646,10 @@ class SegmentationSettings:
       join_max_size = 0.15: m, join rule 3: the joined cluster's largest principal-box side
       visibility_tolerance = 0.008: m: Segmentation.visibility's surface_tolerance (within this of the observed surface is Surface)
       visibility_resolution = 0.005: rad: the bin of Segmentation.visibility's range images (VisibilitySettings.angular_resolution)
+      image_stride = 0: px: segment_depth's block side, 0 = the largest within half a voxel_size at the median depth
     """
     __hash__: typing.ClassVar[None] = None
-    _fields: typing.ClassVar[tuple] = ('voxel_size', 'plane_distance', 'plane_max_iterations', 'seed', 'find_plane', 'plane_candidates', 'plane_min_fraction', 'plane_behind_distance', 'plane_max_behind_fraction', 'plane_margin', 'table_clearance', 'remove_outliers', 'outlier_neighbours', 'outlier_std_ratio', 'cluster_tolerance', 'min_cluster_size', 'max_cluster_size', 'merge_seen_through', 'merge_through_fraction', 'merge_inset', 'join_occluded', 'join_max_gap', 'join_seen_margin', 'join_max_size', 'visibility_tolerance', 'visibility_resolution')
+    _fields: typing.ClassVar[tuple] = ('voxel_size', 'plane_distance', 'plane_max_iterations', 'seed', 'find_plane', 'plane_candidates', 'plane_min_fraction', 'plane_behind_distance', 'plane_max_behind_fraction', 'plane_margin', 'table_clearance', 'remove_outliers', 'outlier_neighbours', 'outlier_std_ratio', 'cluster_tolerance', 'min_cluster_size', 'max_cluster_size', 'merge_seen_through', 'merge_through_fraction', 'merge_inset', 'join_occluded', 'join_max_gap', 'join_seen_margin', 'join_max_size', 'visibility_tolerance', 'visibility_resolution', 'image_stride')
     def __copy__(self) -> SegmentationSettings:
         ...
     def __deepcopy__(self, memo: typing.Any) -> SegmentationSettings:
@@ -665,7 +666,7 @@ class SegmentationSettings:
     @typing.overload
     def __init__(self, **kwargs) -> None:
         """
-        Keyword constructor: any of the fields (voxel_size, plane_distance, plane_max_iterations, seed, find_plane, plane_candidates, plane_min_fraction, plane_behind_distance, plane_max_behind_fraction, plane_margin, table_clearance, remove_outliers, outlier_neighbours, outlier_std_ratio, cluster_tolerance, min_cluster_size, max_cluster_size, merge_seen_through, merge_through_fraction, merge_inset, join_occluded, join_max_gap, join_seen_margin, join_max_size, visibility_tolerance, visibility_resolution); the others keep their defaults.
+        Keyword constructor: any of the fields (voxel_size, plane_distance, plane_max_iterations, seed, find_plane, plane_candidates, plane_min_fraction, plane_behind_distance, plane_max_behind_fraction, plane_margin, table_clearance, remove_outliers, outlier_neighbours, outlier_std_ratio, cluster_tolerance, min_cluster_size, max_cluster_size, merge_seen_through, merge_through_fraction, merge_inset, join_occluded, join_max_gap, join_seen_margin, join_max_size, visibility_tolerance, visibility_resolution, image_stride); the others keep their defaults.
         """
     def __repr__(self) -> str:
         ...
@@ -686,6 +687,14 @@ class SegmentationSettings:
         """
     @find_plane.setter
     def find_plane(self, arg0: typing.Any) -> None:
+        ...
+    @property
+    def image_stride(self) -> int:
+        """
+        px: segment_depth's block side, 0 = the largest within half a voxel_size at the median depth
+        """
+    @image_stride.setter
+    def image_stride(self, arg0: typing.Any) -> None:
         ...
     @property
     def join_max_gap(self) -> float:
@@ -1266,6 +1275,10 @@ class PinholeCamera:
     def back_project(self, depth: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
         """
         The organized cloud (H, W, 3) in the sensor frame of a depth image (H, W) in metres along z; NaN, 0 and inf are no return (NaN points), a negative depth is a ValueError.
+        """
+    def check_image(self, depth: typing.Any) -> int:
+        """
+        The number of pixels of a depth image (H, W) with a return; ValueError for an image of another size or a negative depth.
         """
     def project(self, points: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
         """
@@ -3850,6 +3863,10 @@ def build_info() -> dict[str, str]:
     """
     Versions of graspmix and of every library it was built against.
     """
+def camera_pose_matrix(pose: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[4, 4]"]:
+    """
+    The 4x4 T_world_camera of [x, y, z, qx, qy, qz, qw], its quaternion normalised; ValueError for a non-finite value or a quaternion whose norm is off 1 by more than 1e-3 (kUnitQuaternionTolerance).
+    """
 def complete_object(points: typing.Any, plane: typing.Any, visibility: VisibilityModel, *, settings: typing.Any = None, **kwargs) -> Completion:
     """
     The unseen side of one object: its observed points (N, 3; voxelised, world frame), the support plane
@@ -3964,6 +3981,76 @@ def save_cloud(path: typing.Any, points: typing.Any, normals: typing.Any = None,
     """
     Writes float32 x y z (+ normal_x normal_y normal_z, + vp_x vp_y vp_z) to .pcd (encoding ascii | binary | binary_compressed) or .ply (ascii | binary); viewpoint [x, y, z, qx, qy, qz, qw] goes into the header, viewpoints (N, 3), one camera position per point, into the fields vp_x vp_y vp_z (PCL's PointWithViewpoint).
     """
+def segment_depth(depth: typing.Any, camera: PinholeCamera, T_world_camera: typing.Any, plane: typing.Any = None, *, settings: typing.Any = None, **kwargs) -> Segmentation:
+    """
+    The support plane and the objects of one depth image (H, W) in metres along z (NaN, 0, inf: no return)
+    of `camera` (PinholeCamera) posed at T_world_camera [x, y, z, qx, qy, qz, qw]: segment_scene's scene in the
+    world frame, made in image space (include/graspmix/perception/depth_scene.hpp); sources are pixel indices.
+    Settings: settings= a SegmentationSettings (None: its defaults), and/or its fields as keywords,
+    which override it (an unknown keyword is a ValueError):
+      voxel_size = 0.003: m: voxel-grid leaf size, 0 = off (CleanupSettings')
+      plane_distance = 0.005: m: RANSAC inlier threshold
+      plane_max_iterations = 1000: RANSAC iterations per candidate
+      seed = 0: seeds RANSAC (None: 0)
+      find_plane = True: search for the support plane (false: objects only)
+      plane_candidates = 3: planes tried, each on the points the previous ones left
+      plane_min_fraction = 0.05: rule 1: fraction of the voxelised points a candidate holds
+      plane_behind_distance = 0.01: m, rule 3: how far behind the plane a point counts as behind it
+      plane_max_behind_fraction = 0.05: rule 3: fraction of all points allowed behind the plane
+      plane_margin = 0.01: m, rule 4: how far the plane's inliers must reach beyond the objects' footprint
+      table_clearance = 0.005: m: points at most this far above the support plane (or behind it) are the table
+      remove_outliers = True: statistical outlier removal on the object points
+      outlier_neighbours = 20: k of the mean-distance statistic
+      outlier_std_ratio = 2.0: drop points whose mean k-distance exceeds mean + ratio * std
+      cluster_tolerance = 0.006: m: object points closer than this are one object (Euclidean clusters)
+      min_cluster_size = 20: smaller clusters are noise, dropped
+      max_cluster_size = 0: larger clusters are dropped; 0 = no limit
+      merge_seen_through = True: a cluster seen through a larger one joins it (a container's inside seen over its rim)
+      merge_through_fraction = 0.2: fraction of a cluster's lines of sight that must cross the larger one's envelope
+      merge_inset = 0.006: m: the larger cluster's envelope is inset by this
+      join_occluded = True: clusters whose gap the view leaves unseen (a shadow between them) join: pieces of one object
+      join_max_gap = 0.03: m, join rule 1: clusters farther apart never join
+      join_seen_margin = 0.005: m, join rule 2: the gap was seen empty when the views saw more than this beyond it (median)
+      join_max_size = 0.15: m, join rule 3: the joined cluster's largest principal-box side
+      visibility_tolerance = 0.008: m: Segmentation.visibility's surface_tolerance (within this of the observed surface is Surface)
+      visibility_resolution = 0.005: rad: the bin of Segmentation.visibility's range images (VisibilitySettings.angular_resolution)
+      image_stride = 0: px: segment_depth's block side, 0 = the largest within half a voxel_size at the median depth
+    """
+def segment_organized(points: typing.Any, T_world_camera: typing.Any, plane: typing.Any = None, *, height: typing.Any = None, width: typing.Any = None, settings: typing.Any = None, **kwargs) -> Segmentation:
+    """
+    The support plane and the objects of an organized cloud in the sensor frame (x right, y down, z forward;
+    NaN = no return), (H, W, 3) or (H * W, 3) with height and width, from a camera posed at T_world_camera: its
+    intrinsics fitted, then as segment_depth.
+    Settings: settings= a SegmentationSettings (None: its defaults), and/or its fields as keywords,
+    which override it (an unknown keyword is a ValueError):
+      voxel_size = 0.003: m: voxel-grid leaf size, 0 = off (CleanupSettings')
+      plane_distance = 0.005: m: RANSAC inlier threshold
+      plane_max_iterations = 1000: RANSAC iterations per candidate
+      seed = 0: seeds RANSAC (None: 0)
+      find_plane = True: search for the support plane (false: objects only)
+      plane_candidates = 3: planes tried, each on the points the previous ones left
+      plane_min_fraction = 0.05: rule 1: fraction of the voxelised points a candidate holds
+      plane_behind_distance = 0.01: m, rule 3: how far behind the plane a point counts as behind it
+      plane_max_behind_fraction = 0.05: rule 3: fraction of all points allowed behind the plane
+      plane_margin = 0.01: m, rule 4: how far the plane's inliers must reach beyond the objects' footprint
+      table_clearance = 0.005: m: points at most this far above the support plane (or behind it) are the table
+      remove_outliers = True: statistical outlier removal on the object points
+      outlier_neighbours = 20: k of the mean-distance statistic
+      outlier_std_ratio = 2.0: drop points whose mean k-distance exceeds mean + ratio * std
+      cluster_tolerance = 0.006: m: object points closer than this are one object (Euclidean clusters)
+      min_cluster_size = 20: smaller clusters are noise, dropped
+      max_cluster_size = 0: larger clusters are dropped; 0 = no limit
+      merge_seen_through = True: a cluster seen through a larger one joins it (a container's inside seen over its rim)
+      merge_through_fraction = 0.2: fraction of a cluster's lines of sight that must cross the larger one's envelope
+      merge_inset = 0.006: m: the larger cluster's envelope is inset by this
+      join_occluded = True: clusters whose gap the view leaves unseen (a shadow between them) join: pieces of one object
+      join_max_gap = 0.03: m, join rule 1: clusters farther apart never join
+      join_seen_margin = 0.005: m, join rule 2: the gap was seen empty when the views saw more than this beyond it (median)
+      join_max_size = 0.15: m, join rule 3: the joined cluster's largest principal-box side
+      visibility_tolerance = 0.008: m: Segmentation.visibility's surface_tolerance (within this of the observed surface is Surface)
+      visibility_resolution = 0.005: rad: the bin of Segmentation.visibility's range images (VisibilitySettings.angular_resolution)
+      image_stride = 0: px: segment_depth's block side, 0 = the largest within half a voxel_size at the median depth
+    """
 def segment_scene(points: typing.Any, viewpoints: typing.Any = None, plane: typing.Any = None, *, settings: typing.Any = None, **kwargs) -> Segmentation:
     """
     The support plane and the objects of a scene cloud (N, 3) seen from viewpoints (None: a camera at the origin; (3,) or (N, 3)); plane [a, b, c, d] gives a known support. The rule that accepts a plane is in include/graspmix/perception/segmentation.hpp.
@@ -3995,6 +4082,7 @@ def segment_scene(points: typing.Any, viewpoints: typing.Any = None, plane: typi
       join_max_size = 0.15: m, join rule 3: the joined cluster's largest principal-box side
       visibility_tolerance = 0.008: m: Segmentation.visibility's surface_tolerance (within this of the observed surface is Surface)
       visibility_resolution = 0.005: rad: the bin of Segmentation.visibility's range images (VisibilitySettings.angular_resolution)
+      image_stride = 0: px: segment_depth's block side, 0 = the largest within half a voxel_size at the median depth
     """
 def sim_execute(hand: Hand, object: SimObject, T_world_object: typing.Any, T_world_wrist: typing.Any, pregrasp: typing.Any, grasp: typing.Any, settings: typing.Any = None, **kwargs) -> SimResult:
     """

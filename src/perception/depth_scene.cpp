@@ -80,8 +80,9 @@ DepthImage nearest_pool(const Eigen::Ref<const DepthImage>& depth, const Pinhole
   DepthImage rows(H, W);
   for (Eigen::Index v = 0; v < H; ++v)
     for (Eigen::Index u = 0; u < W; ++u)
-      rows(v, u) = out.row(v).segment(std::max<Eigen::Index>(0, u - half),
-                                      std::min(W - 1, u + half) - std::max<Eigen::Index>(0, u - half) + 1)
+      rows(v, u) = out.row(v)
+                       .segment(std::max<Eigen::Index>(0, u - half),
+                                std::min(W - 1, u + half) - std::max<Eigen::Index>(0, u - half) + 1)
                        .minCoeff();
   for (Eigen::Index v = 0; v < H; ++v) {
     const Eigen::Index lo = std::max<Eigen::Index>(0, v - half), n = std::min(H - 1, v + half) - lo + 1;
@@ -97,8 +98,8 @@ Segmentation segment_image(const Eigen::Ref<const Vec3Array>& S, const Eigen::Re
   Segmentation out;
   out.n_input = static_cast<std::size_t>(n_returns);
   const auto t_voxel = Clock::now();
-  const Blocks blocks = block_points(S, camera.height(), camera.width(), image_stride(depth, camera, s),
-                                     s.voxel_size, T);
+  const Blocks blocks =
+      block_points(S, camera.height(), camera.width(), image_stride(depth, camera, s), s.voxel_size, T);
   CleanupSettings voxel;  // prepare_cloud's voxel grid only: the sources follow every centroid
   voxel.voxel_size = s.voxel_size;
   voxel.remove_outliers = false;

@@ -170,9 +170,10 @@ def _add_view_options(s) -> None:
     )
     s.add_argument(
         "--cloud",
-        choices=["object", "scene"],
-        help="what an acquisition keeps: the object's pixels, table cropped (the paper's), or every pixel "
-        "(default: the preset's)",
+        choices=["object", "scene", "image"],
+        help="what an acquisition keeps: the object's pixels, table cropped (the paper's); every pixel as points; "
+        "or the depth image with its intrinsics and pose, one camera (default: the preset's; defaults with "
+        "--views 1: image)",
     )
 
 

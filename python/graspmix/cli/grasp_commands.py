@@ -16,7 +16,7 @@ from ..model.settings import METHODS, LearnSettings
 from ..perception import kind_name, parse_target
 from .common import CliError, float_in, input_path, int_in, output_file, parse_floats, parse_joints, seed
 from .synthesis_flags import add_synthesis_arguments, list_settings, synthesis_options
-from .views import add_view_arguments, view_inputs
+from .views import add_view_arguments, depth_input, known_plane, view_inputs
 
 
 def cmd_demo(args: argparse.Namespace) -> int:
@@ -143,23 +143,24 @@ def cmd_synthesize(args: argparse.Namespace) -> int:
     if args.list_settings:
         print(list_settings())
         return 0
-    if not args.cloud:
-        raise CliError("--cloud is required (the scene or object cloud to grasp)")
+    image = depth_input(args)
+    if not args.cloud and image is None:
+        raise CliError("--cloud is required (the scene or object cloud to grasp), or --depth with --intrinsics")
     model, model_path = _model_for(args)
     axis = parse_floats(args.approach_axis, 3, "--approach-axis") if args.approach_axis else None
-    points, viewpoints, plane = view_inputs(args, load_points(args.cloud))
+    if image is None:
+        points, viewpoints, plane = view_inputs(args, load_points(args.cloud))
+        given = {"cloud": points, "viewpoints": viewpoints}
+    else:
+        given, plane = image, known_plane(args)
+    opts = synthesis_options(args)
     grasps = model.synthesize(
-        points,
-        synthesis_options(args),
-        viewpoints=viewpoints,
-        plane=plane,
-        target=args.target,
-        approach_axis=axis,
-        types=args.types,
+        options=opts, plane=plane, target=args.target, approach_axis=axis, types=args.types, **given
     )
-    grasps.cloud = args.cloud
+    grasps.cloud = args.cloud or ""  # a depth image is no cloud to draw: `plot` then asks for --cloud
     t = grasps.timing
-    print(f"{model.method} model '{model_path.name}' on {args.cloud}: {len(grasps.surface.points)} surface points")
+    source = args.cloud or args.depth
+    print(f"{model.method} model '{model_path.name}' on {source}: {len(grasps.surface.points)} surface points")
     print(describe_scene(grasps.scene, grasps.targets))
     for note in grasps.scene.notes:
         print(f"graspmix_cli synthesize: note: {note}", file=sys.stderr)
@@ -299,7 +300,9 @@ def _target(text: str) -> str:
 
 def _add_synthesize(sub) -> None:
     s = sub.add_parser("synthesize", help="synthesise, rank and optimise grasps on a cloud")
-    s.add_argument("--cloud", type=input_path, help="the scene or object cloud (.pcd, .ply, .npy); required")
+    s.add_argument(
+        "--cloud", type=input_path, help="the scene or object cloud (.pcd, .ply, .npy); required unless --depth"
+    )
     s.add_argument(
         "--model",
         type=input_path,

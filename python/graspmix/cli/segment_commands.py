@@ -1,4 +1,5 @@
-"""graspmix_cli segment: the support plane and the objects of a scene cloud (graspmix.segment_scene)."""
+"""graspmix_cli segment: the support plane and the objects of a scene cloud (graspmix.segment_scene) or of one
+camera's depth image (graspmix.segment_view)."""
 
 from __future__ import annotations
 
@@ -8,10 +9,11 @@ import sys
 
 import numpy as np
 
+from .. import _core
 from ..io import load_points
-from ..perception import kind_name, segment_scene
-from .common import float_in, given, input_path, int_in, output_file, seed
-from .views import add_view_arguments, view_inputs
+from ..perception import depth_view, kind_name, segment_scene, segment_view
+from .common import CliError, float_in, given, input_path, int_in, output_file, seed
+from .views import add_view_arguments, depth_input, known_plane, view_inputs
 
 
 def _plane_lines(scene) -> list[str]:
@@ -36,9 +38,17 @@ def _plane_lines(scene) -> list[str]:
 
 
 def cmd_segment(args) -> int:
-    points, viewpoints, plane = view_inputs(args, load_points(args.cloud))
+    image = depth_input(args)
+    if not args.cloud and image is None:
+        raise CliError("--cloud is required (the scene cloud), or --depth with --intrinsics")
     settings = given(args, "cluster_tolerance", "min_cluster_size", "table_clearance", "voxel_size", "seed")
-    scene = segment_scene(points, viewpoints, plane, **settings)
+    if image is None:
+        points, viewpoints, plane = view_inputs(args, load_points(args.cloud))
+        scene = segment_scene(points, viewpoints, plane, **settings)
+    else:
+        view = depth_view(image["depth"], image["intrinsics"], image["camera_pose"], image["depth_scale"])
+        scene = segment_view(view, known_plane(args), _core.SegmentationSettings(**settings))
+        points = view.world_points()
     if args.completion:
         scene.complete()
     for note in scene.notes:
@@ -86,7 +96,9 @@ COMMANDS = ("segment",)
 
 def add_parsers(sub) -> None:
     s = sub.add_parser("segment", help="the support plane and the objects of a scene cloud (.pcd/.ply/.npy)")
-    s.add_argument("--cloud", type=input_path, required=True, help="the scene cloud (.pcd, .ply, or .npy (N, 3))")
+    s.add_argument(
+        "--cloud", type=input_path, help="the scene cloud (.pcd, .ply, or .npy (N, 3)); required unless --depth"
+    )
     add_view_arguments(s)
     s.add_argument("--png", type=output_file, help="write a picture of the objects over the plane")
     s.add_argument("--json", action="store_true", help="print the segmentation as JSON instead")

@@ -1,5 +1,6 @@
 """Where a cloud was seen from, as the command line gives it: --viewpoint (repeatable), --camera-pose for a
-cloud in a camera's frame, --plane for a known support; else the cloud file's own viewpoint(s)."""
+cloud in a camera's frame, --plane for a known support; else the cloud file's own viewpoint(s). Or one camera's
+depth image as its driver writes it: --depth with --intrinsics (and --depth-scale), posed by --camera-pose."""
 
 from __future__ import annotations
 
@@ -8,7 +9,7 @@ import argparse
 import numpy as np
 
 from ..perception import in_world
-from .common import CliError, parse_floats
+from .common import CliError, float_in, input_path, parse_floats
 
 
 def add_view_arguments(parser: argparse.ArgumentParser) -> None:
@@ -27,6 +28,20 @@ def add_view_arguments(parser: argparse.ArgumentParser) -> None:
         "results are then in the world frame, and the camera is the viewpoint",
     )
     g.add_argument("--plane", metavar="A,B,C,D", help="a known support plane a x + b y + c z + d = 0 (world frame)")
+    g.add_argument(
+        "--depth",
+        type=input_path,
+        metavar="IMAGE",
+        help="instead of --cloud: one camera's depth image, a 16-bit PNG in millimetres (as RealSense and ROS "
+        "write it) or a .npy (H, W) array, with --intrinsics and the camera's --camera-pose",
+    )
+    g.add_argument("--intrinsics", metavar="FX,FY,CX,CY", help="the depth image's pinhole intrinsics (pixels)")
+    g.add_argument(
+        "--depth-scale",
+        type=float_in(gt=0.0),
+        metavar="M",
+        help="metres per unit of the depth image (default: 0.001 for an integer image, 1 for a float one)",
+    )
 
 
 def _flag_viewpoints(texts: list[str], points: np.ndarray) -> np.ndarray:
@@ -51,9 +66,35 @@ def view_inputs(args, loaded_cloud) -> tuple[np.ndarray, np.ndarray | None, np.n
         points, viewpoints = in_world(points, viewpoints, pose)  # ValueError: not a unit quaternion
     elif args.viewpoint:
         viewpoints = _flag_viewpoints(args.viewpoint, points)
-    plane = None
-    if args.plane:
-        plane = parse_floats(args.plane, 4, "--plane")
-        if np.linalg.norm(plane[:3]) == 0:
-            raise CliError(f"--plane: (a, b, c) must not be zero, got {args.plane}")
-    return points, viewpoints, plane
+    return points, viewpoints, known_plane(args)
+
+
+def depth_input(args) -> dict | None:
+    """The keywords of GraspModel.synthesize for --depth (depth, intrinsics, depth_scale, camera_pose), None without
+    it; CliError for flags that do not go with it (or are missing)."""
+    if args.depth is None:
+        if args.intrinsics or args.depth_scale is not None:
+            raise CliError("--intrinsics and --depth-scale go with --depth (a depth image)")
+        return None
+    if args.cloud:
+        raise CliError("--cloud and --depth: give one (a cloud, or one camera's depth image)")
+    if args.viewpoint:
+        raise CliError("--viewpoint with --depth: the depth image's camera is its --camera-pose")
+    if not args.intrinsics:
+        raise CliError("--depth needs the camera's --intrinsics fx,fy,cx,cy (pixels)")
+    return {
+        "depth": args.depth,
+        "intrinsics": parse_floats(args.intrinsics, 4, "--intrinsics"),
+        "depth_scale": args.depth_scale,
+        "camera_pose": parse_floats(args.camera_pose, 7, "--camera-pose") if args.camera_pose else None,
+    }
+
+
+def known_plane(args) -> np.ndarray | None:
+    """--plane as [a, b, c, d], None without it."""
+    if not args.plane:
+        return None
+    plane = parse_floats(args.plane, 4, "--plane")
+    if np.linalg.norm(plane[:3]) == 0:
+        raise CliError(f"--plane: (a, b, c) must not be zero, got {args.plane}")
+    return plane

@@ -40,11 +40,16 @@ def crop_above_plane(min_height: float) -> Callable:
 
 
 def synthesize_on(model: GraspModel, acq: Acquisition, p: Protocol, obj: str, trial: int, condition: str):
-    """The synthesis of one attempt on an acquired cloud: the protocol's options for the attempt
-    (Protocol.attempt_options), the known support plane, the cameras' positions."""
-    return model.synthesize(
-        acq.points, p.attempt_options(obj, trial, condition), viewpoints=acq.viewpoints, plane=list(SUPPORT_PLANE)
-    )
+    """The synthesis of one attempt on an acquisition: the protocol's options for the attempt
+    (Protocol.attempt_options), the known support plane; the camera's depth image, intrinsics and pose (cloud
+    "image"), or the points with the cameras' positions."""
+    opts, plane = p.attempt_options(obj, trial, condition), list(SUPPORT_PLANE)
+    if p.cloud == "image":
+        cam = acq.cameras[0]
+        return model.synthesize(
+            depth=acq.depth_images[0], intrinsics=cam.pinhole(), camera_pose=cam.pose(), options=opts, plane=plane
+        )
+    return model.synthesize(acq.points, opts, viewpoints=acq.viewpoints, plane=plane)
 
 
 def acquire_unit(p: Protocol, obj: str, trial: int, noise: bool) -> Acquisition:

@@ -156,7 +156,7 @@ class QuerySurface:
 
 def query_surface(model: GraspModel, acq, opts: SynthesisOptions) -> QuerySurface:
     """segment_query + object_surface as GraspModel.synthesize runs them; of several targets, the largest."""
-    scene = segment_query(acq.points, acq.viewpoints, np.asarray(SUPPORT_PLANE), opts, model.features)
+    scene = segment_query((acq.points, acq.viewpoints), np.asarray(SUPPORT_PLANE), opts, model.features)
     targets = scene.select("all")
     if not targets:
         raise ValueError("the segmentation found no object")

@@ -39,9 +39,12 @@ CONDITIONS = {
 }
 PRESETS = ("smoke", "paper", "defaults")
 # What an acquisition keeps: "object", the pixels that see the object with the table cropped (the paper's: a
-# segmented sensor); "scene", every pixel, the table too (what a depth camera gives: the synthesis finds the
-# object above the known table, and the table's rays show the occupancy model the free space around it).
-CLOUDS = ("object", "scene")
+# segmented sensor); "scene", every pixel, the table too, as points in the world (the synthesis finds the object
+# above the known table, and the table's rays show the occupancy model the free space around it); "image", every
+# pixel as the camera's driver gives it, the depth image with its intrinsics and the camera's pose (one camera:
+# the synthesis works in image space, perception.segment_view). The defaults preset with one camera takes "image":
+# the user's input.
+CLOUDS = ("object", "scene", "image")
 # The smoke preset's objects: three of the test set with different shapes (a mug, a small block-like
 # part, an elongated part), so the smoke run exercises more than one kind of grasp.
 SMOKE_OBJECTS = 3
@@ -96,6 +99,8 @@ class Protocol:
         else:
             kw = dict(objects=objects, trials=10)
         kw.update({k: v for k, v in overrides.items() if v is not None})
+        if name == "defaults" and kw.get("views") == 1 and overrides.get("cloud") is None:
+            kw["cloud"] = "image"
         return cls(**kw)
 
     def validate(self) -> None:
@@ -117,6 +122,8 @@ class Protocol:
         check_int(self.views, "views", 1, 64)
         if not isinstance(self.cloud, str) or self.cloud not in CLOUDS:
             raise ValueError(f"cloud must be one of {', '.join(CLOUDS)}, got {quote(self.cloud)}")
+        if self.cloud == "image" and self.views != 1:
+            raise ValueError(f"cloud 'image' is one camera's depth image: views must be 1, got {self.views}")
         if not isinstance(self.closing, str) or self.closing not in CLOSING:
             raise ValueError(f"closing must be one of {', '.join(CLOSING)}, got {quote(self.closing)}")
         if not isinstance(self.models, dict):
@@ -182,7 +189,7 @@ class Protocol:
             cameras=scene_cameras(self.views),
             pixel_noise_std=self.pixel_noise_std,
             depth_noise_std=self.depth_noise_std,
-            keep=self.cloud,
+            keep="object" if self.cloud == "object" else "scene",
         )
 
     # -- the work

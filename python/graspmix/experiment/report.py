@@ -264,7 +264,10 @@ def _html_table(rows: list[list[str]]) -> str:
 def _clouds_text(proto: dict) -> str:
     """The cameras and what an acquisition kept."""
     cameras = "1 camera above the table" if proto["views"] == 1 else f"{proto['views']} cameras"
-    kept = "the whole depth images" if proto["cloud"] == "scene" else "the object's pixels"
+    kept = {
+        "scene": "the whole depth images",
+        "image": "the depth image with its intrinsics and pose (image space)",
+    }.get(proto["cloud"], "the object's pixels")
     return f"{cameras}, {kept}"
 
 

@@ -38,7 +38,7 @@ from ..io.checks import (
     check_path_text,
     check_seed,
 )
-from ..perception import in_world
+from ..perception import camera_view, in_world
 from .demonstration import Demonstration
 from .grasp_types import (
     GraspType,
@@ -220,28 +220,36 @@ class GraspModel:
     # -- synthesis
     def synthesize(
         self,
-        cloud,
+        cloud=None,
         options: SynthesisOptions | None = None,
         *,
+        depth=None,
+        intrinsics=None,
+        depth_scale: float | None = None,
+        camera_pose=None,
         target="all",
         viewpoints=None,
-        camera_pose=None,
         plane=None,
         approach_axis: Sequence[float] | None = None,
         reachable: Callable | None = None,
         experts: Iterable = (),
         types=None,
     ) -> GraspSet:
-        """Grasps on a scene or object cloud: a path (PCD/PLY/npy) or an (N, 3) array of points, configured by
-        `options` (SynthesisOptions; None: the library's defaults).
+        """Grasps on one camera's view or on a cloud, configured by `options` (SynthesisOptions; None: the library's
+        defaults). The input, as cameras give it: an organized cloud `cloud` (H, W, 3) in the sensor frame (x right,
+        y down, z forward; NaN where nothing was hit), or a depth image `depth` ((H, W) array, or a 16-bit PNG in
+        millimetres or a .npy) with its `intrinsics` (K (3, 3), (fx, fy, cx, cy) or a PinholeCamera) and
+        `depth_scale` (metres per unit; None: 0.001 for integers, 1 for floats), each with the camera's pose
+        camera_pose = T_world_camera [x, y, z, qx, qy, qz, qw] (None: the world is the camera's frame); such a view
+        is segmented in image space (perception.segment_view). Or any cloud: a path (PCD/PLY/npy) or an (N, 3)
+        array of points (with camera_pose: in that camera's frame). Grasps come back in the world frame.
 
         The cloud is segmented (graspmix.segment_scene) into its support plane and the objects on it;
         grasps are sampled on the target objects and checked for collision against all of them and the
         plane. target: "all" (every object, best grasps first), an object index, "point:x,y,z" (the object
         nearest the point), "largest", "nearest" (to the camera); every grasp records its object.
-        viewpoints: the camera position (3,) or one per point (N, 3) (default: the file's); they orient the
-        plane and the normals. camera_pose: [x, y, z, qx, qy, qz, qw] of the camera whose frame the cloud is in
-        (the points are mapped to the world, the camera is the viewpoint, the grasps are in the world frame).
+        viewpoints (an unorganized cloud's): the camera position (3,) or one per point (N, 3) (default: the file's);
+        they orient the plane and the normals.
         plane: a known support [a, b, c, d] instead of the one searched for (points within
         options.segmentation.table_clearance of it are dropped). approach_axis: prefer wrists whose approach axis
         points along it (e.g. (0, 0, -1) for top grasps; options.axis_alignment says how much);
@@ -253,9 +261,13 @@ class GraspModel:
         chosen = select_types(self.types, types)
         t0 = time.perf_counter()
         # Phase 1: the scene (support plane, objects) and the targets.
-        points, name, file_viewpoints = load_points(cloud)
-        points, viewpoints = in_world(points, file_viewpoints if viewpoints is None else viewpoints, camera_pose)
-        scene = segment_query(points, viewpoints, checked_plane(plane), opts, self.features)
+        view, name = camera_view(cloud, depth, intrinsics, depth_scale, camera_pose, viewpoints)
+        if view is None:
+            points, name, file_viewpoints = load_points(cloud)
+            source = in_world(points, file_viewpoints if viewpoints is None else viewpoints, camera_pose)
+        else:
+            source = view
+        scene = segment_query(source, checked_plane(plane), opts, self.features)
         targets = scene.select(target)
         t_segment = time.perf_counter() - t0
         # Phases 2-3: features, query densities, sampling, ranking and annealing per target, ranked together.
@@ -268,7 +280,7 @@ class GraspModel:
             approach_axis=approach_axis,
             reachable=reachable,
             experts=experts,
-            cloud=(points, viewpoints),
+            cloud=source,
             types=chosen,
         )
         timing = _stage_times(out.timing, t_segment, time.perf_counter() - t0)

@@ -21,7 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import _core
-from ..perception import Scene, segment_scene
+from ..perception import CameraView, Scene, segment_scene, segment_view
 from .experts import (
     approach_collision,
     clear_approach_expert,
@@ -54,13 +54,28 @@ class SurfaceUnion:
         return cls(*(np.vstack([np.asarray(getattr(s, k)) for s in surfaces]) for k in cls.__annotations__))
 
 
-def segment_query(points, viewpoints, plane, opts: SynthesisOptions, features: FeatureScale) -> Scene:
-    """The scene of a query cloud: the known plane (or the one found, opts.segmentation.find_plane), the objects
-    above it, at the model's voxel size, each completed (opts.completion; Scene.complete)."""
-    scene = segment_scene(
-        points, viewpoints=viewpoints, plane=plane, settings=opts.segmentation_for(features.voxel_size)
-    )
+def segment_query(source, plane, opts: SynthesisOptions, features: FeatureScale) -> Scene:
+    """The scene of a query: `source` one camera's view (a perception.CameraView, segmented in image space:
+    perception.segment_view) or a cloud (points, viewpoints); the known plane (or the one found,
+    opts.segmentation.find_plane), the objects above it, at the model's voxel size, each completed
+    (opts.completion; Scene.complete)."""
+    settings = opts.segmentation_for(features.voxel_size)
+    if isinstance(source, CameraView):
+        scene = segment_view(source, plane, settings)
+    else:
+        points, viewpoints = source
+        scene = segment_scene(points, viewpoints=viewpoints, plane=plane, settings=settings)
     return scene if opts.completion is None else scene.complete(opts.completion)
+
+
+def whole_cloud(source, scene: Scene) -> tuple:
+    """(points, viewpoints) of the whole input, table included: a view's points of every return in the world frame
+    and its camera; a cloud as given; the scene's own without a source."""
+    if source is None:
+        return scene.points, scene.viewpoints
+    if isinstance(source, CameraView):
+        return source.world_points(), source.position
+    return source
 
 
 # m: a completed point's normal is oriented towards a virtual viewpoint this far out along its outward normal
@@ -130,15 +145,16 @@ def synthesize_targets(
     types=None,
 ) -> SceneSynthesis:
     """Runs the model's synthesiser on every target object against the whole scene and ranks all grasps.
-    cloud: (points, viewpoints) of the whole input cloud, table included: with collision="occupancy" the
-    scene's OccupancyMap is built from it once and shared by every target (its time: timing["occupancy"]).
+    cloud: the scene's source (segment_query's: a CameraView or (points, viewpoints)): with collision="occupancy"
+    the scene's OccupancyMap is built from its whole cloud (whole_cloud) once and shared by every target (its time:
+    timing["occupancy"]).
     types: the model's grasp types to sample (default all); each samples n_samples grasps of its own and
     optimises its own best, so a synthesis of T types costs about T times one type's (the stage times are
     sums over types and targets)."""
     timing = dict.fromkeys(STAGES, 0.0)
     occupancy = None
     if opts.collision.model == "occupancy":
-        points, viewpoints = (scene.points, scene.viewpoints) if cloud is None else cloud
+        points, viewpoints = whole_cloud(cloud, scene)
         occupancy = occupancy_map(points, viewpoints, scene.points, scene.plane, opts)
         timing["occupancy"] = occupancy.stats["seconds"]
     solid = scene.solid_points()  # observed and completed: the hand stays out of both

@@ -1,5 +1,6 @@
 """The scene model over the C++ segmentation: the support plane and the objects of a depth camera's cloud,
-target selection among the objects, and the viewpoint inputs (a cloud given in a camera's frame).
+target selection among the objects, the viewpoint inputs (a cloud given in a camera's frame), and one camera's
+view as its driver gives it (a depth image with intrinsics or an organized cloud, segmented in image space).
 Imports only io and the C++ core.
 
     scene = graspmix.segment_scene(points, viewpoints=camera_position)
@@ -17,8 +18,15 @@ from .scene import (
     parse_target,
     segment_scene,
 )
+from .views import CameraView, camera_view, depth_view, organized_view, read_depth, segment_view
 
 __all__ = [
+    "CameraView",
+    "camera_view",
+    "depth_view",
+    "organized_view",
+    "read_depth",
+    "segment_view",
     "POINT_TARGET_MAX_DISTANCE",
     "Scene",
     "SceneObject",

@@ -15,9 +15,6 @@ from ..io import as_points, quote
 # m: a "point:x,y,z" target farther than this from every object's points names no object (a click or a
 # typed point lands on the surface the camera saw, within a few voxels of it).
 POINT_TARGET_MAX_DISTANCE = 0.05
-# A camera pose's quaternion is a unit one when its norm is within this of 1 (poses typed with 4 decimals
-# pass); it is then normalised.
-UNIT_QUATERNION_TOLERANCE = 1e-3
 TARGET_KINDS = ("all", "largest", "nearest")
 
 
@@ -306,30 +303,16 @@ def segment_scene(points, viewpoints=None, plane=None, **settings) -> Scene:
     return Scene(_core.segment_scene(pts, vp, plane, **settings), vp)
 
 
-def _rotation(q: np.ndarray) -> np.ndarray:
-    x, y, z, w = q
-    return np.array(
-        [
-            [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-            [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-            [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
-        ]
-    )
-
-
 def camera_to_world(points, pose) -> tuple[np.ndarray, np.ndarray]:
     """(world points (N, 3), camera position (3,)) of points given in a camera's frame, with the camera's
-    pose T_world_camera = [x, y, z, qx, qy, qz, qw]; ValueError when the quaternion is not a unit one
-    (norm off 1 by more than UNIT_QUATERNION_TOLERANCE)."""
+    pose T_world_camera = [x, y, z, qx, qy, qz, qw]; ValueError when the quaternion is not a unit one (the C++
+    check: graspmix._core.camera_pose_matrix)."""
     pts = as_points(points)
     p = np.asarray(pose, dtype=float)
-    if p.shape != (7,) or not np.all(np.isfinite(p)):
-        raise ValueError(f"camera pose: expected 7 finite numbers x, y, z, qx, qy, qz, qw, got shape {p.shape}")
-    norm = float(np.linalg.norm(p[3:]))
-    if abs(norm - 1.0) > UNIT_QUATERNION_TOLERANCE:
-        raise ValueError(f"camera pose: [qx, qy, qz, qw] = {p[3:].tolist()} is not a unit quaternion (norm {norm:.6g})")
-    R = _rotation(p[3:] / norm)
-    return pts @ R.T + p[:3], p[:3].copy()
+    if p.shape != (7,):
+        raise ValueError(f"camera pose: expected 7 numbers x, y, z, qx, qy, qz, qw, got shape {p.shape}")
+    T = np.asarray(_core.camera_pose_matrix(p))
+    return pts @ T[:3, :3].T + T[:3, 3], T[:3, 3].copy()
 
 
 def in_world(points, viewpoints, camera_pose):

@@ -79,6 +79,23 @@ class Camera:
 
         return p.computeProjectionMatrixFOV(self.fov_deg, self.width / self.height, self.near, self.far)
 
+    def pinhole(self):
+        """The camera's intrinsics as a driver gives them (graspmix.PinholeCamera): its depth images (back_project's
+        pixel convention) are a pinhole camera's with fx = fy = height / (2 tan(fov / 2)), cx = width / 2 and
+        cy = height / 2 - 1 (TinyRenderer samples pixel (u, v) at window position (u, height - 1 - v))."""
+        from .. import _core
+
+        f = self.height / (2.0 * math.tan(math.radians(self.fov_deg) / 2.0))
+        return _core.PinholeCamera(f, f, self.width / 2.0, self.height / 2.0 - 1.0, self.width, self.height)
+
+    def pose(self) -> list[float]:
+        """T_world_camera [x, y, z, qx, qy, qz, qw] of the camera's optical frame (x right, y down, z forward, as
+        PCL's and ROS's optical frames): what a robot's kinematics give for the camera."""
+        from scipy.spatial.transform import Rotation
+
+        R = np.linalg.inv(self.view_matrix())[:3, :3] @ np.diag([1.0, -1.0, -1.0])  # OpenGL's camera: y up, z back
+        return [*map(float, self.eye), *map(float, Rotation.from_matrix(R).as_quat())]
+
 
 def ring_cameras(
     n: int = 4,

@@ -13,7 +13,7 @@ REPO = Path(__file__).resolve().parents[3]
 # page -> the tables (markers) it holds
 PAGES = {
     "docs/experiment.md": {"findings", "defaults", "ablation", "heldout", "heldout-paper"},
-    "docs/one-view.md": {"dev", "heldout", "four-views", "paper", "clutter"},
+    "docs/one-view.md": {"dev", "heldout", "four-views", "paper", "clutter", "image-dev", "image-heldout"},
 }
 SCRIPTS = ("scripts/findings_table.py", "scripts/ablation_table.py", "scripts/clutter_table.py")
 

@@ -102,4 +102,13 @@ def test_the_report_says_which_clouds_and_experts_a_run_used():
     )
     text = _synthesis_text(one.to_json()["synthesis"])
     assert "occupancy" in text and "stand-off 10 cm, clearance 2 mm" in text and "friction 0.5" in text
-    assert _clouds_text(one.to_json()) == "1 camera above the table, the whole depth images"
+    # one camera: the defaults take its depth image as a driver gives it; points on request, and never of 4 cameras
+    assert one.cloud == "image"
+    assert (
+        _clouds_text(one.to_json())
+        == "1 camera above the table, the depth image with its intrinsics and pose (image space)"
+    )
+    points = ex.Protocol.preset("defaults", views=1, cloud="scene")
+    assert _clouds_text(points.to_json()) == "1 camera above the table, the whole depth images"
+    with pytest.raises(ValueError, match="views must be 1"):
+        ex.Protocol.preset("defaults", views=4, cloud="image")

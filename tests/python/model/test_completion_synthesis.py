@@ -40,7 +40,7 @@ def box_distance(acq, points):
 def test_completed_points_join_the_surface_with_their_weight_and_the_solid_points(seen_box):
     acq, model = seen_box
     opts = SynthesisOptions().updated({"query.completed_weight": 0.3})
-    scene = segment_query(acq.points, acq.viewpoints, None, opts, model.features)
+    scene = segment_query((acq.points, acq.viewpoints), None, opts, model.features)
     assert len(scene.objects) == 1 and scene.completions[0].kind != CompletionKind.None_
     completed, normals = scene.completed(0)
     assert len(completed) > 100 and normals.shape == completed.shape
@@ -62,7 +62,7 @@ def test_completed_points_join_the_surface_with_their_weight_and_the_solid_point
         query_weights(scene, 0, object_surface(scene, 0, model.features), opts.updated({"completion": None}))
         is not None
     )
-    off = segment_query(acq.points, acq.viewpoints, None, opts.updated({"completion": None}), model.features)
+    off = segment_query((acq.points, acq.viewpoints), None, opts.updated({"completion": None}), model.features)
     assert off.completions == [None] and query_weights(off, 0, object_surface(off, 0, model.features), opts) is None
 
 

@@ -22,13 +22,11 @@ def test_synthesis_options_are_the_cpp_structs_defaults():
     for name, (cls, _) in PARTS.items():
         assert getattr(o, name) == cls(), name
     assert o.seed == 0
-    # synthesize() restates no setting: everything but the cloud, the views, the target and the task is the options'.
+    # synthesize() restates no setting: everything but the input, the views, the target and the task is the options'.
     syn = _defaults(GraspModel.synthesize)
     assert syn["options"] is None
-    assert set(syn) == {"options", "target", "viewpoints", "camera_pose", "plane", "approach_axis", "reachable"} | {
-        "experts",
-        "types",
-    }
+    inputs = {"cloud", "depth", "intrinsics", "depth_scale", "camera_pose", "viewpoints"}
+    assert set(syn) == inputs | {"options", "target", "plane", "approach_axis", "reachable", "experts", "types"}
 
 
 def test_learn_keyword_defaults_are_the_settings_defaults():

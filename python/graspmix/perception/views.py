@@ -1,0 +1,172 @@
+"""One depth camera's view as its driver gives it: a depth image with its intrinsics, or an organized cloud in the
+sensor frame (x right, y down, z forward; NaN where nothing was hit), and the camera's pose in the world
+(T_world_camera = [x, y, z, qx, qy, qz, qw], from the robot's kinematics). segment_view makes its scene in image
+space (graspmix._core.segment_depth / segment_organized, include/graspmix/perception/depth_scene.hpp).
+
+    view = depth_view("depth.png", intrinsics=(fx, fy, cx, cy), camera_pose=pose)   # 16-bit PNG in mm
+    view = organized_view(cloud_hw3, camera_pose=pose)
+    scene = segment_view(view)
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .. import _core
+from ..io import check_input_file, quote
+
+IDENTITY_POSE = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0)
+# m per unit of an integer depth image when no depth_scale is given: millimetres, as RealSense, Kinect and ROS
+# (16UC1) write depth; a floating-point image is taken in metres (ROS's 32FC1).
+INTEGER_DEPTH_SCALE = 0.001
+DEPTH_SUFFIXES = (".png", ".npy")
+
+
+@dataclass(frozen=True)
+class CameraView:
+    """One camera's view: depth (H, W) in metres along z (NaN: no return), camera (graspmix.PinholeCamera), pose
+    (7,) T_world_camera; organized (H, W, 3) the sensor-frame cloud when the view was given as one (its own x and
+    y are used, not the depths re-projected)."""
+
+    depth: np.ndarray
+    camera: object
+    pose: np.ndarray
+    organized: np.ndarray | None = None
+
+    @property
+    def position(self) -> np.ndarray:
+        """(3,) the camera's position in the world."""
+        return self.pose[:3].copy()
+
+    def world_points(self) -> np.ndarray:
+        """(N, 3) the points of the pixels with a return, in the world frame."""
+        cloud = self.organized if self.organized is not None else self.camera.back_project(self.depth)
+        pts = cloud.reshape(-1, 3)
+        pts = pts[np.all(np.isfinite(pts), axis=1)]
+        T = np.asarray(_core.camera_pose_matrix(self.pose))
+        return pts @ T[:3, :3].T + T[:3, 3]
+
+
+def checked_pose(camera_pose) -> np.ndarray:
+    """(7,) T_world_camera, a unit quaternion (the C++ check, kUnitQuaternionTolerance); None is the identity (the
+    world is the camera's frame)."""
+    pose = np.asarray(IDENTITY_POSE if camera_pose is None else camera_pose, dtype=float)
+    if pose.shape != (7,):
+        raise ValueError(f"camera_pose: expected 7 numbers x, y, z, qx, qy, qz, qw, got shape {pose.shape}")
+    _core.camera_pose_matrix(pose)  # the C++ check (a unit quaternion, finite)
+    return pose
+
+
+def read_depth(path) -> np.ndarray:
+    """The depth image of a file: a 16-bit single-channel PNG (millimetres, as RealSense and ROS write it) or a .npy
+    (H, W) array; ValueError naming the file for anything else (an 8-bit or colour PNG is not a depth image)."""
+    p = check_input_file(path, "depth")
+    if p.suffix.lower() not in DEPTH_SUFFIXES:
+        raise ValueError(f"{quote(str(path))}: a depth image is a 16-bit PNG or a .npy array, got {quote(p.suffix)}")
+    if p.suffix.lower() == ".npy":
+        try:
+            return np.load(p, allow_pickle=False)
+        except (ValueError, OSError) as e:
+            raise ValueError(f"{quote(str(path))}: cannot read the depth array ({e})") from None
+    from PIL import Image, UnidentifiedImageError
+
+    try:
+        with Image.open(p) as im:
+            mode = im.mode
+            if mode not in ("I;16", "I;16B", "I"):
+                raise ValueError(
+                    f"{quote(str(path))}: a depth PNG has one 16-bit channel (millimetres), this one is {mode!r} "
+                    "(8-bit or colour: a picture, not a depth image)"
+                )
+            return np.asarray(im)
+    except (UnidentifiedImageError, OSError) as e:
+        raise ValueError(f"{quote(str(path))}: cannot read the PNG ({e})") from None
+
+
+def pinhole(intrinsics, width: int, height: int):
+    """A PinholeCamera of an image width x height from intrinsics: a PinholeCamera (its size must match), a 3x3
+    matrix K, or (fx, fy, cx, cy); ValueError naming what is wrong (zero or negative focal lengths included)."""
+    if isinstance(intrinsics, _core.PinholeCamera):
+        if (intrinsics.width, intrinsics.height) != (width, height):
+            raise ValueError(
+                f"intrinsics: the camera is {intrinsics.width} x {intrinsics.height}, the image {width} x {height}"
+            )
+        return intrinsics
+    k = np.asarray(intrinsics, dtype=float)
+    if k.shape == (3, 3):
+        if not np.allclose(k[[1, 2, 2, 2], [0, 0, 1, 2]], [0, 0, 0, 1]) or k[0, 1] != 0:
+            raise ValueError(f"intrinsics: a pinhole K is [[fx, 0, cx], [0, fy, cy], [0, 0, 1]], got {k.tolist()}")
+        k = k[[0, 1, 0, 1], [0, 1, 2, 2]]
+    if k.shape != (4,):
+        raise ValueError(f"intrinsics: expected K (3, 3) or fx, fy, cx, cy, got shape {k.shape}")
+    return _core.PinholeCamera(*map(float, k), width, height)
+
+
+def depth_view(depth, intrinsics, camera_pose=None, depth_scale=None) -> CameraView:
+    """A view from a depth image ((H, W) array or a file read by read_depth) with its intrinsics (pinhole()) and the
+    camera's pose (None: the identity); depth_scale: metres per unit (None: INTEGER_DEPTH_SCALE for an integer
+    image, 1 for floating point). 0, NaN and inf are no return."""
+    d = read_depth(depth) if isinstance(depth, (str, Path)) else np.asarray(depth)
+    if d.ndim != 2 or d.size == 0:
+        raise ValueError(f"depth: expected an (H, W) image, got shape {d.shape}")
+    if d.dtype.kind not in "uif":
+        raise ValueError(f"depth: expected numbers, got dtype {d.dtype}")
+    scale = (INTEGER_DEPTH_SCALE if d.dtype.kind in "ui" else 1.0) if depth_scale is None else float(depth_scale)
+    if not (np.isfinite(scale) and scale > 0):
+        raise ValueError(f"depth_scale: expected metres per unit > 0, got {depth_scale!r}")
+    metres = d.astype(float) * scale  # 0, NaN and inf stay no return; a negative depth is the C++ check's error
+    camera = pinhole(intrinsics, d.shape[1], d.shape[0])
+    camera.check_image(metres)
+    return CameraView(metres, camera, checked_pose(camera_pose))
+
+
+def organized_view(points, camera_pose=None) -> CameraView:
+    """A view from an organized cloud (H, W, 3) in the sensor frame (NaN rows: no return) and the camera's pose
+    (None: the identity); its intrinsics are fitted (PinholeCamera.fit), so a cloud that is not a pinhole image in
+    the sensor frame is a ValueError saying so."""
+    pts = np.asarray(points, dtype=float)
+    if pts.ndim != 3 or pts.shape[2] != 3:
+        raise ValueError(f"organized cloud: expected shape (H, W, 3) in the sensor frame, got {pts.shape}")
+    fit = _core.PinholeCamera.fit(pts)
+    return CameraView(pts[:, :, 2].copy(), fit.camera, checked_pose(camera_pose), organized=pts)
+
+
+def segment_view(view: CameraView, plane=None, settings=None):
+    """The support plane and the objects of one camera's view (the Scene of segment_scene, in the world frame):
+    graspmix._core.segment_organized for a view given as an organized cloud, else segment_depth."""
+    from .scene import Scene
+
+    if view.organized is not None:
+        result = _core.segment_organized(view.organized, view.pose, plane, settings=settings)
+    else:
+        result = _core.segment_depth(view.depth, view.camera, view.pose, plane, settings=settings)
+    return Scene(result, view.position)
+
+
+def camera_view(cloud, depth=None, intrinsics=None, depth_scale=None, camera_pose=None, viewpoints=None):
+    """(CameraView, name) of a synthesis' input when it is one camera's view: a depth image (with intrinsics), or
+    an organized (H, W, 3) array; (None, None) for any other cloud (a path, an (N, 3) array). ValueError for inputs
+    that do not go together (a depth image and a cloud, intrinsics without a depth image, viewpoints with a view:
+    its camera is camera_pose)."""
+    if depth is not None:
+        if cloud is not None:
+            raise ValueError("give a cloud or a depth image (depth=...), not both")
+        if intrinsics is None:
+            raise ValueError("depth: a depth image needs its camera's intrinsics (intrinsics=K or (fx, fy, cx, cy))")
+        view, name = depth_view(depth, intrinsics, camera_pose, depth_scale), "<depth image>"
+        if isinstance(depth, (str, Path)):
+            name = str(depth)
+    elif intrinsics is not None or depth_scale is not None:
+        raise ValueError("intrinsics and depth_scale go with a depth image (depth=...)")
+    elif cloud is None:
+        raise ValueError("no input: give a cloud (a path, an (N, 3) or (H, W, 3) array) or a depth image (depth=...)")
+    elif not isinstance(cloud, (str, Path)) and np.ndim(cloud) == 3:
+        view, name = organized_view(cloud, camera_pose), "<organized cloud>"
+    else:
+        return None, None
+    if viewpoints is not None:
+        raise ValueError("viewpoints: a camera view's viewpoint is its camera (camera_pose); give no viewpoints")
+    return view, name

@@ -1,0 +1,194 @@
+"""One camera's view as its driver gives it (perception/views.py): a depth image with intrinsics or an organized cloud
+in the sensor frame, with the camera's pose, segmented in image space, against the same view's points segmented as a
+cloud (graspmix.segment_scene) on the bundled packed scene rendered by pybullet; the depth image written as a 16-bit
+PNG in millimetres; GraspModel.synthesize and the CLI on each input; bad input naming what is wrong."""
+
+import graspmix
+import numpy as np
+import pytest
+from graspmix.cli.main import main
+from graspmix.io import data_path
+from graspmix.perception import camera_view, depth_view, organized_view, read_depth, segment_scene, segment_view
+from graspmix.sim import scene_camera, scenes
+from PIL import Image
+from scipy.spatial.transform import Rotation
+
+
+@pytest.fixture(scope="module")
+def view(tmp_path_factory):
+    """(acquisition, camera, depth in metres with inf = no return, path of the 16-bit PNG in mm) of packed4."""
+    spec = scenes.SceneSpec.load(str(data_path("scenes", "packed4.json")))
+    acq = scene_camera.acquire_scene(spec, views=1, noise=True, seed=3, keep="scene")
+    depth = acq.depth_images[0]
+    png = tmp_path_factory.mktemp("views") / "depth.png"
+    Image.fromarray(np.where(np.isfinite(depth), np.round(depth * 1000), 0).astype(np.uint16)).save(png)
+    return acq, acq.cameras[0], depth, png
+
+
+def _angle_deg(a, b) -> float:
+    return float(np.degrees(np.arccos(np.clip(abs(np.dot(a[:3], b[:3])), -1, 1))))
+
+
+def _pieces(labels_of_objects) -> dict:
+    """{true object: how many segmented objects hold mostly its points}"""
+    out = {}
+    for labels in labels_of_objects:
+        values, counts = np.unique(labels, return_counts=True)
+        out[values[np.argmax(counts)]] = out.get(values[np.argmax(counts)], 0) + 1
+    return out
+
+
+def test_depth_image_gives_the_scene_of_its_points(view):
+    acq, cam, depth, _ = view
+    image = segment_view(depth_view(depth, cam.pinhole(), cam.pose()))
+    cloud = segment_scene(acq.points, acq.viewpoints)
+    assert image.plane_found and cloud.plane_found
+    assert _angle_deg(image.plane, cloud.plane) < 0.05 and abs(image.plane[3] - cloud.plane[3]) < 5e-4
+    # Against the renderer's labels (per pixel; the image's sources are pixels): every object the view shows is
+    # found, each segmented object holds one object's points (99% of those on objects; under 10% table fringe, the
+    # lateral noise's), and an object
+    # falls into no more pieces than segment_scene leaves of it on the same view's points.
+    pixel_label = np.full(depth.size, -2)
+    pixel_label[np.flatnonzero(np.isfinite(depth))] = acq.labels
+    of_image = [pixel_label[image.sources[o.rows]] for o in image.objects]
+    of_cloud = [acq.labels[cloud.sources[o.rows]] for o in cloud.objects]
+    for labels in of_image:
+        on = labels[labels >= 0]
+        assert np.mean(on == np.bincount(on).argmax()) > 0.99 and np.mean(labels < 0) < 0.1
+    pieces_image, pieces_cloud = _pieces(of_image), _pieces(of_cloud)
+    assert set(pieces_image) == set(range(len(acq.object_pose)))
+    assert all(pieces_image[k] <= pieces_cloud.get(k, 0) for k in pieces_image), (pieces_image, pieces_cloud)
+    # the image's visibility model is the camera's own pinhole view
+    (v,) = image.visibility.views
+    assert v["kind"] == "pinhole" and (v["width"], v["height"]) == (640, 480)
+    # sources are pixels: each object point lies within a voxel diagonal of its pixel's point
+    pixels = cam.pinhole().back_project(depth).reshape(-1, 3)[image.sources]
+    world = depth_view(depth, cam.pinhole(), cam.pose())
+    R = Rotation.from_quat(world.pose[3:]).as_matrix()
+    assert np.all(np.linalg.norm(pixels @ R.T + world.pose[:3] - image.points, axis=1) < 0.003 * np.sqrt(3) + 1e-9)
+
+
+def test_organized_cloud_and_millimetre_png_give_the_same_scene(view):
+    _, cam, depth, png = view
+    a = segment_view(depth_view(depth, cam.pinhole(), cam.pose()))
+    b = segment_view(organized_view(cam.pinhole().back_project(depth), cam.pose()))
+    assert np.allclose(a.plane, b.plane, atol=1e-9) and len(a.objects) == len(b.objects)
+    assert np.allclose(a.points, b.points, atol=1e-6)
+    mm = read_depth(png)
+    assert mm.dtype == np.uint16 and mm.shape == depth.shape
+    c = segment_view(depth_view(png, cam.pinhole().K, cam.pose()))  # integers: millimetres by default
+    assert _angle_deg(a.plane, c.plane) < 0.05
+    # rounded to millimetres, the objects are the same but for a small fragment the rounding may leave apart
+    big = [o.centroid for o in c.objects if o.n_points >= 300]
+    assert len(big) == sum(o.n_points >= 300 for o in a.objects)
+    assert all(min(np.linalg.norm(o.centroid - b) for b in big) < 0.003 for o in a.objects if o.n_points >= 300)
+    assert c.result.n_input == a.result.n_input  # the PNG keeps every return (0 where the image had inf)
+    assert np.array_equal(depth_view(png, cam.pinhole().K, cam.pose()).depth, read_depth(png) * 0.001)
+
+
+def test_world_points_follow_the_camera_pose(view):
+    _, cam, depth, _ = view
+    v = depth_view(depth, (cam.pinhole().fx, cam.pinhole().fy, cam.pinhole().cx, cam.pinhole().cy), cam.pose())
+    sensor = cam.pinhole().back_project(depth).reshape(-1, 3)
+    sensor = sensor[np.all(np.isfinite(sensor), axis=1)]
+    expected = Rotation.from_quat(cam.pose()[3:]).apply(sensor) + cam.pose()[:3]
+    assert np.allclose(v.world_points(), expected, atol=1e-12)
+    assert np.allclose(v.position, cam.eye)
+
+
+def test_synthesize_takes_each_input_and_answers_in_the_world(view):
+    acq, cam, depth, png = view
+    model = graspmix.GraspModel.load(graspmix.default_model_path())
+    opts = graspmix.SynthesisOptions().updated({"sampling.n_samples": 60})
+    target = "point:-0.05,-0.1,0.06"
+    a = model.synthesize(depth=depth, intrinsics=cam.pinhole().K, camera_pose=cam.pose(), options=opts, target=target)
+    b = model.synthesize(cam.pinhole().back_project(depth), opts, camera_pose=cam.pose(), target=target)
+    assert [g.T_world_wrist for g in a[:5]] == [g.T_world_wrist for g in b[:5]]
+    # In the world frame (the renderer's points, labelled): the grasps are on the object nearest the point, and the
+    # best grasp's tool centre point is within 5 cm of that object's seen points (it may hold the unseen side; a
+    # grasp in the camera's frame would be most of a metre off).
+    target_points = acq.points[
+        acq.labels == acq.labels[np.argmin(np.linalg.norm(acq.points - [-0.05, -0.1, 0.06], axis=1))]
+    ]
+    tcp = np.asarray(a.best().T_world_tcp[:3])
+    assert np.min(np.linalg.norm(target_points - tcp, axis=1)) < 0.05
+    on = {g.object["index"] for g in a}
+    assert len(on) == 1 and np.linalg.norm(a.scene.objects[on.pop()].centroid - target_points.mean(axis=0)) < 0.02
+    c = model.synthesize(
+        depth=str(png), intrinsics=cam.pinhole().K, camera_pose=cam.pose(), options=opts, target=target
+    )
+    assert len(c) == len(a) and c.scene.plane_found
+
+
+@pytest.mark.parametrize(
+    "kwargs, words",
+    [
+        ({"cloud": np.zeros((4, 5, 2))}, "shape (H, W, 3)"),
+        ({"depth": np.ones((4, 5))}, "needs its camera's intrinsics"),
+        ({"depth": np.ones((48, 64)), "intrinsics": (0, 60, 32, 24)}, "fx"),
+        ({"depth": np.ones((48, 64)), "intrinsics": [[60, 1, 32], [0, 60, 24], [0, 0, 1]]}, "pinhole K"),
+        ({"depth": -np.ones((48, 64)), "intrinsics": (60, 60, 32, 24)}, "negative"),
+        ({"depth": np.full((48, 64), np.nan), "intrinsics": (60, 60, 32, 24)}, "no pixel has a return"),
+        ({"depth": np.ones((48, 64)), "intrinsics": (60, 60, 32, 24), "camera_pose": [0, 0, 1, 0, 0, 0, 2]}, "unit"),
+        ({"depth": np.ones((48, 64)), "intrinsics": (60, 60, 32, 24), "depth_scale": 0}, "depth_scale"),
+        ({"depth": np.ones((48, 64)), "cloud": np.ones((5, 3)), "intrinsics": (60, 60, 32, 24)}, "not both"),
+        ({"cloud": np.ones((5, 3)), "intrinsics": (60, 60, 32, 24)}, "go with a depth image"),
+        ({"depth": np.ones((8, 8)), "intrinsics": (6, 6, 4, 4), "viewpoints": [0, 0, 1]}, "give no viewpoints"),
+    ],
+)
+def test_bad_views_name_what_is_wrong(kwargs, words):
+    model = graspmix.GraspModel.load(graspmix.default_model_path())
+    with pytest.raises(ValueError, match=None) as e:
+        model.synthesize(**kwargs)
+    assert words in str(e.value), str(e.value)
+
+
+def test_an_organized_cloud_in_the_world_frame_is_refused(view):
+    _, cam, depth, _ = view
+    sensor = cam.pinhole().back_project(depth)
+    world = Rotation.from_quat(cam.pose()[3:]).apply(sensor.reshape(-1, 3)) + cam.pose()[:3]  # NaN rows stay NaN
+    with pytest.raises(ValueError, match="sensor frame"):
+        camera_view(world.reshape(sensor.shape))
+
+
+def test_an_eight_bit_png_is_not_a_depth_image(tmp_path):
+    Image.fromarray(np.zeros((8, 8), np.uint8)).save(tmp_path / "d.png")
+    with pytest.raises(ValueError, match="16-bit"):
+        read_depth(tmp_path / "d.png")
+
+
+def test_cli_synthesize_and_segment_on_a_depth_png(view, tmp_path, capsys):
+    _, cam, _, png = view
+    c = cam.pinhole()
+    flags = [
+        "--depth",
+        str(png),
+        "--intrinsics",
+        f"{c.fx},{c.fy},{c.cx},{c.cy}",
+        f"--camera-pose={','.join(map(str, cam.pose()))}",
+    ]
+    assert main(["segment", *flags]) == 0
+    assert "plane: found" in capsys.readouterr().out
+    out = tmp_path / "g.json"
+    assert main(["synthesize", *flags, "--samples", "40", "--target", "largest", "--out", str(out)]) == 0
+    grasps = graspmix.model.load_grasps(out)
+    assert len(grasps["grasps"]) == 40 and grasps["cloud"] == ""  # a depth image is no cloud to draw
+
+
+@pytest.mark.parametrize(
+    "argv, words",
+    [
+        (["--depth", "D"], "--intrinsics"),
+        (["--depth", "D", "--intrinsics", "0,1,2,3"], "fx"),
+        (["--depth", "D", "--intrinsics", "1,1,2,3", "--viewpoint", "0,0,1"], "--viewpoint with --depth"),
+        (["--intrinsics", "1,1,2,3", "--cloud", "C"], "go with --depth"),
+    ],
+)
+def test_cli_bad_depth_flags_exit_2_with_one_line(view, argv, words, tmp_path, capsys):
+    _, _, _, png = view
+    cloud = tmp_path / "c.npy"
+    np.save(cloud, np.ones((10, 3)))
+    argv = [str(png) if a == "D" else str(cloud) if a == "C" else a for a in argv]
+    assert main(["synthesize", *argv]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and words in err[0], err

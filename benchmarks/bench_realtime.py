@@ -6,8 +6,9 @@ Scene clouds are made by the project's own simulated cameras (graspmix.sim.scene
 and graspmix.sim.scene_camera.acquire_scene, as `graspmix_cli scene` + `graspmix_cli acquire --scene` do;
 seeded, the depth noise model on unless --no-noise): single-object scenes (objects of
 data/objects/clutter_dev.txt) seen by the ring of four cameras and by the one scene camera, several-object
-scenes (5 objects, one view), and the bundled data/mug.pcd. In one process, for each method,
-GraspModel.synthesize(cloud, options, viewpoints=..., target="largest") is called once to warm up and then --repeats
+scenes (5 objects, one view), and the bundled data/mug.pcd; each one-view scene also as the camera's depth image
+with its intrinsics and pose (synthesize(depth=..., intrinsics=..., camera_pose=...): the image path, issue 26).
+In one process, for each method, GraspModel.synthesize(..., target="largest") is called once to warm up and then --repeats
 times; printed per scene kind: the median and 90th percentile of every stage of GraspSet.timing and of the
 whole call (time.perf_counter around it), and the KDE/GMM ratio of the medians.
 
@@ -51,35 +52,58 @@ METHODS = ("gmm", "kde")
 # -- the clouds
 
 
-def _acquire(spec, views: int, noise: bool, seed: int, cameras=None) -> tuple[np.ndarray, np.ndarray]:
+def _acquire(spec, views: int, noise: bool, seed: int, cameras=None) -> dict:
+    """{points, viewpoints} of the scene's views, and of one view also its depth image, K and camera pose."""
     from graspmix.sim import scene_camera
 
     acq = scene_camera.acquire_scene(spec, views=views, noise=noise, seed=seed, keep="scene", cameras=cameras)
-    return np.ascontiguousarray(acq.points), np.ascontiguousarray(acq.viewpoints)
+    out = {"points": np.ascontiguousarray(acq.points), "viewpoints": np.ascontiguousarray(acq.viewpoints)}
+    if views == 1:
+        cam = acq.cameras[0]
+        out.update(depth=acq.depth_images[0], K=cam.pinhole().K, pose=np.asarray(cam.pose()))
+    return out
 
 
-def _cached(cache: Path | None, key: str, make) -> tuple[np.ndarray, np.ndarray]:
-    """(points, viewpoints) from cache/key.npz when there, else made (and stored when a cache is given)."""
+def _cached(cache: Path | None, key: str, make) -> dict:
+    """_acquire's arrays from cache/key.npz when there, else made (and stored when a cache is given)."""
     path = cache / f"{key}.npz" if cache is not None else None
     if path is not None and path.exists():
         with np.load(path) as f:
-            return f["points"], f["viewpoints"]
-    points, viewpoints = make()
+            if "depth" in f or "-v1-" not in key:  # a one-view cache written before the depth images were kept: remake
+                return dict(f)
+    arrays = make()
     if path is not None:
         path.parent.mkdir(parents=True, exist_ok=True)
-        np.savez_compressed(path, points=points, viewpoints=viewpoints)
-    return points, viewpoints
+        np.savez_compressed(path, **arrays)
+    return arrays
 
 
-def make_clouds(args) -> dict[str, list[tuple[str, np.ndarray, np.ndarray]]]:
-    """{scene kind: [(name, points, viewpoints)]}: single-object scenes by 4 views and by 1 view,
-    5-object scenes by 1 view, the bundled mug."""
+def _inputs(arrays: dict, image: bool) -> dict:
+    """GraspModel.synthesize's input keywords: the depth image with its intrinsics and pose, or the points."""
+    if image:
+        return {"depth": arrays["depth"], "intrinsics": arrays["K"], "camera_pose": arrays["pose"]}
+    return {"cloud": arrays["points"], "viewpoints": arrays["viewpoints"]}
+
+
+def make_clouds(args) -> dict[str, list[tuple[str, int, dict]]]:
+    """{scene kind: [(name, raw points, synthesize's input keywords)]}: single-object scenes by 4 views and by 1 view
+    (as points, and as the depth image with its intrinsics and pose: the image path), 5-object scenes by 1 view
+    (both ways), the bundled mug."""
     from graspmix.sim import scenes
 
     n_single, n_multi = (1, 1) if args.quick else (3, 2)
     dev = data_path("objects", "clutter_dev.txt")
     tag = "noise" if args.noise else "clean"
-    kinds: dict[str, list] = {"single object, 4 views": [], "single object, 1 view": [], "5 objects, 1 view": []}
+    kinds: dict[str, list] = {
+        k: []
+        for k in (
+            "single object, 4 views",
+            "single object, 1 view",
+            "single object, 1 depth image",
+            "5 objects, 1 view",
+            "5 objects, 1 depth image",
+        )
+    }
     for i, obj in enumerate(scenes.choose_objects(dev, n_single, args.seed)):
         seed = args.seed + i
         spec = None
@@ -89,37 +113,43 @@ def make_clouds(args) -> dict[str, list[tuple[str, np.ndarray, np.ndarray]]]:
             spec = spec or scenes.make_scene([obj], "packed", seed)
             return spec
 
-        name = Path(obj).parent.name or Path(obj).stem
-        for views, kind in ((4, "single object, 4 views"), (1, "single object, 1 view")):
+        name = f"{Path(obj).parent.name or Path(obj).stem} (seed {seed})"
+        for views in (4, 1):
             key = f"single-{Path(obj).stem}-s{seed}-v{views}-{tag}"
-            pts, vp = _cached(args.cache, key, lambda v=views, s=seed: _acquire(spec_of(), v, args.noise, s))
-            kinds[kind].append((f"{name} (seed {seed})", pts, vp))
+            arrays = _cached(args.cache, key, lambda v=views, s=seed: _acquire(spec_of(), v, args.noise, s))
+            n = len(arrays["points"])
+            kinds[f"single object, {views} view{'s' if views > 1 else ''}"].append((name, n, _inputs(arrays, False)))
+            if views == 1:
+                kinds["single object, 1 depth image"].append((name, arrays["depth"].size, _inputs(arrays, True)))
     for i in range(n_multi):
         seed = args.seed + 100 + i
         objs = scenes.choose_objects(dev, 5, seed)
         key = f"multi5-s{seed}-v1-{tag}"
-        pts, vp = _cached(
+        arrays = _cached(
             args.cache, key, lambda o=objs, s=seed: _acquire(scenes.make_scene(o, "packed", s), 1, args.noise, s)
         )
-        kinds["5 objects, 1 view"].append((f"5 objects (seed {seed})", pts, vp))
+        kinds["5 objects, 1 view"].append((f"5 objects (seed {seed})", len(arrays["points"]), _inputs(arrays, False)))
+        kinds["5 objects, 1 depth image"].append(
+            (f"5 objects (seed {seed})", arrays["depth"].size, _inputs(arrays, True))
+        )
     points, _, viewpoints = load_points(data_path("mug.pcd"))
-    kinds["mug.pcd"] = [("data/mug.pcd", np.asarray(points), viewpoints)]
+    kinds["mug.pcd"] = [("data/mug.pcd", len(points), {"cloud": np.asarray(points), "viewpoints": viewpoints})]
     return kinds
 
 
 # -- timing
 
 
-def time_synthesis(model, points, viewpoints, repeats: int, seed: int, **changes) -> tuple[dict, object]:
+def time_synthesis(model, inputs: dict, repeats: int, seed: int, **changes) -> tuple[dict, object]:
     """{stage: [seconds per repeat]} (GraspSet.timing's stages and "whole", the perf_counter around the call)
-    after one warm-up call; and the last GraspSet."""
+    after one warm-up call, on synthesize's input keywords; and the last GraspSet."""
     opts = graspmix.SynthesisOptions().updated({"seed": seed, **changes})
-    model.synthesize(points, opts, viewpoints=viewpoints, target="largest")
+    model.synthesize(options=opts, target="largest", **inputs)
     times: dict[str, list[float]] = {}
     grasps = None
     for _ in range(repeats):
         t0 = time.perf_counter()
-        grasps = model.synthesize(points, opts, viewpoints=viewpoints, target="largest")
+        grasps = model.synthesize(options=opts, target="largest", **inputs)
         whole = time.perf_counter() - t0
         timing = dict(grasps.timing)
         if "total" in timing:
@@ -158,16 +188,15 @@ def bench_scenes(models: dict, kinds: dict, args) -> dict:
     for kind, clouds in kinds.items():
         per_method = {m: {} for m in models}
         counts = []
-        for name, points, viewpoints in clouds:
+        for name, n_raw, inputs in clouds:
             surface = {}
             for method, model in models.items():
-                times, grasps = time_synthesis(model, points, viewpoints, args.repeats, args.seed)
+                times, grasps = time_synthesis(model, inputs, args.repeats, args.seed)
                 for s, v in times.items():
                     per_method[method].setdefault(s, []).extend(v)
                 surface[method] = (len(grasps.surface.points), len(grasps.grasps))
             counts.append(
-                f"{name} {len(points)} raw / {surface['gmm'][0]} surface pts, "
-                f"{surface['gmm'][1]}/{surface['kde'][1]} grasps"
+                f"{name} {n_raw} raw / {surface['gmm'][0]} surface pts, {surface['gmm'][1]}/{surface['kde'][1]} grasps"
             )
         print_kind(kind, per_method, counts)
         results[kind] = per_method
@@ -269,14 +298,15 @@ def bench_scaling(model, args) -> None:
 
     obj = scenes.choose_objects(data_path("objects", "clutter_dev.txt"), 1, args.seed)[0]
     key = f"single-{Path(obj).stem}-s{args.seed}-v1-{'noise' if args.noise else 'clean'}"
-    scene_points, scene_viewpoints = _cached(
+    arrays = _cached(
         args.cache, key, lambda: _acquire(scenes.make_scene([obj], "packed", args.seed), 1, args.noise, args.seed)
     )
+    scene_points, scene_viewpoints = arrays["points"], arrays["viewpoints"]
     sizes = SIZES[::2] if args.quick else SIZES
     rows, raw, surface = [], [], []
     for n in sizes:
         points, viewpoints = upsampled(scene_points, scene_viewpoints, n, args.seed)
-        times, grasps = time_synthesis(model, points, viewpoints, args.repeats, args.seed)
+        times, grasps = time_synthesis(model, {"cloud": points, "viewpoints": viewpoints}, args.repeats, args.seed)
         rows.append(times)
         raw.append(len(points))
         surface.append(len(grasps.surface.points))
@@ -285,12 +315,9 @@ def bench_scaling(model, args) -> None:
     print(f"## {', '.join(map(str, surface))})")
     print_scaling("raw points", raw, rows, "raw pt")
     samples = SAMPLES[:2] if args.quick else SAMPLES
-    points, viewpoints = scene_points, scene_viewpoints
-    rows = [
-        time_synthesis(model, points, viewpoints, args.repeats, args.seed, **{"sampling.n_samples": n})[0]
-        for n in samples
-    ]
-    print(f"\n## scaling with n_samples (GMM, the same scene, {len(points)} raw points; n_optimise fixed)")
+    whole = {"cloud": scene_points, "viewpoints": scene_viewpoints}
+    rows = [time_synthesis(model, whole, args.repeats, args.seed, **{"sampling.n_samples": n})[0] for n in samples]
+    print(f"\n## scaling with n_samples (GMM, the same scene, {len(scene_points)} raw points; n_optimise fixed)")
     print_scaling("n_samples", list(samples), rows, "sample")
 
 

@@ -191,6 +191,8 @@ void bind_perception(py::module_& m) {
              "rad: the bin of Segmentation.visibility's range images (VisibilitySettings.angular_resolution)")
       .field("image_stride", &SegmentationSettings::image_stride,
              "px: segment_depth's block side, 0 = the largest within half a voxel_size at the median depth")
+      .field("plane_image_stride", &SegmentationSettings::plane_image_stride,
+             "px: segment_depth's block side for the support plane's search (at most image_stride: those)")
       .done();
 
   py::class_<SceneObject>(m, "SceneObject", "One object of a segmented scene: a Euclidean cluster above the plane.")

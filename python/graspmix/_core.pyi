@@ -647,9 +647,10 @@ class SegmentationSettings:
       visibility_tolerance = 0.008: m: Segmentation.visibility's surface_tolerance (within this of the observed surface is Surface)
       visibility_resolution = 0.005: rad: the bin of Segmentation.visibility's range images (VisibilitySettings.angular_resolution)
       image_stride = 0: px: segment_depth's block side, 0 = the largest within half a voxel_size at the median depth
+      plane_image_stride = 4: px: segment_depth's block side for the support plane's search (at most image_stride: those)
     """
     __hash__: typing.ClassVar[None] = None
-    _fields: typing.ClassVar[tuple] = ('voxel_size', 'plane_distance', 'plane_max_iterations', 'seed', 'find_plane', 'plane_candidates', 'plane_min_fraction', 'plane_behind_distance', 'plane_max_behind_fraction', 'plane_margin', 'table_clearance', 'remove_outliers', 'outlier_neighbours', 'outlier_std_ratio', 'cluster_tolerance', 'min_cluster_size', 'max_cluster_size', 'merge_seen_through', 'merge_through_fraction', 'merge_inset', 'join_occluded', 'join_max_gap', 'join_seen_margin', 'join_max_size', 'visibility_tolerance', 'visibility_resolution', 'image_stride')
+    _fields: typing.ClassVar[tuple] = ('voxel_size', 'plane_distance', 'plane_max_iterations', 'seed', 'find_plane', 'plane_candidates', 'plane_min_fraction', 'plane_behind_distance', 'plane_max_behind_fraction', 'plane_margin', 'table_clearance', 'remove_outliers', 'outlier_neighbours', 'outlier_std_ratio', 'cluster_tolerance', 'min_cluster_size', 'max_cluster_size', 'merge_seen_through', 'merge_through_fraction', 'merge_inset', 'join_occluded', 'join_max_gap', 'join_seen_margin', 'join_max_size', 'visibility_tolerance', 'visibility_resolution', 'image_stride', 'plane_image_stride')
     def __copy__(self) -> SegmentationSettings:
         ...
     def __deepcopy__(self, memo: typing.Any) -> SegmentationSettings:
@@ -666,7 +667,7 @@ class SegmentationSettings:
     @typing.overload
     def __init__(self, **kwargs) -> None:
         """
-        Keyword constructor: any of the fields (voxel_size, plane_distance, plane_max_iterations, seed, find_plane, plane_candidates, plane_min_fraction, plane_behind_distance, plane_max_behind_fraction, plane_margin, table_clearance, remove_outliers, outlier_neighbours, outlier_std_ratio, cluster_tolerance, min_cluster_size, max_cluster_size, merge_seen_through, merge_through_fraction, merge_inset, join_occluded, join_max_gap, join_seen_margin, join_max_size, visibility_tolerance, visibility_resolution, image_stride); the others keep their defaults.
+        Keyword constructor: any of the fields (voxel_size, plane_distance, plane_max_iterations, seed, find_plane, plane_candidates, plane_min_fraction, plane_behind_distance, plane_max_behind_fraction, plane_margin, table_clearance, remove_outliers, outlier_neighbours, outlier_std_ratio, cluster_tolerance, min_cluster_size, max_cluster_size, merge_seen_through, merge_through_fraction, merge_inset, join_occluded, join_max_gap, join_seen_margin, join_max_size, visibility_tolerance, visibility_resolution, image_stride, plane_image_stride); the others keep their defaults.
         """
     def __repr__(self) -> str:
         ...
@@ -807,6 +808,14 @@ class SegmentationSettings:
         """
     @plane_distance.setter
     def plane_distance(self, arg0: typing.Any) -> None:
+        ...
+    @property
+    def plane_image_stride(self) -> int:
+        """
+        px: segment_depth's block side for the support plane's search (at most image_stride: those)
+        """
+    @plane_image_stride.setter
+    def plane_image_stride(self, arg0: typing.Any) -> None:
         ...
     @property
     def plane_margin(self) -> float:
@@ -4015,6 +4024,7 @@ def segment_depth(depth: typing.Any, camera: PinholeCamera, T_world_camera: typi
       visibility_tolerance = 0.008: m: Segmentation.visibility's surface_tolerance (within this of the observed surface is Surface)
       visibility_resolution = 0.005: rad: the bin of Segmentation.visibility's range images (VisibilitySettings.angular_resolution)
       image_stride = 0: px: segment_depth's block side, 0 = the largest within half a voxel_size at the median depth
+      plane_image_stride = 4: px: segment_depth's block side for the support plane's search (at most image_stride: those)
     """
 def segment_organized(points: typing.Any, T_world_camera: typing.Any, plane: typing.Any = None, *, height: typing.Any = None, width: typing.Any = None, settings: typing.Any = None, **kwargs) -> Segmentation:
     """
@@ -4050,6 +4060,7 @@ def segment_organized(points: typing.Any, T_world_camera: typing.Any, plane: typ
       visibility_tolerance = 0.008: m: Segmentation.visibility's surface_tolerance (within this of the observed surface is Surface)
       visibility_resolution = 0.005: rad: the bin of Segmentation.visibility's range images (VisibilitySettings.angular_resolution)
       image_stride = 0: px: segment_depth's block side, 0 = the largest within half a voxel_size at the median depth
+      plane_image_stride = 4: px: segment_depth's block side for the support plane's search (at most image_stride: those)
     """
 def segment_scene(points: typing.Any, viewpoints: typing.Any = None, plane: typing.Any = None, *, settings: typing.Any = None, **kwargs) -> Segmentation:
     """
@@ -4083,6 +4094,7 @@ def segment_scene(points: typing.Any, viewpoints: typing.Any = None, plane: typi
       visibility_tolerance = 0.008: m: Segmentation.visibility's surface_tolerance (within this of the observed surface is Surface)
       visibility_resolution = 0.005: rad: the bin of Segmentation.visibility's range images (VisibilitySettings.angular_resolution)
       image_stride = 0: px: segment_depth's block side, 0 = the largest within half a voxel_size at the median depth
+      plane_image_stride = 4: px: segment_depth's block side for the support plane's search (at most image_stride: those)
     """
 def sim_execute(hand: Hand, object: SimObject, T_world_object: typing.Any, T_world_wrist: typing.Any, pregrasp: typing.Any, grasp: typing.Any, settings: typing.Any = None, **kwargs) -> SimResult:
     """

@@ -32,6 +32,18 @@ struct Blocks {
 
 Blocks block_points(const Eigen::Ref<const Vec3Array>& S, int height, int width, int stride, double near,
                     const Eigen::Isometry3d& T) {
+  if (stride == 1) {  // each return its own block
+    Blocks b{Vec3Array(S.rows(), 3), Eigen::VectorXi(S.rows())};
+    Eigen::Index n = 0;
+    for (Eigen::Index r = 0; r < S.rows(); ++r) {
+      if (!S.row(r).allFinite()) continue;
+      b.points.row(n) = (T * S.row(r).transpose()).transpose();
+      b.pixels[n++] = static_cast<int>(r);
+    }
+    b.points.conservativeResize(n, 3);
+    b.pixels.conservativeResize(n);
+    return b;
+  }
   const int rows = (height + stride - 1) / stride, cols = (width + stride - 1) / stride;
   Blocks b;
   b.points.resize(static_cast<Eigen::Index>(rows) * cols, 3);
@@ -91,34 +103,84 @@ DepthImage nearest_pool(const Eigen::Ref<const DepthImage>& depth, const Pinhole
   return out;
 }
 
-/// segment_depth's steps on an organized sensor-frame cloud S and its depth image.
+/// The blocks' points through prepare_cloud's voxel grid, each with the pixel of the block it came from.
+Blocks voxelised(const Blocks& b, double voxel_size) {
+  CleanupSettings voxel;  // prepare_cloud's voxel grid only: the sources follow every centroid
+  voxel.voxel_size = voxel_size;
+  voxel.remove_outliers = false;
+  voxel.remove_plane = false;
+  CleanupResult down = prepare_cloud(b.points, voxel);
+  Blocks out{std::move(down.points), Eigen::VectorXi(down.sources.size())};
+  for (Eigen::Index i = 0; i < out.pixels.size(); ++i) out.pixels[i] = b.pixels[down.sources[i]];
+  return out;
+}
+
+/// The rows of b on one side of a height above `plane`: above it (more than `height`), or on it (at most).
+Blocks by_height(const Blocks& b, const Eigen::Vector4d& plane, double height, bool above) {
+  const Eigen::VectorXd h = (b.points * plane.head<3>()).array() + plane[3];
+  const auto keep = [&](Eigen::Index i) { return above ? h[i] > height : !(h[i] > height); };
+  Eigen::Index n = 0;
+  for (Eigen::Index i = 0; i < h.size(); ++i) n += keep(i) ? 1 : 0;
+  Blocks out{Vec3Array(n, 3), Eigen::VectorXi(n)};
+  n = 0;
+  for (Eigen::Index i = 0; i < h.size(); ++i)
+    if (keep(i)) out.points.row(n) = b.points.row(i), out.pixels[n++] = b.pixels[i];
+  return out;
+}
+
+/// Two voxelised sets as one (each voxelised on its own: no voxel mixes the two).
+Blocks joined(const Blocks& a, const Blocks& b) {
+  Blocks out{Vec3Array(a.points.rows() + b.points.rows(), 3), Eigen::VectorXi(a.pixels.size() + b.pixels.size())};
+  out.points << a.points, b.points;
+  out.pixels << a.pixels, b.pixels;
+  return out;
+}
+
+/// segment_depth's steps on an organized sensor-frame cloud S and its depth image. The support plane is searched
+/// for (or a given one turned towards the camera) on blocks of plane_image_stride pixels: RANSAC and the rule need
+/// the table's extent, not its every point; the objects are then made of the fine blocks above it.
 Segmentation segment_image(const Eigen::Ref<const Vec3Array>& S, const Eigen::Ref<const DepthImage>& depth,
                            const PinholeCamera& camera, const Eigen::Isometry3d& T, const SegmentationSettings& s,
                            const std::optional<Eigen::Vector4d>& plane, Clock::time_point t0, std::int64_t n_returns) {
   Segmentation out;
   out.n_input = static_cast<std::size_t>(n_returns);
-  const auto t_voxel = Clock::now();
-  const Blocks blocks =
-      block_points(S, camera.height(), camera.width(), image_stride(depth, camera, s), s.voxel_size, T);
-  CleanupSettings voxel;  // prepare_cloud's voxel grid only: the sources follow every centroid
-  voxel.voxel_size = s.voxel_size;
-  voxel.remove_outliers = false;
-  voxel.remove_plane = false;
-  const CleanupResult down = prepare_cloud(blocks.points, voxel);
-  out.n_after_voxel = static_cast<std::size_t>(down.points.rows());
-  Eigen::VectorXi sources(down.sources.size());
-  for (Eigen::Index i = 0; i < sources.size(); ++i) sources[i] = blocks.pixels[down.sources[i]];
   detail::Cameras cams;
   cams.given = true;
   cams.single = T.translation();
-  out.times.voxel = since(t_voxel);
-  const auto t_vis = Clock::now();
+  const int H = camera.height(), W = camera.width(), fine = image_stride(depth, camera, s);
+  const bool two_levels = (plane || s.find_plane) && s.plane_image_stride > fine;
+  auto t_step = Clock::now();
+  const Blocks blocks = block_points(S, H, W, fine, s.voxel_size, T);
+  Blocks down;
+  std::size_t dropped = 0;
+  if (two_levels) {
+    // The objects from the fine blocks above the table, the table (for the table-noise rule's statistic) from the
+    // coarse ones on it; each voxelised on its own, so no voxel blends an object's foot with the table.
+    const Blocks coarse = voxelised(block_points(S, H, W, s.plane_image_stride, s.voxel_size, T), s.voxel_size);
+    out.times.voxel += since(t_step);
+    detail::search_support(coarse.points, cams, s, plane, out);
+    t_step = Clock::now();
+    if (out.plane_found || out.plane_given) {
+      const Blocks up = by_height(blocks, out.plane, s.table_clearance, true);
+      dropped = static_cast<std::size_t>(blocks.points.rows() - up.points.rows());
+      down = joined(voxelised(up, s.voxel_size), by_height(coarse, out.plane, s.table_clearance, false));
+    }
+  }
+  if (!out.plane_found && !out.plane_given) down = voxelised(blocks, s.voxel_size);
+  out.n_after_voxel = static_cast<std::size_t>(down.points.rows());
+  out.times.voxel += since(t_step);
+  t_step = Clock::now();
   const auto sharp = std::make_shared<const VisibilityModel>(
       VisibilityModel::from_depth(depth, camera, T, detail::visibility_settings(s)));
   out.visibility = std::make_shared<const VisibilityModel>(VisibilityModel::from_depth(
       nearest_pool(depth, camera, s.visibility_resolution), camera, T, detail::visibility_settings(s)));
-  out.times.visibility = since(t_vis);
-  detail::segment_voxelised(down.points, sources, cams, s, plane, out);
+  out.times.visibility = since(t_step);
+  if (two_levels) {
+    detail::segment_on_support(down.points, down.pixels, cams, s, out);
+    out.n_plane += dropped;
+  } else {
+    detail::segment_voxelised(down.points, down.pixels, cams, s, plane, out);
+  }
   out.visibility = sharp;
   out.seconds = since(t0);
   return out;

@@ -87,6 +87,7 @@ void detail::check_segmentation_settings(const SegmentationSettings& s) {
     bad("max_cluster_size must be 0 (no limit) or >= min_cluster_size");
   }
   if (s.image_stride < 0) bad("image_stride must be >= 0 (0: chosen from voxel_size)");
+  if (s.plane_image_stride < 1) bad("plane_image_stride must be >= 1");
 }
 
 namespace {
@@ -397,22 +398,13 @@ Extraction find_support(const Vec3Array& P, const Cameras& cams, const Segmentat
 
 }  // namespace
 
-void detail::segment_voxelised(const Vec3Array& P, const Eigen::VectorXi& sources, const Cameras& cams,
-                               const SegmentationSettings& s, const std::optional<Eigen::Vector4d>& plane,
-                               Segmentation& out) {
+namespace {
+
+/// The objects of an extraction after the support is chosen: the table's noise dropped, the merge and join rules,
+/// the objects described into `out`.
+void finish_objects(const Vec3Array& P, const Eigen::VectorXi& sources, const Cameras& cams,
+                    const SegmentationSettings& s, Extraction e, Segmentation& out) {
   Lap lap;
-  Extraction e;
-  if (plane) {
-    out.plane = orient_given(*plane, P, cams, s);
-    out.plane_given = true;
-    lap.add_to(out.times.candidates);
-    e = extract(P, &out.plane, s, out.times);
-  } else if (s.find_plane) {
-    e = find_support(P, cams, s, out);
-  } else {
-    e = extract(P, nullptr, s, out.times);
-  }
-  lap = Lap();
   if (out.plane_found || out.plane_given) drop_table_noise(P, out.plane, s, e);
   lap.add_to(out.times.clusters);
   if (s.merge_seen_through && e.groups.size() > 1) {
@@ -428,6 +420,42 @@ void detail::segment_voxelised(const Vec3Array& P, const Eigen::VectorXi& source
   lap.add_to(out.times.join);
   finish(P, sources, e, s, out);
   lap.add_to(out.times.objects);
+}
+
+}  // namespace
+
+void detail::segment_voxelised(const Vec3Array& P, const Eigen::VectorXi& sources, const Cameras& cams,
+                               const SegmentationSettings& s, const std::optional<Eigen::Vector4d>& plane,
+                               Segmentation& out) {
+  Lap lap;
+  Extraction e;
+  if (plane) {
+    out.plane = orient_given(*plane, P, cams, s);
+    out.plane_given = true;
+    lap.add_to(out.times.candidates);
+    e = extract(P, &out.plane, s, out.times);
+  } else if (s.find_plane) {
+    e = find_support(P, cams, s, out);
+  } else {
+    e = extract(P, nullptr, s, out.times);
+  }
+  finish_objects(P, sources, cams, s, std::move(e), out);
+}
+
+void detail::search_support(const Vec3Array& P, const Cameras& cams, const SegmentationSettings& s,
+                            const std::optional<Eigen::Vector4d>& plane, Segmentation& out) {
+  if (plane) {
+    out.plane = orient_given(*plane, P, cams, s);
+    out.plane_given = true;
+  } else if (s.find_plane) {
+    find_support(P, cams, s, out);
+  }
+}
+
+void detail::segment_on_support(const Vec3Array& P, const Eigen::VectorXi& sources, const Cameras& cams,
+                                const SegmentationSettings& s, Segmentation& out) {
+  const bool plane = out.plane_found || out.plane_given;
+  finish_objects(P, sources, cams, s, extract(P, plane ? &out.plane : nullptr, s, out.times), out);
 }
 
 Segmentation segment_scene(const Vec3Array& points, const Vec3Array& viewpoints, const SegmentationSettings& s,

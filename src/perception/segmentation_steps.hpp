@@ -41,4 +41,12 @@ VisibilitySettings visibility_settings(const SegmentationSettings& s);
 void segment_voxelised(const Vec3Array& P, const Eigen::VectorXi& sources, const Cameras& cams,
                        const SegmentationSettings& s, const std::optional<Eigen::Vector4d>& plane, Segmentation& out);
 
+/// segment_voxelised in two steps on two point sets: the support on P (a given plane turned towards the cameras, or
+/// the plane by the rule when find_plane: out.plane, plane_found, candidates, rule 4 judged on P's objects), then
+/// the objects of other points above the support (or of all of them without one).
+void search_support(const Vec3Array& P, const Cameras& cams, const SegmentationSettings& s,
+                    const std::optional<Eigen::Vector4d>& plane, Segmentation& out);
+void segment_on_support(const Vec3Array& P, const Eigen::VectorXi& sources, const Cameras& cams,
+                        const SegmentationSettings& s, Segmentation& out);
+
 }  // namespace graspmix::detail

@@ -10,7 +10,10 @@
 //     biased towards the camera under depth noise as the nearest return would be); the voxel grid then sees a
 //     few times fewer points;
 //  2. the support plane, objects and rules of segment_scene on those points in the world frame, the camera their
-//     one viewpoint;
+//     one viewpoint; the plane searched for (or a given one turned towards the camera) on coarser blocks
+//     (plane_image_stride pixels: RANSAC and the rule need the table's extent, not its every point), the objects
+//     then made of the fine blocks above it and the table's noise measured on the coarse ones on it (each set
+//     voxelised on its own);
 //  3. the visibility model straight from the full-resolution image (VisibilityModel::from_depth): no range image
 //     to bin, and the camera's own resolution, no-return pixels and image border. The join rule alone judges gaps
 //     on the image pooled to visibility_resolution (each pixel the nearest return within that angle, as a bin of

@@ -132,6 +132,10 @@ struct SegmentationSettings {
   /// A depth image's scene (segment_depth): pixels per block side of the image-space subsampling, 0 = chosen
   /// per image, the largest block whose side at the median depth of the returns stays within half a voxel_size.
   int image_stride = 0;
+  /// A depth image's scene: pixels per block side of the points the support plane is searched on (RANSAC and the
+  /// rule need the table's extent, not its every point); the objects are then made of the image_stride blocks
+  /// above it. At most image_stride: the plane is searched on those.
+  int plane_image_stride = 4;
 };
 
 /// One object: a Euclidean cluster above the support plane.

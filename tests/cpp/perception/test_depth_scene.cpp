@@ -84,6 +84,7 @@ TEST(DepthScene, SameSceneAsSegmentSceneOnTheSamePoints) {
   // segment_scene finds on the points with the camera as their viewpoint (only the visibility model differs).
   SegmentationSettings one;
   one.image_stride = 1;
+  one.plane_image_stride = 1;  // the plane searched on the same points
   const Segmentation a = segment_depth(image(), kCam, kPose, one);
   const Vec3Array camera = kPose.translation().transpose();
   const Segmentation b = segment_scene(world_points(image()), camera, one);
@@ -104,6 +105,37 @@ TEST(DepthScene, SameSceneAsSegmentSceneOnTheSamePoints) {
     const Eigen::Vector3d p = kPose * S.row(a.sources[r]).transpose();
     EXPECT_LE((p - a.points.row(r).transpose()).norm(), std::sqrt(3.0) * one.voxel_size + 1e-9);
   }
+}
+
+TEST(DepthScene, ThePlaneSearchedOnCoarseBlocksGivesTheSameObjects) {
+  // The support plane searched on blocks of 4 pixels, the objects made of the one-pixel blocks above it: the same
+  // objects as with the plane searched on every pixel (the plane is exact either way), every point on its box; only
+  // the voxels at an object's foot differ (above the table's clearance they hold no table point).
+  SegmentationSettings one, two;
+  one.image_stride = two.image_stride = 1;
+  one.plane_image_stride = 1;
+  two.plane_image_stride = 4;
+  const Segmentation a = segment_depth(image(), kCam, kPose, one), b = segment_depth(image(), kCam, kPose, two);
+  ASSERT_TRUE(b.plane_found);
+  EXPECT_TRUE(a.plane.isApprox(b.plane, 1e-5));
+  EXPECT_LT(b.n_after_voxel, a.n_after_voxel / 3);  // the table's points, from the coarse blocks only
+  ASSERT_EQ(a.objects.size(), b.objects.size());
+  for (std::size_t i = 0; i < a.objects.size(); ++i) {
+    EXPECT_NEAR(static_cast<double>(b.objects[i].n_points), static_cast<double>(a.objects[i].n_points),
+                0.03 * static_cast<double>(a.objects[i].n_points));
+    EXPECT_LT((a.objects[i].centroid - b.objects[i].centroid).norm(), 1e-3);
+    const Eigen::Vector3d &lo = i == 0 ? kBoxA_lo : kBoxB_lo, &hi = i == 0 ? kBoxA_hi : kBoxB_hi;
+    for (Eigen::Index k = 0; k < b.objects[i].rows.size(); ++k)
+      EXPECT_TRUE(inside(b.points.row(b.objects[i].rows[k]).transpose(), lo, hi, 1e-6));
+  }
+  // A given table (upside down: turned towards the camera) takes the same way: the same objects, no search.
+  const Segmentation c = segment_depth(image(), kCam, kPose, two, Eigen::Vector4d(0, 0, -2, 0));
+  EXPECT_TRUE(c.plane_given && !c.plane_found && c.candidates.empty());
+  EXPECT_TRUE(c.plane.isApprox(Eigen::Vector4d(0, 0, 1, 0)));
+  ASSERT_EQ(c.objects.size(), b.objects.size());
+  for (std::size_t i = 0; i < b.objects.size(); ++i)
+    EXPECT_NEAR(static_cast<double>(c.objects[i].n_points), static_cast<double>(b.objects[i].n_points),
+                0.03 * static_cast<double>(b.objects[i].n_points));
 }
 
 TEST(DepthScene, OrganizedCloudGivesTheDepthImagesScene) {
@@ -168,6 +200,9 @@ TEST(DepthScene, BadInputNamesWhatIsWrong) {
   SegmentationSettings bad;
   bad.image_stride = -1;
   EXPECT_NE(message([&] { segment_depth(image(), kCam, kPose, bad); }).find("image_stride"), std::string::npos);
+  bad.image_stride = 0;
+  bad.plane_image_stride = 0;
+  EXPECT_NE(message([&] { segment_depth(image(), kCam, kPose, bad); }).find("plane_image_stride"), std::string::npos);
   const Vec3Array S = kCam.back_project(image());
   EXPECT_NE(message([&] { segment_organized(S, kCam.height() - 1, kCam.width(), kPose); }).find("rows"),
             std::string::npos);

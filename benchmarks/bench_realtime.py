@@ -12,8 +12,10 @@ In one process, for each method, GraspModel.synthesize(..., target="largest") is
 times; printed per scene kind: the median and 90th percentile of every stage of GraspSet.timing and of the
 whole call (time.perf_counter around it), and the KDE/GMM ratio of the medians.
 
-Then: the CLI's wall time (`graspmix_cli synthesize --cloud data/mug.pcd`, a subprocess, median) and the
-wall time of `python -c "import graspmix"` (median); and the scaling of the GMM path with the raw cloud size
+Then: the CLI's wall time (`graspmix_cli synthesize --cloud data/mug.pcd`, a subprocess, median), the
+wall time of `python -c "import graspmix"` (median) and the load time of graspmix._core (`python -X importtime`, its
+own line, median); load_cloud on one 640x480 organised view (a binary PCD written here by numpy, NaN holes; and
+the same as binary_compressed), median of 20; and the scaling of the GMM path with the raw cloud size
 (5k points of a single-object scene cloud around the object, and 20k, 80k and 300k by jittered copies of them) and with n_samples
 (200, 1000, 5000), flagging a stage whose time grows by more than 1.5 times the size ratio (against the
 first size and the previous one). Figures only:
@@ -35,6 +37,7 @@ from pathlib import Path
 
 import graspmix
 import numpy as np
+from bench_common import median_seconds
 from graspmix.io import data_path, load_points
 
 # GraspSet.timing's "features" is the total less the segmentation and the synthesiser's own stages (query,
@@ -256,6 +259,52 @@ def bench_processes(n: int) -> None:
         )
         walls, rc = _wall([sys.executable, "-c", "pass"], n, tmp)
         print(f'python -c "pass"                               median {statistics.median(walls) * 1e3:7.0f} ms')
+        own = []  # the self time -X importtime gives graspmix._core: the loading of its shared libraries
+        for _ in range(n):
+            err = subprocess.run(
+                [sys.executable, "-X", "importtime", "-c", "import graspmix._core"],
+                cwd=tmp,
+                capture_output=True,
+                text=True,
+            ).stderr
+            own += [
+                int(ln.split("|")[0].split(":")[1]) * 1e-6 for ln in err.splitlines() if ln.endswith(" graspmix._core")
+            ]
+        print(f"import graspmix._core (-X importtime, self)    median {statistics.median(own) * 1e3:7.1f} ms")
+
+
+def organised_view(path: Path, width: int = 640, height: int = 480, seed: int = 0) -> int:
+    """A depth camera's organised cloud as a binary PCD written by numpy (x right, y down, z forward): a table
+    tilted away and a ball on it, a seeded 15 % of the pixels NaN (no return). Returns the finite points."""
+    v, u = np.mgrid[0:height, 0:width].astype(np.float64)
+    fx = fy = 525.0
+    rx, ry = (u - width / 2) / fx, (v - height / 2) / fy
+    z = 1.2 - 0.4 * (v / height)
+    ball = (u - width / 2) ** 2 + (v - height / 2) ** 2 < 80.0**2
+    z[ball] -= 0.05 * np.sqrt(1 - ((u[ball] - width / 2) ** 2 + (v[ball] - height / 2) ** 2) / 80.0**2)
+    xyz = np.stack([rx * z, ry * z, z], axis=-1).astype(np.float32)
+    xyz[np.random.default_rng(seed).random((height, width)) < 0.15] = np.nan
+    head = (
+        f"VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH {width}\nHEIGHT {height}\n"
+        f"VIEWPOINT 0 0 0 1 0 0 0\nPOINTS {width * height}\nDATA binary\n"
+    )
+    path.write_bytes(head.encode() + xyz.tobytes())
+    return int(np.isfinite(xyz).all(axis=-1).sum())
+
+
+def bench_cloud_files(repeats: int = 20) -> None:
+    print(f"\n## cloud files (load_cloud, median of {repeats} after one untimed)")
+    with tempfile.TemporaryDirectory() as tmp:
+        binary = Path(tmp) / "view.pcd"
+        kept = organised_view(binary)
+        c = graspmix.load_cloud(binary)
+        compressed = Path(tmp) / "view_lzf.pcd"
+        graspmix.save_cloud(
+            compressed, c.organized().reshape(-1, 3), encoding="binary_compressed", width=640, height=480
+        )
+        for label, path in (("binary", binary), ("binary_compressed", compressed)):
+            t = median_seconds(lambda p=path: graspmix.load_cloud(p), repeats)
+            print(f"640x480 organised PCD, {label:<17}  median {t * 1e3:6.1f} ms ({kept} points kept, pixels too)")
 
 
 # -- scaling
@@ -356,6 +405,7 @@ def main() -> None:
     results = bench_scenes(models, kinds, args)
     print_summary(results)
     bench_processes(args.process_runs)
+    bench_cloud_files()
     bench_scaling(models["gmm"], args)
     print()
     print(machine("end"))

@@ -5,12 +5,19 @@ include(graspmix_find_dependencies)
 # PCL's algorithms (filters, features, kd-trees, sample consensus, segmentation) are templates compiled
 # here from PCL's headers (PCL_NO_PRECOMPILE) instead of linked from its precompiled libraries: those hold
 # every point type's instantiation and took ~150 ms of relocations to load, in every process that imports
-# graspmix, for the few classes graspmix uses. Linked: pcl_common, pcl_io (cloud files) and FLANN.
+# graspmix, for the few classes graspmix uses. Linked: pcl_common and FLANN. Not pcl_io: the cloud files are
+# read and written by graspmix itself (src/perception/cloud_check*.cpp), since pcl_io brought VTK and OpenNI into
+# every process and MPI C into every program that finds graspmix.
 add_library(graspmix_pcl INTERFACE)
 target_include_directories(graspmix_pcl SYSTEM INTERFACE ${PCL_INCLUDE_DIRS})
-target_link_libraries(graspmix_pcl INTERFACE ${PCL_COMMON_LIBRARIES} ${PCL_IO_LIBRARIES} FLANN::FLANN)
+target_link_libraries(graspmix_pcl INTERFACE ${PCL_COMMON_LIBRARIES} FLANN::FLANN)
 target_compile_definitions(graspmix_pcl INTERFACE ${PCL_DEFINITIONS} PCL_NO_PRECOMPILE)
 add_library(graspmix::pcl ALIAS graspmix_pcl)
+
+# LZF, the compression of binary_compressed PCD files: Debian's liblzf (its decoder checks every reference).
+add_library(graspmix_lzf INTERFACE)
+target_link_libraries(graspmix_lzf INTERFACE liblzf::liblzf)
+add_library(graspmix::lzf ALIAS graspmix_lzf)
 
 add_library(graspmix_fcl INTERFACE)
 target_link_libraries(graspmix_fcl INTERFACE fcl)

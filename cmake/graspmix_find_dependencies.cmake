@@ -8,7 +8,11 @@ find_package(OpenMP REQUIRED COMPONENTS CXX)
 if(NOT DEFINED CMAKE_POLICY_VERSION_MINIMUM)
   set(CMAKE_POLICY_VERSION_MINIMUM 3.5)
 endif()
-find_package(PCL 1.10 REQUIRED COMPONENTS common io filters features kdtree search sample_consensus segmentation)
+# QUIET: PCL's config finds VTK for pcl_2d (a part graspmix does not use), and VTK's config then reports an MPI C
+# it does not need unless pcl_io is linked, which graspmix is not: a C++-only program needs no C for it.
+find_package(PCL 1.10 REQUIRED QUIET COMPONENTS common filters features kdtree search sample_consensus segmentation)
+# binary_compressed PCD files are LZF: Debian's liblzf.
+find_package(liblzf REQUIRED CONFIG)
 find_package(fcl 0.6 REQUIRED)
 # Occupancy maps of what the cameras saw (ray insertion): OctoMap, which Debian's FCL is built with too.
 find_package(octomap 1.9 REQUIRED)

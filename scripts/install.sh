@@ -8,11 +8,11 @@ cd "$(dirname "$0")/.."
 SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 
-# Eigen (mixtures, SE(3)), PCL (clouds, features), FCL (collision expert), OctoMap (occupancy of the scene), Bullet with its extras
+# Eigen (mixtures, SE(3)), PCL (clouds, features), liblzf (binary_compressed PCD files), FCL (collision expert), OctoMap (occupancy of the scene), Bullet with its extras
 # (simulated execution), urdfdom (hands), assimp (STL/OBJ meshes), qhull (convex hulls of meshes),
 # GoogleTest (ctest), and the toolchain to build against them; Chromium, in which a test opens the interactive
 # grasp view (graspmix_cli plot --html) headless and checks its screenshot.
-DEBS=(build-essential pkg-config libeigen3-dev libpcl-dev libfcl-dev liboctomap-dev libbullet-dev libbullet-extras-dev
+DEBS=(build-essential pkg-config libeigen3-dev libpcl-dev liblzf-dev libfcl-dev liboctomap-dev libbullet-dev libbullet-extras-dev
       liburdfdom-dev libassimp-dev libqhull-dev libgtest-dev chromium)
 missing=()
 for p in "${DEBS[@]}"; do

@@ -1,4 +1,5 @@
 // Object representation: cloud files, scene clean-up and surface features (O(v, r)).
+#include <algorithm>
 #include <limits>
 #include <optional>
 
@@ -33,6 +34,20 @@ void bind_perception(py::module_& m) {
       .def_readonly("fields", &CloudData::fields, "Every field of the file (x, y, z, rgb, ...).")
       .def_readonly("width", &CloudData::width)
       .def_readonly("height", &CloudData::height, "> 1 for organised clouds")
+      .def_readonly("pixels", &CloudData::pixels,
+                    "(N,) int64: for an organised file (height > 1) the pixel v * width + u of each point in its\n"
+                    "width x height grid (row v, column u); empty for an unorganised one.")
+      .def(
+          "organized",
+          [](const CloudData& c) {
+            const Vec3Array grid = organized_grid(c);
+            py::array_t<double> out(
+                {static_cast<py::ssize_t>(c.height), static_cast<py::ssize_t>(c.width), static_cast<py::ssize_t>(3)});
+            std::copy(grid.data(), grid.data() + grid.size(), out.mutable_data());
+            return out;
+          },
+          "The points on their image grid: (height, width, 3) float64, NaN where the file had no finite point.\n"
+          "ValueError, naming the file, for an unorganised cloud (height 1).")
       .def_readonly("n_invalid", &CloudData::n_invalid, "Points dropped for a NaN or infinite coordinate.")
       .def_readonly("format", &CloudData::format)
       .def_readonly("path", &CloudData::path)
@@ -52,11 +67,12 @@ void bind_perception(py::module_& m) {
       },
       py::arg("path"),
       "Reads a .pcd (ascii, binary, binary_compressed), .ply or .npy (N, 3) cloud. NaN points are dropped "
-      "(counted in n_invalid); extra fields are listed in `fields`. ValueError names the file and the problem.");
+      "(counted in n_invalid; an organised file keeps each point's pixel in `pixels`, organized() gives the grid); "
+      "extra fields are listed in `fields`. ValueError names the file and the problem.");
   m.def(
       "save_cloud",
       [](const py::object& path, const py::object& points, const py::object& normals, const std::string& encoding,
-         const py::object& viewpoint, const py::object& viewpoints) {
+         const py::object& viewpoint, const py::object& viewpoints, const py::object& width, const py::object& height) {
         const std::string p = to_path(path, "path");
         const Vec3Array P(to_matrix(points, "save_cloud: points", 3));
         const Vec3Array N =
@@ -66,14 +82,20 @@ void bind_perception(py::module_& m) {
         if (!viewpoint.is_none()) vp = to_vector(viewpoint, "save_cloud: viewpoint", 7);
         const Vec3Array V =
             viewpoints.is_none() ? Vec3Array(0, 3) : Vec3Array(to_matrix(viewpoints, "save_cloud: viewpoints", 3));
+        const int w = to_count(width, "save_cloud: width", 0, std::numeric_limits<int>::max());
+        const int h = to_count(height, "save_cloud: height", 0, std::numeric_limits<int>::max());
         py::gil_scoped_release release;
-        save_cloud(p, P, N, encoding, vp, V);
+        save_cloud(p, P, N, encoding, vp, V, static_cast<std::uint32_t>(w), static_cast<std::uint32_t>(h));
       },
       py::arg("path"), py::arg("points"), py::arg("normals") = py::none(), py::arg("encoding") = "binary",
-      py::arg("viewpoint") = py::none(), py::arg("viewpoints") = py::none(),
+      py::arg("viewpoint") = py::none(), py::arg("viewpoints") = py::none(), py::arg("width") = 0,
+      py::arg("height") = 0,
       "Writes float32 x y z (+ normal_x normal_y normal_z, + vp_x vp_y vp_z) to .pcd (encoding ascii | binary | "
       "binary_compressed) or .ply (ascii | binary); viewpoint [x, y, z, qx, qy, qz, qw] goes into the header, "
-      "viewpoints (N, 3), one camera position per point, into the fields vp_x vp_y vp_z (PCL's PointWithViewpoint).");
+      "viewpoints (N, 3), one camera position per point, into the fields vp_x vp_y vp_z (PCL's PointWithViewpoint). "
+      "width x height: 0 x 0 writes the finite points unorganised; height > 1 an organised .pcd of width * height "
+      "rows (row v * width + u is pixel (u, v); a row with NaN is a hole). PLY keeps no image grid: an organised "
+      "cloud is a ValueError there.");
 
   // ---- scene clean-up ----------------------------------------------------------------------------
   SettingsClass<CleanupSettings>(m, "CleanupSettings", "Scene clean-up before features (prepare_cloud).")

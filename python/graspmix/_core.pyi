@@ -366,6 +366,11 @@ class CloudData:
         ...
     def __repr__(self) -> str:
         ...
+    def organized(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        The points on their image grid: (height, width, 3) float64, NaN where the file had no finite point.
+        ValueError, naming the file, for an unorganised cloud (height 1).
+        """
     @property
     def fields(self) -> list[str]:
         """
@@ -397,6 +402,12 @@ class CloudData:
     @property
     def path(self) -> str:
         ...
+    @property
+    def pixels(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int64], "[m, 1]"]:
+        """
+        (N,) int64: for an organised file (height > 1) the pixel v * width + u of each point in its
+        width x height grid (row v, column u); empty for an unorganised one.
+        """
     @property
     def points(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
         """
@@ -3935,7 +3946,7 @@ def learn_contact_models(hand: Hand, T_world_wrist: typing.Any, joints: typing.A
     """
 def load_cloud(path: typing.Any) -> CloudData:
     """
-    Reads a .pcd (ascii, binary, binary_compressed), .ply or .npy (N, 3) cloud. NaN points are dropped (counted in n_invalid); extra fields are listed in `fields`. ValueError names the file and the problem.
+    Reads a .pcd (ascii, binary, binary_compressed), .ply or .npy (N, 3) cloud. NaN points are dropped (counted in n_invalid; an organised file keeps each point's pixel in `pixels`, organized() gives the grid); extra fields are listed in `fields`. ValueError names the file and the problem.
     """
 def load_mesh(path: typing.Any, scale: typing.Any = None) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"], typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 3]"]]:
     """
@@ -3986,9 +3997,9 @@ def quat_log(q: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float
     """
     eq:log_map on (N, 4) quaternions [x, y, z, w]: arccos(w) v/|v| after canonicalising w >= 0 -> (N, 3).
     """
-def save_cloud(path: typing.Any, points: typing.Any, normals: typing.Any = None, encoding: str = 'binary', viewpoint: typing.Any = None, viewpoints: typing.Any = None) -> None:
+def save_cloud(path: typing.Any, points: typing.Any, normals: typing.Any = None, encoding: str = 'binary', viewpoint: typing.Any = None, viewpoints: typing.Any = None, width: typing.Any = 0, height: typing.Any = 0) -> None:
     """
-    Writes float32 x y z (+ normal_x normal_y normal_z, + vp_x vp_y vp_z) to .pcd (encoding ascii | binary | binary_compressed) or .ply (ascii | binary); viewpoint [x, y, z, qx, qy, qz, qw] goes into the header, viewpoints (N, 3), one camera position per point, into the fields vp_x vp_y vp_z (PCL's PointWithViewpoint).
+    Writes float32 x y z (+ normal_x normal_y normal_z, + vp_x vp_y vp_z) to .pcd (encoding ascii | binary | binary_compressed) or .ply (ascii | binary); viewpoint [x, y, z, qx, qy, qz, qw] goes into the header, viewpoints (N, 3), one camera position per point, into the fields vp_x vp_y vp_z (PCL's PointWithViewpoint). width x height: 0 x 0 writes the finite points unorganised; height > 1 an organised .pcd of width * height rows (row v * width + u is pixel (u, v); a row with NaN is a hole). PLY keeps no image grid: an organised cloud is a ValueError there.
     """
 def segment_depth(depth: typing.Any, camera: PinholeCamera, T_world_camera: typing.Any, plane: typing.Any = None, *, settings: typing.Any = None, **kwargs) -> Segmentation:
     """

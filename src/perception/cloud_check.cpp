@@ -1,13 +1,12 @@
-// PCD header and body checks, and the text helpers the PLY checks share (see cloud_check.hpp).
-#include "cloud_check.hpp"
-
-#include <sys/stat.h>
-#include <charconv>
+// The PCD reader: header, body and their checks (see cloud_check.hpp).
 #include <cmath>
 #include <cstring>
 #include <fstream>
 #include <limits>
-#include <stdexcept>
+
+#include <lzf.h>
+
+#include "cloud_check.hpp"
 
 namespace graspmix::cloud_check {
 
@@ -25,11 +24,14 @@ struct PcdField {
 
 /// The header as read: every keyword line, in the order PCL's reader needs.
 struct PcdText {
+  enum Data { kAscii, kBinary, kBinaryCompressed } data = kAscii;
   std::vector<PcdField> fields;
   bool has_size = false, has_type = false, has_width = false, has_height = false, has_points = false;
   std::uint64_t width = 0, height = 0, points = 0;
-  int data_line = 0;  ///< line number of DATA
-  PcdHeader out;
+  std::uint64_t point_step = 0;   ///< bytes per point: sum of SIZE * COUNT
+  std::uint64_t data_offset = 0;  ///< byte offset of the body (just after the DATA line)
+  int data_line = 0;              ///< line number of DATA
+  std::array<float, 7> viewpoint = {0, 0, 0, 1, 0, 0, 0};
 };
 
 // Keywords in the order the PCD format (and PCL's reader, which computes offsets as it goes) needs them.
@@ -127,10 +129,9 @@ void read_keyword(int rank, const std::vector<std::string_view>& tok, PcdText& h
       break;
     case kViewpoint:
       if (tok.size() != 8) bad("VIEWPOINT needs 7 numbers (tx ty tz qw qx qy qz), got " + str(tok.size() - 1));
-      for (std::size_t i = 1; i < 8; ++i) {
-        double v = 0;
-        const auto [end, ec] = std::from_chars(tok[i].data(), tok[i].data() + tok[i].size(), v);
-        if (ec != std::errc() || end != tok[i].data() + tok[i].size() || !std::isfinite(v)) {
+      for (std::size_t i = 1; i < 8; ++i) {  // floats, as PCL reads them
+        float& v = h.viewpoint[i - 1];
+        if (!parse_number(tok[i], Kind::kFloat, 4, &v) || !std::isfinite(v)) {
           bad("VIEWPOINT value '" + printable(tok[i]) + "' is not a finite number");
         }
       }
@@ -138,11 +139,11 @@ void read_keyword(int rank, const std::vector<std::string_view>& tok, PcdText& h
     case kData:
       if (tok.size() != 2) bad("DATA needs one of ascii, binary, binary_compressed");
       if (tok[1] == "ascii")
-        h.out.data = PcdHeader::kAscii;
+        h.data = PcdText::kAscii;
       else if (tok[1] == "binary")
-        h.out.data = PcdHeader::kBinary;
+        h.data = PcdText::kBinary;
       else if (tok[1] == "binary_compressed")
-        h.out.data = PcdHeader::kBinaryCompressed;
+        h.data = PcdText::kBinaryCompressed;
       else
         bad("unknown DATA '" + printable(tok[1]) + "' (expected ascii, binary or binary_compressed)");
       break;
@@ -179,7 +180,7 @@ PcdText read_pcd_header(const std::string& path, std::istream& in) {
     last = rank;
     read_keyword(rank, tok, h, bad);
     if (rank == kData) {
-      h.out.data_offset = offset;
+      h.data_offset = offset;
       h.data_line = line_no;
       return h;
     }
@@ -203,22 +204,54 @@ void check_pcd_counts(const std::string& path, PcdText& h) {
   std::uint64_t step = 0;
   for (const auto& f : h.fields) step += f.count * static_cast<std::uint64_t>(f.size);  // <= 2^24 * 8 per field
   if (step > std::numeric_limits<std::uint32_t>::max()) fail(path, bad + "a point of " + str(step) + " bytes");
-  h.out.points = h.points;
-  h.out.point_step = step;
+  h.point_step = step;
+}
+
+/// The fields of the header, laid out row by row (binary_compressed: field by field) over `points` points.
+RawCloud layout(const PcdText& h) {
+  RawCloud c;
+  c.width = h.width;
+  c.height = h.height;
+  c.viewpoint = h.viewpoint;
+  const char* encodings[] = {"ascii", "binary", "binary_compressed"};
+  c.encoding = encodings[h.data];
+  std::uint64_t at = 0;
+  for (const auto& f : h.fields) {
+    Field field{f.name,
+                f.type == 'F'   ? Kind::kFloat
+                : f.type == 'I' ? Kind::kSigned
+                                : Kind::kUnsigned,
+                f.size, f.count};
+    const std::uint64_t bytes = f.count * static_cast<std::uint64_t>(f.size);
+    // binary_compressed holds each field's values for every point, then the next field's (PCL's writer).
+    const bool by_field = h.data == PcdText::kBinaryCompressed;
+    field.start = by_field ? at * h.points : at;
+    field.stride = by_field ? bytes : h.point_step;
+    at += bytes;
+    c.names.push_back(f.name);
+    c.fields.push_back(std::move(field));
+  }
+  return c;
 }
 
 std::uint32_t le32(const unsigned char* b) {
   return b[0] | (b[1] << 8) | (b[2] << 16) | (static_cast<std::uint32_t>(b[3]) << 24);
 }
 
-/// Binary and binary_compressed bodies: the sizes the header implies fit in the file.
-void check_binary_body(const std::string& path, const PcdHeader& h, std::uint64_t size, std::istream& in) {
+/// Binary and binary_compressed bodies: checks the sizes the header implies against the file, then reads them
+/// (a binary_compressed body is decompressed by liblzf, whose decoder checks every reference).
+void read_binary_body(const std::string& path, const PcdText& h, std::uint64_t size, std::istream& in, RawCloud& out) {
   const std::uint64_t body = size - h.data_offset;
   const std::string declared = str(h.points) + " points x " + str(h.point_step) + " bytes";
-  if (h.data == PcdHeader::kBinary) {
+  const std::uint64_t bytes = h.points * h.point_step;
+  if (h.data == PcdText::kBinary) {
     if (h.points > body / h.point_step) {
       fail(path, "the data section is truncated: the header declares " + declared + ", only " + str(body) +
                      " bytes follow it");
+    }
+    out.data.resize(bytes);
+    if (!in.read(reinterpret_cast<char*>(out.data.data()), static_cast<std::streamsize>(bytes))) {
+      fail(path, "cannot read the data section");
     }
     return;
   }
@@ -232,39 +265,48 @@ void check_binary_body(const std::string& path, const PcdHeader& h, std::uint64_
     fail(path, "the binary_compressed data section is truncated: it declares " + str(compressed) +
                    " compressed bytes, only " + str(body - 8) + " follow");
   }
-  if (uncompressed != h.points * h.point_step) {
+  if (uncompressed != bytes) {
     fail(path, "the binary_compressed data section declares " + str(uncompressed) +
-                   " uncompressed bytes, the header's " + declared + " make " + str(h.points * h.point_step));
+                   " uncompressed bytes, the header's " + declared + " make " + str(bytes));
   }
   if (uncompressed > kLzfMaxExpansion * compressed) {
     fail(path, "the binary_compressed data section is corrupt: " + str(compressed) + " compressed bytes cannot hold " +
                    str(uncompressed) + " (LZF expands at most 88 times)");
   }
+  std::vector<char> packed(compressed);
+  if (!in.read(packed.data(), static_cast<std::streamsize>(compressed))) fail(path, "cannot read the data section");
+  out.data.resize(bytes);
+  const unsigned int got = lzf_decompress(packed.data(), static_cast<unsigned int>(compressed), out.data.data(),
+                                          static_cast<unsigned int>(bytes));
+  if (got != bytes) fail(path, "cannot read the data section (corrupt binary_compressed data)");
 }
 
-/// What every token of an ASCII row must parse as; PCL skips the padding fields named "_".
+/// What every token of an ASCII row must parse as, and where its value goes in the point's row; PCL skips
+/// the padding fields named "_".
 struct TokenRule {
   Kind kind;
   int size;
   bool skip;
   const PcdField* field;
+  std::uint64_t at;
 };
 
 std::vector<TokenRule> token_rules(const std::vector<PcdField>& fields) {
   std::vector<TokenRule> rules;
+  std::uint64_t at = 0;
   for (const auto& f : fields) {
     const Kind k = f.type == 'F' ? Kind::kFloat : f.type == 'I' ? Kind::kSigned : Kind::kUnsigned;
-    for (std::uint64_t c = 0; c < f.count; ++c) rules.push_back({k, f.size, f.name == "_", &f});
+    for (std::uint64_t c = 0; c < f.count; ++c, at += f.size) rules.push_back({k, f.size, f.name == "_", &f, at});
   }
   return rules;
 }
 
-/// ASCII body: exactly POINTS rows, each with one number of the right kind per field entry.
-void check_ascii_body(const std::string& path, const PcdText& h, std::istream& in, int first_line) {
+/// ASCII body: exactly POINTS rows, each with one number of the right kind per field entry, read into `out`.
+void read_ascii_body(const std::string& path, const PcdText& h, std::istream& in, RawCloud& out) {
   const std::vector<TokenRule> rules = token_rules(h.fields);
   std::string line;
   std::uint64_t rows = 0;
-  for (int line_no = first_line; std::getline(in, line); ++line_no) {
+  for (int line_no = h.data_line + 1; std::getline(in, line); ++line_no) {
     if (line.empty()) continue;  // PCL skips empty lines
     const auto tok = split_tokens(line);
     const std::string where = "line " + std::to_string(line_no) + ": ";
@@ -280,9 +322,12 @@ void check_ascii_body(const std::string& path, const PcdText& h, std::istream& i
     if (tok.size() != rules.size()) {
       fail(path, where + str(tok.size()) + " values, the header's fields need " + str(rules.size()));
     }
+    // Each row grows the cloud by one point, so the memory is bounded by the file's size, not by POINTS.
+    out.data.resize(out.data.size() + h.point_step);
+    std::uint8_t* row = out.data.data() + rows * h.point_step;
     for (std::size_t i = 0; i < tok.size(); ++i) {
       const TokenRule& r = rules[i];
-      if (r.skip || is_number(tok[i], r.kind, r.size)) continue;
+      if (r.skip || parse_number(tok[i], r.kind, r.size, row + r.at)) continue;
       fail(path, where + "value " + str(i + 1) + " '" + printable(tok[i]) + "' is not " +
                      (r.kind == Kind::kFloat ? "a number" : "an integer in range") + " for field '" +
                      printable(r.field->name) + "' (TYPE " + r.field->type + " SIZE " + std::to_string(r.size) + ")");
@@ -296,84 +341,19 @@ void check_ascii_body(const std::string& path, const PcdText& h, std::istream& i
 
 }  // namespace
 
-PcdHeader check_pcd(const std::string& path) {
+RawCloud read_pcd(const std::string& path) {
   const std::uint64_t size = file_size(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) fail(path, "cannot open for reading");
   PcdText h = read_pcd_header(path, in);
   check_pcd_counts(path, h);
-  if (h.out.data == PcdHeader::kAscii) {
-    check_ascii_body(path, h, in, h.data_line + 1);
+  RawCloud out = layout(h);
+  if (h.data == PcdText::kAscii) {
+    read_ascii_body(path, h, in, out);
   } else {
-    check_binary_body(path, h.out, size, in);
-  }
-  return h.out;
-}
-
-// ---- helpers ---------------------------------------------------------------------------------
-
-std::uint64_t file_size(const std::string& path) {
-  struct stat st{};
-  if (::stat(path.c_str(), &st) != 0) fail(path, "no such file");
-  return static_cast<std::uint64_t>(st.st_size);
-}
-
-std::vector<std::string_view> split_tokens(std::string_view line) {
-  std::vector<std::string_view> out;
-  std::size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r')) ++i;
-    const std::size_t start = i;
-    while (i < line.size() && line[i] != ' ' && line[i] != '\t' && line[i] != '\r') ++i;
-    if (i > start) out.push_back(line.substr(start, i - start));
+    read_binary_body(path, h, size, in, out);
   }
   return out;
-}
-
-bool is_number(std::string_view t, Kind kind, int size) {
-  if (!t.empty() && t[0] == '+') {
-    t.remove_prefix(1);  // C++ streams, which PCL reads with, accept a '+'
-    if (!t.empty() && t[0] == '-') return false;
-  }
-  if (t.empty()) return false;
-  const char* end = t.data() + t.size();
-  if (kind == Kind::kFloat) {
-    double v = 0;
-    const auto r = std::from_chars(t.data(), end, v);
-    // Out of range still is a number: PCL makes it inf (a point then dropped as invalid) or 0.
-    return r.ptr == end && (r.ec == std::errc() || r.ec == std::errc::result_out_of_range);
-  }
-  const int bits = 8 * size;
-  if (kind == Kind::kSigned) {
-    long long v = 0;
-    const auto r = std::from_chars(t.data(), end, v);
-    if (r.ptr != end || r.ec != std::errc()) return false;
-    return bits == 64 || (v >= -(1LL << (bits - 1)) && v < (1LL << (bits - 1)));
-  }
-  unsigned long long v = 0;
-  const auto r = std::from_chars(t.data(), end, v);
-  if (r.ptr != end || r.ec != std::errc()) return false;
-  return bits == 64 || v < (1ULL << bits);
-}
-
-std::string printable(std::string_view token) {
-  std::string out;
-  for (const char ch : token.substr(0, 40)) {
-    const auto c = static_cast<unsigned char>(ch);
-    if (c >= 0x20 && c < 0x7f) {
-      out += ch;
-    } else {
-      const char* hex = "0123456789abcdef";
-      out += {'\\', 'x', hex[c >> 4], hex[c & 15]};
-    }
-  }
-  return out + (token.size() > 40 ? "..." : "");
-}
-
-bool parse_count(std::string_view t, std::uint64_t& value) {
-  if (t.empty() || t.find_first_not_of("0123456789") != std::string_view::npos) return false;
-  const auto r = std::from_chars(t.data(), t.data() + t.size(), value);
-  return r.ec == std::errc() && value <= static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max());
 }
 
 }  // namespace graspmix::cloud_check

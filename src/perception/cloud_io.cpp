@@ -4,26 +4,24 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <stdexcept>
 
-#include <pcl/PCLPointCloud2.h>
-#include <pcl/console/print.h>
-#include <pcl/exceptions.h>
-#include <pcl/io/pcd_io.h>
-#include <pcl/io/ply_io.h>
+#include <Eigen/Geometry>
 
 #include "cloud_check.hpp"
+#include "cloud_write.hpp"
 
 namespace graspmix {
 
 namespace {
 
-[[noreturn]] void fail(const std::string& path, const std::string& what) {
-  throw std::invalid_argument(path + ": " + what);
-}
+using cloud_check::fail;
+using cloud_check::Field;
+using cloud_check::Kind;
+using cloud_check::RawCloud;
 
 std::string lower_extension(const std::string& path) {
   const auto slash = path.find_last_of("/\\");
@@ -34,76 +32,58 @@ std::string lower_extension(const std::string& path) {
   return ext;
 }
 
-/// Reads one scalar of a PCL field type as double.
-double read_scalar(const std::uint8_t* p, std::uint8_t datatype) {
-  switch (datatype) {
-    case pcl::PCLPointField::INT8: {
-      std::int8_t v;
-      std::memcpy(&v, p, 1);
-      return v;
-    }
-    case pcl::PCLPointField::UINT8: {
-      std::uint8_t v;
-      std::memcpy(&v, p, 1);
-      return v;
-    }
-    case pcl::PCLPointField::INT16: {
-      std::int16_t v;
-      std::memcpy(&v, p, 2);
-      return v;
-    }
-    case pcl::PCLPointField::UINT16: {
-      std::uint16_t v;
-      std::memcpy(&v, p, 2);
-      return v;
-    }
-    case pcl::PCLPointField::INT32: {
-      std::int32_t v;
-      std::memcpy(&v, p, 4);
-      return v;
-    }
-    case pcl::PCLPointField::UINT32: {
-      std::uint32_t v;
-      std::memcpy(&v, p, 4);
-      return v;
-    }
-    case pcl::PCLPointField::FLOAT32: {
-      float v;
-      std::memcpy(&v, p, 4);
-      return v;
-    }
-    case pcl::PCLPointField::FLOAT64: {
-      double v;
-      std::memcpy(&v, p, 8);
-      return v;
-    }
-    default:
-      return std::numeric_limits<double>::quiet_NaN();
+template <typename T>
+void fill_column(const std::uint8_t* at, std::uint64_t stride, Eigen::Ref<Eigen::VectorXd> out) {
+  for (Eigen::Index i = 0; i < out.size(); ++i, at += stride) {
+    T v;
+    std::memcpy(&v, at, sizeof v);
+    out[i] = static_cast<double>(v);
   }
 }
 
-const pcl::PCLPointField* find_field(const pcl::PCLPointCloud2& c, std::initializer_list<const char*> names) {
+/// The first entry of `field` for `n` values starting at `at`, as doubles: any numeric type (PCL's templates would
+/// silently skip a float64 x, which real PLY files have).
+void read_column(const std::uint8_t* at, const Field& f, Eigen::Ref<Eigen::VectorXd> out) {
+  if (f.kind == Kind::kFloat)
+    return f.size == 4 ? fill_column<float>(at, f.stride, out) : fill_column<double>(at, f.stride, out);
+  const bool s = f.kind == Kind::kSigned;
+  switch (f.size) {
+    case 1:
+      return s ? fill_column<std::int8_t>(at, f.stride, out) : fill_column<std::uint8_t>(at, f.stride, out);
+    case 2:
+      return s ? fill_column<std::int16_t>(at, f.stride, out) : fill_column<std::uint16_t>(at, f.stride, out);
+    case 4:
+      return s ? fill_column<std::int32_t>(at, f.stride, out) : fill_column<std::uint32_t>(at, f.stride, out);
+    default:
+      return s ? fill_column<std::int64_t>(at, f.stride, out) : fill_column<std::uint64_t>(at, f.stride, out);
+  }
+}
+
+const Field* find_field(const RawCloud& c, std::initializer_list<const char*> names) {
   for (const char* n : names)
     for (const auto& f : c.fields)
       if (f.name == n) return &f;
   return nullptr;
 }
 
-/// Column `field` of every point as doubles; any field type PCL reads (the PCL templates would
-/// silently skip a float64 x, which real PLY files have).
-Eigen::VectorXd column(const pcl::PCLPointCloud2& c, const pcl::PCLPointField& f, std::size_t n) {
-  Eigen::VectorXd out(static_cast<Eigen::Index>(n));
-  for (std::size_t i = 0; i < n; ++i)
-    out[static_cast<Eigen::Index>(i)] = read_scalar(&c.data[i * c.point_step + f.offset], f.datatype);
-  return out;
+/// Columns `names` of every point as (n, 3), 0 rows when any is missing.
+RowMatrixXd columns(const RawCloud& c, const Field* f[3], std::size_t n) {
+  if (!f[0] || !f[1] || !f[2]) return {};
+  RowMatrixXd M(static_cast<Eigen::Index>(n), 3);
+  Eigen::VectorXd col(static_cast<Eigen::Index>(n));
+  for (int j = 0; j < 3; ++j) {
+    read_column(c.data.data() + f[j]->start, *f[j], col);
+    M.col(j) = col;
+  }
+  return M;
 }
 
 /// vp_x vp_y vp_z (PCL's PointWithViewpoint) as (n, 3), 0 rows when the file has none. All three or
 /// none, each one float number a point: a partial set or a malformed field would otherwise be ignored
 /// and the points oriented towards a camera the file does not name.
-RowMatrixXd viewpoint_columns(const pcl::PCLPointCloud2& c, std::size_t n, const std::string& path) {
+RowMatrixXd viewpoint_columns(const RawCloud& c, std::size_t n, const std::string& path) {
   const char* names[] = {"vp_x", "vp_y", "vp_z"};
-  const pcl::PCLPointField* f[3];
+  const Field* f[3];
   std::string present;
   for (int j = 0; j < 3; ++j) {
     f[j] = find_field(c, {names[j]});
@@ -113,126 +93,49 @@ RowMatrixXd viewpoint_columns(const pcl::PCLPointCloud2& c, std::size_t n, const
   if (!f[0] || !f[1] || !f[2]) {
     fail(path, "has only " + present + " of the per-point viewpoint fields vp_x, vp_y, vp_z (all three or none)");
   }
-  RowMatrixXd V(static_cast<Eigen::Index>(n), 3);
   for (int j = 0; j < 3; ++j) {
     if (f[j]->count != 1) {
       fail(path, std::string("field ") + names[j] + " has " + std::to_string(f[j]->count) +
                      " entries a point (COUNT), a per-point viewpoint needs 1");
     }
-    if (f[j]->datatype != pcl::PCLPointField::FLOAT32 && f[j]->datatype != pcl::PCLPointField::FLOAT64) {
+    if (f[j]->kind != Kind::kFloat) {
       fail(path, std::string("field ") + names[j] + " is not a float (TYPE F, SIZE 4 or 8): a viewpoint is in metres");
     }
-    V.col(j) = column(c, *f[j], n);
   }
-  return V;
+  return columns(c, f, n);
 }
 
-CloudData from_pcl(const pcl::PCLPointCloud2& c, const Eigen::Vector4f& origin, const Eigen::Quaternionf& orientation,
-                   const std::string& path, const std::string& format) {
-  CloudData out;
-  out.path = path;
-  out.format = format;
-  out.width = c.width;
-  out.height = c.height;
-  for (const auto& f : c.fields) out.fields.push_back(f.name);
-  const std::size_t n = static_cast<std::size_t>(c.width) * c.height;
+/// cloud_from_arrays, with the rows it kept.
+CloudData keep_finite(const RowMatrixXd& points, const RowMatrixXd& normals, const std::string& source,
+                      const RowMatrixXd& viewpoints, std::vector<Eigen::Index>& keep);
+
+CloudData from_raw(const RawCloud& c, const std::string& path, const std::string& format) {
+  const std::size_t n = c.width * c.height;
   if (n == 0) fail(path, "the cloud is empty (0 points)");
-  if (c.data.size() < n * c.point_step)
-    fail(path, "the data section is shorter than the header declares (truncated file)");
-  const auto* fx = find_field(c, {"x"});
-  const auto* fy = find_field(c, {"y"});
-  const auto* fz = find_field(c, {"z"});
-  if (!fx || !fy || !fz) {
+  const Field* xyz[3] = {find_field(c, {"x"}), find_field(c, {"y"}), find_field(c, {"z"})};
+  if (!xyz[0] || !xyz[1] || !xyz[2]) {
     std::string names;
-    for (const auto& f : out.fields) names += (names.empty() ? "" : " ") + cloud_check::printable(f);
+    for (const auto& f : c.names) names += (names.empty() ? "" : " ") + cloud_check::printable(f);
     fail(path, "has no x, y, z fields (fields: " + (names.empty() ? std::string("none") : names) + ")");
   }
-  RowMatrixXd P(static_cast<Eigen::Index>(n), 3);
-  P.col(0) = column(c, *fx, n);
-  P.col(1) = column(c, *fy, n);
-  P.col(2) = column(c, *fz, n);
-  RowMatrixXd N;
-  const auto* nx = find_field(c, {"normal_x", "nx"});
-  const auto* ny = find_field(c, {"normal_y", "ny"});
-  const auto* nz = find_field(c, {"normal_z", "nz"});
-  if (nx && ny && nz) {
-    N.resize(static_cast<Eigen::Index>(n), 3);
-    N.col(0) = column(c, *nx, n);
-    N.col(1) = column(c, *ny, n);
-    N.col(2) = column(c, *nz, n);
-  }
-  CloudData arrays = cloud_from_arrays(P, N, path, viewpoint_columns(c, n, path));
-  out.points = std::move(arrays.points);
-  out.normals = std::move(arrays.normals);
-  out.viewpoints = std::move(arrays.viewpoints);
-  out.n_invalid = arrays.n_invalid;
-  out.viewpoint << origin.x(), origin.y(), origin.z(), orientation.x(), orientation.y(), orientation.z(),
-      orientation.w();
+  const Field* normal[3] = {find_field(c, {"normal_x", "nx"}), find_field(c, {"normal_y", "ny"}),
+                            find_field(c, {"normal_z", "nz"})};
+  std::vector<Eigen::Index> keep;
+  CloudData out = keep_finite(columns(c, xyz, n), columns(c, normal, n), path, viewpoint_columns(c, n, path), keep);
+  out.path = path;
+  out.format = format;
+  out.fields = c.names;
+  out.width = static_cast<std::uint32_t>(c.width);
+  out.height = static_cast<std::uint32_t>(c.height);
+  if (c.height > 1)
+    out.pixels = Eigen::Map<const Eigen::Matrix<Eigen::Index, Eigen::Dynamic, 1>>(
+                     keep.data(), static_cast<Eigen::Index>(keep.size()))
+                     .cast<std::int64_t>();
+  const auto& v = c.viewpoint;  // tx ty tz qw qx qy qz, as PCL reads it (floats, not normalised)
+  out.viewpoint << v[0], v[1], v[2], v[4], v[5], v[6], v[3];
   if (out.viewpoint[6] < 0) out.viewpoint.tail<4>() *= -1.0;
-  out.has_viewpoint = origin.head<3>().norm() > 0 || std::abs(std::abs(orientation.w()) - 1.0f) > 1e-6f;
+  out.has_viewpoint = v[0] != 0 || v[1] != 0 || v[2] != 0 || std::abs(std::abs(v[3]) - 1.0f) > 1e-6f;
   return out;
-}
-
-namespace {
-/// PCL's readers print their own diagnostics on stderr; graspmix reports every problem as an exception
-/// naming the file instead, so they are silenced while a file is read (one line on stderr, not three).
-class QuietPcl {
- public:
-  QuietPcl() : previous_(pcl::console::getVerbosityLevel()) { pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS); }
-  ~QuietPcl() { pcl::console::setVerbosityLevel(previous_); }
-  QuietPcl(const QuietPcl&) = delete;
-  QuietPcl& operator=(const QuietPcl&) = delete;
-
- private:
-  pcl::console::VERBOSITY_LEVEL previous_;
-};
-}  // namespace
-
-CloudData load_pcd(const std::string& path) {
-  // Header and body are checked against each other and the file's size before PCL reads (and
-  // allocates) anything: PCL trusts the header (cloud_check.hpp).
-  const cloud_check::PcdHeader header = cloud_check::check_pcd(path);
-  const char* encodings[] = {"ascii", "binary", "binary_compressed"};
-  const std::string encoding = encodings[header.data];
-  const QuietPcl quiet;
-  pcl::PCDReader reader;
-  pcl::PCLPointCloud2 cloud;
-  Eigen::Vector4f origin;
-  Eigen::Quaternionf orientation;
-  int version = 0;
-  int rc = -1;
-  try {
-    rc = reader.read(path, cloud, origin, orientation, version);
-  } catch (const pcl::PCLException& e) {
-    fail(path, std::string("cannot read the data section (") + e.what() + ")");
-  }
-  if (rc < 0) fail(path, "cannot read the data section (corrupt " + encoding + " data)");
-  return from_pcl(cloud, origin, orientation, path, "pcd " + encoding);
-}
-
-CloudData load_ply(const std::string& path) {
-  const std::uint64_t vertices = cloud_check::check_ply(path);  // before PCL allocates what the header claims
-  const QuietPcl quiet;
-  pcl::PLYReader reader;
-  pcl::PCLPointCloud2 cloud;
-  Eigen::Vector4f origin = Eigen::Vector4f::Zero();
-  Eigen::Quaternionf orientation = Eigen::Quaternionf::Identity();
-  int version = 0;
-  int rc = -1;
-  try {
-    rc = reader.read(path, cloud, origin, orientation, version);
-  } catch (const pcl::PCLException& e) {
-    fail(path, std::string("cannot read PLY (") + e.what() + ")");
-  }
-  if (rc < 0) fail(path, "cannot read PLY (a data section not matching the header)");
-  // A camera element's viewport re-sizes the cloud after the vertices are read; it must still hold them all.
-  const std::uint64_t n = static_cast<std::uint64_t>(cloud.width) * cloud.height;
-  if (n != vertices || cloud.data.size() < n * cloud.point_step) {
-    fail(path, "the cloud's organisation (" + std::to_string(cloud.width) + " x " + std::to_string(cloud.height) +
-                   ", from obj_info or the camera element) does not match its " + std::to_string(vertices) +
-                   " vertices");
-  }
-  return from_pcl(cloud, origin, orientation, path, "ply");
 }
 
 /// The minimal .npy reader numpy's format spec needs for an (N, 3) float or int array; the header is
@@ -245,20 +148,20 @@ CloudData load_npy(const std::string& path) {
     fail(path, "expected an (N, 3) array, got shape (" + s + (h.shape.size() == 1 ? "," : "") + ")");
   }
   const std::string& descr = h.descr;
-  std::uint8_t type = 0;
-  int size = 0;
+  Field type;
+  bool ok = false;
   if (descr.size() == 3 && (descr[0] == '<' || descr[0] == '=')) {
-    size = descr[2] - '0';
-    if (descr[1] == 'f' && size == 4) type = pcl::PCLPointField::FLOAT32;
-    if (descr[1] == 'f' && size == 8) type = pcl::PCLPointField::FLOAT64;
-    if (descr[1] == 'i' && size == 4) type = pcl::PCLPointField::INT32;
-    if (descr[1] == 'i' && size == 2) type = pcl::PCLPointField::INT16;
+    type.size = descr[2] - '0';
+    type.kind = descr[1] == 'f' ? Kind::kFloat : Kind::kSigned;
+    ok = (descr[1] == 'f' && (type.size == 4 || type.size == 8)) ||
+         (descr[1] == 'i' && (type.size == 2 || type.size == 4));
   }
-  if (type == 0) {
+  if (!ok) {
     fail(path,
          "unsupported .npy dtype '" + descr.substr(0, 40) + "' (use little-endian float32, float64, int16 or int32)");
   }
-  const std::uint64_t n = h.shape[0], body = h.file_size - h.data_offset, row = 3 * static_cast<std::uint64_t>(size);
+  const std::uint64_t size = static_cast<std::uint64_t>(type.size);
+  const std::uint64_t n = h.shape[0], body = h.file_size - h.data_offset, row = 3 * size;
   if (n == 0) fail(path, "the cloud is empty (0 points)");
   if (n > body / row) {
     fail(path, "the data section is truncated: shape (" + std::to_string(n) + ", 3) of " + descr + " needs " +
@@ -275,11 +178,12 @@ CloudData load_npy(const std::string& path) {
     fail(path, "cannot read the data section");
   }
   RowMatrixXd P(static_cast<Eigen::Index>(n), 3);
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = 0; j < 3; ++j) {
-      const std::size_t k = h.fortran ? j * n + i : i * 3 + j;
-      P(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = read_scalar(&data[k * size], type);
-    }
+  Eigen::VectorXd col(static_cast<Eigen::Index>(n));
+  type.stride = h.fortran ? size : row;
+  for (std::uint64_t j = 0; j < 3; ++j) {
+    read_column(data.data() + (h.fortran ? j * n * size : j * size), type, col);
+    P.col(static_cast<Eigen::Index>(j)) = col;
+  }
   CloudData out = cloud_from_arrays(P, {}, path);
   out.format = "npy";
   out.fields = {"x", "y", "z"};
@@ -288,10 +192,8 @@ CloudData load_npy(const std::string& path) {
   return out;
 }
 
-}  // namespace
-
-CloudData cloud_from_arrays(const RowMatrixXd& points, const RowMatrixXd& normals, const std::string& source,
-                            const RowMatrixXd& viewpoints) {
+CloudData keep_finite(const RowMatrixXd& points, const RowMatrixXd& normals, const std::string& source,
+                      const RowMatrixXd& viewpoints, std::vector<Eigen::Index>& keep) {
   if (points.cols() != 3) {
     throw std::invalid_argument(source + ": expected points of shape (N, 3), got (" + std::to_string(points.rows()) +
                                 ", " + std::to_string(points.cols()) + ")");
@@ -305,7 +207,7 @@ CloudData cloud_from_arrays(const RowMatrixXd& points, const RowMatrixXd& normal
   if (viewpoints.rows() > 0 && (viewpoints.rows() != n || viewpoints.cols() != 3)) {
     throw std::invalid_argument(source + ": viewpoints must have shape (" + std::to_string(n) + ", 3)");
   }
-  std::vector<Eigen::Index> keep;
+  keep.clear();
   keep.reserve(static_cast<std::size_t>(n));
   for (Eigen::Index i = 0; i < n; ++i)
     if (points.row(i).allFinite()) keep.push_back(i);
@@ -341,23 +243,74 @@ CloudData cloud_from_arrays(const RowMatrixXd& points, const RowMatrixXd& normal
   return out;
 }
 
+}  // namespace
+
+CloudData cloud_from_arrays(const RowMatrixXd& points, const RowMatrixXd& normals, const std::string& source,
+                            const RowMatrixXd& viewpoints) {
+  std::vector<Eigen::Index> keep;
+  return keep_finite(points, normals, source, viewpoints, keep);
+}
+
 CloudData load_cloud(const std::string& path) {
   struct stat st{};
   if (::stat(path.c_str(), &st) != 0) fail(path, "no such file");
   if (!S_ISREG(st.st_mode)) fail(path, "not a regular file");
   if (st.st_size == 0) fail(path, "the file is empty (0 bytes)");
   const std::string ext = lower_extension(path);
-  if (ext == ".pcd") return load_pcd(path);
-  if (ext == ".ply") return load_ply(path);
+  if (ext == ".pcd") {
+    const RawCloud c = cloud_check::read_pcd(path);
+    return from_raw(c, path, "pcd " + c.encoding);
+  }
+  if (ext == ".ply") return from_raw(cloud_check::read_ply(path), path, "ply");
   if (ext == ".npy") return load_npy(path);
   fail(path, "unknown cloud format '" + ext + "' (expected .pcd, .ply or .npy)");
 }
 
+Vec3Array organized_grid(const CloudData& cloud) {
+  if (cloud.height <= 1) {
+    fail(cloud.path, "not an organized cloud (height " + std::to_string(cloud.height) +
+                         "): only a file with HEIGHT > 1 has an image grid");
+  }
+  const std::int64_t size = static_cast<std::int64_t>(cloud.width) * cloud.height;
+  if (cloud.pixels.size() != cloud.points.rows()) {
+    fail(cloud.path, "pixels has " + std::to_string(cloud.pixels.size()) + " entries for " +
+                         std::to_string(cloud.points.rows()) + " points");
+  }
+  Vec3Array grid = Vec3Array::Constant(size, 3, std::numeric_limits<double>::quiet_NaN());
+  for (Eigen::Index k = 0; k < cloud.pixels.size(); ++k) {
+    const std::int64_t p = cloud.pixels[k];
+    if (p < 0 || p >= size) {
+      fail(cloud.path, "pixel " + std::to_string(p) + " of point " + std::to_string(k) + " is outside the " +
+                           std::to_string(cloud.width) + " x " + std::to_string(cloud.height) + " grid");
+    }
+    grid.row(p) = cloud.points.row(k);
+  }
+  return grid;
+}
+
 namespace {
+
+/// A hole of an organized cloud: a point with a NaN coordinate.
+bool is_hole(const Vec3Array& points, Eigen::Index i) { return points.row(i).array().isNaN().any(); }
+
+/// Every row of `a` finite; in an organized cloud, every row but those of its holes.
+void check_finite(const std::string& path, const char* what, const Vec3Array& a, const Vec3Array& points,
+                  bool organized) {
+  if (!organized) {
+    if (!a.allFinite()) fail(path, std::string(what) + ": contains NaN or infinite values");
+    return;
+  }
+  for (Eigen::Index i = 0; i < a.rows(); ++i) {
+    if (!is_hole(points, i) && !a.row(i).allFinite()) {
+      fail(path, std::string(what) + ": row " + std::to_string(i) +
+                     " is not finite, and its point is not a hole (an organized cloud marks a hole with NaN)");
+    }
+  }
+}
 
 void check_save_inputs(const std::string& path, const Vec3Array& points, const Vec3Array& normals,
                        const std::string& encoding, const Eigen::Matrix<double, 7, 1>& viewpoint,
-                       const Vec3Array& viewpoints) {
+                       const Vec3Array& viewpoints, std::uint32_t width, std::uint32_t height) {
   const std::string ext = lower_extension(path);
   if (ext != ".pcd" && ext != ".ply") fail(path, "can only write .pcd or .ply, got '" + ext + "'");
   const bool pcd = ext == ".pcd";
@@ -369,108 +322,67 @@ void check_save_inputs(const std::string& path, const Vec3Array& points, const V
   }
   const Eigen::Index n = points.rows();
   if (n == 0) fail(path, "points: the cloud is empty, nothing to write");
-  if (!points.allFinite()) fail(path, "points: contains NaN or infinite values");
+  if ((width != 0 || height != 0) && static_cast<std::uint64_t>(width) * height != static_cast<std::uint64_t>(n)) {
+    fail(path, "width x height = " + std::to_string(width) + " x " + std::to_string(height) + " for " +
+                   std::to_string(n) + " points (an organized cloud has a row of points for every pixel)");
+  }
+  const bool organized = height > 1;
+  if (organized && !pcd) {
+    fail(path, "an organized cloud (height " + std::to_string(height) +
+                   ") cannot be written as PLY, which has no standard image grid: write .pcd to keep it");
+  }
+  check_finite(path, "points", points, points, organized);
+  if (organized && points.array().isNaN().rowwise().any().all()) {
+    fail(path, "points: every point is a hole (NaN), nothing to write");
+  }
   const bool with_normals = normals.rows() > 0;
   if (with_normals && normals.rows() != n) {
     fail(path, "normals: " + std::to_string(normals.rows()) + " rows for " + std::to_string(n) + " points");
   }
-  if (with_normals && !normals.allFinite()) fail(path, "normals: contains NaN or infinite values");
+  if (with_normals) check_finite(path, "normals", normals, points, organized);
   if (!viewpoint.allFinite()) fail(path, "viewpoint: contains NaN or infinite values");
   if (viewpoints.rows() > 0 && viewpoints.rows() != n) {
     fail(path, "viewpoints: " + std::to_string(viewpoints.rows()) + " rows for " + std::to_string(n) + " points");
   }
-  if (!viewpoints.allFinite()) fail(path, "viewpoints: contains NaN or infinite values");
+  check_finite(path, "viewpoints", viewpoints, points, organized);
 }
 
 /// The points (and normals, and per-point viewpoints) as float32 fields x y z [normal_x normal_y normal_z]
 /// [vp_x vp_y vp_z]: with no normals, PCL's PointWithViewpoint layout.
-pcl::PCLPointCloud2 float_cloud(const Vec3Array& points, const Vec3Array& normals, const Vec3Array& viewpoints) {
-  const Eigen::Index n = points.rows();
+cloud_write::FloatCloud float_cloud(const Vec3Array& points, const Vec3Array& normals, const Vec3Array& viewpoints) {
+  cloud_write::FloatCloud c;
   std::vector<const Vec3Array*> blocks{&points};
-  std::vector<const char*> names{"x", "y", "z"};
-  if (normals.rows() > 0) blocks.push_back(&normals), names.insert(names.end(), {"normal_x", "normal_y", "normal_z"});
-  if (viewpoints.rows() > 0) blocks.push_back(&viewpoints), names.insert(names.end(), {"vp_x", "vp_y", "vp_z"});
-  pcl::PCLPointCloud2 cloud;
-  for (std::size_t f = 0; f < names.size(); ++f) {
-    pcl::PCLPointField field;
-    field.name = names[f];
-    field.offset = static_cast<std::uint32_t>(4 * f);
-    field.datatype = pcl::PCLPointField::FLOAT32;
-    field.count = 1;
-    cloud.fields.push_back(field);
-  }
-  cloud.width = static_cast<std::uint32_t>(n);
-  cloud.height = 1;
-  cloud.is_dense = true;
-  cloud.point_step = static_cast<std::uint32_t>(4 * names.size());
-  cloud.row_step = cloud.point_step * cloud.width;
-  cloud.data.resize(static_cast<std::size_t>(cloud.row_step));
-  for (Eigen::Index i = 0; i < n; ++i) {
-    float v[9];
-    for (std::size_t b = 0; b < blocks.size(); ++b)
-      for (int j = 0; j < 3; ++j) v[3 * b + j] = static_cast<float>((*blocks[b])(i, j));
-    std::memcpy(&cloud.data[static_cast<std::size_t>(i) * cloud.point_step], v, cloud.point_step);
-  }
-  return cloud;
-}
-
-/// PCL's ASCII PLY writer keeps 6 significant digits (1 um at 1 m); float32 needs 9. No camera element:
-/// PCL writes intrinsics its own reader then complains about; PLY keeps no viewpoint.
-int write_ascii_ply(const std::string& path, const pcl::PCLPointCloud2& cloud) {
-  std::ofstream out(path);
-  if (!out) fail(path, "cannot open for writing (is the directory there and writable?)");
-  const int n_fields = static_cast<int>(cloud.fields.size());
-  out << "ply\nformat ascii 1.0\ncomment graspmix\nelement vertex " << cloud.width << "\n";
-  for (const auto& f : cloud.fields) {
-    const bool normal = f.name.rfind("normal_", 0) == 0;  // nx ny nz, the names PLY files use
-    out << "property float " << (normal ? "n" + f.name.substr(7) : f.name) << "\n";
-  }
-  out << "end_header\n";
-  char buf[48];
-  for (std::uint32_t i = 0; i < cloud.width; ++i) {
-    float v[9];
-    std::memcpy(v, &cloud.data[static_cast<std::size_t>(i) * cloud.point_step], cloud.point_step);
-    for (int f = 0; f < n_fields; ++f) {
-      std::snprintf(buf, sizeof buf, f + 1 < n_fields ? "%.9g " : "%.9g\n", static_cast<double>(v[f]));
-      out << buf;
-    }
-  }
-  return out.good() ? 0 : -1;
+  c.names = {"x", "y", "z"};
+  if (normals.rows() > 0)
+    blocks.push_back(&normals), c.names.insert(c.names.end(), {"normal_x", "normal_y", "normal_z"});
+  if (viewpoints.rows() > 0) blocks.push_back(&viewpoints), c.names.insert(c.names.end(), {"vp_x", "vp_y", "vp_z"});
+  const Eigen::Index n = points.rows();
+  c.values.resize(static_cast<std::size_t>(n) * c.names.size());
+  std::size_t at = 0;
+  for (Eigen::Index i = 0; i < n; ++i)
+    for (const Vec3Array* b : blocks)
+      for (int j = 0; j < 3; ++j) c.values[at++] = static_cast<float>((*b)(i, j));
+  c.width = static_cast<std::uint32_t>(n);
+  return c;
 }
 
 }  // namespace
 
 void save_cloud(const std::string& path, const Vec3Array& points, const Vec3Array& normals, const std::string& encoding,
-                const Eigen::Matrix<double, 7, 1>& viewpoint, const Vec3Array& viewpoints) {
-  check_save_inputs(path, points, normals, encoding, viewpoint, viewpoints);
-  const bool pcd = lower_extension(path) == ".pcd";
-  const pcl::PCLPointCloud2 cloud = float_cloud(points, normals, viewpoints);
-  const Eigen::Vector4f origin(static_cast<float>(viewpoint[0]), static_cast<float>(viewpoint[1]),
-                               static_cast<float>(viewpoint[2]), 0.0f);
-  Eigen::Quaternionf orientation(static_cast<float>(viewpoint[6]), static_cast<float>(viewpoint[3]),
-                                 static_cast<float>(viewpoint[4]), static_cast<float>(viewpoint[5]));
-  if (orientation.norm() < 1e-6f) fail(path, "viewpoint: the quaternion has zero length");
-  orientation.normalize();
-  int rc = -1;
-  try {
-    if (pcd) {
-      pcl::PCDWriter w;
-      if (encoding == "ascii")
-        rc = w.writeASCII(path, cloud, origin, orientation, 9);
-      else if (encoding == "binary")
-        rc = w.writeBinary(path, cloud, origin, orientation);
-      else
-        rc = w.writeBinaryCompressed(path, cloud, origin, orientation);
-    } else if (encoding == "binary") {
-      pcl::PLYWriter w;
-      rc = w.writeBinary(path, cloud, origin, orientation, false);
-    } else {
-      rc = write_ascii_ply(path, cloud);
-    }
-  } catch (const pcl::PCLException& e) {
-    fail(path, std::string("cannot write (") + e.what() + ")");
-  }
-  if (rc < 0) fail(path, "cannot write (is the directory there and writable?)");
+                const Eigen::Matrix<double, 7, 1>& viewpoint, const Vec3Array& viewpoints, std::uint32_t width,
+                std::uint32_t height) {
+  check_save_inputs(path, points, normals, encoding, viewpoint, viewpoints, width, height);
+  cloud_write::FloatCloud cloud = float_cloud(points, normals, viewpoints);
+  if (height > 1) cloud.width = width, cloud.height = height;
+  Eigen::Quaterniond q(viewpoint[6], viewpoint[3], viewpoint[4], viewpoint[5]);
+  if (q.norm() < 1e-6) fail(path, "viewpoint: the quaternion has zero length");
+  q.normalize();
+  if (lower_extension(path) == ".ply") return cloud_write::write_ply(path, cloud, encoding == "binary");
+  const std::array<float, 7> vp = {static_cast<float>(viewpoint[0]), static_cast<float>(viewpoint[1]),
+                                   static_cast<float>(viewpoint[2]), static_cast<float>(q.w()),
+                                   static_cast<float>(q.x()),        static_cast<float>(q.y()),
+                                   static_cast<float>(q.z())};
+  cloud_write::write_pcd(path, cloud, encoding, vp);
 }
 
 }  // namespace graspmix

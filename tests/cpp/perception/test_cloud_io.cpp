@@ -11,23 +11,14 @@
 #include <pcl/point_types.h>
 
 #include "graspmix/perception/cloud_io.hpp"
+#include "temp_dir.hpp"
 
 using namespace graspmix;
 namespace fs = std::filesystem;
 
 namespace {
 
-struct TempDir {
-  fs::path dir;
-  TempDir() {
-    dir = fs::temp_directory_path() /
-          ("graspmix_io_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
-           ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir);
-  }
-  ~TempDir() { fs::remove_all(dir); }
-  std::string operator/(const std::string& name) const { return (dir / name).string(); }
-};
+using graspmix::test_support::TempDir;
 
 Vec3Array random_points(int n, std::uint64_t seed) {
   std::mt19937_64 rng(seed);

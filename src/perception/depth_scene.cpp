@@ -152,7 +152,7 @@ Segmentation segment_image(const Eigen::Ref<const Vec3Array>& S, const Eigen::Re
   auto t_step = Clock::now();
   const Blocks blocks = block_points(S, H, W, fine, s.voxel_size, T);
   Blocks down;
-  std::size_t dropped = 0;
+  std::size_t dropped = 0, on_table = 0;
   if (two_levels) {
     // The objects from the fine blocks above the table, the table (for the table-noise rule's statistic) from the
     // coarse ones on it; each voxelised on its own, so no voxel blends an object's foot with the table.
@@ -162,8 +162,11 @@ Segmentation segment_image(const Eigen::Ref<const Vec3Array>& S, const Eigen::Re
     t_step = Clock::now();
     if (out.plane_found || out.plane_given) {
       const Blocks up = by_height(blocks, out.plane, s.table_clearance, true);
+      const Blocks on = by_height(coarse, out.plane, s.table_clearance, false);
+      down = joined(voxelised(up, s.voxel_size), on);
+      // n_plane counts the fine blocks on the table, not the coarse ones that stand in for them
       dropped = static_cast<std::size_t>(blocks.points.rows() - up.points.rows());
-      down = joined(voxelised(up, s.voxel_size), by_height(coarse, out.plane, s.table_clearance, false));
+      on_table = static_cast<std::size_t>(on.points.rows());
     }
   }
   if (!out.plane_found && !out.plane_given) down = voxelised(blocks, s.voxel_size);
@@ -177,7 +180,7 @@ Segmentation segment_image(const Eigen::Ref<const Vec3Array>& S, const Eigen::Re
   out.times.visibility = since(t_step);
   if (two_levels) {
     detail::segment_on_support(down.points, down.pixels, cams, s, out);
-    out.n_plane += dropped;
+    out.n_plane = out.n_plane - on_table + dropped;
   } else {
     detail::segment_voxelised(down.points, down.pixels, cams, s, plane, out);
   }

@@ -9,14 +9,14 @@ import time
 from pathlib import Path
 
 from .. import _core
-from ..io import data_path, load_points
+from ..io import data_path
 from ..io.checks import MAX_COMPONENTS, MAX_ITERATIONS
 from ..model import GraspModel, default_model_path, learn
 from ..model.settings import METHODS, LearnSettings
 from ..perception import kind_name, parse_target
 from .common import CliError, float_in, input_path, int_in, output_file, parse_floats, parse_joints, seed
 from .synthesis_flags import add_synthesis_arguments, list_settings, synthesis_options
-from .views import add_view_arguments, depth_input, known_plane, view_inputs
+from .views import add_view_arguments, input_keywords, known_plane
 
 
 def cmd_demo(args: argparse.Namespace) -> int:
@@ -143,17 +143,10 @@ def cmd_synthesize(args: argparse.Namespace) -> int:
     if args.list_settings:
         print(list_settings())
         return 0
-    image = depth_input(args)
-    if not args.cloud and image is None:
-        raise CliError("--cloud is required (the scene or object cloud to grasp), or --depth with --intrinsics")
+    given = input_keywords(args, "the scene or object cloud to grasp")
     model, model_path = _model_for(args)
     axis = parse_floats(args.approach_axis, 3, "--approach-axis") if args.approach_axis else None
-    if image is None:
-        points, viewpoints, plane = view_inputs(args, load_points(args.cloud))
-        given = {"cloud": points, "viewpoints": viewpoints}
-    else:
-        given, plane = image, known_plane(args)
-    opts = synthesis_options(args)
+    opts, plane = synthesis_options(args), known_plane(args)
     grasps = model.synthesize(
         options=opts, plane=plane, target=args.target, approach_axis=axis, types=args.types, **given
     )

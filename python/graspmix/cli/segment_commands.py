@@ -10,10 +10,9 @@ import sys
 import numpy as np
 
 from .. import _core
-from ..io import load_points
-from ..perception import depth_view, kind_name, segment_scene, segment_view
-from .common import CliError, float_in, given, input_path, int_in, output_file, seed
-from .views import add_view_arguments, depth_input, known_plane, view_inputs
+from ..perception import CameraView, kind_name, scene_input, segment_scene, segment_view
+from .common import float_in, given, input_path, int_in, output_file, seed
+from .views import add_view_arguments, input_keywords, known_plane
 
 
 def _plane_lines(scene) -> list[str]:
@@ -38,17 +37,14 @@ def _plane_lines(scene) -> list[str]:
 
 
 def cmd_segment(args) -> int:
-    image = depth_input(args)
-    if not args.cloud and image is None:
-        raise CliError("--cloud is required (the scene cloud), or --depth with --intrinsics")
+    source, _ = scene_input(**input_keywords(args, "the scene cloud"))
     settings = given(args, "cluster_tolerance", "min_cluster_size", "table_clearance", "voxel_size", "seed")
-    if image is None:
-        points, viewpoints, plane = view_inputs(args, load_points(args.cloud))
-        scene = segment_scene(points, viewpoints, plane, **settings)
+    if isinstance(source, CameraView):
+        scene = segment_view(source, known_plane(args), _core.SegmentationSettings(**settings))
+        points = source.world_points()
     else:
-        view = depth_view(image["depth"], image["intrinsics"], image["camera_pose"], image["depth_scale"])
-        scene = segment_view(view, known_plane(args), _core.SegmentationSettings(**settings))
-        points = view.world_points()
+        points, viewpoints = source
+        scene = segment_scene(points, viewpoints, known_plane(args), **settings)
     if args.completion:
         scene.complete()
     for note in scene.notes:

@@ -29,14 +29,6 @@ def _scene_of(args: argparse.Namespace):
     return scenes.SceneSpec([scenes.PlacedObject(args.object, pose)]).check()
 
 
-def _camera_pose(cam) -> list[float]:
-    """The camera's position and orientation (OpenGL camera frame: looking along -z) for a PCD VIEWPOINT."""
-    from scipy.spatial.transform import Rotation
-
-    R = np.linalg.inv(cam.view_matrix())[:3, :3]
-    return [*map(float, cam.eye), *map(float, Rotation.from_matrix(R).as_quat())]
-
-
 def cmd_acquire(args: argparse.Namespace) -> int:
     from ..sim import acquisition, scene_camera
 
@@ -47,11 +39,18 @@ def cmd_acquire(args: argparse.Namespace) -> int:
     if post is not None:
         acq = post(acq)
     dt = time.perf_counter() - t0
-    # One camera: its pose is the cloud's VIEWPOINT (what synthesize orients normals and finds the table by);
-    # several: each point carries the position of the camera that saw it (vp_x vp_y vp_z).
-    viewpoint = _camera_pose(acq.cameras[0]) if len(acq.cameras) == 1 else None
+    # One camera: its pose (optical frame: x right, y down, z forward) is the cloud's VIEWPOINT, and the whole image
+    # is written organized (width x height, NaN where nothing was hit): what a driver gives, segmented in image
+    # space. Several: each point carries the position of the camera that saw it (vp_x vp_y vp_z).
+    viewpoint = acq.cameras[0].pose() if len(acq.cameras) == 1 else None
     per_point = acq.viewpoints if viewpoint is None else None
-    _core.save_cloud(args.out, acq.points, encoding=args.encoding, viewpoint=viewpoint, viewpoints=per_point)
+    points, size = acq.points, {}
+    if viewpoint is not None and args.keep == "scene" and not args.clean:
+        depth = acq.depth_images[0]
+        points = np.full((depth.size, 3), np.nan)
+        points[np.flatnonzero(np.isfinite(depth))] = acq.points  # every return, in the image's row order
+        size = {"width": depth.shape[1], "height": depth.shape[0]}
+    _core.save_cloud(args.out, points, encoding=args.encoding, viewpoint=viewpoint, viewpoints=per_point, **size)
     what = args.scene or args.object
     print(
         f"acquired {len(acq.points)} points of {what} ({len(spec.objects)} object(s), "
@@ -60,6 +59,7 @@ def cmd_acquire(args: argparse.Namespace) -> int:
         + (", cleaned up" + (", support plane removed" if acq.plane is not None else "") if args.clean else "")
         + f") in {dt * 1e3:.0f} ms; wrote {args.out}"
         + (f" (viewpoint {', '.join(f'{v:.3f}' for v in viewpoint[:3])})" if viewpoint else " (per-point viewpoints)")
+        + (f", organized {size['width']} x {size['height']}" if size else "")
     )
     if args.picture:
         from ..viz import plot_depth_images

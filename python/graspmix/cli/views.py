@@ -8,6 +8,7 @@ import argparse
 
 import numpy as np
 
+from ..io import load_points
 from ..perception import in_world
 from .common import CliError, float_in, input_path, parse_floats
 
@@ -67,6 +68,25 @@ def view_inputs(args, loaded_cloud) -> tuple[np.ndarray, np.ndarray | None, np.n
     elif args.viewpoint:
         viewpoints = _flag_viewpoints(args.viewpoint, points)
     return points, viewpoints, known_plane(args)
+
+
+def input_keywords(args, cloud_required: str) -> dict:
+    """The input keywords of GraspModel.synthesize and perception.scene_input from the flags: --depth with its
+    intrinsics, or --cloud as a path (its own viewpoints, organized or not) with --camera-pose, or, with --viewpoint,
+    the cloud's points and the flags' viewpoints (view_inputs). CliError naming what is missing or does not go
+    together; cloud_required says what --cloud is, for the message when neither is given."""
+    image = depth_input(args)
+    if image is not None:
+        return image
+    if not args.cloud:
+        raise CliError(f"--cloud is required ({cloud_required}), or --depth with --intrinsics")
+    if args.viewpoint:
+        points, viewpoints, _ = view_inputs(args, load_points(args.cloud))
+        return {"cloud": points, "viewpoints": viewpoints}
+    return {
+        "cloud": args.cloud,
+        "camera_pose": parse_floats(args.camera_pose, 7, "--camera-pose") if args.camera_pose else None,
+    }
 
 
 def depth_input(args) -> dict | None:

@@ -23,7 +23,6 @@ from .. import _core
 from ..io import (
     MODEL_FORMAT,
     data_path,
-    load_points,
     read_document,
     relative_path,
     require_field,
@@ -38,7 +37,7 @@ from ..io.checks import (
     check_path_text,
     check_seed,
 )
-from ..perception import camera_view, in_world
+from ..perception import scene_input
 from .demonstration import Demonstration
 from .grasp_types import (
     GraspType,
@@ -241,8 +240,9 @@ class GraspModel:
         millimetres or a .npy) with its `intrinsics` (K (3, 3), (fx, fy, cx, cy) or a PinholeCamera) and
         `depth_scale` (metres per unit; None: 0.001 for integers, 1 for floats), each with the camera's pose
         camera_pose = T_world_camera [x, y, z, qx, qy, qz, qw] (None: the world is the camera's frame); such a view
-        is segmented in image space (perception.segment_view). Or any cloud: a path (PCD/PLY/npy) or an (N, 3)
-        array of points (with camera_pose: in that camera's frame). Grasps come back in the world frame.
+        is segmented in image space (perception.segment_view), and so is an organized PCD (its VIEWPOINT the
+        camera's pose, perception.organized_file_view). Or any cloud: a path (PCD/PLY/npy) or an (N, 3) array of
+        points (with camera_pose: in that camera's frame). Grasps come back in the world frame.
 
         The cloud is segmented (graspmix.segment_scene) into its support plane and the objects on it;
         grasps are sampled on the target objects and checked for collision against all of them and the
@@ -261,12 +261,7 @@ class GraspModel:
         chosen = select_types(self.types, types)
         t0 = time.perf_counter()
         # Phase 1: the scene (support plane, objects) and the targets.
-        view, name = camera_view(cloud, depth, intrinsics, depth_scale, camera_pose, viewpoints)
-        if view is None:
-            points, name, file_viewpoints = load_points(cloud)
-            source = in_world(points, file_viewpoints if viewpoints is None else viewpoints, camera_pose)
-        else:
-            source = view
+        source, name = scene_input(cloud, depth, intrinsics, depth_scale, camera_pose, viewpoints)
         scene = segment_query(source, checked_plane(plane), opts, self.features)
         targets = scene.select(target)
         t_segment = time.perf_counter() - t0

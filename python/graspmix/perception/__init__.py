@@ -18,11 +18,11 @@ from .scene import (
     parse_target,
     segment_scene,
 )
-from .views import CameraView, camera_view, depth_view, organized_view, read_depth, segment_view
+from .views import CameraView, depth_view, organized_view, read_depth, scene_input, segment_view
 
 __all__ = [
     "CameraView",
-    "camera_view",
+    "scene_input",
     "depth_view",
     "organized_view",
     "read_depth",

@@ -16,7 +16,8 @@ from pathlib import Path
 import numpy as np
 
 from .. import _core
-from ..io import check_input_file, quote
+from ..io import as_points, check_input_file, quote
+from .scene import in_world
 
 IDENTITY_POSE = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0)
 # m per unit of an integer depth image when no depth_scale is given: millimetres, as RealSense, Kinect and ROS
@@ -146,27 +147,77 @@ def segment_view(view: CameraView, plane=None, settings=None):
     return Scene(result, view.position)
 
 
-def camera_view(cloud, depth=None, intrinsics=None, depth_scale=None, camera_pose=None, viewpoints=None):
-    """(CameraView, name) of a synthesis' input when it is one camera's view: a depth image (with intrinsics), or
-    an organized (H, W, 3) array; (None, None) for any other cloud (a path, an (N, 3) array). ValueError for inputs
-    that do not go together (a depth image and a cloud, intrinsics without a depth image, viewpoints with a view:
-    its camera is camera_pose)."""
+def organized_file_view(loaded, camera_pose=None) -> CameraView | None:
+    """The view of an organized cloud file (graspmix._core.load_cloud's CloudData, height > 1; None otherwise): its
+    points in the sensor frame given camera_pose (then the file's VIEWPOINT must be the identity), or in the frame
+    where its VIEWPOINT is the camera's optical frame (x right, y down, z forward: the world, the VIEWPOINT the
+    camera's pose), or, with neither, in the camera's frame. None when the grid is no pinhole image in that camera's
+    frame (e.g. a world-frame grid without its camera): it is then taken as points."""
+    if loaded.height <= 1:
+        return None
+    grid = np.asarray(loaded.organized())
+    pose = camera_pose
+    if camera_pose is not None and loaded.has_viewpoint:
+        raise ValueError(
+            f"{loaded.path}: the file gives its camera's pose (VIEWPOINT) and camera_pose is given too: give one"
+        )
+    if camera_pose is None and loaded.has_viewpoint:
+        pose = np.asarray(loaded.viewpoint, dtype=float)
+        T = np.asarray(_core.camera_pose_matrix(pose))
+        grid = (grid - T[:3, 3]) @ T[:3, :3]  # into the camera's frame (NaN holes stay NaN)
+    try:
+        return organized_view(grid, pose)
+    except ValueError as e:
+        if "sensor frame" in str(e):
+            return None
+        raise
+
+
+def scene_input(cloud=None, depth=None, intrinsics=None, depth_scale=None, camera_pose=None, viewpoints=None):
+    """(source, name) of a synthesis' or segmentation's input: source one camera's view (a CameraView: a depth image
+    with its intrinsics, an organized (H, W, 3) array, or an organized cloud file, organized_file_view) or a cloud
+    (points (N, 3), viewpoints) in the world frame (a file's own viewpoints unless `viewpoints` are given; with
+    camera_pose, points given in that camera's frame are mapped to the world and the camera is their viewpoint).
+    ValueError for inputs that do not go together (a depth image and a cloud, intrinsics without a depth image,
+    viewpoints with a view: its camera is its pose)."""
+    view, name = None, None
     if depth is not None:
         if cloud is not None:
             raise ValueError("give a cloud or a depth image (depth=...), not both")
         if intrinsics is None:
             raise ValueError("depth: a depth image needs its camera's intrinsics (intrinsics=K or (fx, fy, cx, cy))")
-        view, name = depth_view(depth, intrinsics, camera_pose, depth_scale), "<depth image>"
-        if isinstance(depth, (str, Path)):
-            name = str(depth)
+        view = depth_view(depth, intrinsics, camera_pose, depth_scale)
+        name = str(depth) if isinstance(depth, (str, Path)) else "<depth image>"
     elif intrinsics is not None or depth_scale is not None:
         raise ValueError("intrinsics and depth_scale go with a depth image (depth=...)")
     elif cloud is None:
         raise ValueError("no input: give a cloud (a path, an (N, 3) or (H, W, 3) array) or a depth image (depth=...)")
-    elif not isinstance(cloud, (str, Path)) and np.ndim(cloud) == 3:
+    elif isinstance(cloud, (str, Path)):
+        check_input_file(cloud, "cloud")
+        loaded = _core.load_cloud(str(cloud))
+        view, name = organized_file_view(loaded, camera_pose), str(cloud)
+        if view is None:
+            points, file_viewpoints = np.asarray(loaded.points), _file_viewpoints(loaded)
+            return in_world(points, file_viewpoints if viewpoints is None else viewpoints, camera_pose), name
+    elif _ndim(cloud) == 3:
         view, name = organized_view(cloud, camera_pose), "<organized cloud>"
     else:
-        return None, None
+        return in_world(as_points(cloud), viewpoints, camera_pose), "<array>"
     if viewpoints is not None:
         raise ValueError("viewpoints: a camera view's viewpoint is its camera (camera_pose); give no viewpoints")
     return view, name
+
+
+def _ndim(cloud) -> int:
+    """The number of dimensions of an array-like, -1 for a ragged one (as_points then names the problem)."""
+    try:
+        return np.ndim(cloud)
+    except ValueError:
+        return -1
+
+
+def _file_viewpoints(loaded):
+    """A cloud file's per-point camera positions (N, 3), else its VIEWPOINT's position (3,), else None."""
+    if len(loaded.viewpoints):
+        return np.asarray(loaded.viewpoints)
+    return np.asarray(loaded.viewpoint[:3]) if loaded.has_viewpoint else None

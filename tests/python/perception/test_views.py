@@ -6,9 +6,10 @@ PNG in millimetres; GraspModel.synthesize and the CLI on each input; bad input n
 import graspmix
 import numpy as np
 import pytest
+from graspmix import _core
 from graspmix.cli.main import main
 from graspmix.io import data_path
-from graspmix.perception import camera_view, depth_view, organized_view, read_depth, segment_scene, segment_view
+from graspmix.perception import depth_view, organized_view, read_depth, scene_input, segment_scene, segment_view
 from graspmix.sim import scene_camera, scenes
 from PIL import Image
 from scipy.spatial.transform import Rotation
@@ -148,7 +149,7 @@ def test_an_organized_cloud_in_the_world_frame_is_refused(view):
     sensor = cam.pinhole().back_project(depth)
     world = Rotation.from_quat(cam.pose()[3:]).apply(sensor.reshape(-1, 3)) + cam.pose()[:3]  # NaN rows stay NaN
     with pytest.raises(ValueError, match="sensor frame"):
-        camera_view(world.reshape(sensor.shape))
+        scene_input(world.reshape(sensor.shape))
 
 
 def test_an_eight_bit_png_is_not_a_depth_image(tmp_path):
@@ -192,3 +193,30 @@ def test_cli_bad_depth_flags_exit_2_with_one_line(view, argv, words, tmp_path, c
     assert main(["synthesize", *argv]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and words in err[0], err
+
+
+def test_organized_pcd_written_by_acquire_is_the_cameras_view(tmp_path, capsys):
+    """acquire (one camera) writes the whole image organized, in the world frame, the camera's optical-frame pose
+    as VIEWPOINT; read back it is that camera's view (the same scene as its depth image); a world-frame grid with no
+    camera is no pinhole image and is taken as points; a VIEWPOINT and --camera-pose together are an error."""
+    scene = data_path("scenes", "packed4.json")
+    pcd = tmp_path / "view.pcd"
+    assert main(["acquire", "--scene", str(scene), "--out", str(pcd)]) == 0
+    loaded = _core.load_cloud(str(pcd))
+    assert (loaded.width, loaded.height) == (640, 480) and loaded.has_viewpoint
+    source, _ = scene_input(str(pcd))
+    acq = scene_camera.acquire_scene(scenes.SceneSpec.load(str(scene)), views=1, noise=False, seed=0, keep="scene")
+    cam = acq.cameras[0]
+    T = [np.asarray(_core.camera_pose_matrix(p)) for p in (source.pose, cam.pose())]  # q and -q: one rotation
+    assert np.allclose(T[0], T[1], atol=1e-6) and np.isclose(source.camera.fx, cam.pinhole().fx, rtol=1e-4)
+    a, b = segment_view(source), segment_view(depth_view(acq.depth_images[0], cam.pinhole(), cam.pose()))
+    assert np.allclose(a.plane, b.plane, atol=1e-4) and [o.n_points for o in a.objects] == [
+        o.n_points for o in b.objects
+    ]
+    # the same grid with no VIEWPOINT: world-frame points, no camera's image
+    bare = tmp_path / "bare.pcd"
+    _core.save_cloud(str(bare), np.asarray(loaded.organized()).reshape(-1, 3), width=640, height=480)
+    points, viewpoints = scene_input(str(bare))[0]
+    assert len(points) == len(loaded.points) and viewpoints is None
+    assert main(["synthesize", "--cloud", str(pcd), f"--camera-pose={','.join(map(str, cam.pose()))}"]) == 2
+    assert "VIEWPOINT" in capsys.readouterr().err

@@ -20,6 +20,7 @@ namespace graspmix {
 
 using detail::BoxColumns;
 using detail::signed_distance;
+using detail::signed_distance_within;
 
 /// The cloud's points in a grid over their bounding box [lo, hi].
 struct CollisionExpert::Index {
@@ -201,7 +202,8 @@ void cloud_term(const CollisionExpert::Index& ix, const CollisionExpert::Shapes:
         // Cheap rejection against the local box before the exact distance.
         const double excess = ((p - sh.centre).cwiseAbs() - sh.half).maxCoeff();
         if (excess >= r) continue;
-        const double depth = r - (box && excess < 0 ? excess : signed_distance(*sh.src, p));
+        // Only a distance below r - tol counts: the mesh's proxy and early exit decide the rest (the same values).
+        const double depth = r - (box && excess < 0 ? excess : signed_distance_within(*sh.src, p, r - tol));
         if (depth > tol) {
           ++count;
           best = std::max(best, depth);

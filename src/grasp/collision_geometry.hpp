@@ -39,6 +39,25 @@ inline double signed_distance(const CollisionShape& s, const Eigen::Vector3d& p)
   return std::numeric_limits<double>::infinity();
 }
 
+/// The signed distance from p (shape frame) where it is at most `limit`, else some value > limit (+inf when the
+/// proxy decides): a mesh's proxy box first (hand.hpp: outside the box grown by box_growth * max(limit, 0), the
+/// hull is farther than limit), then its hull's planes, largest facet first, stopping at the first one past the
+/// limit. Wherever signed_distance(s, p) <= limit the two are equal, bit for bit.
+inline double signed_distance_within(const CollisionShape& s, const Eigen::Vector3d& p, double limit) {
+  if (s.type != ShapeType::Mesh) return signed_distance(s, p);
+  const Eigen::Vector3d q = s.T_shape_box.linear().transpose() * (p - s.T_shape_box.translation());
+  const double grow = limit > 0 ? s.box_growth * limit : 0.0;
+  if ((q.cwiseAbs() - s.box_half).maxCoeff() > grow) return std::numeric_limits<double>::infinity();
+  const RowMatrixXd& P = *s.hull_planes;
+  double best = -std::numeric_limits<double>::infinity();
+  for (Eigen::Index f = 0; f < P.rows(); ++f) {
+    const double d = P(f, 0) * p.x() + P(f, 1) * p.y() + P(f, 2) * p.z() - P(f, 3);
+    if (d > limit) return d;
+    best = std::max(best, d);
+  }
+  return best;
+}
+
 /// The cells of a grid (origin o, cubic cells of side h) that an oriented box (centre c, axes the columns of
 /// R, half extents half) grown by r can meet, column by column. A cell is left out only when one of the
 /// box's axes separates it from the grown box, with a margin over rounding: every point the per-point box

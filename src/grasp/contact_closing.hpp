@@ -224,15 +224,16 @@ inline Contact translating_contact(const Index& ix, const LinkInfo& link, const 
   return c;
 }
 
-/// The smallest signed distance from the candidates to the link posed at A (its shapes' rule).
-inline double min_distance(const Index& ix, const LinkInfo& link, const Eigen::Isometry3d& A,
-                           const std::vector<int>& cand) {
-  double best = kInf;
+/// Whether any candidate lies within tol of the link posed at A (its shapes' signed distance <= tol; meshes
+/// through their proxies, detail::signed_distance_within).
+inline bool any_within(const Index& ix, const LinkInfo& link, const Eigen::Isometry3d& A, const std::vector<int>& cand,
+                       double tol) {
   for (const CollisionShape& sh : link.collisions) {
     const Eigen::Isometry3d inv = (A * sh.T_link_shape).inverse();
-    for (const int i : cand) best = std::min(best, detail::signed_distance(sh, inv * ix.grid.point(i)));
+    for (const int i : cand)
+      if (detail::signed_distance_within(sh, inv * ix.grid.point(i), tol) <= tol) return true;
   }
-  return best;
+  return false;
 }
 
 /// The world box of a shape posed at T (its local box: boxes exactly, cylinders, spheres, mesh hulls bounded).
@@ -274,14 +275,14 @@ inline Contact stepped_contact(const Hand& hand, const Index& ix, int l, const E
   std::vector<Eigen::Isometry3d> A(static_cast<size_t>(steps) + 1);
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(kInf), hi = -lo;
   double stride = 0.0;  // how far a point of the link's boxes moves in one step, at most
+  Eigen::Vector3d blo = Eigen::Vector3d::Constant(kInf), bhi = -blo;  // the link's box in its own frame
+  for (const CollisionShape& sh : link.collisions) shape_box(sh, sh.T_link_shape, blo, bhi);
+  const double reach = std::max(blo.norm(), bhi.norm());
   for (int k = 0; k <= steps; ++k) {
     A[static_cast<size_t>(k)] = pose_at(static_cast<double>(k) / steps);
     for (const CollisionShape& sh : link.collisions) shape_box(sh, A[static_cast<size_t>(k)] * sh.T_link_shape, lo, hi);
     if (k > 0) {
-      Eigen::Vector3d blo = Eigen::Vector3d::Constant(kInf), bhi = -blo;
-      for (const CollisionShape& sh : link.collisions) shape_box(sh, sh.T_link_shape, blo, bhi);
       const Eigen::Isometry3d step = A[static_cast<size_t>(k) - 1].inverse() * A[static_cast<size_t>(k)];
-      const double reach = std::max(blo.norm(), bhi.norm());
       stride =
           std::max(stride, step.translation().norm() + (step.linear() - Eigen::Matrix3d::Identity()).norm() * reach);
     }
@@ -294,12 +295,12 @@ inline Contact stepped_contact(const Hand& hand, const Index& ix, int l, const E
   s.cand.clear();
   ix.grid.for_each_in_cells(c0, c1, [&](int i) { s.cand.push_back(i); });
   int k = 0;
-  while (k <= steps && min_distance(ix, link, A[static_cast<size_t>(k)], s.cand) > tol) ++k;
+  while (k <= steps && !any_within(ix, link, A[static_cast<size_t>(k)], s.cand, tol)) ++k;
   if (k > steps) return c;
   double a = k == 0 ? 0.0 : static_cast<double>(k - 1) / steps, b = static_cast<double>(k) / steps;
   for (int it = 0; k > 0 && it < 30 && b - a > 1e-9; ++it) {
     const double m = 0.5 * (a + b);
-    (min_distance(ix, link, pose_at(m), s.cand) > tol ? a : b) = m;
+    (any_within(ix, link, pose_at(m), s.cand, tol) ? b : a) = m;
   }
   c.t = b;
   const Eigen::Isometry3d At = pose_at(b);
@@ -307,7 +308,7 @@ inline Contact stepped_contact(const Hand& hand, const Index& ix, int l, const E
   for (const CollisionShape& sh : link.collisions) {
     const Eigen::Isometry3d inv = (At * sh.T_link_shape).inverse();
     for (const int i : s.cand)
-      if (detail::signed_distance(sh, inv * ix.grid.point(i)) <= 2.0 * tol) patch.push_back(i);
+      if (detail::signed_distance_within(sh, inv * ix.grid.point(i), 2.0 * tol) <= 2.0 * tol) patch.push_back(i);
   }
   std::sort(patch.begin(), patch.end());
   patch.erase(std::unique(patch.begin(), patch.end()), patch.end());

@@ -49,6 +49,15 @@ struct CollisionShape {
   /// in the shape frame (meshes only): the collision expert treats a mesh link as its hull.
   std::shared_ptr<const RowMatrixXd> hull_planes;
   std::shared_ptr<const TriangleMesh> hull;  ///< the hull's vertices and triangles (meshes only)
+  /// Meshes only: the cheap proxy of the hull, made once when the hand is read (robot/hull_proxy.cpp). An oriented
+  /// box (frame T_shape_box in the shape frame, half extents box_half) that holds every hull vertex, so the hull;
+  /// and box_growth such that every point whose hull distance (the largest of hull_planes' n . x - offset, as the
+  /// experts measure it) is at most g >= 0 lies within the box grown by box_growth * g on every side. A point outside
+  /// the grown box is decided without the hull; the hull's planes are ordered largest facet first, so a point
+  /// outside the hull usually fails on the first few.
+  Eigen::Isometry3d T_shape_box = Eigen::Isometry3d::Identity();
+  Eigen::Vector3d box_half = Eigen::Vector3d::Zero();
+  double box_growth = 1.0;
 };
 
 enum class JointType { Fixed, Revolute, Continuous, Prismatic };

@@ -236,6 +236,73 @@ inline bool any_within(const Index& ix, const LinkInfo& link, const Eigen::Isome
   return false;
 }
 
+/// The world box of the points within g >= 0 of the link posed at A: each shape's box grown by g (a mesh's proxy
+/// box by box_growth * g, hand.hpp), into [lo, hi].
+inline void reach_box(const LinkInfo& link, const Eigen::Isometry3d& A, double g, Eigen::Vector3d& lo,
+                      Eigen::Vector3d& hi) {
+  for (const CollisionShape& sh : link.collisions) {
+    Eigen::Isometry3d T = A * sh.T_link_shape;
+    Eigen::Vector3d half;
+    switch (sh.type) {
+      case ShapeType::Box:
+        half = (0.5 * sh.size).array() + g;
+        break;
+      case ShapeType::Cylinder:
+        half = Eigen::Vector3d(sh.size.x(), sh.size.x(), 0.5 * sh.size.y()).array() + g;
+        break;
+      case ShapeType::Sphere:
+        half = Eigen::Vector3d::Constant(sh.size.x() + g);
+        break;
+      case ShapeType::Mesh:
+        if (g > 0.0 && !std::isfinite(sh.box_growth)) {  // no bound: everywhere
+          lo.setConstant(-kInf);
+          hi.setConstant(kInf);
+          return;
+        }
+        T = T * sh.T_shape_box;
+        half = sh.box_half.array() + (g > 0.0 ? sh.box_growth * g : 0.0);
+        break;
+    }
+    const Eigen::Vector3d ext = T.linear().cwiseAbs() * half;
+    lo = lo.cwiseMin(T.translation() - ext);
+    hi = hi.cwiseMax(T.translation() + ext);
+  }
+}
+
+/// The candidates (the points in the cells c0..c1) within `limit` >= 0 of the link posed at A, into `out`, in
+/// canonical order; stops at the first when `first_only`. Only the cells under reach_box are visited, not every
+/// candidate: the same points as a test of each.
+inline void near_points(const Index& ix, const LinkInfo& link, const Eigen::Isometry3d& A, double limit,
+                        const detail::UniformGrid::Cell& c0, const detail::UniformGrid::Cell& c1, bool first_only,
+                        std::vector<int>& out) {
+  out.clear();
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(kInf), hi = -lo;
+  reach_box(link, A, limit, lo, hi);
+  if (ix.grid.size() == 0 || (lo.array() > ix.hi.array()).any() || (hi.array() < ix.lo.array()).any()) return;
+  detail::UniformGrid::Cell b0 = ix.grid.cell_of(lo.cwiseMax(ix.lo)), b1 = ix.grid.cell_of(hi.cwiseMin(ix.hi));
+  for (size_t k = 0; k < 3; ++k) {
+    b0[k] = std::max(b0[k], c0[k]);
+    b1[k] = std::min(b1[k], c1[k]);
+    if (b0[k] > b1[k]) return;
+  }
+  std::vector<Eigen::Isometry3d> inv;
+  for (const CollisionShape& sh : link.collisions) inv.push_back((A * sh.T_link_shape).inverse());
+  for (std::int64_t x = b0[0]; x <= b1[0]; ++x)
+    for (std::int64_t y = b0[1]; y <= b1[1]; ++y) {
+      const auto [b, e] = ix.grid.z_run(x, y, b0[2], b1[2]);
+      for (Eigen::Index i = b; i < e; ++i) {
+        for (size_t k = 0; k < inv.size(); ++k) {
+          const Eigen::Vector3d q = inv[k] * ix.grid.point(static_cast<int>(i));
+          if (detail::signed_distance_within(link.collisions[k], q, limit) <= limit) {
+            out.push_back(static_cast<int>(i));
+            if (first_only) return;
+            break;
+          }
+        }
+      }
+    }
+}
+
 /// The world box of a shape posed at T (its local box: boxes exactly, cylinders, spheres, mesh hulls bounded).
 inline void shape_box(const CollisionShape& sh, const Eigen::Isometry3d& T, Eigen::Vector3d& lo, Eigen::Vector3d& hi) {
   Eigen::Vector3d half = Eigen::Vector3d::Zero(), centre = Eigen::Vector3d::Zero();
@@ -292,11 +359,17 @@ inline Contact stepped_contact(const Hand& hand, const Index& ix, int l, const E
   const Eigen::Vector3d grow = Eigen::Vector3d::Constant(2.0 * tol + stride);
   detail::UniformGrid::Cell c0, c1;
   if (!cells_under(ix, lo - grow, hi + grow, c0, c1)) return c;
-  s.cand.clear();
-  ix.grid.for_each_in_cells(c0, c1, [&](int i) { s.cand.push_back(i); });
+  // The first step at which a candidate comes within tol.
   int k = 0;
-  while (k <= steps && !any_within(ix, link, A[static_cast<size_t>(k)], s.cand, tol)) ++k;
+  for (; k <= steps; ++k) {
+    near_points(ix, link, A[static_cast<size_t>(k)], tol, c0, c1, true, s.cand);
+    if (!s.cand.empty()) break;
+  }
   if (k > steps) return c;
+  // The bisection and the patch look only at t in [t_{k-1}, t_k]: a point within 2 tol of the link then is within
+  // 2 tol + stride of it at t_k (signed distances are 1-Lipschitz in the point, and stride bounds how far the link
+  // moves in a step, as it does for the candidates' box), so these candidates (2 stride for margin) lose none.
+  near_points(ix, link, A[static_cast<size_t>(k)], k > 0 ? 2.0 * tol + 2.0 * stride : 2.0 * tol, c0, c1, false, s.cand);
   double a = k == 0 ? 0.0 : static_cast<double>(k - 1) / steps, b = static_cast<double>(k) / steps;
   for (int it = 0; k > 0 && it < 30 && b - a > 1e-9; ++it) {
     const double m = 0.5 * (a + b);

@@ -124,7 +124,6 @@ def test_frames_of_mesh_fingertips_follow_the_rule_vertex_by_vertex(tmp_path):
     """pybullet_data's Panda hand (mesh fingers): the TCP and the opening from every mesh vertex placed in the
     world by Hand.fk, by the rule of grasp_frames' docstring, at several wrists and openings."""
     import pybullet_data
-
     from graspmix.model.grasp_frames import FrameMaker
     from graspmix.model.hands import hand_urdf_from_robot
 

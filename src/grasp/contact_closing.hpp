@@ -78,6 +78,8 @@ struct Scratch {
 };
 
 /// A box of a translating link: a point x of the link frame at t = 0 is at Rt x + b - t e in the box's frame.
+/// A mesh's slab is its proxy box grown by box_growth * g for g (g1, g2 below: tol, 2 tol), and its hull decides
+/// the points the slab keeps: x is at Rs x + bs - t es in the mesh's frame.
 struct Slab {
   Eigen::Matrix3d Rt;
   Eigen::Vector3d b, inv, half;  ///< inv = 1 / e per axis, 0 where the box does not move along it
@@ -85,7 +87,37 @@ struct Slab {
   /// The one axis the box moves along (-1: none or several), and (half + g) |inv| there for g = g1, g2.
   int axis = -1;
   double reach1 = 0.0, reach2 = 0.0;
+  double g1 = 0.0, g2 = 0.0;  ///< the growths of the box for the tolerances tol and 2 tol
+  const CollisionShape* mesh = nullptr;
+  Eigen::Matrix3d Rs = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d bs = Eigen::Vector3d::Zero(), es = Eigen::Vector3d::Zero();
 };
+
+/// The times in [0, 1] at which the point x0 - t es (mesh frame) lies within g2 of the hull (every plane's
+/// n . x - offset <= g2): [lo2, hi2] (false when none), and the first within g1 <= g2 (in1; inf when never).
+inline bool hull_times(const RowMatrixXd& P, const Eigen::Vector3d& x0, const Eigen::Vector3d& es, double g1, double g2,
+                       double& lo2, double& hi2, double& in1) {
+  lo2 = 0.0;
+  hi2 = 1.0;
+  double lo1 = 0.0, hi1 = 1.0;
+  for (Eigen::Index f = 0; f < P.rows(); ++f) {
+    const double c = P(f, 0) * x0.x() + P(f, 1) * x0.y() + P(f, 2) * x0.z() - P(f, 3);
+    const double v = P(f, 0) * es.x() + P(f, 1) * es.y() + P(f, 2) * es.z();  // c - t v <= g
+    if (v == 0.0) {
+      if (c > g2) return false;
+      if (c > g1) hi1 = -1.0;
+    } else if (v > 0.0) {
+      lo2 = std::max(lo2, (c - g2) / v);
+      lo1 = std::max(lo1, (c - g1) / v);
+    } else {
+      hi2 = std::min(hi2, (c - g2) / v);
+      hi1 = std::min(hi1, (c - g1) / v);
+    }
+    if (lo2 > hi2) return false;
+  }
+  in1 = lo1 <= hi1 ? lo1 : kInf;
+  return true;
+}
 
 /// The times in [0, 1] at which the point `a` (box frame, t = 0) lies within the box grown by g2: [lo2, hi2]
 /// (false when none), and the first time it lies within the box grown by g1 <= g2 (in1; inf when never).
@@ -149,9 +181,10 @@ inline void patch_contact(const Index& ix, const std::vector<int>& patch, Contac
   if (c.normal.dot(c.motion) > 0.0) c.normal = -c.normal;
 }
 
-/// The first contact of a link moved by prismatic joints alone, whose shapes are boxes: it translates by
-/// D = A1 - A0 over t in [0, 1], so each point's entry time into a grown box is one slab test. The sweep is
-/// cut into chunks half as long as the link is thick along it, visited in order until one holds a contact;
+/// The first contact of a link moved by prismatic joints alone, whose shapes are boxes or meshes: it translates
+/// by D = A1 - A0 over t in [0, 1], so each point's entry time into a grown box is one slab test (into a mesh's
+/// hull grown by the tolerance, a slab test of its proxy box and, for the points that pass, one of its planes). The
+/// sweep is cut into chunks half as long as the link is thick along it, visited in order until one holds a contact;
 /// only the grid's cells that can meet a chunk's swept box (in the link's frame) are visited.
 inline Contact translating_contact(const Index& ix, const LinkInfo& link, const Eigen::Isometry3d& A0,
                                    const Eigen::Isometry3d& A1, double tol, Scratch& s) {
@@ -166,20 +199,30 @@ inline Contact translating_contact(const Index& ix, const LinkInfo& link, const 
   for (int k = 0; k < n_shapes; ++k) {
     const CollisionShape& sh = link.collisions[static_cast<size_t>(k)];
     Slab& sl = slabs[k];
-    sl.Rt = sh.T_link_shape.linear().transpose();
-    sl.b = -sl.Rt * sh.T_link_shape.translation();
+    const bool mesh = sh.type == ShapeType::Mesh;
+    const Eigen::Isometry3d T = mesh ? sh.T_link_shape * sh.T_shape_box : sh.T_link_shape;
+    sl.Rt = T.linear().transpose();
+    sl.b = -sl.Rt * T.translation();
     const Eigen::Vector3d es = sl.Rt * e;
     for (int a = 0; a < 3; ++a) sl.inv[a] = std::abs(es[a]) > 1e-12 * e.norm() ? 1.0 / es[a] : 0.0;
-    sl.half = 0.5 * sh.size;
+    sl.half = mesh ? sh.box_half : Eigen::Vector3d(0.5 * sh.size);
+    sl.g1 = mesh ? sh.box_growth * tol : tol;
+    sl.g2 = 2.0 * sl.g1;
+    if (mesh) {
+      sl.mesh = &sh;
+      sl.Rs = sh.T_link_shape.linear().transpose();
+      sl.bs = -sl.Rs * sh.T_link_shape.translation();
+      sl.es = sl.Rs * e;
+    }
     sl.aligned = sl.Rt.isIdentity(0.0);
     if ((sl.inv.array() != 0.0).count() == 1) {
       sl.inv.cwiseAbs().maxCoeff(&sl.axis);
-      sl.reach1 = (sl.half[sl.axis] + tol) * std::abs(sl.inv[sl.axis]);
-      sl.reach2 = (sl.half[sl.axis] + 2.0 * tol) * std::abs(sl.inv[sl.axis]);
+      sl.reach1 = (sl.half[sl.axis] + sl.g1) * std::abs(sl.inv[sl.axis]);
+      sl.reach2 = (sl.half[sl.axis] + sl.g2) * std::abs(sl.inv[sl.axis]);
     }
-    const Eigen::Vector3d ext = sh.T_link_shape.linear().cwiseAbs() * (sl.half.array() + 2.0 * tol).matrix();
-    lo = lo.cwiseMin(sh.T_link_shape.translation() - ext);
-    hi = hi.cwiseMax(sh.T_link_shape.translation() + ext);
+    const Eigen::Vector3d ext = T.linear().cwiseAbs() * (sl.half.array() + sl.g2).matrix();
+    lo = lo.cwiseMin(T.translation() - ext);
+    hi = hi.cwiseMax(T.translation() + ext);
   }
   const double thick = (hi - lo).dot(e.cwiseAbs()) / std::max(e.norm(), 1e-300);
   const int chunks = std::clamp(static_cast<int>(std::ceil(e.norm() / (0.5 * thick))), 1, 32);
@@ -205,7 +248,9 @@ inline Contact translating_contact(const Index& ix, const LinkInfo& link, const 
             double lo2, hi2, in1;
             const Slab& sl = slabs[k];
             const Eigen::Vector3d as = sl.aligned ? Eigen::Vector3d(a + sl.b) : Eigen::Vector3d(sl.Rt * a + sl.b);
-            if (!slab_times(sl, as, tol, 2.0 * tol, lo2, hi2, in1)) continue;
+            if (!slab_times(sl, as, sl.g1, sl.g2, lo2, hi2, in1)) continue;
+            if (sl.mesh && !hull_times(*sl.mesh->hull_planes, sl.Rs * a + sl.bs, sl.es, tol, 2.0 * tol, lo2, hi2, in1))
+              continue;
             first = std::min(first, in1);
             if (lo2 <= std::min(first, tb)) s.entries.push_back({static_cast<int>(i), lo2, hi2});
           }

@@ -128,6 +128,15 @@ def contact_links_of(grasps) -> list[str]:
     return links
 
 
+def _distinct_rows(V: np.ndarray) -> np.ndarray:
+    """The distinct rows of V (a mesh file repeats a vertex for each triangle it is in; the frames use the
+    vertices' extremes, which the copies do not change), by sorting, without np.unique."""
+    if len(V) == 0:
+        return V
+    S = V[np.lexsort(V.T)]
+    return S[np.r_[True, np.any(S[1:] != S[:-1], axis=1)]]
+
+
 class FrameMaker:
     """Computes the frames of grasps of one hand (batched over the grasps)."""
 
@@ -144,7 +153,7 @@ class FrameMaker:
                 raise ValueError(f"fingertip link {n!r} of hand '{hand.name}' has no collision geometry")
             used = np.zeros(len(V), dtype=bool)  # not np.unique: its first call imports numpy.ma (~35 ms)
             used[np.asarray(T).ravel()] = True
-            self.vertices.append(np.asarray(V)[used])
+            self.vertices.append(_distinct_rows(np.asarray(V)[used]))
 
     def frames(self, wrists: np.ndarray, joints: np.ndarray) -> list[dict]:
         """The frame keys (FRAME_KEYS) of grasps with wrists (N, 7) and grasp joints (N, n_dofs)."""
@@ -192,14 +201,12 @@ class FrameMaker:
         for k, (row, V) in enumerate(zip(self.rows, self.vertices)):
             along = self._along(links, k, approach, wrists[:, :3])
             near = along >= along.max(axis=0, keepdims=True) - self.settings.fingertip_tolerance
-            g, v = np.nonzero(near.T)  # (grasp, vertex) pairs, grasp-major: few vertices per grasp
+            g, v = np.nonzero(near.T)  # (grasp, vertex) pairs, grasp-major: few vertices per grasp, one at least
             # The near vertices in the wrist frame: R^T (R_link v + t_link - t_wrist).
             M = np.einsum("nji,njk->nik", R, rotation_matrices(links[:, row, 3:]))
             off = np.einsum("nji,nj->ni", R, links[:, row, :3] - wrists[:, :3])
             local = np.einsum("kij,kj->ki", M[g], V[v]) + off[g]
-            lo = np.full((len(wrists), 3), np.inf)
-            hi = np.full((len(wrists), 3), -np.inf)
-            np.minimum.at(lo, g, local)
-            np.maximum.at(hi, g, local)
+            starts = np.searchsorted(g, np.arange(len(wrists)))
+            lo, hi = np.minimum.reduceat(local, starts, axis=0), np.maximum.reduceat(local, starts, axis=0)
             tips.append(np.einsum("nij,nj->ni", R, (lo + hi) / 2) + wrists[:, :3])
         return tips

@@ -251,6 +251,7 @@ void bind_robot(py::module_& m) {
                     d["proxy_box"] = pose_to_vector(s.T_shape_box);
                     d["proxy_half"] = s.box_half;
                     d["proxy_growth"] = s.box_growth;
+                    d["proxy_inner"] = s.box_inner;
                   }
                   break;
               }
@@ -265,7 +266,8 @@ void bind_robot(py::module_& m) {
           "hull_planes (P, 4) [nx, ny, nz, offset] (n . x <= offset inside) and its proxy: an oriented box proxy_box "
           "(7,)\n"
           "in the shape frame with half extents proxy_half (3,) around the hull, and proxy_growth: every point whose\n"
-          "largest n . x - offset is g >= 0 or less lies within the box grown by proxy_growth * g.")
+          "largest n . x - offset is g >= 0 or less lies within the box grown by proxy_growth * g; proxy_inner (3,),\n"
+          "the half extents of a box of the same frame inside the hull (zeros: none).")
       .def(
           "collision_mesh",
           [](const Hand& h, const std::string& link) {

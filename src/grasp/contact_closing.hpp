@@ -276,7 +276,7 @@ inline bool any_within(const Index& ix, const LinkInfo& link, const Eigen::Isome
   for (const CollisionShape& sh : link.collisions) {
     const Eigen::Isometry3d inv = (A * sh.T_link_shape).inverse();
     for (const int i : cand)
-      if (detail::signed_distance_within(sh, inv * ix.grid.point(i), tol) <= tol) return true;
+      if (detail::within(sh, inv * ix.grid.point(i), tol)) return true;
   }
   return false;
 }
@@ -338,7 +338,7 @@ inline void near_points(const Index& ix, const LinkInfo& link, const Eigen::Isom
       for (Eigen::Index i = b; i < e; ++i) {
         for (size_t k = 0; k < inv.size(); ++k) {
           const Eigen::Vector3d q = inv[k] * ix.grid.point(static_cast<int>(i));
-          if (detail::signed_distance_within(link.collisions[k], q, limit) <= limit) {
+          if (detail::within(link.collisions[k], q, limit)) {
             out.push_back(static_cast<int>(i));
             if (first_only) return;
             break;
@@ -426,7 +426,7 @@ inline Contact stepped_contact(const Hand& hand, const Index& ix, int l, const E
   for (const CollisionShape& sh : link.collisions) {
     const Eigen::Isometry3d inv = (At * sh.T_link_shape).inverse();
     for (const int i : s.cand)
-      if (detail::signed_distance_within(sh, inv * ix.grid.point(i), 2.0 * tol) <= 2.0 * tol) patch.push_back(i);
+      if (detail::within(sh, inv * ix.grid.point(i), 2.0 * tol)) patch.push_back(i);
   }
   std::sort(patch.begin(), patch.end());
   patch.erase(std::unique(patch.begin(), patch.end()), patch.end());

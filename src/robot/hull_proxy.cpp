@@ -49,6 +49,28 @@ double dual_sum(const RowMatrixXd& P, const std::vector<int>& F, const Eigen::Ve
   return best;
 }
 
+/// The largest s in [0, 1] (to 1e-6) such that the box (centre, axes R, half extents s * half) has its eight
+/// corners, and so all of it, inside every plane.
+double inner_scale(const RowMatrixXd& P, const Eigen::Matrix3d& R, const Eigen::Vector3d& centre,
+                   const Eigen::Vector3d& half) {
+  const auto inside = [&](double sc) {
+    for (int c = 0; c < 8; ++c) {
+      const Eigen::Vector3d corner(c & 1 ? 1.0 : -1.0, c & 2 ? 1.0 : -1.0, c & 4 ? 1.0 : -1.0);
+      const Eigen::Vector3d x = centre + R * (sc * half.cwiseProduct(corner));
+      for (Eigen::Index f = 0; f < P.rows(); ++f) {
+        if (P(f, 0) * x.x() + P(f, 1) * x.y() + P(f, 2) * x.z() - P(f, 3) > 0.0) return false;
+      }
+    }
+    return true;
+  };
+  double lo = 0.0, hi = 1.0;
+  while (hi - lo > 1e-6) {
+    const double m = 0.5 * (lo + hi);
+    (inside(m) ? lo : hi) = m;
+  }
+  return lo;
+}
+
 }  // namespace
 
 void fit_hull_proxy(RowMatrixXd& planes, const TriangleMesh& hull, const std::vector<int>& tri_plane,
@@ -86,6 +108,7 @@ void fit_hull_proxy(RowMatrixXd& planes, const TriangleMesh& hull, const std::ve
   s.T_shape_box.linear() = R;
   s.T_shape_box.translation() = centre;
   s.box_half = half;
+  s.box_inner = inner_scale(planes, R, centre, half.array() - kBoxMargin) * (half.array() - kBoxMargin).matrix();
   // The growth: for each side's normal u, the extreme vertex's planes give the bound (hull_proxy.hpp).
   std::vector<std::vector<int>> incident(static_cast<size_t>(V.rows()));
   for (Eigen::Index t = 0; t < hull.triangles.rows(); ++t)

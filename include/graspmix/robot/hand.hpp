@@ -58,6 +58,9 @@ struct CollisionShape {
   Eigen::Isometry3d T_shape_box = Eigen::Isometry3d::Identity();
   Eigen::Vector3d box_half = Eigen::Vector3d::Zero();
   double box_growth = 1.0;
+  /// Half extents of the inner proxy: the box of the same frame, scaled down from box_half until it lies inside
+  /// the hull (zero where none does). A point inside it is inside the hull, at least as deep.
+  Eigen::Vector3d box_inner = Eigen::Vector3d::Zero();
 };
 
 enum class JointType { Fixed, Revolute, Continuous, Prismatic };

@@ -1,4 +1,4 @@
-"""The proxy boxes of mesh links (CollisionShape's T_shape_box, box_half, box_growth) against the exact hulls of
+"""The proxy boxes of mesh links (CollisionShape's T_shape_box, box_half, box_growth, box_inner) against the exact hulls of
 pybullet_data's meshes (scipy's ConvexHull, not graspmix's qhull call), and the collision expert's verdicts with
 the proxies against depths computed here from those hulls."""
 
@@ -53,6 +53,13 @@ def test_every_hull_vertex_lies_in_the_proxy_box(hands, name):
         # A tight box: each side touches the hull.
         assert np.abs(q).max(axis=0) == pytest.approx(s["proxy_half"], abs=1e-8), link
         assert np.isfinite(s["proxy_growth"]) and 1.0 <= s["proxy_growth"] < 20.0, link
+        # The inner box lies in the hull (its corners do), and is not empty.
+        inner = s["proxy_inner"]
+        assert (inner > 0).all() and (inner <= s["proxy_half"]).all(), link
+        signs = np.array([[i, j, k] for i in (-1, 1) for j in (-1, 1) for k in (-1, 1)], dtype=float)
+        box = s["proxy_box"]
+        corners = Rotation.from_quat(box[3:]).apply(signs * inner) + box[:3]
+        assert hull_distance(hull, corners).max() <= 1e-12, link
 
 
 @pytest.mark.parametrize("name", ["panda", "xarm", "pr2"])

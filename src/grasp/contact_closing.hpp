@@ -69,7 +69,7 @@ struct Contact {
 struct Scratch {
   std::vector<Eigen::Isometry3d> poses0, poses1, poses;
   Eigen::VectorXd q;
-  std::vector<int> cand;
+  std::vector<int> cand, chain;
   struct Entry {
     int i;
     double lo, hi;
@@ -348,6 +348,36 @@ inline void near_points(const Index& ix, const LinkInfo& link, const Eigen::Isom
     }
 }
 
+/// The joints from the wrist down to link l, in order.
+inline void chain_of(const Hand& hand, int l, std::vector<int>& chain) {
+  chain.clear();
+  for (int j = hand.links()[static_cast<size_t>(l)].parent_joint; j >= 0;
+       j = hand.links()[static_cast<size_t>(hand.joints()[static_cast<size_t>(j)].parent_link)].parent_joint) {
+    chain.push_back(j);
+  }
+  std::reverse(chain.begin(), chain.end());
+}
+
+/// The pose of the link at the end of `chain` for wrist W and joints q: Hand::fk_into's products in its order
+/// (the same bits), for that link's joints alone (the closing poses one finger at a time).
+inline Eigen::Isometry3d chain_pose(const Hand& hand, const std::vector<int>& chain, const Eigen::Isometry3d& W,
+                                    const double* q) {
+  Eigen::Isometry3d T = W;
+  for (const int ji : chain) {
+    const JointInfo& j = hand.joints()[static_cast<size_t>(ji)];
+    T = T * j.T_parent_joint;
+    if (j.dof >= 0) {
+      const double v = j.multiplier * q[j.dof] + j.offset;
+      if (j.type == JointType::Prismatic) {
+        T.translation() += T.linear() * (j.axis * v);
+      } else {
+        T.linear() = T.linear() * Eigen::AngleAxisd(v, j.axis).toRotationMatrix();
+      }
+    }
+  }
+  return T;
+}
+
 /// The world box of a shape posed at T (its local box: boxes exactly, cylinders, spheres, mesh hulls bounded).
 inline void shape_box(const CollisionShape& sh, const Eigen::Isometry3d& T, Eigen::Vector3d& lo, Eigen::Vector3d& hi) {
   Eigen::Vector3d half = Eigen::Vector3d::Zero(), centre = Eigen::Vector3d::Zero();
@@ -379,10 +409,10 @@ inline void shape_box(const CollisionShape& sh, const Eigen::Isometry3d& T, Eige
 inline Contact stepped_contact(const Hand& hand, const Index& ix, int l, const Eigen::Isometry3d& W,
                                const Eigen::VectorXd& p, const Eigen::VectorXd& cl, double tol, int steps, Scratch& s) {
   const LinkInfo& link = hand.links()[static_cast<size_t>(l)];
+  chain_of(hand, l, s.chain);
   auto pose_at = [&](double t) {
     s.q = p + t * (cl - p);
-    hand.fk_into(W, s.q.data(), s.poses.data());
-    return s.poses[static_cast<size_t>(l)];
+    return chain_pose(hand, s.chain, W, s.q.data());
   };
   std::vector<Eigen::Isometry3d> A(static_cast<size_t>(steps) + 1);
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(kInf), hi = -lo;

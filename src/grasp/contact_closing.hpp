@@ -366,14 +366,7 @@ inline Eigen::Isometry3d chain_pose(const Hand& hand, const std::vector<int>& ch
   for (const int ji : chain) {
     const JointInfo& j = hand.joints()[static_cast<size_t>(ji)];
     T = T * j.T_parent_joint;
-    if (j.dof >= 0) {
-      const double v = j.multiplier * q[j.dof] + j.offset;
-      if (j.type == JointType::Prismatic) {
-        T.translation() += T.linear() * (j.axis * v);
-      } else {
-        T.linear() = T.linear() * Eigen::AngleAxisd(v, j.axis).toRotationMatrix();
-      }
-    }
+    apply_joint(j, q, T);
   }
   return T;
 }

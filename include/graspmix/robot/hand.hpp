@@ -91,6 +91,18 @@ struct LinkInfo {
   bool has_inertial = false;
 };
 
+/// A joint's own motion for configuration q (joint_names() order): T (the child's frame at the joint's origin)
+/// moved along or turned about the joint's axis by its value; nothing for a fixed joint. Hand::fk_into's step.
+inline void apply_joint(const JointInfo& j, const double* q, Eigen::Isometry3d& T) {
+  if (j.dof < 0) return;
+  const double v = j.multiplier * q[j.dof] + j.offset;
+  if (j.type == JointType::Prismatic) {
+    T.translation() += T.linear() * (j.axis * v);
+  } else {
+    T.linear() = T.linear() * Eigen::AngleAxisd(v, j.axis).toRotationMatrix();
+  }
+}
+
 /// What Hand::from_urdf reads at most; a URDF beyond these is refused with a message naming the limit.
 /// Links (and joints) of one URDF: hands have tens, and deeper chains would make urdfdom's recursive
 /// clean-up of its link tree a stack risk.

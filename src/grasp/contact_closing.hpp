@@ -181,6 +181,33 @@ inline void patch_contact(const Index& ix, const std::vector<int>& patch, Contac
   if (c.normal.dot(c.motion) > 0.0) c.normal = -c.normal;
 }
 
+/// The slab of a shape (frame T_link_shape) of a link displaced by e (link frame) over the closing, for the
+/// tolerance tol; returns the frame of its box in the link frame.
+inline Eigen::Isometry3d make_slab(const CollisionShape& sh, const Eigen::Vector3d& e, double tol, Slab& sl) {
+  const bool mesh = sh.type == ShapeType::Mesh;
+  const Eigen::Isometry3d T = mesh ? sh.T_link_shape * sh.T_shape_box : sh.T_link_shape;
+  sl.Rt = T.linear().transpose();
+  sl.b = -sl.Rt * T.translation();
+  const Eigen::Vector3d es = sl.Rt * e;
+  for (int a = 0; a < 3; ++a) sl.inv[a] = std::abs(es[a]) > 1e-12 * e.norm() ? 1.0 / es[a] : 0.0;
+  sl.half = mesh ? sh.box_half : Eigen::Vector3d(0.5 * sh.size);
+  sl.g1 = mesh ? sh.box_growth * tol : tol;
+  sl.g2 = 2.0 * sl.g1;
+  if (mesh) {
+    sl.mesh = &sh;
+    sl.Rs = sh.T_link_shape.linear().transpose();
+    sl.bs = -sl.Rs * sh.T_link_shape.translation();
+    sl.es = sl.Rs * e;
+  }
+  sl.aligned = sl.Rt.isIdentity(0.0);
+  if ((sl.inv.array() != 0.0).count() == 1) {
+    sl.inv.cwiseAbs().maxCoeff(&sl.axis);
+    sl.reach1 = (sl.half[sl.axis] + sl.g1) * std::abs(sl.inv[sl.axis]);
+    sl.reach2 = (sl.half[sl.axis] + sl.g2) * std::abs(sl.inv[sl.axis]);
+  }
+  return T;
+}
+
 /// The first contact of a link moved by prismatic joints alone, whose shapes are boxes or meshes: it translates
 /// by D = A1 - A0 over t in [0, 1], so each point's entry time into a grown box is one slab test (into a mesh's
 /// hull grown by the tolerance, a slab test of its proxy box and, for the points that pass, one of its planes). The
@@ -199,27 +226,7 @@ inline Contact translating_contact(const Index& ix, const LinkInfo& link, const 
   for (int k = 0; k < n_shapes; ++k) {
     const CollisionShape& sh = link.collisions[static_cast<size_t>(k)];
     Slab& sl = slabs[k];
-    const bool mesh = sh.type == ShapeType::Mesh;
-    const Eigen::Isometry3d T = mesh ? sh.T_link_shape * sh.T_shape_box : sh.T_link_shape;
-    sl.Rt = T.linear().transpose();
-    sl.b = -sl.Rt * T.translation();
-    const Eigen::Vector3d es = sl.Rt * e;
-    for (int a = 0; a < 3; ++a) sl.inv[a] = std::abs(es[a]) > 1e-12 * e.norm() ? 1.0 / es[a] : 0.0;
-    sl.half = mesh ? sh.box_half : Eigen::Vector3d(0.5 * sh.size);
-    sl.g1 = mesh ? sh.box_growth * tol : tol;
-    sl.g2 = 2.0 * sl.g1;
-    if (mesh) {
-      sl.mesh = &sh;
-      sl.Rs = sh.T_link_shape.linear().transpose();
-      sl.bs = -sl.Rs * sh.T_link_shape.translation();
-      sl.es = sl.Rs * e;
-    }
-    sl.aligned = sl.Rt.isIdentity(0.0);
-    if ((sl.inv.array() != 0.0).count() == 1) {
-      sl.inv.cwiseAbs().maxCoeff(&sl.axis);
-      sl.reach1 = (sl.half[sl.axis] + sl.g1) * std::abs(sl.inv[sl.axis]);
-      sl.reach2 = (sl.half[sl.axis] + sl.g2) * std::abs(sl.inv[sl.axis]);
-    }
+    const Eigen::Isometry3d T = make_slab(sh, e, tol, sl);
     const Eigen::Vector3d ext = T.linear().cwiseAbs() * (sl.half.array() + sl.g2).matrix();
     lo = lo.cwiseMin(T.translation() - ext);
     hi = hi.cwiseMax(T.translation() + ext);

@@ -247,6 +247,11 @@ void bind_robot(py::module_& m) {
                   if (s.mesh) {
                     d["vertices"] = s.mesh->vertices;
                     d["triangles"] = s.mesh->triangles;
+                    d["hull_planes"] = *s.hull_planes;
+                    d["proxy_box"] = pose_to_vector(s.T_shape_box);
+                    d["proxy_half"] = s.box_half;
+                    d["proxy_growth"] = s.box_growth;
+                    d["proxy_inner"] = s.box_inner;
                   }
                   break;
               }
@@ -257,7 +262,12 @@ void bind_robot(py::module_& m) {
           py::arg("link"),
           "The <collision> elements of a link as dicts: type (box|cylinder|sphere|mesh), origin (7,) in the link\n"
           "frame, and size (box, full sides), radius/length (cylinder, along z), radius (sphere), or file, scale,\n"
-          "vertices (V, 3, scaled, in the shape frame) and triangles (T, 3) (mesh).")
+          "vertices (V, 3, scaled, in the shape frame) and triangles (T, 3) (mesh), with the mesh's convex hull as\n"
+          "hull_planes (P, 4) [nx, ny, nz, offset] (n . x <= offset inside) and its proxy: an oriented box proxy_box "
+          "(7,)\n"
+          "in the shape frame with half extents proxy_half (3,) around the hull, and proxy_growth: every point whose\n"
+          "largest n . x - offset is g >= 0 or less lies within the box grown by proxy_growth * g; proxy_inner (3,),\n"
+          "the half extents of a box of the same frame inside the hull (zeros: none).")
       .def(
           "collision_mesh",
           [](const Hand& h, const std::string& link) {

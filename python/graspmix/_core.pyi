@@ -1904,7 +1904,11 @@ class Hand:
         """
         The <collision> elements of a link as dicts: type (box|cylinder|sphere|mesh), origin (7,) in the link
         frame, and size (box, full sides), radius/length (cylinder, along z), radius (sphere), or file, scale,
-        vertices (V, 3, scaled, in the shape frame) and triangles (T, 3) (mesh).
+        vertices (V, 3, scaled, in the shape frame) and triangles (T, 3) (mesh), with the mesh's convex hull as
+        hull_planes (P, 4) [nx, ny, nz, offset] (n . x <= offset inside) and its proxy: an oriented box proxy_box (7,)
+        in the shape frame with half extents proxy_half (3,) around the hull, and proxy_growth: every point whose
+        largest n . x - offset is g >= 0 or less lies within the box grown by proxy_growth * g; proxy_inner (3,),
+        the half extents of a box of the same frame inside the hull (zeros: none).
         """
     def fk(self, T_world_wrist: typing.Any, joints: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
         """

@@ -20,6 +20,7 @@ namespace graspmix {
 
 using detail::BoxColumns;
 using detail::signed_distance;
+using detail::signed_distance_within;
 
 /// The cloud's points in a grid over their bounding box [lo, hi].
 struct CollisionExpert::Index {
@@ -173,7 +174,7 @@ void cloud_term(const CollisionExpert::Index& ix, const CollisionExpert::Shapes:
   const BoxColumns columns(ix.lo, ix.grid.cell_size(), centre, R, sh.half, r);
   // A box's points inside it by more than r need no distance: it is minus their largest excess (the same
   // arithmetic as signed_distance's).
-  const bool box = sh.src->type == ShapeType::Box;
+  const bool box = sh.src->type == ShapeType::Box, mesh = sh.src->type == ShapeType::Mesh;
   const bool point_box = box && r == 0.0 && tol >= 0.0;  // then depth > tol implies inside: depth = -excess
   // Order-free: a maximum and a count (kept in locals: the points could alias the outputs).
   double best = deepest;
@@ -201,7 +202,17 @@ void cloud_term(const CollisionExpert::Index& ix, const CollisionExpert::Shapes:
         // Cheap rejection against the local box before the exact distance.
         const double excess = ((p - sh.centre).cwiseAbs() - sh.half).maxCoeff();
         if (excess >= r) continue;
-        const double depth = r - (box && excess < 0 ? excess : signed_distance(*sh.src, p));
+        if (mesh) {
+          // Counted for sure inside the inner proxy; and, inside the proxy box, no deeper than r - its excess:
+          // such a point cannot raise the deepest one found, so the hull is not needed for it.
+          const detail::ProxyView v = detail::proxy_view(*sh.src, p);
+          if (r - v.inner > tol && v.excess <= 0.0 && r - v.excess <= best) {
+            ++count;
+            continue;
+          }
+        }
+        // Only a distance below r - tol counts: the mesh's proxy and early exit decide the rest (the same values).
+        const double depth = r - (box && excess < 0 ? excess : signed_distance_within(*sh.src, p, r - tol));
         if (depth > tol) {
           ++count;
           best = std::max(best, depth);

@@ -39,6 +39,54 @@ inline double signed_distance(const CollisionShape& s, const Eigen::Vector3d& p)
   return std::numeric_limits<double>::infinity();
 }
 
+/// The signed distance from p (shape frame) where it is at most `limit`, else some value > limit (+inf when the
+/// proxy decides): a mesh's proxy box first (hand.hpp: outside the box grown by box_growth * max(limit, 0), the
+/// hull is farther than limit), then its hull's planes, largest facet first, stopping at the first one past the
+/// limit. Wherever signed_distance(s, p) <= limit the two are equal, bit for bit.
+inline double signed_distance_within(const CollisionShape& s, const Eigen::Vector3d& p, double limit) {
+  if (s.type != ShapeType::Mesh) return signed_distance(s, p);
+  const Eigen::Vector3d q = s.T_shape_box.linear().transpose() * (p - s.T_shape_box.translation());
+  const double grow = limit > 0 ? s.box_growth * limit : 0.0;
+  if ((q.cwiseAbs() - s.box_half).maxCoeff() > grow) return std::numeric_limits<double>::infinity();
+  const RowMatrixXd& P = *s.hull_planes;
+  double best = -std::numeric_limits<double>::infinity();
+  for (Eigen::Index f = 0; f < P.rows(); ++f) {
+    const double d = P(f, 0) * p.x() + P(f, 1) * p.y() + P(f, 2) * p.z() - P(f, 3);
+    if (d > limit) return d;
+    best = std::max(best, d);
+  }
+  return best;
+}
+
+/// A mesh's proxy boxes seen from p (shape frame): `excess`, the largest of |q| - box_half over the axes of the
+/// proxy box (q: p in its frame; <= 0 inside it, where it is the box's signed distance and so a lower bound of
+/// the hull's), and `inner`, the signed distance to the inner box (an upper bound of the hull's; +inf without
+/// one).
+struct ProxyView {
+  double excess, inner;
+};
+inline ProxyView proxy_view(const CollisionShape& s, const Eigen::Vector3d& p) {
+  const Eigen::Vector3d q = (s.T_shape_box.linear().transpose() * (p - s.T_shape_box.translation())).cwiseAbs();
+  ProxyView v{(q - s.box_half).maxCoeff(), std::numeric_limits<double>::infinity()};
+  if (s.box_inner.minCoeff() > 0.0) {
+    const Eigen::Vector3d d = q - s.box_inner;
+    v.inner = d.cwiseMax(0.0).norm() + std::min(d.maxCoeff(), 0.0);
+  }
+  return v;
+}
+
+/// Whether p (shape frame) lies within `limit` of the shape (signed_distance <= limit), a mesh's inner proxy
+/// answering yes where it can before the planes (signed_distance_within otherwise).
+inline bool within(const CollisionShape& s, const Eigen::Vector3d& p, double limit) {
+  if (s.type == ShapeType::Mesh && s.box_inner.minCoeff() > 0.0) {
+    const Eigen::Vector3d d =
+        (s.T_shape_box.linear().transpose() * (p - s.T_shape_box.translation())).cwiseAbs() - s.box_inner;
+    const double m = d.maxCoeff();  // the inner box's signed distance is m inside it, |d+| outside (>= m)
+    if (m <= limit && (m <= 0.0 ? m : d.cwiseMax(0.0).norm()) <= limit) return true;
+  }
+  return signed_distance_within(s, p, limit) <= limit;
+}
+
 /// The cells of a grid (origin o, cubic cells of side h) that an oriented box (centre c, axes the columns of
 /// R, half extents half) grown by r can meet, column by column. A cell is left out only when one of the
 /// box's axes separates it from the grown box, with a margin over rounding: every point the per-point box

@@ -69,7 +69,7 @@ struct Contact {
 struct Scratch {
   std::vector<Eigen::Isometry3d> poses0, poses1, poses;
   Eigen::VectorXd q;
-  std::vector<int> cand;
+  std::vector<int> cand, chain;
   struct Entry {
     int i;
     double lo, hi;
@@ -78,6 +78,8 @@ struct Scratch {
 };
 
 /// A box of a translating link: a point x of the link frame at t = 0 is at Rt x + b - t e in the box's frame.
+/// A mesh's slab is its proxy box grown by box_growth * g for g (g1, g2 below: tol, 2 tol), and its hull decides
+/// the points the slab keeps: x is at Rs x + bs - t es in the mesh's frame.
 struct Slab {
   Eigen::Matrix3d Rt;
   Eigen::Vector3d b, inv, half;  ///< inv = 1 / e per axis, 0 where the box does not move along it
@@ -85,7 +87,37 @@ struct Slab {
   /// The one axis the box moves along (-1: none or several), and (half + g) |inv| there for g = g1, g2.
   int axis = -1;
   double reach1 = 0.0, reach2 = 0.0;
+  double g1 = 0.0, g2 = 0.0;  ///< the growths of the box for the tolerances tol and 2 tol
+  const CollisionShape* mesh = nullptr;
+  Eigen::Matrix3d Rs = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d bs = Eigen::Vector3d::Zero(), es = Eigen::Vector3d::Zero();
 };
+
+/// The times in [0, 1] at which the point x0 - t es (mesh frame) lies within g2 of the hull (every plane's
+/// n . x - offset <= g2): [lo2, hi2] (false when none), and the first within g1 <= g2 (in1; inf when never).
+inline bool hull_times(const RowMatrixXd& P, const Eigen::Vector3d& x0, const Eigen::Vector3d& es, double g1, double g2,
+                       double& lo2, double& hi2, double& in1) {
+  lo2 = 0.0;
+  hi2 = 1.0;
+  double lo1 = 0.0, hi1 = 1.0;
+  for (Eigen::Index f = 0; f < P.rows(); ++f) {
+    const double c = P(f, 0) * x0.x() + P(f, 1) * x0.y() + P(f, 2) * x0.z() - P(f, 3);
+    const double v = P(f, 0) * es.x() + P(f, 1) * es.y() + P(f, 2) * es.z();  // c - t v <= g
+    if (v == 0.0) {
+      if (c > g2) return false;
+      if (c > g1) hi1 = -1.0;
+    } else if (v > 0.0) {
+      lo2 = std::max(lo2, (c - g2) / v);
+      lo1 = std::max(lo1, (c - g1) / v);
+    } else {
+      hi2 = std::min(hi2, (c - g2) / v);
+      hi1 = std::min(hi1, (c - g1) / v);
+    }
+    if (lo2 > hi2) return false;
+  }
+  in1 = lo1 <= hi1 ? lo1 : kInf;
+  return true;
+}
 
 /// The times in [0, 1] at which the point `a` (box frame, t = 0) lies within the box grown by g2: [lo2, hi2]
 /// (false when none), and the first time it lies within the box grown by g1 <= g2 (in1; inf when never).
@@ -149,9 +181,37 @@ inline void patch_contact(const Index& ix, const std::vector<int>& patch, Contac
   if (c.normal.dot(c.motion) > 0.0) c.normal = -c.normal;
 }
 
-/// The first contact of a link moved by prismatic joints alone, whose shapes are boxes: it translates by
-/// D = A1 - A0 over t in [0, 1], so each point's entry time into a grown box is one slab test. The sweep is
-/// cut into chunks half as long as the link is thick along it, visited in order until one holds a contact;
+/// The slab of a shape (frame T_link_shape) of a link displaced by e (link frame) over the closing, for the
+/// tolerance tol; returns the frame of its box in the link frame.
+inline Eigen::Isometry3d make_slab(const CollisionShape& sh, const Eigen::Vector3d& e, double tol, Slab& sl) {
+  const bool mesh = sh.type == ShapeType::Mesh;
+  const Eigen::Isometry3d T = mesh ? sh.T_link_shape * sh.T_shape_box : sh.T_link_shape;
+  sl.Rt = T.linear().transpose();
+  sl.b = -sl.Rt * T.translation();
+  const Eigen::Vector3d es = sl.Rt * e;
+  for (int a = 0; a < 3; ++a) sl.inv[a] = std::abs(es[a]) > 1e-12 * e.norm() ? 1.0 / es[a] : 0.0;
+  sl.half = mesh ? sh.box_half : Eigen::Vector3d(0.5 * sh.size);
+  sl.g1 = mesh ? sh.box_growth * tol : tol;
+  sl.g2 = 2.0 * sl.g1;
+  if (mesh) {
+    sl.mesh = &sh;
+    sl.Rs = sh.T_link_shape.linear().transpose();
+    sl.bs = -sl.Rs * sh.T_link_shape.translation();
+    sl.es = sl.Rs * e;
+  }
+  sl.aligned = sl.Rt.isIdentity(0.0);
+  if ((sl.inv.array() != 0.0).count() == 1) {
+    sl.inv.cwiseAbs().maxCoeff(&sl.axis);
+    sl.reach1 = (sl.half[sl.axis] + sl.g1) * std::abs(sl.inv[sl.axis]);
+    sl.reach2 = (sl.half[sl.axis] + sl.g2) * std::abs(sl.inv[sl.axis]);
+  }
+  return T;
+}
+
+/// The first contact of a link moved by prismatic joints alone, whose shapes are boxes or meshes: it translates
+/// by D = A1 - A0 over t in [0, 1], so each point's entry time into a grown box is one slab test (into a mesh's
+/// hull grown by the tolerance, a slab test of its proxy box and, for the points that pass, one of its planes). The
+/// sweep is cut into chunks half as long as the link is thick along it, visited in order until one holds a contact;
 /// only the grid's cells that can meet a chunk's swept box (in the link's frame) are visited.
 inline Contact translating_contact(const Index& ix, const LinkInfo& link, const Eigen::Isometry3d& A0,
                                    const Eigen::Isometry3d& A1, double tol, Scratch& s) {
@@ -166,20 +226,10 @@ inline Contact translating_contact(const Index& ix, const LinkInfo& link, const 
   for (int k = 0; k < n_shapes; ++k) {
     const CollisionShape& sh = link.collisions[static_cast<size_t>(k)];
     Slab& sl = slabs[k];
-    sl.Rt = sh.T_link_shape.linear().transpose();
-    sl.b = -sl.Rt * sh.T_link_shape.translation();
-    const Eigen::Vector3d es = sl.Rt * e;
-    for (int a = 0; a < 3; ++a) sl.inv[a] = std::abs(es[a]) > 1e-12 * e.norm() ? 1.0 / es[a] : 0.0;
-    sl.half = 0.5 * sh.size;
-    sl.aligned = sl.Rt.isIdentity(0.0);
-    if ((sl.inv.array() != 0.0).count() == 1) {
-      sl.inv.cwiseAbs().maxCoeff(&sl.axis);
-      sl.reach1 = (sl.half[sl.axis] + tol) * std::abs(sl.inv[sl.axis]);
-      sl.reach2 = (sl.half[sl.axis] + 2.0 * tol) * std::abs(sl.inv[sl.axis]);
-    }
-    const Eigen::Vector3d ext = sh.T_link_shape.linear().cwiseAbs() * (sl.half.array() + 2.0 * tol).matrix();
-    lo = lo.cwiseMin(sh.T_link_shape.translation() - ext);
-    hi = hi.cwiseMax(sh.T_link_shape.translation() + ext);
+    const Eigen::Isometry3d T = make_slab(sh, e, tol, sl);
+    const Eigen::Vector3d ext = T.linear().cwiseAbs() * (sl.half.array() + sl.g2).matrix();
+    lo = lo.cwiseMin(T.translation() - ext);
+    hi = hi.cwiseMax(T.translation() + ext);
   }
   const double thick = (hi - lo).dot(e.cwiseAbs()) / std::max(e.norm(), 1e-300);
   const int chunks = std::clamp(static_cast<int>(std::ceil(e.norm() / (0.5 * thick))), 1, 32);
@@ -205,7 +255,9 @@ inline Contact translating_contact(const Index& ix, const LinkInfo& link, const 
             double lo2, hi2, in1;
             const Slab& sl = slabs[k];
             const Eigen::Vector3d as = sl.aligned ? Eigen::Vector3d(a + sl.b) : Eigen::Vector3d(sl.Rt * a + sl.b);
-            if (!slab_times(sl, as, tol, 2.0 * tol, lo2, hi2, in1)) continue;
+            if (!slab_times(sl, as, sl.g1, sl.g2, lo2, hi2, in1)) continue;
+            if (sl.mesh && !hull_times(*sl.mesh->hull_planes, sl.Rs * a + sl.bs, sl.es, tol, 2.0 * tol, lo2, hi2, in1))
+              continue;
             first = std::min(first, in1);
             if (lo2 <= std::min(first, tb)) s.entries.push_back({static_cast<int>(i), lo2, hi2});
           }
@@ -224,15 +276,106 @@ inline Contact translating_contact(const Index& ix, const LinkInfo& link, const 
   return c;
 }
 
-/// The smallest signed distance from the candidates to the link posed at A (its shapes' rule).
-inline double min_distance(const Index& ix, const LinkInfo& link, const Eigen::Isometry3d& A,
-                           const std::vector<int>& cand) {
-  double best = kInf;
+/// Whether any candidate lies within tol of the link posed at A (its shapes' signed distance <= tol; meshes
+/// through their proxies, detail::signed_distance_within).
+inline bool any_within(const Index& ix, const LinkInfo& link, const Eigen::Isometry3d& A, const std::vector<int>& cand,
+                       double tol) {
   for (const CollisionShape& sh : link.collisions) {
     const Eigen::Isometry3d inv = (A * sh.T_link_shape).inverse();
-    for (const int i : cand) best = std::min(best, detail::signed_distance(sh, inv * ix.grid.point(i)));
+    for (const int i : cand)
+      if (detail::within(sh, inv * ix.grid.point(i), tol)) return true;
   }
-  return best;
+  return false;
+}
+
+/// The world box of the points within g >= 0 of the link posed at A: each shape's box grown by g (a mesh's proxy
+/// box by box_growth * g, hand.hpp), into [lo, hi].
+inline void reach_box(const LinkInfo& link, const Eigen::Isometry3d& A, double g, Eigen::Vector3d& lo,
+                      Eigen::Vector3d& hi) {
+  for (const CollisionShape& sh : link.collisions) {
+    Eigen::Isometry3d T = A * sh.T_link_shape;
+    Eigen::Vector3d half;
+    switch (sh.type) {
+      case ShapeType::Box:
+        half = (0.5 * sh.size).array() + g;
+        break;
+      case ShapeType::Cylinder:
+        half = Eigen::Vector3d(sh.size.x(), sh.size.x(), 0.5 * sh.size.y()).array() + g;
+        break;
+      case ShapeType::Sphere:
+        half = Eigen::Vector3d::Constant(sh.size.x() + g);
+        break;
+      case ShapeType::Mesh:
+        if (g > 0.0 && !std::isfinite(sh.box_growth)) {  // no bound: everywhere
+          lo.setConstant(-kInf);
+          hi.setConstant(kInf);
+          return;
+        }
+        T = T * sh.T_shape_box;
+        half = sh.box_half.array() + (g > 0.0 ? sh.box_growth * g : 0.0);
+        break;
+    }
+    const Eigen::Vector3d ext = T.linear().cwiseAbs() * half;
+    lo = lo.cwiseMin(T.translation() - ext);
+    hi = hi.cwiseMax(T.translation() + ext);
+  }
+}
+
+/// The candidates (the points in the cells c0..c1) within `limit` >= 0 of the link posed at A, into `out`, in
+/// canonical order; stops at the first when `first_only`. Only the cells under reach_box are visited, not every
+/// candidate: the same points as a test of each.
+inline void near_points(const Index& ix, const LinkInfo& link, const Eigen::Isometry3d& A, double limit,
+                        const detail::UniformGrid::Cell& c0, const detail::UniformGrid::Cell& c1, bool first_only,
+                        std::vector<int>& out) {
+  out.clear();
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(kInf), hi = -lo;
+  reach_box(link, A, limit, lo, hi);
+  if (ix.grid.size() == 0 || (lo.array() > ix.hi.array()).any() || (hi.array() < ix.lo.array()).any()) return;
+  detail::UniformGrid::Cell b0 = ix.grid.cell_of(lo.cwiseMax(ix.lo)), b1 = ix.grid.cell_of(hi.cwiseMin(ix.hi));
+  for (size_t k = 0; k < 3; ++k) {
+    b0[k] = std::max(b0[k], c0[k]);
+    b1[k] = std::min(b1[k], c1[k]);
+    if (b0[k] > b1[k]) return;
+  }
+  std::vector<Eigen::Isometry3d> inv;
+  for (const CollisionShape& sh : link.collisions) inv.push_back((A * sh.T_link_shape).inverse());
+  for (std::int64_t x = b0[0]; x <= b1[0]; ++x)
+    for (std::int64_t y = b0[1]; y <= b1[1]; ++y) {
+      const auto [b, e] = ix.grid.z_run(x, y, b0[2], b1[2]);
+      for (Eigen::Index i = b; i < e; ++i) {
+        for (size_t k = 0; k < inv.size(); ++k) {
+          const Eigen::Vector3d q = inv[k] * ix.grid.point(static_cast<int>(i));
+          if (detail::within(link.collisions[k], q, limit)) {
+            out.push_back(static_cast<int>(i));
+            if (first_only) return;
+            break;
+          }
+        }
+      }
+    }
+}
+
+/// The joints from the wrist down to link l, in order.
+inline void chain_of(const Hand& hand, int l, std::vector<int>& chain) {
+  chain.clear();
+  for (int j = hand.links()[static_cast<size_t>(l)].parent_joint; j >= 0;
+       j = hand.links()[static_cast<size_t>(hand.joints()[static_cast<size_t>(j)].parent_link)].parent_joint) {
+    chain.push_back(j);
+  }
+  std::reverse(chain.begin(), chain.end());
+}
+
+/// The pose of the link at the end of `chain` for wrist W and joints q: Hand::fk_into's products in its order
+/// (the same bits), for that link's joints alone (the closing poses one finger at a time).
+inline Eigen::Isometry3d chain_pose(const Hand& hand, const std::vector<int>& chain, const Eigen::Isometry3d& W,
+                                    const double* q) {
+  Eigen::Isometry3d T = W;
+  for (const int ji : chain) {
+    const JointInfo& j = hand.joints()[static_cast<size_t>(ji)];
+    T = T * j.T_parent_joint;
+    apply_joint(j, q, T);
+  }
+  return T;
 }
 
 /// The world box of a shape posed at T (its local box: boxes exactly, cylinders, spheres, mesh hulls bounded).
@@ -266,22 +409,22 @@ inline void shape_box(const CollisionShape& sh, const Eigen::Isometry3d& T, Eige
 inline Contact stepped_contact(const Hand& hand, const Index& ix, int l, const Eigen::Isometry3d& W,
                                const Eigen::VectorXd& p, const Eigen::VectorXd& cl, double tol, int steps, Scratch& s) {
   const LinkInfo& link = hand.links()[static_cast<size_t>(l)];
+  chain_of(hand, l, s.chain);
   auto pose_at = [&](double t) {
     s.q = p + t * (cl - p);
-    hand.fk_into(W, s.q.data(), s.poses.data());
-    return s.poses[static_cast<size_t>(l)];
+    return chain_pose(hand, s.chain, W, s.q.data());
   };
   std::vector<Eigen::Isometry3d> A(static_cast<size_t>(steps) + 1);
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(kInf), hi = -lo;
   double stride = 0.0;  // how far a point of the link's boxes moves in one step, at most
+  Eigen::Vector3d blo = Eigen::Vector3d::Constant(kInf), bhi = -blo;  // the link's box in its own frame
+  for (const CollisionShape& sh : link.collisions) shape_box(sh, sh.T_link_shape, blo, bhi);
+  const double reach = std::max(blo.norm(), bhi.norm());
   for (int k = 0; k <= steps; ++k) {
     A[static_cast<size_t>(k)] = pose_at(static_cast<double>(k) / steps);
     for (const CollisionShape& sh : link.collisions) shape_box(sh, A[static_cast<size_t>(k)] * sh.T_link_shape, lo, hi);
     if (k > 0) {
-      Eigen::Vector3d blo = Eigen::Vector3d::Constant(kInf), bhi = -blo;
-      for (const CollisionShape& sh : link.collisions) shape_box(sh, sh.T_link_shape, blo, bhi);
       const Eigen::Isometry3d step = A[static_cast<size_t>(k) - 1].inverse() * A[static_cast<size_t>(k)];
-      const double reach = std::max(blo.norm(), bhi.norm());
       stride =
           std::max(stride, step.translation().norm() + (step.linear() - Eigen::Matrix3d::Identity()).norm() * reach);
     }
@@ -291,15 +434,21 @@ inline Contact stepped_contact(const Hand& hand, const Index& ix, int l, const E
   const Eigen::Vector3d grow = Eigen::Vector3d::Constant(2.0 * tol + stride);
   detail::UniformGrid::Cell c0, c1;
   if (!cells_under(ix, lo - grow, hi + grow, c0, c1)) return c;
-  s.cand.clear();
-  ix.grid.for_each_in_cells(c0, c1, [&](int i) { s.cand.push_back(i); });
+  // The first step at which a candidate comes within tol.
   int k = 0;
-  while (k <= steps && min_distance(ix, link, A[static_cast<size_t>(k)], s.cand) > tol) ++k;
+  for (; k <= steps; ++k) {
+    near_points(ix, link, A[static_cast<size_t>(k)], tol, c0, c1, true, s.cand);
+    if (!s.cand.empty()) break;
+  }
   if (k > steps) return c;
+  // The bisection and the patch look only at t in [t_{k-1}, t_k]: a point within 2 tol of the link then is within
+  // 2 tol + stride of it at t_k (signed distances are 1-Lipschitz in the point, and stride bounds how far the link
+  // moves in a step, as it does for the candidates' box), so these candidates (2 stride for margin) lose none.
+  near_points(ix, link, A[static_cast<size_t>(k)], k > 0 ? 2.0 * tol + 2.0 * stride : 2.0 * tol, c0, c1, false, s.cand);
   double a = k == 0 ? 0.0 : static_cast<double>(k - 1) / steps, b = static_cast<double>(k) / steps;
   for (int it = 0; k > 0 && it < 30 && b - a > 1e-9; ++it) {
     const double m = 0.5 * (a + b);
-    (min_distance(ix, link, pose_at(m), s.cand) > tol ? a : b) = m;
+    (any_within(ix, link, pose_at(m), s.cand, tol) ? b : a) = m;
   }
   c.t = b;
   const Eigen::Isometry3d At = pose_at(b);
@@ -307,7 +456,7 @@ inline Contact stepped_contact(const Hand& hand, const Index& ix, int l, const E
   for (const CollisionShape& sh : link.collisions) {
     const Eigen::Isometry3d inv = (At * sh.T_link_shape).inverse();
     for (const int i : s.cand)
-      if (detail::signed_distance(sh, inv * ix.grid.point(i)) <= 2.0 * tol) patch.push_back(i);
+      if (detail::within(sh, inv * ix.grid.point(i), 2.0 * tol)) patch.push_back(i);
   }
   std::sort(patch.begin(), patch.end());
   patch.erase(std::unique(patch.begin(), patch.end()), patch.end());

@@ -128,16 +128,19 @@ ContactQualityExpert::ContactQualityExpert(std::shared_ptr<const Hand> hand, con
       j = hand_->links()[static_cast<size_t>(joint.parent_link)].parent_joint;
     }
     if (!moves) continue;
-    const bool boxes =
-        link.collisions.size() <= 8 && std::all_of(link.collisions.begin(), link.collisions.end(),
-                                                   [](const CollisionShape& s) { return s.type == ShapeType::Box; });
+    // Boxes, and meshes whose proxy has a growth bound (hand.hpp), sweep by slab tests.
+    const bool slabs =
+        link.collisions.size() <= 8 &&
+        std::all_of(link.collisions.begin(), link.collisions.end(), [](const CollisionShape& s) {
+          return s.type == ShapeType::Box || (s.type == ShapeType::Mesh && s.hull && std::isfinite(s.box_growth));
+        });
     for (const CollisionShape& s : link.collisions) {
       if (s.type == ShapeType::Mesh && !s.hull) {
         throw std::invalid_argument("ContactQualityExpert: link '" + link.name + "' has a mesh read without geometry");
       }
     }
     fingers_.push_back(l);
-    translating_.push_back(prismatic_only && boxes);
+    translating_.push_back(prismatic_only && slabs);
   }
   if (fingers_.empty()) throw std::invalid_argument("ContactQualityExpert: the hand has no moving link with geometry");
   index_ = std::make_unique<const Index>(points, normals);

@@ -115,14 +115,7 @@ void Hand::fk_into(const Eigen::Isometry3d& T_world_wrist, const double* q, Eige
   out[0] = T_world_wrist;
   for (const JointInfo& j : joints_) {
     Eigen::Isometry3d T = out[j.parent_link] * j.T_parent_joint;
-    if (j.dof >= 0) {
-      const double v = j.multiplier * q[j.dof] + j.offset;
-      if (j.type == JointType::Prismatic) {
-        T.translation() += T.linear() * (j.axis * v);
-      } else {
-        T.linear() = T.linear() * Eigen::AngleAxisd(v, j.axis).toRotationMatrix();
-      }
-    }
+    apply_joint(j, q, T);
     out[j.child_link] = T;
   }
 }

@@ -22,6 +22,7 @@
 
 #include "graspmix/core/se3.hpp"
 #include "graspmix/robot/hand.hpp"
+#include "robot/hull_proxy.hpp"
 #include "robot/urdf_text.hpp"
 
 namespace fs = std::filesystem;
@@ -72,7 +73,8 @@ Eigen::Isometry3d to_isometry(const urdf::Pose& p, const std::string& where) {
 bool has_prefix(const std::string& s, const std::string& prefix) { return s.rfind(prefix, 0) == 0; }
 
 /// The convex hull of a mesh's vertices as outward half-spaces and oriented triangles.
-void convex_hull(const TriangleMesh& mesh, const std::string& what, RowMatrixXd& planes, TriangleMesh& hull) {
+void convex_hull(const TriangleMesh& mesh, const std::string& what, RowMatrixXd& planes, TriangleMesh& hull,
+                 std::vector<int>& tri_plane) {
   std::vector<double> coords(mesh.vertices.data(), mesh.vertices.data() + mesh.vertices.size());
   const int n = static_cast<int>(mesh.vertices.rows());
   orgQhull::Qhull qh;
@@ -88,6 +90,7 @@ void convex_hull(const TriangleMesh& mesh, const std::string& what, RowMatrixXd&
   }
   std::vector<Eigen::Vector4d> pl;
   std::vector<Eigen::Vector3i> tris;
+  std::vector<size_t> tri_facet;  // each triangle's entry of pl
   std::map<int, int> vertex_index;
   std::vector<Eigen::Vector3d> verts;
   for (const orgQhull::QhullFacet& f : qh.facetList()) {
@@ -111,14 +114,24 @@ void convex_hull(const TriangleMesh& mesh, const std::string& what, RowMatrixXd&
     const Eigen::Vector3d c = (verts[ids[1]] - verts[ids[0]]).cross(verts[ids[2]] - verts[ids[0]]);
     if (c.dot(nrm) < 0) std::swap(ids[1], ids[2]);
     tris.emplace_back(ids[0], ids[1], ids[2]);
+    tri_facet.push_back(pl.size() - 1);
   }
   // Coplanar facets of a triangulated hull repeat one plane: keep each plane once (it is the hot loop).
   std::vector<Eigen::Vector4d> unique;
+  std::vector<int> facet_plane;  // each entry of pl's row in unique
   for (const auto& p : pl) {
-    bool seen = false;
-    for (const auto& u : unique) seen = seen || (u - p).cwiseAbs().maxCoeff() < 1e-12;
-    if (!seen) unique.push_back(p);
+    int seen = -1;
+    for (size_t u = 0; u < unique.size() && seen < 0; ++u) {
+      if ((unique[u] - p).cwiseAbs().maxCoeff() < 1e-12) seen = static_cast<int>(u);
+    }
+    if (seen < 0) {
+      seen = static_cast<int>(unique.size());
+      unique.push_back(p);
+    }
+    facet_plane.push_back(seen);
   }
+  tri_plane.clear();
+  for (const size_t f : tri_facet) tri_plane.push_back(facet_plane[f]);
   planes.resize(static_cast<Eigen::Index>(unique.size()), 4);
   for (size_t i = 0; i < unique.size(); ++i) planes.row(static_cast<Eigen::Index>(i)) = unique[i].transpose();
   hull.vertices.resize(static_cast<Eigen::Index>(verts.size()), 3);
@@ -161,7 +174,9 @@ void read_mesh(const urdf::Mesh& m, const std::string& where, const std::string&
       auto mesh = std::make_shared<TriangleMesh>(Hand::load_mesh(s.mesh_file, s.size));
       auto planes = std::make_shared<RowMatrixXd>();
       auto hull = std::make_shared<TriangleMesh>();
-      convex_hull(*mesh, "mesh '" + s.mesh_file + "'", *planes, *hull);
+      std::vector<int> tri_plane;
+      convex_hull(*mesh, "mesh '" + s.mesh_file + "'", *planes, *hull, tri_plane);
+      detail::fit_hull_proxy(*planes, *hull, tri_plane, s);
       s.mesh = mesh;
       s.hull_planes = planes;
       s.hull = hull;

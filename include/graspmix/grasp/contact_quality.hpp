@@ -11,10 +11,11 @@
 // with collision geometry moved by a movable joint (the WSG 50's finger_left and finger_right). A finger's
 // contact time t_f is the first t at which an object point lies within contact_tolerance of (or inside) its
 // collision geometry:
-//   * a link moved by prismatic joints alone whose shapes are boxes (parallel grippers) translates linearly
-//     in t: t_f is found exactly per point, as the time the point enters the box grown by the tolerance on
-//     every side (a slab test; this is the signed-distance rule on faces and up to (sqrt(3) - 1) tolerance
-//     more generous at the box's corners);
+//   * a link moved by prismatic joints alone whose shapes are boxes or meshes (parallel grippers) translates
+//     linearly in t: t_f is found exactly per point, as the time the point enters the box grown by the
+//     tolerance on every side (a slab test; this is the signed-distance rule on faces and up to
+//     (sqrt(3) - 1) tolerance more generous at the box's corners), or the mesh's hull with every plane moved
+//     out by the tolerance (the hull rule below; its proxy box keeps the points that need the planes);
 //   * any other link: closing_steps even steps of the signed distance (collision.hpp's shape rule, meshes
 //     as their hulls), then bisection in the step where the first point comes within the tolerance.
 // Only the points in the bounding box of the link's swept region (a grid over the cloud) are visited.
@@ -99,7 +100,7 @@ class ContactQualityExpert : public Expert {
   ConfigModel config_;
   ContactQualitySettings settings_;
   std::vector<int> fingers_;
-  std::vector<bool> translating_;  ///< per finger: moved by prismatic joints only, box shapes only
+  std::vector<bool> translating_;  ///< per finger: moved by prismatic joints only, box or mesh shapes only
   std::unique_ptr<const Index> index_;
 };
 

@@ -49,6 +49,18 @@ struct CollisionShape {
   /// in the shape frame (meshes only): the collision expert treats a mesh link as its hull.
   std::shared_ptr<const RowMatrixXd> hull_planes;
   std::shared_ptr<const TriangleMesh> hull;  ///< the hull's vertices and triangles (meshes only)
+  /// Meshes only: the cheap proxy of the hull, made once when the hand is read (robot/hull_proxy.cpp). An oriented
+  /// box (frame T_shape_box in the shape frame, half extents box_half) that holds every hull vertex, so the hull;
+  /// and box_growth such that every point whose hull distance (the largest of hull_planes' n . x - offset, as the
+  /// experts measure it) is at most g >= 0 lies within the box grown by box_growth * g on every side. A point outside
+  /// the grown box is decided without the hull; the hull's planes are ordered largest facet first, so a point
+  /// outside the hull usually fails on the first few.
+  Eigen::Isometry3d T_shape_box = Eigen::Isometry3d::Identity();
+  Eigen::Vector3d box_half = Eigen::Vector3d::Zero();
+  double box_growth = 1.0;
+  /// Half extents of the inner proxy: the box of the same frame, scaled down from box_half until it lies inside
+  /// the hull (zero where none does). A point inside it is inside the hull, at least as deep.
+  Eigen::Vector3d box_inner = Eigen::Vector3d::Zero();
 };
 
 enum class JointType { Fixed, Revolute, Continuous, Prismatic };
@@ -78,6 +90,18 @@ struct LinkInfo {
   Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
   bool has_inertial = false;
 };
+
+/// A joint's own motion for configuration q (joint_names() order): T (the child's frame at the joint's origin)
+/// moved along or turned about the joint's axis by its value; nothing for a fixed joint. Hand::fk_into's step.
+inline void apply_joint(const JointInfo& j, const double* q, Eigen::Isometry3d& T) {
+  if (j.dof < 0) return;
+  const double v = j.multiplier * q[j.dof] + j.offset;
+  if (j.type == JointType::Prismatic) {
+    T.translation() += T.linear() * (j.axis * v);
+  } else {
+    T.linear() = T.linear() * Eigen::AngleAxisd(v, j.axis).toRotationMatrix();
+  }
+}
 
 /// What Hand::from_urdf reads at most; a URDF beyond these is refused with a message naming the limit.
 /// Links (and joints) of one URDF: hands have tens, and deeper chains would make urdfdom's recursive

@@ -128,6 +128,15 @@ def contact_links_of(grasps) -> list[str]:
     return links
 
 
+def _distinct_rows(V: np.ndarray) -> np.ndarray:
+    """The distinct rows of V (a mesh file repeats a vertex for each triangle it is in; the frames use the
+    vertices' extremes, which the copies do not change), by sorting, without np.unique."""
+    if len(V) == 0:
+        return V
+    S = V[np.lexsort(V.T)]
+    return S[np.r_[True, np.any(S[1:] != S[:-1], axis=1)]]
+
+
 class FrameMaker:
     """Computes the frames of grasps of one hand (batched over the grasps)."""
 
@@ -144,7 +153,7 @@ class FrameMaker:
                 raise ValueError(f"fingertip link {n!r} of hand '{hand.name}' has no collision geometry")
             used = np.zeros(len(V), dtype=bool)  # not np.unique: its first call imports numpy.ma (~35 ms)
             used[np.asarray(T).ravel()] = True
-            self.vertices.append(np.asarray(V)[used])
+            self.vertices.append(_distinct_rows(np.asarray(V)[used]))
 
     def frames(self, wrists: np.ndarray, joints: np.ndarray) -> list[dict]:
         """The frame keys (FRAME_KEYS) of grasps with wrists (N, 7) and grasp joints (N, n_dofs)."""
@@ -155,7 +164,7 @@ class FrameMaker:
         M = np.zeros((n, 4, 4))
         M[:, :3, :3], M[:, :3, 3], M[:, 3, 3] = R, wrists[:, :3], 1.0
         approach = R @ self.axis
-        tips, world = self._tips(links, wrists, R)
+        tips = self._tips(links, wrists, R)
         cols = {
             "T_world_wrist_matrix": M.tolist(),
             "T_world_tcp": [None] * n,
@@ -171,19 +180,33 @@ class FrameMaker:
             c = tips[1] - tips[0]
             c /= np.maximum(np.linalg.norm(c, axis=1, keepdims=True), 1e-12)
             cols["closing"] = c.tolist()
-            gap = np.einsum("nvi,ni->nv", world[1], c).min(axis=1) - np.einsum("nvi,ni->nv", world[0], c).max(axis=1)
-            cols["opening_width"] = gap.tolist()
+            cols["opening_width"] = (
+                self._along(links, 1, c).min(axis=0) - self._along(links, 0, c).max(axis=0)
+            ).tolist()
         return [{k: cols[k][i] for k in FRAME_KEYS} for i in range(n)]
 
+    def _along(self, links, k, d, origin=None):
+        """(V, N): each vertex of fingertip link k measured along the world directions d (N, 3) from origin (N, 3;
+        default the world's), for every grasp: one matrix product, without the vertices' world positions."""
+        row, V = self.rows[k], self.vertices[k]
+        b = np.einsum("nji,nj->ni", rotation_matrices(links[:, row, 3:]), d)  # d in the link frame
+        t = links[:, row, :3] if origin is None else links[:, row, :3] - origin
+        return V @ b.T + np.einsum("ni,ni->n", t, d)[None, :]
+
     def _tips(self, links, wrists, R):
-        """(fingertip points per tip link (N, 3), world vertices per tip link (N, V, 3))."""
-        tips, world = [], []
-        for row, V in zip(self.rows, self.vertices):
-            W = np.einsum("nij,vj->nvi", rotation_matrices(links[:, row, 3:]), V) + links[:, row, None, :3]
-            local = np.einsum("nji,nvj->nvi", R, W - wrists[:, None, :3])  # in the wrist frame
-            along = local @ self.axis
-            near = (along >= along.max(axis=1, keepdims=True) - self.settings.fingertip_tolerance)[..., None]
-            tip = (np.where(near, local, np.inf).min(axis=1) + np.where(near, local, -np.inf).max(axis=1)) / 2
-            tips.append(np.einsum("nij,nj->ni", R, tip) + wrists[:, :3])
-            world.append(W)
-        return tips, world
+        """The fingertip point per tip link (N, 3): the box, in the wrist frame, of the link's vertices within
+        fingertip_tolerance of its farthest extent along the approach."""
+        tips = []
+        approach = R @ self.axis
+        for k, (row, V) in enumerate(zip(self.rows, self.vertices)):
+            along = self._along(links, k, approach, wrists[:, :3])
+            near = along >= along.max(axis=0, keepdims=True) - self.settings.fingertip_tolerance
+            g, v = np.nonzero(near.T)  # (grasp, vertex) pairs, grasp-major: few vertices per grasp, one at least
+            # The near vertices in the wrist frame: R^T (R_link v + t_link - t_wrist).
+            M = np.einsum("nji,njk->nik", R, rotation_matrices(links[:, row, 3:]))
+            off = np.einsum("nji,nj->ni", R, links[:, row, :3] - wrists[:, :3])
+            local = np.einsum("kij,kj->ki", M[g], V[v]) + off[g]
+            starts = np.searchsorted(g, np.arange(len(wrists)))
+            lo, hi = np.minimum.reduceat(local, starts, axis=0), np.maximum.reduceat(local, starts, axis=0)
+            tips.append(np.einsum("nij,nj->ni", R, (lo + hi) / 2) + wrists[:, :3])
+        return tips

@@ -281,7 +281,7 @@ class GraspModel:
         timing = _stage_times(out.timing, t_segment, time.perf_counter() - t0)
         return GraspSet(
             out.grasps, self.hand_path, self.method, name, timing, out.surface, scene.plane, out.evaluations,
-            out.rejected, scene=scene, targets=targets,
+            out.rejected, scene=scene, targets=targets, hand=self._hand,
         )  # fmt: skip
 
     def synthesizer_settings(self, opts: SynthesisOptions) -> "_core.SynthesizerSettings":

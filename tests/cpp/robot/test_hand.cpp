@@ -233,6 +233,51 @@ TEST(Hand, MeshesLoadFromObjAndStlWithScaleAndPackagePaths) {
   EXPECT_NEAR(mesh.vertices.col(0).minCoeff(), 0.95, 1e-9);
 }
 
+TEST(Hand, MeshProxiesBoundTheHullAnalytically) {
+  TempDir dir;
+  dir.write("cube.obj", cube_obj());
+  dir.write("tetra.stl", tetra_stl());
+  const auto urdf = dir.write("h.urdf", R"(<robot name="r">
+    <link name="a"><collision><geometry><mesh filename="cube.obj" scale="0.1 0.2 0.3"/></geometry></collision></link>
+    <link name="b"><collision><geometry><mesh filename="tetra.stl"/></geometry></collision></link>
+    <joint name="j" type="fixed"><parent link="a"/><child link="b"/></joint></robot>)");
+  const Hand h = Hand::from_urdf(urdf.string());
+  // A box's proxy is the box itself, grown by exactly g, its inner box nearly the whole of it.
+  const auto& cube = h.links()[static_cast<size_t>(h.link_index("a"))].collisions.at(0);
+  const Eigen::Vector3d half(0.05, 0.1, 0.15);
+  EXPECT_LT((cube.T_shape_box.translation()).norm(), 1e-12);
+  EXPECT_LT((cube.T_shape_box.linear().cwiseAbs() * cube.box_half - half).cwiseAbs().maxCoeff(), 1e-8);
+  EXPECT_NEAR(cube.box_growth, 1.0, 1e-8);
+  EXPECT_LT((cube.T_shape_box.linear().cwiseAbs() * cube.box_inner - half).cwiseAbs().maxCoeff(), 1e-6);
+  // The unit corner tetrahedron's hull grown by g (every plane moved out by g) has the corners (-g, -g, -g) and
+  // e_k (1 + (2 + sqrt 3) g) - g (1 - e_k): each lies in the proxy box grown by box_growth * g.
+  const auto& tetra = h.links()[static_cast<size_t>(h.link_index("b"))].collisions.at(0);
+  const double g = 0.01, s = 2.0 + std::sqrt(3.0);
+  std::vector<Eigen::Vector3d> corners{Eigen::Vector3d::Constant(-g)};
+  for (int k = 0; k < 3; ++k) {
+    Eigen::Vector3d c = Eigen::Vector3d::Constant(-g);
+    c[k] = 1.0 + s * g;
+    corners.push_back(c);
+  }
+  const Eigen::Isometry3d inv = tetra.T_shape_box.inverse();
+  for (const Eigen::Vector3d& c : corners) {
+    const Eigen::Vector3d q = (inv * c).cwiseAbs() - tetra.box_half;
+    EXPECT_LE(q.maxCoeff(), tetra.box_growth * g + 1e-12) << c.transpose();
+  }
+  for (int k = 0; k < 4; ++k) {  // and the vertices themselves in the box
+    Eigen::Vector3d v = Eigen::Vector3d::Zero();
+    if (k > 0) v[k - 1] = 1.0;
+    EXPECT_LE(((inv * v).cwiseAbs() - tetra.box_half).maxCoeff(), 1e-12);
+  }
+  // Its box is the unit cube (smaller than the principal axes' one) and the bound is tight: the corner
+  // (1 + (2 + sqrt 3) g, -g, -g) lies on the grown box. Its centre is outside the hull: no inner box.
+  EXPECT_LT((tetra.T_shape_box.translation() - Eigen::Vector3d::Constant(0.5)).norm(), 1e-9);
+  EXPECT_NEAR(tetra.box_growth, s, 1e-6);
+  EXPECT_EQ(tetra.box_inner, Eigen::Vector3d::Zero());
+  // The hull's planes come largest facet first: the diagonal face (area sqrt(3) / 2) leads.
+  EXPECT_LT((tetra.hull_planes->row(0).transpose() - Eigen::Vector4d(1, 1, 1, 1) / std::sqrt(3.0)).norm(), 1e-9);
+}
+
 TEST(Hand, CollisionMeshOfPrimitivesIsClosedAndOutward) {
   const Hand h = arm();
   for (const auto& link : {"l1", "l2", "tip"}) {

@@ -118,3 +118,37 @@ def test_synthesize_table_prints_the_opening_in_metres(capsys):
     print_grasps(_set(0.0123, fingertip_links=("finger_left",)), 5)
     head, row = capsys.readouterr().out.splitlines()
     assert head.endswith("grasp joints (m or rad)") and row.endswith("finger_left_joint=0.0123")
+
+
+def test_frames_of_mesh_fingertips_follow_the_rule_vertex_by_vertex(tmp_path):
+    """pybullet_data's Panda hand (mesh fingers): the TCP and the opening from every mesh vertex placed in the
+    world by Hand.fk, by the rule of grasp_frames' docstring, at several wrists and openings."""
+    import pybullet_data
+    from graspmix.model.grasp_frames import FrameMaker
+    from graspmix.model.hands import hand_urdf_from_robot
+
+    urdf = hand_urdf_from_robot(
+        f"{pybullet_data.getDataPath()}/franka_panda/panda.urdf", "panda_hand", tmp_path / "p.urdf"
+    )
+    hand = Hand.from_urdf(urdf)
+    tips = ["panda_leftfinger", "panda_rightfinger"]
+    rng = np.random.default_rng(5)
+    wrists = np.c_[rng.uniform(-0.1, 0.1, (6, 3)), Rotation.random(6, random_state=rng).as_quat()]
+    joints = rng.uniform(0.0, 0.04, (6, 1))
+    frames = FrameMaker(hand, tips).frames(wrists, joints)
+    for w, q, f in zip(wrists, joints, frames):
+        links = hand.fk(w, q)
+        R = Rotation.from_quat(w[3:])
+        pts, tip_points = [], []
+        for name in tips:
+            pose = links[hand.link_names.index(name)]
+            vertices = np.asarray(hand.collision_mesh(name)[0])  # link frame (the right finger's mesh is turned)
+            world = Rotation.from_quat(pose[3:]).apply(vertices) + pose[:3]
+            L = R.inv().apply(world - w[:3])
+            near = L[L[:, 2] >= L[:, 2].max() - GraspFrameSettings().fingertip_tolerance]
+            tip_points.append(R.apply((near.min(axis=0) + near.max(axis=0)) / 2) + w[:3])
+            pts.append(world)
+        np.testing.assert_allclose(f["T_world_tcp"][:3], np.mean(tip_points, axis=0), atol=1e-12)
+        c = (tip_points[1] - tip_points[0]) / np.linalg.norm(tip_points[1] - tip_points[0])
+        np.testing.assert_allclose(f["closing"], c, atol=1e-9)
+        assert f["opening_width"] == pytest.approx((pts[1] @ c).min() - (pts[0] @ c).max(), abs=1e-12)

@@ -37,7 +37,7 @@ def _plane_lines(scene) -> list[str]:
 
 
 def cmd_segment(args) -> int:
-    source, _ = scene_input(**input_keywords(args, "the scene cloud"))
+    source, _, notes = scene_input(**input_keywords(args, "the scene cloud"))
     settings = given(args, "cluster_tolerance", "min_cluster_size", "table_clearance", "voxel_size", "seed")
     if isinstance(source, CameraView):
         scene = segment_view(source, known_plane(args), _core.SegmentationSettings(**settings))
@@ -45,6 +45,7 @@ def cmd_segment(args) -> int:
     else:
         points, viewpoints = source
         scene = segment_scene(points, viewpoints, known_plane(args), **settings)
+    scene.notes[:0] = notes
     if args.completion:
         scene.complete()
     for note in scene.notes:

@@ -261,8 +261,9 @@ class GraspModel:
         chosen = select_types(self.types, types)
         t0 = time.perf_counter()
         # Phase 1: the scene (support plane, objects) and the targets.
-        source, name = scene_input(cloud, depth, intrinsics, depth_scale, camera_pose, viewpoints)
+        source, name, notes = scene_input(cloud, depth, intrinsics, depth_scale, camera_pose, viewpoints)
         scene = segment_query(source, checked_plane(plane), opts, self.features)
+        scene.notes[:0] = notes
         targets = scene.select(target)
         t_segment = time.perf_counter() - t0
         # Phases 2-3: features, query densities, sampling, ranking and annealing per target, ranked together.

@@ -173,8 +173,16 @@ def organized_file_view(loaded, camera_pose=None) -> CameraView | None:
         raise
 
 
+# What scene_input says when an organized file is taken as points (the scene's notes).
+NOT_A_CAMERA_VIEW = (
+    "{path}: organized, but no camera's image in its frame (no VIEWPOINT with the camera's optical-frame pose, "
+    "no --camera-pose): segmented as points, not in image space"
+)
+
+
 def scene_input(cloud=None, depth=None, intrinsics=None, depth_scale=None, camera_pose=None, viewpoints=None):
-    """(source, name) of a synthesis' or segmentation's input: source one camera's view (a CameraView: a depth image
+    """(source, name, notes) of a synthesis' or segmentation's input (notes: what the scene should tell its user,
+    e.g. NOT_A_CAMERA_VIEW): source one camera's view (a CameraView: a depth image
     with its intrinsics, an organized (H, W, 3) array, or an organized cloud file, organized_file_view) or a cloud
     (points (N, 3), viewpoints) in the world frame (a file's own viewpoints unless `viewpoints` are given; with
     camera_pose, points given in that camera's frame are mapped to the world and the camera is their viewpoint).
@@ -198,14 +206,15 @@ def scene_input(cloud=None, depth=None, intrinsics=None, depth_scale=None, camer
         view, name = organized_file_view(loaded, camera_pose), str(cloud)
         if view is None:
             points, file_viewpoints = np.asarray(loaded.points), _file_viewpoints(loaded)
-            return in_world(points, file_viewpoints if viewpoints is None else viewpoints, camera_pose), name
+            notes = [NOT_A_CAMERA_VIEW.format(path=cloud)] if loaded.height > 1 else []
+            return in_world(points, file_viewpoints if viewpoints is None else viewpoints, camera_pose), name, notes
     elif _ndim(cloud) == 3:
         view, name = organized_view(cloud, camera_pose), "<organized cloud>"
     else:
-        return in_world(as_points(cloud), viewpoints, camera_pose), "<array>"
+        return in_world(as_points(cloud), viewpoints, camera_pose), "<array>", []
     if viewpoints is not None:
         raise ValueError("viewpoints: a camera view's viewpoint is its camera (camera_pose); give no viewpoints")
-    return view, name
+    return view, name, []
 
 
 def _ndim(cloud) -> int:

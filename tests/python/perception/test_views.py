@@ -10,6 +10,7 @@ from graspmix import _core
 from graspmix.cli.main import main
 from graspmix.io import data_path
 from graspmix.perception import depth_view, organized_view, read_depth, scene_input, segment_scene, segment_view
+from graspmix.perception.views import NOT_A_CAMERA_VIEW
 from graspmix.sim import scene_camera, scenes
 from PIL import Image
 from scipy.spatial.transform import Rotation
@@ -204,7 +205,8 @@ def test_organized_pcd_written_by_acquire_is_the_cameras_view(tmp_path, capsys):
     assert main(["acquire", "--scene", str(scene), "--out", str(pcd)]) == 0
     loaded = _core.load_cloud(str(pcd))
     assert (loaded.width, loaded.height) == (640, 480) and loaded.has_viewpoint
-    source, _ = scene_input(str(pcd))
+    source, _, notes = scene_input(str(pcd))
+    assert notes == []
     acq = scene_camera.acquire_scene(scenes.SceneSpec.load(str(scene)), views=1, noise=False, seed=0, keep="scene")
     cam = acq.cameras[0]
     T = [np.asarray(_core.camera_pose_matrix(p)) for p in (source.pose, cam.pose())]  # q and -q: one rotation
@@ -216,7 +218,12 @@ def test_organized_pcd_written_by_acquire_is_the_cameras_view(tmp_path, capsys):
     # the same grid with no VIEWPOINT: world-frame points, no camera's image
     bare = tmp_path / "bare.pcd"
     _core.save_cloud(str(bare), np.asarray(loaded.organized()).reshape(-1, 3), width=640, height=480)
-    points, viewpoints = scene_input(str(bare))[0]
+    (points, viewpoints), _, notes = scene_input(str(bare))
     assert len(points) == len(loaded.points) and viewpoints is None
+    assert notes == [NOT_A_CAMERA_VIEW.format(path=bare)]
+    model = graspmix.GraspModel.load(graspmix.default_model_path())
+    opts = graspmix.SynthesisOptions().updated({"sampling.n_samples": 20})
+    grasps = model.synthesize(str(bare), opts, viewpoints=cam.eye, target="largest")
+    assert grasps.scene.notes[0] == notes[0]  # the user is told
     assert main(["synthesize", "--cloud", str(pcd), f"--camera-pose={','.join(map(str, cam.pose()))}"]) == 2
     assert "VIEWPOINT" in capsys.readouterr().err

@@ -338,21 +338,27 @@ void bind_visibility(py::module_& m) {
   m.def(
       "segment_organized",
       [](const py::object& points, const py::object& pose, const py::object& plane, const py::object& height,
-         const py::object& width, const py::object& settings, const py::kwargs& kw) {
+         const py::object& width, const std::optional<PinholeCamera>& camera, const py::object& settings,
+         const py::kwargs& kw) {
         int h = 0, w = 0;
         const Vec3Array P = to_organized(points, height, width, h, w);
         const Eigen::Isometry3d T = to_camera_pose(pose, "T_world_camera");
         std::optional<Eigen::Vector4d> known;
         if (!plane.is_none()) known = Eigen::Vector4d(to_vector(plane, "segment_organized: plane", 4));
         const auto s = settings_from<SegmentationSettings>(settings, kw, "segment_organized");
+        if (camera && (camera->height() != h || camera->width() != w))
+          throw py::value_error("segment_organized: camera is " + std::to_string(camera->width()) + " x " +
+                                std::to_string(camera->height()) + ", the cloud " + std::to_string(w) + " x " +
+                                std::to_string(h));
         py::gil_scoped_release release;
-        return segment_organized(P, h, w, T, s, known);
+        return camera ? segment_organized(P, *camera, T, s, known) : segment_organized(P, h, w, T, s, known);
       },
       py::arg("points"), py::arg("T_world_camera"), py::arg("plane") = py::none(), py::kw_only(),
-      py::arg("height") = py::none(), py::arg("width") = py::none(), py::arg("settings") = py::none(),
+      py::arg("height") = py::none(), py::arg("width") = py::none(), py::arg("camera") = py::none(),
+      py::arg("settings") = py::none(),
       ("The support plane and the objects of an organized cloud in the sensor frame (x right, y down, z forward;\n"
        "NaN = no return), (H, W, 3) or (H * W, 3) with height and width, from a camera posed at T_world_camera: its\n"
-       "intrinsics fitted, then as segment_depth.\n" +
+       "intrinsics fitted (or `camera`, a PinholeCamera fitted already), then as segment_depth.\n" +
        settings_doc<SegmentationSettings>())
           .c_str());
 }

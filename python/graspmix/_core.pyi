@@ -4041,11 +4041,11 @@ def segment_depth(depth: typing.Any, camera: PinholeCamera, T_world_camera: typi
       image_stride = 0: px: segment_depth's block side, 0 = the largest within half a voxel_size at the median depth
       plane_image_stride = 4: px: segment_depth's block side for the support plane's search (at most image_stride: those)
     """
-def segment_organized(points: typing.Any, T_world_camera: typing.Any, plane: typing.Any = None, *, height: typing.Any = None, width: typing.Any = None, settings: typing.Any = None, **kwargs) -> Segmentation:
+def segment_organized(points: typing.Any, T_world_camera: typing.Any, plane: typing.Any = None, *, height: typing.Any = None, width: typing.Any = None, camera: PinholeCamera | None = None, settings: typing.Any = None, **kwargs) -> Segmentation:
     """
     The support plane and the objects of an organized cloud in the sensor frame (x right, y down, z forward;
     NaN = no return), (H, W, 3) or (H * W, 3) with height and width, from a camera posed at T_world_camera: its
-    intrinsics fitted, then as segment_depth.
+    intrinsics fitted (or `camera`, a PinholeCamera fitted already), then as segment_depth.
     Settings: settings= a SegmentationSettings (None: its defaults), and/or its fields as keywords,
     which override it (an unknown keyword is a ValueError):
       voxel_size = 0.003: m: voxel-grid leaf size, 0 = off (CleanupSettings')

@@ -227,17 +227,41 @@ Segmentation segment_depth(const Eigen::Ref<const DepthImage>& depth, const Pinh
   return segment_image(camera.back_project(depth, "depth"), depth, camera, T_world_camera, settings, plane, t0, n);
 }
 
+namespace {
+
+/// An organized cloud's depth image and its number of returns, checked (the row count, a rigid pose, a return).
+struct OrganizedInput {
+  DepthImage depth;
+  std::int64_t n_returns = 0;
+};
+
+OrganizedInput checked_organized(const Eigen::Ref<const Vec3Array>& points, int height, int width,
+                                 const Eigen::Isometry3d& T_world_camera) {
+  OrganizedInput in{depth_of_organized(points, height, width, "points")};
+  for (Eigen::Index r = 0; r < points.rows(); ++r) in.n_returns += points.row(r).allFinite() ? 1 : 0;
+  check_view(in.n_returns, T_world_camera, "points");
+  return in;
+}
+
+}  // namespace
+
 Segmentation segment_organized(const Eigen::Ref<const Vec3Array>& points, int height, int width,
                                const Eigen::Isometry3d& T_world_camera, const SegmentationSettings& settings,
                                const std::optional<Eigen::Vector4d>& plane, double max_fit_rms) {
   const auto t0 = Clock::now();
   detail::check_segmentation_settings(settings);
-  const DepthImage depth = depth_of_organized(points, height, width, "points");
-  std::int64_t n = 0;
-  for (Eigen::Index r = 0; r < points.rows(); ++r) n += points.row(r).allFinite() ? 1 : 0;
-  check_view(n, T_world_camera, "points");
+  const OrganizedInput in = checked_organized(points, height, width, T_world_camera);
   const PinholeFit fit = fit_pinhole(points, height, width, max_fit_rms, "points");
-  return segment_image(points, depth, fit.camera, T_world_camera, settings, plane, t0, n);
+  return segment_image(points, in.depth, fit.camera, T_world_camera, settings, plane, t0, in.n_returns);
+}
+
+Segmentation segment_organized(const Eigen::Ref<const Vec3Array>& points, const PinholeCamera& camera,
+                               const Eigen::Isometry3d& T_world_camera, const SegmentationSettings& settings,
+                               const std::optional<Eigen::Vector4d>& plane) {
+  const auto t0 = Clock::now();
+  detail::check_segmentation_settings(settings);
+  const OrganizedInput in = checked_organized(points, camera.height(), camera.width(), T_world_camera);
+  return segment_image(points, in.depth, camera, T_world_camera, settings, plane, t0, in.n_returns);
 }
 
 }  // namespace graspmix

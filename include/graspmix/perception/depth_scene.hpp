@@ -51,6 +51,13 @@ Segmentation segment_organized(const Eigen::Ref<const Vec3Array>& points, int he
                                const std::optional<Eigen::Vector4d>& plane = std::nullopt,
                                double max_fit_rms = VisibilitySettings{}.max_fit_rms);
 
+/// segment_organized with the intrinsics known (e.g. fitted once already, PinholeFit::camera): the cloud has
+/// camera.height() * camera.width() rows; each block's point is the mean of the cloud's own points. Throws
+/// std::invalid_argument as segment_organized does (but for the fit).
+Segmentation segment_organized(const Eigen::Ref<const Vec3Array>& points, const PinholeCamera& camera,
+                               const Eigen::Isometry3d& T_world_camera, const SegmentationSettings& settings = {},
+                               const std::optional<Eigen::Vector4d>& plane = std::nullopt);
+
 /// The block side (pixels) segment_depth uses for `depth`: settings' image_stride when > 0, else the largest
 /// block whose side at the median depth of the returns is within half a voxel_size (1 when voxel_size is 0).
 int image_stride(const Eigen::Ref<const DepthImage>& depth, const PinholeCamera& camera,

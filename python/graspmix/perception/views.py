@@ -141,7 +141,7 @@ def segment_view(view: CameraView, plane=None, settings=None):
     from .scene import Scene
 
     if view.organized is not None:
-        result = _core.segment_organized(view.organized, view.pose, plane, settings=settings)
+        result = _core.segment_organized(view.organized, view.pose, plane, camera=view.camera, settings=settings)
     else:
         result = _core.segment_depth(view.depth, view.camera, view.pose, plane, settings=settings)
     return Scene(result, view.position)

@@ -146,6 +146,11 @@ TEST(DepthScene, OrganizedCloudGivesTheDepthImagesScene) {
   ASSERT_EQ(a.objects.size(), b.objects.size());
   EXPECT_EQ(a.n_output, b.n_output);
   EXPECT_TRUE(a.points.isApprox(b.points, 1e-6));  // the fitted intrinsics reproduce the pixels' rays
+  // With the intrinsics known (fitted once, as a caller that checked the cloud already has them): the same scene.
+  const PinholeFit fit = fit_pinhole(S, kCam.height(), kCam.width());
+  const Segmentation c = segment_organized(S, fit.camera, kPose);
+  EXPECT_TRUE(c.plane.isApprox(b.plane, 0)) << c.plane.transpose() << " vs " << b.plane.transpose();
+  EXPECT_TRUE(c.points.isApprox(b.points, 0));
 }
 
 TEST(DepthScene, BlocksOfTheStrideAndTheAutomaticStride) {

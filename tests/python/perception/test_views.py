@@ -76,6 +76,9 @@ def test_organized_cloud_and_millimetre_png_give_the_same_scene(view):
     b = segment_view(organized_view(cam.pinhole().back_project(depth), cam.pose()))
     assert np.allclose(a.plane, b.plane, atol=1e-9) and len(a.objects) == len(b.objects)
     assert np.allclose(a.points, b.points, atol=1e-6)
+    with pytest.raises(ValueError, match="camera is 64 x 48, the cloud 640 x 480"):
+        small = _core.PinholeCamera(60, 60, 32, 24, 64, 48)
+        _core.segment_organized(cam.pinhole().back_project(depth), cam.pose(), camera=small)
     mm = read_depth(png)
     assert mm.dtype == np.uint16 and mm.shape == depth.shape
     c = segment_view(depth_view(png, cam.pinhole().K, cam.pose()))  # integers: millimetres by default

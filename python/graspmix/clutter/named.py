@@ -31,7 +31,7 @@ import numpy as np
 from ..experiment.log import CsvSchema
 from ..experiment.protocol import derive_seed
 from ..model.grasps import check_grasp
-from .protocol import clutter_protocol_from_json
+from .protocol import TIME_COLUMNS, clutter_protocol_from_json  # the same stages as a clearing round
 from .rounds import Plan
 
 MIN_TARGET_POINTS = 50  # observed points an object needs to be named (a few mm^2 of it are not a click)
@@ -74,7 +74,6 @@ RESULT_COLUMNS = (
     "grasp",
     "error",
 )
-TIME_COLUMNS = ("t_observe", "t_segment", "t_synthesis", "t_execution")
 _TEXT = frozenset({"mode", "method", "target_urdf", "point", "outcome", "lifted", "grasp", "error"})
 _FLOAT = frozenset({"max_moved", "lift_height", *TIME_COLUMNS})
 _ALL = KEY_COLUMNS + RESULT_COLUMNS + TIME_COLUMNS

@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..experiment.report import finite_json
+from ..experiment.report import command_block, finite_json, provenance_text
 from ..experiment.stats import RateCI, clustered_rate, wilson_ci
 from ..io import CLUTTER_SUMMARY_FORMAT
 from ..io.checks import quote
@@ -165,12 +165,10 @@ def named_blocks(summary: dict) -> list[tuple]:
             + f". {p['objects']} objects per scene from {Path(p['object_list']).name}; {p['views']} view(s), "
             f"{'with' if p['noise'] else 'no'} depth noise; grasps close {p['closing']}. The target is drawn "
             f"{summary['target_rule']}, and named as point:x,y,z, its observed point nearest the top centre of "
-            "that box; one attempt per target on the untouched scene. "
-            f"graspmix {prov.get('graspmix', '?')}, commit {prov.get('commit') or 'unknown'}.",
+            "that box; one attempt per target on the untouched scene. " + provenance_text(prov),
         ),
     ]
-    if prov.get("command"):
-        blocks.append(("code", prov["command"]))
+    blocks += command_block(prov)
     blocks += [
         ("h2", "The named object lifted"),
         (

@@ -18,7 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..experiment.report import finite_json, render_markdown
+from ..experiment.report import command_block, finite_json, provenance_text, render_markdown
 from ..experiment.stats import clustered_rate
 from ..io import CLUTTER_SUMMARY_FORMAT
 from ..io.checks import check_output_path, quote
@@ -161,11 +161,11 @@ def _blocks(summary: dict) -> list[tuple]:
             f"{'with' if p['noise'] else 'no'} depth noise; grasps close {p['closing']}. A round ends when the "
             "table is clear, after 2 failures in a row, or when the planner finds no grasp (VGN's rules)"
             + (f", or after {_limit(p)} attempts" if _limit(p) else "")
-            + f". graspmix {prov.get('graspmix', '?')}, commit {prov.get('commit') or 'unknown'}.",
+            + ". "
+            + provenance_text(prov),
         ),
     ]
-    if prov.get("command"):
-        blocks.append(("code", prov["command"]))
+    blocks += command_block(prov)
     blocks += [
         ("h2", "Grasp success rate (GSR) and declutter rate (DR)"),
         (

@@ -31,6 +31,16 @@ from .stats import mean_ci, paired_ttest
 REASONS = ("success", "not held", "no contact", "start in collision", "synthesis failed")
 
 
+def provenance_text(prov: dict) -> str:
+    """ "graspmix VERSION, commit HASH." of a run's provenance (its report's closing sentence)."""
+    return f"graspmix {prov.get('graspmix', '?')}, commit {prov.get('commit') or 'unknown'}."
+
+
+def command_block(prov: dict) -> list:
+    """The report block showing the command that made the run, when it was recorded."""
+    return [("code", prov["command"])] if prov.get("command") else []
+
+
 def finite_json(x):
     """JSON has no nan/inf: None for them."""
     if isinstance(x, float) and not math.isfinite(x):
@@ -320,12 +330,10 @@ def _blocks(summary: dict) -> list[tuple]:
             )
             + f"Clouds: {_clouds_text(proto)}, points within {1000 * syn['segmentation']['table_clearance']:.0f} mm "
             f"of the support plane dropped, the same for both methods. {_synthesis_text(syn)}{_noise_text(proto)}"
-            "graspmix "
-            f"{prov.get('graspmix', '?')}, commit {prov.get('commit') or 'unknown'}.",
+            + provenance_text(prov),
         ),
     ]
-    if prov.get("command"):
-        blocks.append(("code", prov["command"]))
+    blocks += command_block(prov)
     blocks += [
         ("h2", "Success rates and paired t-tests (GMM vs KDE)"),
         (

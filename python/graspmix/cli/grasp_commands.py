@@ -150,7 +150,6 @@ def cmd_synthesize(args: argparse.Namespace) -> int:
     grasps = model.synthesize(
         options=opts, plane=plane, target=args.target, approach_axis=axis, types=args.types, **given
     )
-    grasps.cloud = args.cloud or ""  # a depth image is no cloud to draw: `plot` then asks for --cloud
     t = grasps.timing
     source = args.cloud or args.depth
     print(f"{model.method} model '{model_path.name}' on {source}: {len(grasps.surface.points)} surface points")

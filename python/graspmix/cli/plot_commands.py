@@ -31,7 +31,9 @@ def add_parsers(sub) -> None:
     s = sub.add_parser("plot", help="draw a grasps file: the cloud, the table and the best grasps' hands")
     s.add_argument("--grasps", type=input_path, required=True, help="grasps file (.json, graspmix.grasps/1)")
     s.add_argument(
-        "--cloud", type=input_path, help="the cloud to draw (.pcd, .ply, .npy); default: the file's cloud, if it exists"
+        "--cloud",
+        type=input_path,
+        help="the cloud to draw (.pcd, .ply, .npy); default: the file's cloud or depth image, if it exists",
     )
     s.add_argument("--top", type=int_in(1), default=3, help="how many of the best grasps to draw (3)")
     s.add_argument("--png", type=output_file, help="write a picture (.png, .pdf, .svg): two views")

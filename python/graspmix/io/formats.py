@@ -164,6 +164,15 @@ _GRASPS = Obj(
         "evaluations": _COUNT,
         "rejected": _COUNT,
         "targets": Arr(_COUNT),
+        "view": Obj(
+            {
+                "depth": Str(nonempty=True),
+                "intrinsics": Tensor(1, (4,), "fx, fy, cx, cy"),
+                "depth_scale": Either(Num(lo=0.0), Null()),
+                "camera_pose": _POSE,
+            },
+            required=["depth", "intrinsics", "depth_scale", "camera_pose"],
+        ),
         "frames": Obj(
             {
                 "approach_axis": Tensor(1, (3,)),

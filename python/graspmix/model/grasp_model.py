@@ -37,7 +37,7 @@ from ..io.checks import (
     check_path_text,
     check_seed,
 )
-from ..perception import scene_input
+from ..perception import depth_record, scene_input
 from .demonstration import Demonstration
 from .grasp_types import (
     GraspType,
@@ -262,6 +262,8 @@ class GraspModel:
         t0 = time.perf_counter()
         # Phase 1: the scene (support plane, objects) and the targets.
         source, name, notes = scene_input(cloud, depth, intrinsics, depth_scale, camera_pose, viewpoints)
+        view = None if depth is None else depth_record(depth, source, depth_scale)
+        name = "" if view is not None else name  # the depth image is the view, not a cloud file
         scene = segment_query(source, checked_plane(plane), opts, self.features)
         scene.notes[:0] = notes
         targets = scene.select(target)
@@ -282,7 +284,7 @@ class GraspModel:
         timing = _stage_times(out.timing, t_segment, time.perf_counter() - t0)
         return GraspSet(
             out.grasps, self.hand_path, self.method, name, timing, out.surface, scene.plane, out.evaluations,
-            out.rejected, scene=scene, targets=targets, hand=self._hand,
+            out.rejected, scene=scene, targets=targets, hand=self._hand, view=view,
         )  # fmt: skip
 
     def synthesizer_settings(self, opts: SynthesisOptions) -> "_core.SynthesizerSettings":

@@ -178,6 +178,9 @@ class GraspSet:
     frame_settings: GraspFrameSettings = field(default_factory=GraspFrameSettings)
     fingertips: list = field(default_factory=list)  # the fingertip links the frames were made with
     hand: object = None  # the graspmix.Hand of hand_path (read when first needed)
+    # the depth image file the grasps were synthesised on, as synthesize(depth=...) read it: {"depth": path,
+    # "intrinsics": [fx, fy, cx, cy], "depth_scale": metres per unit or None, "camera_pose": [x, y, z, qx, qy, qz, qw]}
+    view: dict | None = None
 
     def __post_init__(self):
         for i, g in enumerate(self.grasps):
@@ -264,8 +267,7 @@ class GraspSet:
         hand, cloud = str(self.hand_path), self.cloud
         if base is not None:
             hand = relative_path(self.hand_path, base)
-            if cloud and Path(cloud).exists():
-                cloud = relative_path(Path(cloud), base)
+            cloud = _relative(cloud, base)
         return {
             "format": GRASPS_FORMAT,
             "hand": hand,
@@ -279,6 +281,7 @@ class GraspSet:
             "rejected": int(self.rejected),
             "targets": [int(t) for t in self.targets],
             "frames": {**self.frame_settings.to_json(), "fingertip_links": list(self.fingertips)},
+            **({} if self.view is None else {"view": {**self.view, "depth": _relative(self.view["depth"], base)}}),
         }
 
     def save(self, path: str | Path) -> None:
@@ -313,6 +316,9 @@ class GraspSet:
             **{k: tuple(v) if isinstance(v, list) else v for k, v in frames.items() if k in known}
         )
         plane = doc.get("plane")
+        view = doc.get("view")
+        if view is not None:
+            view = {**view, "depth": str(resolve_path(view["depth"], base))}
         return cls(
             doc["grasps"],
             resolve_path(doc["hand"], base),
@@ -325,7 +331,20 @@ class GraspSet:
             targets=list(doc.get("targets", [])),
             frame_settings=settings.checked(),
             fingertips=list(frames.get("fingertip_links", [])),
+            view=view,
         )
+
+    def view_points(self) -> np.ndarray | None:
+        """(N, 3) the objects' points (world frame) of the depth image the grasps were synthesised on (`view`), read
+        again from its file and segmented on the set's support plane (the library's default segmentation); None
+        without a view."""
+        if self.view is None:
+            return None
+        from ..perception.views import depth_view, segment_view
+
+        v = self.view
+        view = depth_view(v["depth"], v["intrinsics"], v["camera_pose"], v["depth_scale"])
+        return np.asarray(segment_view(view, self.plane).points, dtype=float)
 
     def plot(self, path: str | Path | None = None, cloud=None, **options):
         """Draws the cloud (cloud: a path or (N, 3) points; default: the synthesis' scene, else the file's
@@ -336,6 +355,11 @@ class GraspSet:
         if not _PLOTTER:  # the pictures' layer registers its plotter when it is first imported
             importlib.import_module("graspmix.viz")
         return _PLOTTER[0](self, path, cloud=cloud, **options)
+
+
+def _relative(name: str, base: Path) -> str:
+    """A file name written relative to `base` when it names an existing file (as given otherwise: "" or "<array>")."""
+    return relative_path(Path(name), base) if name and Path(name).exists() else name
 
 
 def _dumps_entries_one_line(doc: dict, key: str, allow_nan: bool = True) -> str:

@@ -18,11 +18,12 @@ from .scene import (
     parse_target,
     segment_scene,
 )
-from .views import CameraView, depth_view, organized_view, read_depth, scene_input, segment_view
+from .views import CameraView, depth_record, depth_view, organized_view, read_depth, scene_input, segment_view
 
 __all__ = [
     "CameraView",
     "scene_input",
+    "depth_record",
     "depth_view",
     "organized_view",
     "read_depth",

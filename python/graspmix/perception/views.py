@@ -217,6 +217,20 @@ def scene_input(cloud=None, depth=None, intrinsics=None, depth_scale=None, camer
     return view, name, []
 
 
+def depth_record(depth, view: CameraView, depth_scale=None) -> dict | None:
+    """What a GraspSet keeps of a depth image file so the view can be read again (GraspSet.view): its path, the
+    intrinsics fx, fy, cx, cy, the depth scale as given and the camera's pose; None for an array (no file)."""
+    if not isinstance(depth, (str, Path)):
+        return None
+    c = view.camera
+    return {
+        "depth": str(Path(depth).resolve()),
+        "intrinsics": [float(c.fx), float(c.fy), float(c.cx), float(c.cy)],
+        "depth_scale": None if depth_scale is None else float(depth_scale),
+        "camera_pose": [float(x) for x in view.pose],
+    }
+
+
 def _ndim(cloud) -> int:
     """The number of dimensions of an array-like, -1 for a ragged one (as_points then names the problem)."""
     try:

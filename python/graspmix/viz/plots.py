@@ -119,7 +119,8 @@ def _grasp_rows(grasps, top: int):
 
 def _cloud_points(grasps, cloud, plane) -> np.ndarray:
     """The points to draw: `cloud` (a path or (N, 3) points), else the synthesis' scene (its objects), else
-    the grasps file's cloud when it exists, else none; the support plane's points are dropped."""
+    the grasps file's depth image (its view) or cloud when it exists, else none; the support plane's points are
+    dropped."""
     if cloud is None:
         scene = getattr(grasps, "scene", None)
         if scene is not None:
@@ -128,9 +129,9 @@ def _cloud_points(grasps, cloud, plane) -> np.ndarray:
         if surface is not None:
             return np.asarray(surface.points, dtype=float)
         name = getattr(grasps, "cloud", "")
-        if not name or not Path(name).is_file():
+        cloud = grasps.view_points() if getattr(grasps, "view", None) is not None else name
+        if not isinstance(cloud, np.ndarray) and (not name or not Path(name).is_file()):
             return np.zeros((0, 3))
-        cloud = name
     points = np.asarray(load_points(cloud)[0], dtype=float)
     if points.ndim != 2 or points.shape[1] != 3:
         raise ValueError(f"plot_grasps: cloud must be (N, 3) points, got shape {points.shape}")

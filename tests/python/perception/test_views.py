@@ -13,6 +13,7 @@ from graspmix.perception import depth_view, organized_view, read_depth, scene_in
 from graspmix.perception.views import NOT_A_CAMERA_VIEW
 from graspmix.sim import scene_camera, scenes
 from PIL import Image
+from scipy.spatial import cKDTree
 from scipy.spatial.transform import Rotation
 
 
@@ -177,7 +178,36 @@ def test_cli_synthesize_and_segment_on_a_depth_png(view, tmp_path, capsys):
     out = tmp_path / "g.json"
     assert main(["synthesize", *flags, "--samples", "40", "--target", "largest", "--out", str(out)]) == 0
     grasps = graspmix.model.load_grasps(out)
-    assert len(grasps["grasps"]) == 40 and grasps["cloud"] == ""  # a depth image is no cloud to draw
+    assert len(grasps["grasps"]) == 40 and grasps["cloud"] == ""  # a depth image is no cloud: the file has its view
+    assert (tmp_path / grasps["view"]["depth"]).resolve() == png.resolve()  # relative to g.json's folder
+    assert grasps["view"]["depth_scale"] is None
+    np.testing.assert_allclose(grasps["view"]["intrinsics"], [c.fx, c.fy, c.cx, c.cy])
+    np.testing.assert_allclose(grasps["view"]["camera_pose"], cam.pose())
+
+
+def test_a_depth_synthesis_file_draws_its_objects(view, tmp_path, capsys):
+    """grasps.json of a depth image keeps the view; plot reads the image again and draws the objects on the table:
+    every drawn point lies within a voxel of the image's own returns (back-projected here by numpy and scipy),
+    above the support plane."""
+    _, cam, depth, png = view
+    c = cam.pinhole()
+    model = graspmix.GraspModel.load(graspmix.default_model_path("gmm"))
+    opts = graspmix.SynthesisOptions(sampling=graspmix.SamplingSettings(n_samples=40))
+    g = model.synthesize(depth=str(png), intrinsics=(c.fx, c.fy, c.cx, c.cy), camera_pose=cam.pose(), options=opts)
+    g.save(tmp_path / "g.json")
+    loaded = graspmix.GraspSet.load(tmp_path / "g.json")
+    drawn = loaded.view_points()
+    v, u = np.nonzero(np.isfinite(depth) & (depth > 0))
+    z = np.round(depth[v, u] * 1000) / 1000  # the PNG's millimetres
+    sensor = np.column_stack([(u - c.cx) * z / c.fx, (v - c.cy) * z / c.fy, z])
+    pose = np.asarray(cam.pose())
+    world = Rotation.from_quat(pose[3:]).apply(sensor) + pose[:3]
+    gap, _ = cKDTree(world).query(drawn)
+    assert len(drawn) > 500 and gap.max() < 0.003
+    plane = np.asarray(loaded.plane)
+    assert np.all(drawn @ plane[:3] + plane[3] > 0)
+    assert main(["plot", "--grasps", str(tmp_path / "g.json"), "--png", str(tmp_path / "p.png")]) == 0
+    assert (tmp_path / "p.png").stat().st_size > 0
 
 
 @pytest.mark.parametrize(

@@ -30,14 +30,33 @@ struct Blocks {
   Eigen::VectorXi pixels;
 };
 
+/// Which blocks block_points keeps: those whose point lies more than `height` above `plane` (world frame), or all
+/// without a plane; `seen` counts every block with a return, kept or not.
+struct BlockFilter {
+  const Eigen::Vector4d* plane = nullptr;
+  double height = 0;
+  Eigen::Index seen = 0;
+};
+
 Blocks block_points(const Eigen::Ref<const Vec3Array>& S, int height, int width, int stride, double near,
-                    const Eigen::Isometry3d& T) {
+                    const Eigen::Isometry3d& T, BlockFilter& filter) {
+  // A block's height above the plane from its sensor-frame point: n . (T p) + d = (R^T n) . p + (n . t + d).
+  Eigen::Vector3d n_sensor = Eigen::Vector3d::Zero();
+  double d_sensor = 1;  // without a plane every block is "above"
+  if (filter.plane != nullptr) {
+    n_sensor = T.linear().transpose() * filter.plane->head<3>();
+    d_sensor = filter.plane->head<3>().dot(T.translation()) + (*filter.plane)[3] - filter.height;
+  }
+  const auto keep = [&](const Eigen::Vector3d& p) { return n_sensor.dot(p) + d_sensor > 0; };
   if (stride == 1) {  // each return its own block
     Blocks b{Vec3Array(S.rows(), 3), Eigen::VectorXi(S.rows())};
     Eigen::Index n = 0;
     for (Eigen::Index r = 0; r < S.rows(); ++r) {
       if (!S.row(r).allFinite()) continue;
-      b.points.row(n) = (T * S.row(r).transpose()).transpose();
+      ++filter.seen;
+      const Eigen::Vector3d p = S.row(r).transpose();
+      if (!keep(p)) continue;
+      b.points.row(n) = (T * p).transpose();
       b.pixels[n++] = static_cast<int>(r);
     }
     b.points.conservativeResize(n, 3);
@@ -73,7 +92,10 @@ Blocks block_points(const Eigen::Ref<const Vec3Array>& S, int height, int width,
         sum += S.row(r).transpose();
         if (count++ == 0) b.pixels[n] = static_cast<int>(r);
       }
-      b.points.row(n++) = (T * (sum / count)).transpose();  // the median's own return is always counted
+      ++filter.seen;
+      const Eigen::Vector3d p = sum / count;  // the median's own return is always counted
+      if (!keep(p)) continue;
+      b.points.row(n++) = (T * p).transpose();
     }
   b.points.conservativeResize(n, 3);
   b.pixels.conservativeResize(n);
@@ -150,26 +172,30 @@ Segmentation segment_image(const Eigen::Ref<const Vec3Array>& S, const Eigen::Re
   const int H = camera.height(), W = camera.width(), fine = image_stride(depth, camera, s);
   const bool two_levels = (plane || s.find_plane) && s.plane_image_stride > fine;
   auto t_step = Clock::now();
-  const Blocks blocks = block_points(S, H, W, fine, s.voxel_size, T);
   Blocks down;
   std::size_t dropped = 0, on_table = 0;
   if (two_levels) {
     // The objects from the fine blocks above the table, the table (for the table-noise rule's statistic) from the
     // coarse ones on it; each voxelised on its own, so no voxel blends an object's foot with the table.
-    const Blocks coarse = voxelised(block_points(S, H, W, s.plane_image_stride, s.voxel_size, T), s.voxel_size);
+    BlockFilter all;
+    const Blocks coarse = voxelised(block_points(S, H, W, s.plane_image_stride, s.voxel_size, T, all), s.voxel_size);
     out.times.voxel += since(t_step);
     detail::search_support(coarse.points, cams, s, plane, out);
     t_step = Clock::now();
     if (out.plane_found || out.plane_given) {
-      const Blocks up = by_height(blocks, out.plane, s.table_clearance, true);
+      BlockFilter above{&out.plane, s.table_clearance};  // only the fine blocks above the table are made
+      const Blocks up = block_points(S, H, W, fine, s.voxel_size, T, above);
       const Blocks on = by_height(coarse, out.plane, s.table_clearance, false);
       down = joined(voxelised(up, s.voxel_size), on);
       // n_plane counts the fine blocks on the table, not the coarse ones that stand in for them
-      dropped = static_cast<std::size_t>(blocks.points.rows() - up.points.rows());
+      dropped = static_cast<std::size_t>(above.seen - up.points.rows());
       on_table = static_cast<std::size_t>(on.points.rows());
     }
   }
-  if (!out.plane_found && !out.plane_given) down = voxelised(blocks, s.voxel_size);
+  if (!out.plane_found && !out.plane_given) {
+    BlockFilter all;
+    down = voxelised(block_points(S, H, W, fine, s.voxel_size, T, all), s.voxel_size);
+  }
   out.n_after_voxel = static_cast<std::size_t>(down.points.rows());
   out.times.voxel += since(t_step);
   t_step = Clock::now();

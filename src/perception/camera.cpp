@@ -137,6 +137,7 @@ PinholeFit fit_pinhole(const Eigen::Ref<const Vec3Array>& points, int height, in
   }
   // x / z against the column and y / z against the row of every valid pixel.
   std::vector<double> ax, ay, us, vs;
+  for (auto* v : {&ax, &ay, &us, &vs}) v->reserve(static_cast<std::size_t>(points.rows()));
   std::vector<bool> column_seen(static_cast<std::size_t>(width)), row_seen(static_cast<std::size_t>(height));
   int n_columns = 0, n_rows = 0;
   for (int v = 0; v < height; ++v)

@@ -78,22 +78,27 @@ Vec3Array observed_normals(const Eigen::Ref<const Vec3Array>& P, const Eigen::Ve
   }
   const UniformGrid grid(P, lo, radius, dims, cells < 1e6 ? UniformGrid::Layout::Dense : UniformGrid::Layout::Sparse);
   Vec3Array N(P.rows(), 3);
-  std::vector<int> nn;
-  std::vector<double> d2;
-  for (int i = 0; i < grid.size(); ++i) {
-    grid.neighbours(i, radius * radius, nn, d2);
-    Eigen::Vector3d normal = (viewpoint - grid.point(i)).normalized();  // too few neighbours: face the camera
-    if (nn.size() >= 3) {
-      Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-      for (const int j : nn) mean += grid.point(j);
-      mean /= static_cast<double>(nn.size());
-      Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
-      for (const int j : nn) C += (grid.point(j) - mean) * (grid.point(j) - mean).transpose();
-      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(C);
-      normal = es.eigenvectors().col(0);
-      if (normal.dot(viewpoint - grid.point(i)) < 0) normal = -normal;
+  // Each point's normal on its own: the points in parallel, each thread with its own neighbour lists.
+#pragma omp parallel
+  {
+    std::vector<int> nn;
+    std::vector<double> d2;
+#pragma omp for schedule(static)
+    for (int i = 0; i < grid.size(); ++i) {
+      grid.neighbours(i, radius * radius, nn, d2);
+      Eigen::Vector3d normal = (viewpoint - grid.point(i)).normalized();  // too few neighbours: face the camera
+      if (nn.size() >= 3) {
+        Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+        for (const int j : nn) mean += grid.point(j);
+        mean /= static_cast<double>(nn.size());
+        Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
+        for (const int j : nn) C += (grid.point(j) - mean) * (grid.point(j) - mean).transpose();
+        const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(C);
+        normal = es.eigenvectors().col(0);
+        if (normal.dot(viewpoint - grid.point(i)) < 0) normal = -normal;
+      }
+      N.row(grid.row(i)) = normal.transpose();
     }
-    N.row(grid.row(i)) = normal.transpose();
   }
   return N;
 }

@@ -7,7 +7,6 @@
 #include <numeric>
 #include <stdexcept>
 
-#include <pcl/filters/statistical_outlier_removal.h>
 #include <pcl/sample_consensus/ransac.h>
 #include <pcl/sample_consensus/sac_model_plane.h>
 #include <pcl/search/kdtree.h>
@@ -259,12 +258,40 @@ pcl::Indices select_within_plane(const Cloud::ConstPtr& cloud, const Eigen::Vect
 }
 
 pcl::Indices statistical_inliers(const Cloud::ConstPtr& cloud, int k, double std_ratio) {
-  pcl::StatisticalOutlierRemoval<pcl::PointXYZ> sor;
-  sor.setMeanK(k);
-  sor.setStddevMulThresh(std_ratio);
-  sor.setInputCloud(cloud);
+  // pcl::StatisticalOutlierRemoval's two passes on the same kd-tree (unsorted results, as PCL builds it), its
+  // searches in parallel: each point's mean distance to its k nearest is its own; the statistic and the cut are
+  // PCL's arithmetic, so the same points are kept.
+  const auto n = static_cast<int>(cloud->size());
+  pcl::search::KdTree<pcl::PointXYZ> tree(false);
+  tree.setInputCloud(cloud);
+  std::vector<float> distances(static_cast<std::size_t>(n), 0.0f);
+  int valid = 0;
+#pragma omp parallel reduction(+ : valid)
+  {
+    pcl::Indices nn(static_cast<std::size_t>(k) + 1);
+    std::vector<float> d2(static_cast<std::size_t>(k) + 1);
+#pragma omp for schedule(static)
+    for (int i = 0; i < n; ++i) {
+      const auto& p = (*cloud)[static_cast<std::size_t>(i)];
+      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) continue;
+      if (tree.nearestKSearch(i, k + 1, nn, d2) == 0) continue;
+      double sum = 0.0;
+      for (int j = 1; j < k + 1; ++j) sum += std::sqrt(d2[static_cast<std::size_t>(j)]);  // j = 0: the point
+      distances[static_cast<std::size_t>(i)] = static_cast<float>(sum / k);
+      ++valid;
+    }
+  }
+  double sum = 0, sq_sum = 0;  // in PCL's order and precision: sums in double, each square in float
+  for (const float d : distances) {
+    sum += d;
+    sq_sum += d * d;
+  }
+  const double mean = sum / static_cast<double>(valid);
+  const double variance = (sq_sum - sum * sum / static_cast<double>(valid)) / (static_cast<double>(valid) - 1);
+  const double threshold = mean + std_ratio * std::sqrt(variance);
   pcl::Indices kept;
-  sor.filter(kept);
+  for (int i = 0; i < n; ++i)
+    if (!(distances[static_cast<std::size_t>(i)] > threshold)) kept.push_back(i);
   return kept;
 }
 

@@ -49,7 +49,7 @@ std::size_t count_within_plane(const Cloud::ConstPtr& cloud, const Eigen::Vector
 pcl::Indices select_within_plane(const Cloud::ConstPtr& cloud, const Eigen::VectorXf& coeffs, double threshold);
 
 /// Indices of the points PCL's StatisticalOutlierRemoval keeps (mean distance to the k nearest within
-/// mean + std_ratio * std over the cloud).
+/// mean + std_ratio * std over the cloud), in increasing order: PCL's filter with its searches in parallel.
 pcl::Indices statistical_inliers(const Cloud::ConstPtr& cloud, int k, double std_ratio);
 
 }  // namespace graspmix::detail

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include <pcl/filters/statistical_outlier_removal.h>
 #include <pcl/filters/voxel_grid.h>
 #include <pcl/sample_consensus/sac_model_plane.h>
 #include <pcl/search/kdtree.h>
@@ -283,6 +284,33 @@ TEST(EuclideanClusters, FarStrayPointFallsBackToPcl) {
   for (const auto& c : mine) n += c.size();
   EXPECT_EQ(n, cloud->size());
   EXPECT_EQ(mine.back(), std::vector<int>{static_cast<int>(cloud->size()) - 1});
+}
+
+// The parallel outlier filter against pcl::StatisticalOutlierRemoval itself: the same points kept, on a scene's
+// surfaces, on blobs in scattered noise and with duplicated points.
+TEST(StatisticalInliers, MatchPclOutlierRemoval) {
+  const Scene scene = make_scene(5);
+  detail::Cloud::Ptr surfaces(new detail::Cloud);
+  for (Eigen::Index r = 0; r < scene.points.rows(); r += 4)
+    surfaces->push_back(pcl::PointXYZ(static_cast<float>(scene.points(r, 0)), static_cast<float>(scene.points(r, 1)),
+                                      static_cast<float>(scene.points(r, 2))));
+  detail::Cloud::Ptr doubled = blobs(6, 4, 300, 400);
+  for (std::size_t i = 0; i < 200; ++i) doubled->push_back((*doubled)[i * 3]);
+  for (const auto& cloud : {surfaces, blobs(7, 12, 400, 3000), doubled}) {
+    for (const int k : {1, 8, 20}) {
+      for (const double ratio : {0.5, 2.0}) {
+        pcl::StatisticalOutlierRemoval<pcl::PointXYZ> sor;
+        sor.setMeanK(k);
+        sor.setStddevMulThresh(ratio);
+        sor.setInputCloud(cloud);
+        pcl::Indices expected;
+        sor.filter(expected);
+        ASSERT_LT(expected.size(), cloud->size());  // something is dropped: the test can tell
+        EXPECT_EQ(detail::statistical_inliers(cloud, k, ratio), expected)
+            << cloud->size() << " points, k " << k << ", ratio " << ratio;
+      }
+    }
+  }
 }
 
 // fit_plane's cheaper point test: the same plane and inliers as PCL's own RANSAC and plane model, on a tilted

@@ -215,6 +215,17 @@ void bind_perception(py::module_& m) {
              "px: segment_depth's block side, 0 = the largest within half a voxel_size at the median depth")
       .field("plane_image_stride", &SegmentationSettings::plane_image_stride,
              "px: segment_depth's block side for the support plane's search (at most image_stride: those)")
+      .property(
+          "workspace", [](const SegmentationSettings& s) { return py::cast(s.workspace); },
+          [](SegmentationSettings& s, const py::object& v) {
+            const Eigen::VectorXd w = v.is_none() ? Eigen::VectorXd() : to_vector(v, "workspace");
+            if (w.size() != 0 && w.size() != 6) {
+              throw py::value_error("workspace: expected [] or [x_min, y_min, z_min, x_max, y_max, z_max], got " +
+                                    std::to_string(w.size()) + " numbers");
+            }
+            s.workspace.assign(w.data(), w.data() + w.size());
+          },
+          "m: the world-frame box [x_min, y_min, z_min, x_max, y_max, z_max] the input is cropped to first; [] = none")
       .done();
 
   py::class_<SceneObject>(m, "SceneObject", "One object of a segmented scene: a Euclidean cluster above the plane.")

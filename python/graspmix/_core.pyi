@@ -659,9 +659,10 @@ class SegmentationSettings:
       visibility_resolution = 0.005: rad: the bin of Segmentation.visibility's range images (VisibilitySettings.angular_resolution)
       image_stride = 0: px: segment_depth's block side, 0 = the largest within half a voxel_size at the median depth
       plane_image_stride = 4: px: segment_depth's block side for the support plane's search (at most image_stride: those)
+      workspace = []: m: the world-frame box [x_min, y_min, z_min, x_max, y_max, z_max] the input is cropped to first; [] = none
     """
     __hash__: typing.ClassVar[None] = None
-    _fields: typing.ClassVar[tuple] = ('voxel_size', 'plane_distance', 'plane_max_iterations', 'seed', 'find_plane', 'plane_candidates', 'plane_min_fraction', 'plane_behind_distance', 'plane_max_behind_fraction', 'plane_margin', 'table_clearance', 'remove_outliers', 'outlier_neighbours', 'outlier_std_ratio', 'cluster_tolerance', 'min_cluster_size', 'max_cluster_size', 'merge_seen_through', 'merge_through_fraction', 'merge_inset', 'join_occluded', 'join_max_gap', 'join_seen_margin', 'join_max_size', 'visibility_tolerance', 'visibility_resolution', 'image_stride', 'plane_image_stride')
+    _fields: typing.ClassVar[tuple] = ('voxel_size', 'plane_distance', 'plane_max_iterations', 'seed', 'find_plane', 'plane_candidates', 'plane_min_fraction', 'plane_behind_distance', 'plane_max_behind_fraction', 'plane_margin', 'table_clearance', 'remove_outliers', 'outlier_neighbours', 'outlier_std_ratio', 'cluster_tolerance', 'min_cluster_size', 'max_cluster_size', 'merge_seen_through', 'merge_through_fraction', 'merge_inset', 'join_occluded', 'join_max_gap', 'join_seen_margin', 'join_max_size', 'visibility_tolerance', 'visibility_resolution', 'image_stride', 'plane_image_stride', 'workspace')
     def __copy__(self) -> SegmentationSettings:
         ...
     def __deepcopy__(self, memo: typing.Any) -> SegmentationSettings:
@@ -678,7 +679,7 @@ class SegmentationSettings:
     @typing.overload
     def __init__(self, **kwargs) -> None:
         """
-        Keyword constructor: any of the fields (voxel_size, plane_distance, plane_max_iterations, seed, find_plane, plane_candidates, plane_min_fraction, plane_behind_distance, plane_max_behind_fraction, plane_margin, table_clearance, remove_outliers, outlier_neighbours, outlier_std_ratio, cluster_tolerance, min_cluster_size, max_cluster_size, merge_seen_through, merge_through_fraction, merge_inset, join_occluded, join_max_gap, join_seen_margin, join_max_size, visibility_tolerance, visibility_resolution, image_stride, plane_image_stride); the others keep their defaults.
+        Keyword constructor: any of the fields (voxel_size, plane_distance, plane_max_iterations, seed, find_plane, plane_candidates, plane_min_fraction, plane_behind_distance, plane_max_behind_fraction, plane_margin, table_clearance, remove_outliers, outlier_neighbours, outlier_std_ratio, cluster_tolerance, min_cluster_size, max_cluster_size, merge_seen_through, merge_through_fraction, merge_inset, join_occluded, join_max_gap, join_seen_margin, join_max_size, visibility_tolerance, visibility_resolution, image_stride, plane_image_stride, workspace); the others keep their defaults.
         """
     def __repr__(self) -> str:
         ...
@@ -907,6 +908,14 @@ class SegmentationSettings:
         """
     @voxel_size.setter
     def voxel_size(self, arg0: typing.Any) -> None:
+        ...
+    @property
+    def workspace(self) -> typing.Any:
+        """
+        m: the world-frame box [x_min, y_min, z_min, x_max, y_max, z_max] the input is cropped to first; [] = none
+        """
+    @workspace.setter
+    def workspace(self, arg1: typing.Any) -> None:
         ...
 class SceneObject:
     """
@@ -4040,6 +4049,7 @@ def segment_depth(depth: typing.Any, camera: PinholeCamera, T_world_camera: typi
       visibility_resolution = 0.005: rad: the bin of Segmentation.visibility's range images (VisibilitySettings.angular_resolution)
       image_stride = 0: px: segment_depth's block side, 0 = the largest within half a voxel_size at the median depth
       plane_image_stride = 4: px: segment_depth's block side for the support plane's search (at most image_stride: those)
+      workspace = []: m: the world-frame box [x_min, y_min, z_min, x_max, y_max, z_max] the input is cropped to first; [] = none
     """
 def segment_organized(points: typing.Any, T_world_camera: typing.Any, plane: typing.Any = None, *, height: typing.Any = None, width: typing.Any = None, camera: PinholeCamera | None = None, settings: typing.Any = None, **kwargs) -> Segmentation:
     """
@@ -4076,6 +4086,7 @@ def segment_organized(points: typing.Any, T_world_camera: typing.Any, plane: typ
       visibility_resolution = 0.005: rad: the bin of Segmentation.visibility's range images (VisibilitySettings.angular_resolution)
       image_stride = 0: px: segment_depth's block side, 0 = the largest within half a voxel_size at the median depth
       plane_image_stride = 4: px: segment_depth's block side for the support plane's search (at most image_stride: those)
+      workspace = []: m: the world-frame box [x_min, y_min, z_min, x_max, y_max, z_max] the input is cropped to first; [] = none
     """
 def segment_scene(points: typing.Any, viewpoints: typing.Any = None, plane: typing.Any = None, *, settings: typing.Any = None, **kwargs) -> Segmentation:
     """
@@ -4110,6 +4121,7 @@ def segment_scene(points: typing.Any, viewpoints: typing.Any = None, plane: typi
       visibility_resolution = 0.005: rad: the bin of Segmentation.visibility's range images (VisibilitySettings.angular_resolution)
       image_stride = 0: px: segment_depth's block side, 0 = the largest within half a voxel_size at the median depth
       plane_image_stride = 4: px: segment_depth's block side for the support plane's search (at most image_stride: those)
+      workspace = []: m: the world-frame box [x_min, y_min, z_min, x_max, y_max, z_max] the input is cropped to first; [] = none
     """
 def sim_execute(hand: Hand, object: SimObject, T_world_object: typing.Any, T_world_wrist: typing.Any, pregrasp: typing.Any, grasp: typing.Any, settings: typing.Any = None, **kwargs) -> SimResult:
     """

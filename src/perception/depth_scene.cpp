@@ -33,6 +33,7 @@ struct Blocks {
 /// Which blocks block_points keeps: those whose point lies more than `height` above `plane` (world frame), or all
 /// without a plane; `seen` counts every block with a return, kept or not.
 struct BlockFilter {
+  const SegmentationSettings& settings;  ///< its workspace: blocks outside are neither kept nor seen
   const Eigen::Vector4d* plane = nullptr;
   double height = 0;
   Eigen::Index seen = 0;
@@ -47,16 +48,24 @@ Blocks block_points(const Eigen::Ref<const Vec3Array>& S, int height, int width,
     n_sensor = T.linear().transpose() * filter.plane->head<3>();
     d_sensor = filter.plane->head<3>().dot(T.translation()) + (*filter.plane)[3] - filter.height;
   }
-  const auto keep = [&](const Eigen::Vector3d& p) { return n_sensor.dot(p) + d_sensor > 0; };
+  const bool crop = !filter.settings.workspace.empty();
+  // Whether the block of sensor-frame point p is kept, its world point in `world`: inside the workspace (counted
+  // as seen) and above the plane.
+  const auto keep = [&](const Eigen::Vector3d& p, Eigen::Vector3d& world) {
+    if (crop && !detail::in_workspace(filter.settings, world = T * p)) return false;
+    ++filter.seen;
+    if (!(n_sensor.dot(p) + d_sensor > 0)) return false;
+    if (!crop) world = T * p;
+    return true;
+  };
+  Eigen::Vector3d world;
   if (stride == 1) {  // each return its own block
     Blocks b{Vec3Array(S.rows(), 3), Eigen::VectorXi(S.rows())};
     Eigen::Index n = 0;
     for (Eigen::Index r = 0; r < S.rows(); ++r) {
       if (!S.row(r).allFinite()) continue;
-      ++filter.seen;
-      const Eigen::Vector3d p = S.row(r).transpose();
-      if (!keep(p)) continue;
-      b.points.row(n) = (T * p).transpose();
+      if (!keep(S.row(r).transpose(), world)) continue;
+      b.points.row(n) = world.transpose();
       b.pixels[n++] = static_cast<int>(r);
     }
     b.points.conservativeResize(n, 3);
@@ -92,10 +101,9 @@ Blocks block_points(const Eigen::Ref<const Vec3Array>& S, int height, int width,
         sum += S.row(r).transpose();
         if (count++ == 0) b.pixels[n] = static_cast<int>(r);
       }
-      ++filter.seen;
-      const Eigen::Vector3d p = sum / count;  // the median's own return is always counted
-      if (!keep(p)) continue;
-      b.points.row(n++) = (T * p).transpose();
+      // the median's own return is always counted
+      if (!keep(sum / count, world)) continue;
+      b.points.row(n++) = world.transpose();
     }
   b.points.conservativeResize(n, 3);
   b.pixels.conservativeResize(n);
@@ -177,13 +185,15 @@ Segmentation segment_image(const Eigen::Ref<const Vec3Array>& S, const Eigen::Re
   if (two_levels) {
     // The objects from the fine blocks above the table, the table (for the table-noise rule's statistic) from the
     // coarse ones on it; each voxelised on its own, so no voxel blends an object's foot with the table.
-    BlockFilter all;
-    const Blocks coarse = voxelised(block_points(S, H, W, s.plane_image_stride, s.voxel_size, T, all), s.voxel_size);
+    BlockFilter all{s};
+    const Blocks blocks = block_points(S, H, W, s.plane_image_stride, s.voxel_size, T, all);
+    if (all.seen == 0) detail::nothing_in_workspace(s, "depth");
+    const Blocks coarse = voxelised(blocks, s.voxel_size);
     out.times.voxel += since(t_step);
     detail::search_support(coarse.points, cams, s, plane, out);
     t_step = Clock::now();
     if (out.plane_found || out.plane_given) {
-      BlockFilter above{&out.plane, s.table_clearance};  // only the fine blocks above the table are made
+      BlockFilter above{s, &out.plane, s.table_clearance};  // only the fine blocks above the table are made
       const Blocks up = block_points(S, H, W, fine, s.voxel_size, T, above);
       const Blocks on = by_height(coarse, out.plane, s.table_clearance, false);
       down = joined(voxelised(up, s.voxel_size), on);
@@ -193,8 +203,10 @@ Segmentation segment_image(const Eigen::Ref<const Vec3Array>& S, const Eigen::Re
     }
   }
   if (!out.plane_found && !out.plane_given) {
-    BlockFilter all;
-    down = voxelised(block_points(S, H, W, fine, s.voxel_size, T, all), s.voxel_size);
+    BlockFilter all{s};
+    const Blocks blocks = block_points(S, H, W, fine, s.voxel_size, T, all);
+    if (all.seen == 0) detail::nothing_in_workspace(s, "depth");
+    down = voxelised(blocks, s.voxel_size);
   }
   out.n_after_voxel = static_cast<std::size_t>(down.points.rows());
   out.times.voxel += since(t_step);

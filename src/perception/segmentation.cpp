@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -53,7 +54,24 @@ VisibilitySettings detail::visibility_settings(const SegmentationSettings& s) {
   return vs;
 }
 
+void detail::nothing_in_workspace(const SegmentationSettings& s, const char* what) {
+  std::ostringstream box;
+  for (std::size_t k = 0; k < s.workspace.size(); ++k) box << (k ? ", " : "") << s.workspace[k];
+  bad(std::string(what) + ": nothing inside the workspace [" + box.str() +
+      "] (x_min, y_min, z_min, x_max, y_max, z_max in the world frame, m)");
+}
+
 void detail::check_segmentation_settings(const SegmentationSettings& s) {
+  if (!s.workspace.empty()) {
+    const auto& w = s.workspace;
+    if (w.size() != 6) bad("workspace must be empty or [x_min, y_min, z_min, x_max, y_max, z_max] (6 numbers, m)");
+    for (int k = 0; k < 3; ++k) {
+      const auto a = static_cast<std::size_t>(k);
+      if (!std::isfinite(w[a]) || !std::isfinite(w[a + 3]) || !(w[a] < w[a + 3]))
+        bad("workspace: each minimum must be finite and below its maximum ([x_min, y_min, z_min, x_max, y_max, "
+            "z_max])");
+    }
+  }
   if (!finite_ge(s.voxel_size, 0)) bad("voxel_size must be a finite size >= 0 (m; 0 switches it off)");
   if (!(finite_ge(s.plane_distance, 0) && s.plane_distance > 0)) bad("plane_distance must be > 0 (m)");
   if (s.plane_max_iterations < 1) bad("plane_max_iterations must be >= 1");
@@ -463,6 +481,27 @@ Segmentation segment_scene(const Vec3Array& points, const Vec3Array& viewpoints,
   const auto t0 = std::chrono::steady_clock::now();
   detail::check_segmentation_settings(s);
   check_inputs(points, viewpoints);
+  if (!s.workspace.empty()) {  // the points (and their own viewpoints) inside the workspace, then the input rows
+    std::vector<Eigen::Index> rows;
+    for (Eigen::Index r = 0; r < points.rows(); ++r)
+      if (detail::in_workspace(s, points.row(r).transpose())) rows.push_back(r);
+    if (rows.empty()) detail::nothing_in_workspace(s, "points");
+    const auto n = static_cast<Eigen::Index>(rows.size());
+    Vec3Array P(n, 3), V(viewpoints.rows() > 1 ? n : viewpoints.rows(), 3);
+    for (Eigen::Index i = 0; i < n; ++i) P.row(i) = points.row(rows[static_cast<std::size_t>(i)]);
+    if (viewpoints.rows() > 1) {
+      for (Eigen::Index i = 0; i < n; ++i) V.row(i) = viewpoints.row(rows[static_cast<std::size_t>(i)]);
+    } else {
+      V = viewpoints;
+    }
+    SegmentationSettings inside = s;
+    inside.workspace.clear();
+    Segmentation out = segment_scene(P, V, inside, plane);
+    for (Eigen::Index i = 0; i < out.sources.size(); ++i) out.sources[i] = static_cast<int>(rows[out.sources[i]]);
+    out.n_input = static_cast<std::size_t>(points.rows());
+    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return out;
+  }
   Segmentation out;
   out.n_input = static_cast<std::size_t>(points.rows());
   CleanupSettings voxel;  // prepare_cloud's voxel grid only: the sources follow every centroid

@@ -29,6 +29,18 @@ struct Cameras {
   }
 };
 
+/// Whether world point p lies in the settings' workspace (always, without one).
+inline bool in_workspace(const SegmentationSettings& s, const Eigen::Vector3d& p) {
+  if (s.workspace.empty()) return true;
+  for (int k = 0; k < 3; ++k)
+    if (!(p[k] >= s.workspace[static_cast<std::size_t>(k)] && p[k] <= s.workspace[static_cast<std::size_t>(k) + 3]))
+      return false;
+  return true;
+}
+
+/// The error of an input with no point (or return) inside the workspace.
+[[noreturn]] void nothing_in_workspace(const SegmentationSettings& s, const char* what);
+
 /// Throws std::invalid_argument ("segment_scene: ...") naming the first setting out of range.
 void check_segmentation_settings(const SegmentationSettings& s);
 

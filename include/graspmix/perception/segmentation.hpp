@@ -79,6 +79,9 @@
 namespace graspmix {
 
 struct SegmentationSettings {
+  /// The workspace, a box in the world frame [x_min, y_min, z_min, x_max, y_max, z_max] (m): the input is cropped
+  /// to it before anything else (the rest of a view stays in the model of what the camera saw); empty: no crop.
+  std::vector<double> workspace;
   /// Voxel-grid leaf size (m), 0 = off; the same as the clean-up's (features must see the same density).
   double voxel_size = CleanupSettings{}.voxel_size;
   double plane_distance = CleanupSettings{}.plane_distance;           ///< RANSAC inlier threshold (m)

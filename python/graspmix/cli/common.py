@@ -83,6 +83,18 @@ def float_in(lo: float | None = None, hi: float | None = None, *, gt: float | No
     return _typed(check, "number")
 
 
+def _box(text: str) -> list:
+    v = [float(x) for x in text.split(",")] if text.count(",") == 5 else []
+    if len(v) != 6 or not all(np.isfinite(v)) or not all(v[k] < v[k + 3] for k in range(3)):
+        raise ValueError(
+            f"expected x_min,y_min,z_min,x_max,y_max,z_max (m, each minimum below its maximum), got {text!r}"
+        )
+    return v
+
+
+box = _typed(_box, "box")  # a box in the world frame: six numbers, minima then maxima
+
+
 def _path(text: str) -> str:
     check_path_text(text)
     return text

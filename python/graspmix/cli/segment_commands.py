@@ -11,7 +11,7 @@ import numpy as np
 
 from .. import _core
 from ..perception import CameraView, kind_name, scene_input, segment_scene, segment_view
-from .common import float_in, given, input_path, int_in, output_file, seed
+from .common import box, float_in, given, input_path, int_in, output_file, seed
 from .views import add_view_arguments, input_keywords, known_plane
 
 
@@ -38,7 +38,9 @@ def _plane_lines(scene) -> list[str]:
 
 def cmd_segment(args) -> int:
     source, _, notes = scene_input(**input_keywords(args, "the scene cloud"))
-    settings = given(args, "cluster_tolerance", "min_cluster_size", "table_clearance", "voxel_size", "seed")
+    settings = given(
+        args, "cluster_tolerance", "min_cluster_size", "table_clearance", "voxel_size", "seed", "workspace"
+    )
     if isinstance(source, CameraView):
         scene = segment_view(source, known_plane(args), _core.SegmentationSettings(**settings))
         points = source.world_points()
@@ -111,4 +113,10 @@ def add_parsers(sub) -> None:
     tuning.add_argument("--table-clearance", type=float_in(0.0), help="m above the plane that is still the table")
     tuning.add_argument("--voxel-size", type=float_in(0.0), help="m: voxel-grid leaf (0 = off)")
     tuning.add_argument("--seed", type=seed, help="seed of the RANSAC plane search")
+    tuning.add_argument(
+        "--workspace",
+        type=box,
+        metavar="X0,Y0,Z0,X1,Y1,Z1",
+        help="m: the box in the world frame the cloud or image is cropped to first (default: none)",
+    )
     s.set_defaults(func=cmd_segment)

@@ -13,7 +13,7 @@ import argparse
 import json
 
 from ..model.options import COLLISION_MODELS, SynthesisOptions, options_field_names
-from .common import CliError
+from .common import CliError, box
 from .common import seed as seed_type
 
 _D = SynthesisOptions()  # the defaults, for the help texts
@@ -29,6 +29,15 @@ VALUE_FLAGS = (
         "--table-clearance",
         "segmentation.table_clearance",
         dict(type=float, help="m: points this close above the support plane (or below it) are the table"),
+    ),
+    (
+        "--workspace",
+        "segmentation.workspace",
+        dict(
+            type=box,
+            metavar="X0,Y0,Z0,X1,Y1,Z1",
+            help="m: the box in the world frame the cloud or image is cropped to before anything ([]: none)",
+        ),
     ),
     (
         "--collision",

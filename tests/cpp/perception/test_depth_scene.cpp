@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "graspmix/perception/depth_scene.hpp"
@@ -54,6 +55,17 @@ std::vector<std::vector<double>> sorted_rows(const Vec3Array& P) {
   for (Eigen::Index r = 0; r < P.rows(); ++r) rows.push_back({P(r, 0), P(r, 1), P(r, 2)});
   std::sort(rows.begin(), rows.end());
   return rows;
+}
+
+/// The message of the std::invalid_argument f throws ("no error" when it throws none).
+template <class F>
+std::string message(F&& f) {
+  try {
+    f();
+  } catch (const std::invalid_argument& e) {
+    return std::string(e.what());
+  }
+  return std::string("no error");
 }
 
 }  // namespace
@@ -182,15 +194,56 @@ TEST(DepthScene, BlocksOfTheStrideAndTheAutomaticStride) {
   }
 }
 
+// A workspace around box B (and the table about it): the scene is box B alone, the object found without the crop;
+// segment_scene with the same workspace is segment_scene on the points inside it, its sources rows of the whole input.
+// A workspace with nothing inside, or not a box, is an error naming it.
+TEST(DepthScene, TheWorkspaceCropsTheInputFirst) {
+  SegmentationSettings crop;
+  crop.workspace = {0.0, -0.1, -0.05, 0.2, 0.15, 0.2};
+  const Segmentation whole = segment_depth(image(), kCam, kPose), cropped = segment_depth(image(), kCam, kPose, crop);
+  ASSERT_TRUE(cropped.plane_found);
+  EXPECT_NEAR(cropped.plane[2], 1.0, 1e-6);
+  ASSERT_EQ(cropped.objects.size(), 1u);
+  ASSERT_EQ(whole.objects.size(), 2u);
+  const SceneObject& b = whole.objects[1];  // box B, the smaller
+  // The outlier filter's statistic is the cloud's: on box B alone it keeps a few more of B's edge points.
+  EXPECT_NEAR(static_cast<double>(cropped.objects[0].n_points), static_cast<double>(b.n_points), 0.01 * b.n_points);
+  EXPECT_LT((cropped.objects[0].centroid - b.centroid).norm(), 0.001);
+  for (Eigen::Index r = 0; r < cropped.points.rows(); ++r)
+    EXPECT_TRUE(inside(cropped.points.row(r).transpose(), kBoxB_lo, kBoxB_hi, 1e-6));
+
+  SegmentationSettings one = crop;  // the unorganized path on the view's points
+  one.image_stride = 1;
+  one.plane_image_stride = 1;
+  const Vec3Array P = world_points(image()), camera = kPose.translation().transpose();
+  const Segmentation a = segment_scene(P, camera, one);
+  std::vector<Eigen::Index> rows;
+  for (Eigen::Index r = 0; r < P.rows(); ++r)
+    if ((P.row(r).transpose().array() >= Eigen::Array3d(0.0, -0.1, -0.05)).all() &&
+        (P.row(r).transpose().array() <= Eigen::Array3d(0.2, 0.15, 0.2)).all())
+      rows.push_back(r);
+  Vec3Array inner(static_cast<Eigen::Index>(rows.size()), 3);
+  for (std::size_t i = 0; i < rows.size(); ++i) inner.row(static_cast<Eigen::Index>(i)) = P.row(rows[i]);
+  one.workspace.clear();
+  const Segmentation c = segment_scene(inner, camera, one);
+  ASSERT_EQ(a.objects.size(), 1u);
+  ASSERT_EQ(c.objects.size(), 1u);
+  EXPECT_EQ(a.points, c.points);
+  EXPECT_EQ(a.n_input, static_cast<std::size_t>(P.rows()));
+  for (Eigen::Index r = 0; r < a.sources.size(); ++r) EXPECT_EQ(a.sources[r], rows[c.sources[r]]);
+
+  SegmentationSettings away;
+  away.workspace = {1.0, 1.0, 1.0, 2.0, 2.0, 2.0};
+  EXPECT_NE(message([&] { segment_depth(image(), kCam, kPose, away); }).find("nothing inside the workspace"),
+            std::string::npos);
+  EXPECT_NE(message([&] { segment_scene(P, camera, away); }).find("nothing inside the workspace"), std::string::npos);
+  away.workspace = {0.0, 0.0, 0.0, 0.0, 1.0, 1.0};
+  EXPECT_NE(message([&] { segment_depth(image(), kCam, kPose, away); }).find("below its maximum"), std::string::npos);
+  away.workspace = {0.0, 0.0, 1.0};
+  EXPECT_NE(message([&] { segment_depth(image(), kCam, kPose, away); }).find("6 numbers"), std::string::npos);
+}
+
 TEST(DepthScene, BadInputNamesWhatIsWrong) {
-  const auto message = [](auto&& f) {
-    try {
-      f();
-    } catch (const std::invalid_argument& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
   DepthImage small(10, 10);
   small.setConstant(0.5);
   EXPECT_NE(message([&] { segment_depth(small, kCam, kPose); }).find("depth"), std::string::npos);

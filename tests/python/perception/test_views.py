@@ -260,3 +260,33 @@ def test_organized_pcd_written_by_acquire_is_the_cameras_view(tmp_path, capsys):
     assert grasps.scene.notes[0] == notes[0]  # the user is told
     assert main(["synthesize", "--cloud", str(pcd), f"--camera-pose={','.join(map(str, cam.pose()))}"]) == 2
     assert "VIEWPOINT" in capsys.readouterr().err
+
+
+def test_the_workspace_crops_a_view_before_anything(view, tmp_path, capsys):
+    """--workspace / segmentation.workspace: every object of the cropped view lies in the box, and the box's objects
+    are those of the whole view whose points are mostly in it; the option survives SynthesisOptions' dict; a box
+    that is not one, or holds nothing, is one line and exit 2."""
+    _, cam, depth, png = view
+    c = cam.pinhole()
+    box = [-0.1, -0.2, -0.05, 0.05, 0.0, 0.3]
+    v = depth_view(depth, (c.fx, c.fy, c.cx, c.cy), cam.pose())
+    whole = segment_view(v)
+    cropped = segment_view(v, settings=_core.SegmentationSettings(workspace=box))
+    lo, hi = np.array(box[:3]), np.array(box[3:])
+    assert len(cropped.objects) >= 1 and np.all((cropped.points >= lo) & (cropped.points <= hi))
+    assert len(cropped.objects) < len(whole.objects)
+    # Each object of the whole view with most of its points in the box has one in the crop within 2 cm.
+    for o in whole.objects:
+        pts = whole.points[o.rows]
+        if np.mean(np.all((pts >= lo) & (pts <= hi), axis=1)) > 0.9:
+            assert min(np.linalg.norm(np.asarray(k.centroid) - o.centroid) for k in cropped.objects) < 0.02
+    opts = graspmix.SynthesisOptions().updated({"segmentation.workspace": box})
+    assert graspmix.SynthesisOptions.from_dict(opts.to_dict()).segmentation.workspace == box
+    flags = ["segment", "--depth", str(png), "--intrinsics", f"{c.fx},{c.fy},{c.cx},{c.cy}"]
+    flags.append(f"--camera-pose={','.join(map(str, cam.pose()))}")
+    assert main([*flags, f"--workspace={','.join(map(str, box))}"]) == 0
+    capsys.readouterr()
+    for bad, words in (("1,2,3", "x_min,y_min"), ("0,0,0,0,1,1", "below its maximum"), ("5,5,5,6,6,6", "nothing")):
+        assert main([*flags, f"--workspace={bad}"]) == 2
+        err = capsys.readouterr().err
+        assert words in err and err.count("\n") == 1

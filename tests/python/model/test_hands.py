@@ -78,11 +78,12 @@ def test_opening_width_matches_pybullet(urdf, tips, xarm):
         assert d["opening_width"][limit] == pytest.approx(pybullet_gap(urdf, *tips, lim[:, k]), abs=PYBULLET_MARGIN)
 
 
-def test_pr2_fingers_lie_along_x_not_the_convention():
+def test_pr2_fingers_lie_along_x_its_approach_axis():
     d = describe_hand(PR2)
     assert d["independent_joints"] == ["left_gripper_joint", "right_gripper_joint"] and d["mimic"] == {}
     assert np.dot(d["approach_axis"]["fingers_direction"], [1, 0, 0]) > 0.99  # the pole and fingers run along +x
-    assert not d["approach_axis"]["agrees"]
+    assert d["approach_axis"]["axis"] == [1.0, 0.0, 0.0] and d["approach_axis"]["source"] == "inferred"
+    assert d["approach_axis"]["agrees"] and d["fingertips"] == ["left_tip", "right_tip"]
     assert d["closing"] == {"left_gripper_joint": -1, "right_gripper_joint": -1}
     assert d["opening_width"]["upper"] > d["opening_width"]["lower"]
 
@@ -125,7 +126,7 @@ def test_cli_hand(tmp_path, capsys, xarm):
     assert json.loads(capsys.readouterr().out)["independent_joints"] == ["drive_joint"]
     assert main(["hand", "--urdf", PR2, "--png", str(tmp_path / "p.png")]) == 0
     text = capsys.readouterr().out
-    assert "left_gripper_joint, right_gripper_joint" in text and "does NOT agree" in text
+    assert "left_gripper_joint, right_gripper_joint" in text and "approach axis: [1, 0, 0] of the wrist frame" in text
     assert (tmp_path / "p.png").stat().st_size > 0
 
 

@@ -110,3 +110,30 @@ TEST(HandAxes, BadAxesAreErrorsNamingThem) {
   EXPECT_EQ(h.approach_axis(), Eigen::Vector3d::UnitZ());
   EXPECT_EQ(tips(h), std::vector<std::string>{"r_pad"});
 }
+
+TEST(HandAxes, ThreeFingersAroundTheApproachAreThreeFingertips) {
+  // Three fingers 120 degrees apart about z, each a proximal box and a distal box beyond it: the distal ones.
+  std::string urdf =
+      R"(<robot name="three"><link name="palm"><collision><geometry><box size="0.1 0.1 0.02"/></geometry></collision></link>)";
+  for (int k = 0; k < 3; ++k) {
+    const double a = 2.0 * M_PI * k / 3.0;
+    const std::string f = "f" + std::to_string(k), c = std::to_string(0.04 * std::cos(a)),
+                      s = std::to_string(0.04 * std::sin(a));
+    const std::string axis = std::to_string(-std::cos(a)) + " " + std::to_string(-std::sin(a)) + " 0";
+    urdf += "<link name='" + f +
+            "_proximal'><collision><origin xyz='0 0 0.03'/><geometry><box size='0.01 0.01 "
+            "0.04'/></geometry></collision></link>";
+    urdf += "<link name='" + f +
+            "_distal'><collision><origin xyz='0 0 0.02'/><geometry><box size='0.01 0.01 "
+            "0.03'/></geometry></collision></link>";
+    urdf += "<joint name='" + f + "_slide' type='prismatic'><parent link='palm'/><child link='" + f +
+            "_proximal'/><origin xyz='" + c + " " + s + " 0.01'/><axis xyz='" + axis +
+            "'/><limit lower='0' upper='0.03' effort='1' velocity='1'/></joint>";
+    urdf += "<joint name='" + f + "_bend' type='revolute'><parent link='" + f + "_proximal'/><child link='" + f +
+            "_distal'/><origin xyz='0 0 0.05'/><axis xyz='0 1 0'/><limit lower='-0.1' upper='0.1' effort='1' "
+            "velocity='1'/></joint>";
+  }
+  const Hand h = Hand::from_urdf_string(urdf + "</robot>", ".");
+  EXPECT_EQ(tips(h), (std::vector<std::string>{"f0_distal", "f1_distal", "f2_distal"}));
+  EXPECT_EQ(h.approach_axis(), Eigen::Vector3d::UnitZ());
+}

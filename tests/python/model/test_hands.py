@@ -176,3 +176,21 @@ def test_a_joint_that_turns_a_fingertip_about_the_approach_neither_opens_nor_clo
     assert d["closing"] == {"c": 0} and d["opening_width"] is None
     c = d["joints"][0]
     assert c["lower"] is None and c["upper"] is None and c["independent"]
+
+
+def test_xarm_grasps_export_the_opening_between_the_pads(xarm):
+    """A grasps file of the linkage gripper has a closing direction and an opening: the gap between its pads (the
+    fingertips), as pybullet measures it between the same links, at several drive values."""
+    from graspmix.model import Grasp, GraspSet
+
+    q = [0.1, 0.4, 0.7]
+    rows = [
+        Grasp([0, 0, 0.3, 1.0, 0, 0, 0], {"drive_joint": 0.0}, {"drive_joint": v}, rank=i + 1) for i, v in enumerate(q)
+    ]
+    grasps = GraspSet(rows, xarm, "gmm", "", {})
+    assert grasps.fingertips == ["left_finger", "right_finger"]
+    for g, v in zip(grasps, q):
+        assert g.opening_width == pytest.approx(
+            pybullet_gap(xarm, "left_finger", "right_finger", [v]), abs=PYBULLET_MARGIN
+        )
+        assert abs(np.dot(g.closing, g.approach)) < 0.05  # across the approach

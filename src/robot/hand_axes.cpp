@@ -164,4 +164,16 @@ GraspAxes infer_grasp_axes(const Hand& hand, const std::optional<Eigen::Vector3d
   return out;
 }
 
+GraspAxes grasp_axes_of(const Hand& hand, const std::string& xml, const std::string& what,
+                        const HandLoadSettings& settings) {
+  const UrdfGraspAxes given = read_urdf_grasp_axes(xml, what);
+  std::vector<int> tips;
+  for (const std::string& name : given.fingertips) tips.push_back(hand.checked_fingertip(name, what));
+  std::sort(tips.begin(), tips.end());
+  tips.erase(std::unique(tips.begin(), tips.end()), tips.end());
+  GraspAxes out = infer_grasp_axes(hand, given.approach, tips, settings);
+  out.given = given.approach.has_value() || !given.fingertips.empty();
+  return out;
+}
+
 }  // namespace graspmix::detail

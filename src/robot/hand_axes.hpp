@@ -24,6 +24,7 @@ UrdfGraspAxes read_urdf_grasp_axes(const std::string& xml, const std::string& wh
 struct GraspAxes {
   Eigen::Vector3d approach = Eigen::Vector3d::UnitZ();
   std::vector<int> fingertips;  ///< link indices, ascending
+  bool given = false;           ///< the URDF's element gave the approach or the fingertips
 };
 
 /// The axes of `hand` by hand.hpp's rules; a given approach (unit) or given fingertips (link indices) are kept
@@ -31,5 +32,10 @@ struct GraspAxes {
 /// then stays +z).
 GraspAxes infer_grasp_axes(const Hand& hand, const std::optional<Eigen::Vector3d>& approach,
                            const std::vector<int>& fingertips, const HandLoadSettings& settings);
+
+/// The axes of a hand read from `xml`: its <graspmix> element's (fingertips checked by Hand::checked_fingertip),
+/// the rest inferred.
+GraspAxes grasp_axes_of(const Hand& hand, const std::string& xml, const std::string& what,
+                        const HandLoadSettings& settings);
 
 }  // namespace graspmix::detail

@@ -486,15 +486,10 @@ Hand Hand::from_urdf_string(const std::string& xml, const std::string& base_dir,
   for (JointInfo& j : hand.joints_) {
     if (j.mimic) resolve_mimic(j, hand.joints_, hand.joint_index_, *model, what);
   }
-  const detail::UrdfGraspAxes given = detail::read_urdf_grasp_axes(xml, what);
-  std::vector<int> tips;
-  for (const std::string& name : given.fingertips) tips.push_back(hand.checked_fingertip(name, what));
-  std::sort(tips.begin(), tips.end());
-  tips.erase(std::unique(tips.begin(), tips.end()), tips.end());
-  const detail::GraspAxes axes = detail::infer_grasp_axes(hand, given.approach, tips, settings);
+  const detail::GraspAxes axes = detail::grasp_axes_of(hand, xml, what, settings);
   hand.approach_axis_ = axes.approach;
   hand.fingertips_ = axes.fingertips;
-  if (given.approach || !given.fingertips.empty()) hand.grasp_axes_source_ = "urdf";
+  if (axes.given) hand.grasp_axes_source_ = "urdf";
   return hand;
 }
 

@@ -229,6 +229,9 @@ class Hand {
   /// Gives the grasp axes: approach (non-zero, finite; normalised), fingertips (link names, at least one, each
   /// moved by a joint and with collision geometry). Throws std::invalid_argument naming the bad value.
   void set_grasp_axes(const Eigen::Vector3d& approach, const std::vector<std::string>& fingertips);
+  /// The index of a link that may be a fingertip (moved by a joint, with collision geometry); throws
+  /// std::invalid_argument starting with `what` and naming the link otherwise.
+  int checked_fingertip(const std::string& link, const std::string& what) const;
 
  private:
   std::string name_, source_;
@@ -237,8 +240,6 @@ class Hand {
   std::vector<JointInfo> joints_;
   std::vector<int> dof_joint_;  ///< joints() index of each independent joint
   std::map<std::string, int> link_index_, dof_index_, joint_index_;
-  /// The index of a link that may be a fingertip (moved by a joint, with collision geometry); throws naming it.
-  int checked_fingertip(const std::string& link, const std::string& what) const;
   Eigen::Vector3d approach_axis_ = Eigen::Vector3d::UnitZ();
   std::vector<int> fingertips_;
   std::string grasp_axes_source_ = "inferred";

@@ -47,6 +47,11 @@ endif()
 add_library(graspmix_urdfdom INTERFACE)
 target_include_directories(graspmix_urdfdom SYSTEM INTERFACE ${urdfdom_INCLUDE_DIRS})
 target_link_libraries(graspmix_urdfdom INTERFACE ${urdfdom_LIBRARIES})
+# TinyXML, urdfdom's own parser, reads the <graspmix> element of a hand's URDF that urdfdom skips.
+find_path(GRASPMIX_TINYXML_INCLUDE_DIR tinyxml.h REQUIRED)
+find_library(GRASPMIX_TINYXML_LIBRARY tinyxml REQUIRED)
+target_include_directories(graspmix_urdfdom SYSTEM INTERFACE ${GRASPMIX_TINYXML_INCLUDE_DIR})
+target_link_libraries(graspmix_urdfdom INTERFACE ${GRASPMIX_TINYXML_LIBRARY})
 add_library(graspmix::urdfdom ALIAS graspmix_urdfdom)
 
 add_library(graspmix_assimp INTERFACE)

@@ -31,7 +31,7 @@ from graspmix.experiment.log import read_rows
 from graspmix.experiment.report import findings_table, md_table
 from graspmix.model import Grasp
 from graspmix.model.grasp_frames import rotation_matrices
-from graspmix.model.hands import APPROACH_AXIS
+from graspmix.sim.execution import load_hand
 
 NOISE_RUNS = {"lateral only": "noise-study/lateral-only", "depth only": "noise-study/depth-only"}
 REASONS = ("success", "start in collision", "no contact", "not held")
@@ -162,8 +162,8 @@ def changes_block(results: Path) -> str:
 
 
 def approach_z(wrist) -> float:
-    """The world z of the wrist's approach axis (-1: straight down) of a pose [x, y, z, qx, qy, qz, qw]."""
-    return float((rotation_matrices(np.asarray(wrist[3:])[None])[0] @ APPROACH_AXIS)[2])
+    """The world z of the bundled hand's approach axis (-1: straight down) at a wrist pose [x, y, z, qx, qy, qz, qw]."""
+    return float((rotation_matrices(np.asarray(wrist[3:])[None])[0] @ load_hand().approach_axis)[2])
 
 
 def starts_block(results: Path) -> str:

@@ -13,7 +13,7 @@ if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 # GoogleTest (ctest), and the toolchain to build against them; Chromium, in which a test opens the interactive
 # grasp view (graspmix_cli plot --html) headless and checks its screenshot.
 DEBS=(build-essential pkg-config libeigen3-dev libpcl-dev liblzf-dev libfcl-dev liboctomap-dev libbullet-dev libbullet-extras-dev
-      liburdfdom-dev libassimp-dev libqhull-dev libgtest-dev chromium)
+      liburdfdom-dev libtinyxml-dev libassimp-dev libqhull-dev libgtest-dev chromium)
 missing=()
 for p in "${DEBS[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -16,6 +16,15 @@ namespace graspmix::py_bind {
 
 namespace {
 
+/// An optional axis setting for Python: None or (3,).
+py::object optional_axis(const std::optional<Eigen::Vector3d>& a) {
+  return a ? py::cast(Eigen::Vector3d(*a)) : py::object(py::none());
+}
+std::optional<Eigen::Vector3d> axis_or_none(const py::object& v, const char* name) {
+  if (v.is_none()) return std::nullopt;
+  return Eigen::Vector3d(to_vector(v, name, 3));
+}
+
 /// The occupancy map of what the cameras saw (OccupancyMap) and its settings.
 void bind_occupancy(py::module_& m) {
   SettingsClass<OccupancySettings>(m, "OccupancySettings",
@@ -390,9 +399,9 @@ void bind_experts(py::module_& m) {
 
   SettingsClass<AxisAlignmentSettings>(m, "AxisAlignmentSettings", "The soft principal-axis alignment expert.")
       .property(
-          "hand_axis", [](const AxisAlignmentSettings& s) { return Eigen::Vector3d(s.hand_axis); },
-          [](AxisAlignmentSettings& s, const py::object& v) { s.hand_axis = to_vector(v, "hand_axis", 3); },
-          "(3,) the hand's axis in the wrist frame (the WSG 50's approach axis is its palm z)")
+          "hand_axis", [](const AxisAlignmentSettings& s) { return optional_axis(s.hand_axis); },
+          [](AxisAlignmentSettings& s, const py::object& v) { s.hand_axis = axis_or_none(v, "hand_axis"); },
+          "(3,) the hand's axis in the wrist frame; None: the hand's approach_axis (Hand.approach_axis)")
       .field("concentration", &AxisAlignmentSettings::concentration,
              "nats: log E = concentration (cos theta - 1), so a 90-degree deviation costs this much")
       .field("name", &AxisAlignmentSettings::name, "the key of its term in a grasp's experts table")
@@ -400,13 +409,16 @@ void bind_experts(py::module_& m) {
 
   py::class_<AxisAlignmentExpert, Expert, std::shared_ptr<AxisAlignmentExpert>>(
       m, "AxisAlignmentExpert", "Soft: log E = concentration (cos(angle between hand axis and world axis) - 1).")
-      .def(py::init([](const py::object& axis, const py::object& hand_axis, const py::object& settings, py::kwargs kw) {
+      .def(py::init([](const py::object& axis, const py::object& hand_axis, const py::object& settings,
+                       const std::shared_ptr<const Hand>& hand, py::kwargs kw) {
              if (!hand_axis.is_none()) kw["hand_axis"] = hand_axis;
              const AxisAlignmentSettings s = settings_from<AxisAlignmentSettings>(settings, kw, "AxisAlignmentExpert");
-             return std::make_shared<AxisAlignmentExpert>(Eigen::Vector3d(to_vector(axis, "axis", 3)), s);
+             return std::make_shared<AxisAlignmentExpert>(Eigen::Vector3d(to_vector(axis, "axis", 3)), s, hand.get());
            }),
            py::arg("axis"), py::arg("hand_axis") = py::none(), py::kw_only(), py::arg("settings") = py::none(),
-           ("axis: (3,) the desired world axis; hand_axis=None: the settings' hand_axis.\n" +
+           py::arg("hand") = py::none(),
+           ("axis: (3,) the desired world axis; hand_axis=None: the settings' hand_axis, or (None too) the "
+            "hand's approach_axis (without a hand: the wrist's +z).\n" +
             settings_doc<AxisAlignmentSettings>())
                .c_str());
 
@@ -431,9 +443,9 @@ void bind_experts(py::module_& m) {
              "m: the open hand keeps this far from every point on its way (the points of the collision expert the "
              "path is checked against are balls of this radius; scene synthesis builds it so)")
       .property(
-          "hand_axis", [](const ClearApproachSettings& s) { return Eigen::Vector3d(s.hand_axis); },
-          [](ClearApproachSettings& s, const py::object& v) { s.hand_axis = to_vector(v, "hand_axis", 3); },
-          "(3,) the approach axis in the wrist frame (the WSG 50's palm z)")
+          "hand_axis", [](const ClearApproachSettings& s) { return optional_axis(s.hand_axis); },
+          [](ClearApproachSettings& s, const py::object& v) { s.hand_axis = axis_or_none(v, "hand_axis"); },
+          "(3,) the approach axis in the wrist frame; None: the hand's approach_axis (Hand.approach_axis)")
       .field("name", &ClearApproachSettings::name, "the key of its term in a grasp's experts table")
       .done();
 

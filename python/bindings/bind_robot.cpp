@@ -50,6 +50,7 @@ const char* joint_type_name(JointType t) {
 }  // namespace
 
 void bind_robot(py::module_& m) {
+  m.attr("URDF_AXES_ELEMENT") = kUrdfAxesElement;  // <graspmix approach_axis="x y z" fingertips="a b"/>
   SettingsClass<HandLoadSettings>(m, "HandLoadSettings", "How a URDF's meshes are found and loaded (Hand.from_urdf).")
       .property(
           "package_dirs", [](const HandLoadSettings& s) { return s.package_dirs; },
@@ -64,6 +65,10 @@ void bind_robot(py::module_& m) {
           "extra folders searched for package://name/... meshes (each holds package folders, as in ROS_PACKAGE_PATH)")
       .field("load_meshes", &HandLoadSettings::load_meshes,
              "False: mesh shapes keep only their file names (no geometry)")
+      .field("approach_snap_deg", &HandLoadSettings::approach_snap_deg,
+             "degrees: the inferred approach axis snaps to the nearest wrist axis within this (Hand.approach_axis)")
+      .field("same_finger_deg", &HandLoadSettings::same_finger_deg,
+             "degrees: two chain ends within this across the approach axis lie on one finger (Hand.fingertips)")
       .done();
 
   m.def(
@@ -126,6 +131,28 @@ void bind_robot(py::module_& m) {
       .def_property_readonly("link_names", &Hand::link_names,
                              "Every link, the wrist (root) first; the order of fk rows.")
       .def_property_readonly("root_link", [](const Hand& h) { return h.link_names().front(); })
+      .def_property_readonly(
+          "approach_axis", [](const Hand& h) { return Eigen::Vector3d(h.approach_axis()); },
+          "(3,) unit: the approach axis in the wrist frame, from the URDF's <graspmix approach_axis> or inferred "
+          "(the direction from the wrist to the fingertips, snapped to a wrist axis within approach_snap_deg)")
+      .def_property_readonly(
+          "fingertips",
+          [](const Hand& h) {
+            std::vector<std::string> out;
+            for (const int l : h.fingertips()) out.push_back(h.link_names()[static_cast<size_t>(l)]);
+            return out;
+          },
+          "The fingertip links (link_names order): from the URDF's <graspmix fingertips> or inferred (the distal "
+          "link of each finger chain)")
+      .def_property_readonly("grasp_axes_source", &Hand::grasp_axes_source,
+                             "'urdf' (its <graspmix> element), 'inferred' or 'set' (set_grasp_axes)")
+      .def(
+          "set_grasp_axes",
+          [](Hand& h, const py::object& approach, const std::vector<std::string>& fingertips) {
+            h.set_grasp_axes(Eigen::Vector3d(to_vector(approach, "approach_axis", 3)), fingertips);
+          },
+          py::arg("approach_axis"), py::arg("fingertips"),
+          "Gives the approach axis (3,) and fingertip links; ValueError naming a bad value.")
       .def_property_readonly("n_dofs", &Hand::n_dofs)
       .def_property_readonly("n_links", &Hand::n_links)
       .def_property_readonly(

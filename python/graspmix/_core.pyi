@@ -8,7 +8,7 @@ import enum
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AnnealingSettings', 'AxisAlignmentExpert', 'AxisAlignmentSettings', 'CleanupResult', 'CleanupSettings', 'ClearApproachExpert', 'ClearApproachSettings', 'CloudData', 'CollisionBatchResult', 'CollisionExpert', 'CollisionFreeExpert', 'CollisionResult', 'CollisionSettings', 'Completion', 'CompletionKind', 'CompletionSettings', 'ConfigModel', 'ConfigModelSettings', 'ContactData', 'ContactModel', 'ContactQualityExpert', 'ContactQualityResult', 'ContactQualitySettings', 'ContactSettings', 'Evaluation', 'Expert', 'FunctionExpert', 'GaussianMixture', 'GmmSettings', 'Grasp', 'GraspSynthesizer', 'Hand', 'HandLoadSettings', 'KdeSettings', 'KinematicFeasibilityExpert', 'KinematicFeasibilitySettings', 'OccupancyMap', 'OccupancySettings', 'PinholeCamera', 'PinholeFit', 'PlaneCandidate', 'PoseDensity', 'PoseKDE', 'PoseMixture', 'QueryDensity', 'QuerySettings', 'SamplingSettings', 'SceneObject', 'SceneSimResult', 'Segmentation', 'SegmentationSettings', 'SettleResult', 'SimObject', 'SimResult', 'SimSettings', 'SpaceState', 'SurfaceCloud', 'SurfaceFeatureSettings', 'SynthesisResult', 'SynthesisTiming', 'SynthesizerSettings', 'VisibilityModel', 'VisibilitySettings', 'build_info', 'camera_pose_matrix', 'complete_object', 'compute_surface_features', 'contact_data', 'learn_contact_models', 'load_cloud', 'load_mesh', 'log_vmf_s3_normaliser', 'orient_plane', 'pose_inverse', 'pose_multiply', 'prepare_cloud', 'quat_exp', 'quat_log', 'save_cloud', 'segment_depth', 'segment_organized', 'segment_scene', 'sim_execute', 'sim_execute_scene', 'sim_settle_scene']
+__all__: list[str] = ['AnnealingSettings', 'AxisAlignmentExpert', 'AxisAlignmentSettings', 'CleanupResult', 'CleanupSettings', 'ClearApproachExpert', 'ClearApproachSettings', 'CloudData', 'CollisionBatchResult', 'CollisionExpert', 'CollisionFreeExpert', 'CollisionResult', 'CollisionSettings', 'Completion', 'CompletionKind', 'CompletionSettings', 'ConfigModel', 'ConfigModelSettings', 'ContactData', 'ContactModel', 'ContactQualityExpert', 'ContactQualityResult', 'ContactQualitySettings', 'ContactSettings', 'Evaluation', 'Expert', 'FunctionExpert', 'GaussianMixture', 'GmmSettings', 'Grasp', 'GraspSynthesizer', 'Hand', 'HandLoadSettings', 'KdeSettings', 'KinematicFeasibilityExpert', 'KinematicFeasibilitySettings', 'OccupancyMap', 'OccupancySettings', 'PinholeCamera', 'PinholeFit', 'PlaneCandidate', 'PoseDensity', 'PoseKDE', 'PoseMixture', 'QueryDensity', 'QuerySettings', 'SamplingSettings', 'SceneObject', 'SceneSimResult', 'Segmentation', 'SegmentationSettings', 'SettleResult', 'SimObject', 'SimResult', 'SimSettings', 'SpaceState', 'SurfaceCloud', 'SurfaceFeatureSettings', 'SynthesisResult', 'SynthesisTiming', 'SynthesizerSettings', 'URDF_AXES_ELEMENT', 'VisibilityModel', 'VisibilitySettings', 'build_info', 'camera_pose_matrix', 'complete_object', 'compute_surface_features', 'contact_data', 'learn_contact_models', 'load_cloud', 'load_mesh', 'log_vmf_s3_normaliser', 'orient_plane', 'pose_inverse', 'pose_multiply', 'prepare_cloud', 'quat_exp', 'quat_log', 'save_cloud', 'segment_depth', 'segment_organized', 'segment_scene', 'sim_execute', 'sim_execute_scene', 'sim_settle_scene']
 class GmmSettings:
     """
     How a GaussianMixture (or PoseMixture) is fitted by EM.
@@ -1824,9 +1824,11 @@ class HandLoadSettings:
     which override it (an unknown keyword is a ValueError):
       package_dirs = []: extra folders searched for package://name/... meshes (each holds package folders, as in ROS_PACKAGE_PATH)
       load_meshes = True: False: mesh shapes keep only their file names (no geometry)
+      approach_snap_deg = 20.0: degrees: the inferred approach axis snaps to the nearest wrist axis within this (Hand.approach_axis)
+      same_finger_deg = 45.0: degrees: two chain ends within this across the approach axis lie on one finger (Hand.fingertips)
     """
     __hash__: typing.ClassVar[None] = None
-    _fields: typing.ClassVar[tuple] = ('package_dirs', 'load_meshes')
+    _fields: typing.ClassVar[tuple] = ('package_dirs', 'load_meshes', 'approach_snap_deg', 'same_finger_deg')
     def __copy__(self) -> HandLoadSettings:
         ...
     def __deepcopy__(self, memo: typing.Any) -> HandLoadSettings:
@@ -1843,11 +1845,19 @@ class HandLoadSettings:
     @typing.overload
     def __init__(self, **kwargs) -> None:
         """
-        Keyword constructor: any of the fields (package_dirs, load_meshes); the others keep their defaults.
+        Keyword constructor: any of the fields (package_dirs, load_meshes, approach_snap_deg, same_finger_deg); the others keep their defaults.
         """
     def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: dict) -> None:
+        ...
+    @property
+    def approach_snap_deg(self) -> float:
+        """
+        degrees: the inferred approach axis snaps to the nearest wrist axis within this (Hand.approach_axis)
+        """
+    @approach_snap_deg.setter
+    def approach_snap_deg(self, arg0: typing.Any) -> None:
         ...
     @property
     def load_meshes(self) -> bool:
@@ -1864,6 +1874,14 @@ class HandLoadSettings:
         """
     @package_dirs.setter
     def package_dirs(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def same_finger_deg(self) -> float:
+        """
+        degrees: two chain ends within this across the approach axis lie on one finger (Hand.fingertips)
+        """
+    @same_finger_deg.setter
+    def same_finger_deg(self, arg0: typing.Any) -> None:
         ...
 class Hand:
     """
@@ -1884,6 +1902,8 @@ class Hand:
         which override it (an unknown keyword is a ValueError):
           package_dirs = []: extra folders searched for package://name/... meshes (each holds package folders, as in ROS_PACKAGE_PATH)
           load_meshes = True: False: mesh shapes keep only their file names (no geometry)
+          approach_snap_deg = 20.0: degrees: the inferred approach axis snaps to the nearest wrist axis within this (Hand.approach_axis)
+          same_finger_deg = 45.0: degrees: two chain ends within this across the approach axis lie on one finger (Hand.fingertips)
         """
     @staticmethod
     def from_urdf_string(xml: str, base_dir: typing.Any = '.', package_dirs: typing.Any = None, *, settings: typing.Any = None, **kwargs) -> Hand:
@@ -1893,6 +1913,8 @@ class Hand:
         which override it (an unknown keyword is a ValueError):
           package_dirs = []: extra folders searched for package://name/... meshes (each holds package folders, as in ROS_PACKAGE_PATH)
           load_meshes = True: False: mesh shapes keep only their file names (no geometry)
+          approach_snap_deg = 20.0: degrees: the inferred approach axis snaps to the nearest wrist axis within this (Hand.approach_axis)
+          same_finger_deg = 45.0: degrees: two chain ends within this across the approach axis lie on one finger (Hand.fingertips)
         """
     def __repr__(self) -> str:
         ...
@@ -1939,9 +1961,28 @@ class Hand:
         """
     def link_index(self, link: str) -> int:
         ...
+    def set_grasp_axes(self, approach_axis: typing.Any, fingertips: collections.abc.Sequence[str]) -> None:
+        """
+        Gives the approach axis (3,) and fingertip links; ValueError naming a bad value.
+        """
     def within_limits(self, joints: typing.Any, tolerance: typing.Any = None) -> bool:
         """
         True when every joint is within its limits, up to tolerance (joint units; None: the C++ default of Hand::within_limits).
+        """
+    @property
+    def approach_axis(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        """
+        (3,) unit: the approach axis in the wrist frame, from the URDF's <graspmix approach_axis> or inferred (the direction from the wrist to the fingertips, snapped to a wrist axis within approach_snap_deg)
+        """
+    @property
+    def fingertips(self) -> list[str]:
+        """
+        The fingertip links (link_names order): from the URDF's <graspmix fingertips> or inferred (the distal link of each finger chain)
+        """
+    @property
+    def grasp_axes_source(self) -> str:
+        """
+        'urdf' (its <graspmix> element), 'inferred' or 'set' (set_grasp_axes)
         """
     @property
     def joint_limits(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
@@ -2674,7 +2715,7 @@ class AxisAlignmentSettings:
     
     Settings: settings= a AxisAlignmentSettings (None: its defaults), and/or its fields as keywords,
     which override it (an unknown keyword is a ValueError):
-      hand_axis = array([0., 0., 1.]): (3,) the hand's axis in the wrist frame (the WSG 50's approach axis is its palm z)
+      hand_axis = None: (3,) the hand's axis in the wrist frame; None: the hand's approach_axis (Hand.approach_axis)
       concentration = 20.0: nats: log E = concentration (cos theta - 1), so a 90-degree deviation costs this much
       name = 'approach_axis': the key of its term in a grasp's experts table
     """
@@ -2711,9 +2752,9 @@ class AxisAlignmentSettings:
     def concentration(self, arg0: typing.Any) -> None:
         ...
     @property
-    def hand_axis(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+    def hand_axis(self) -> typing.Any:
         """
-        (3,) the hand's axis in the wrist frame (the WSG 50's approach axis is its palm z)
+        (3,) the hand's axis in the wrist frame; None: the hand's approach_axis (Hand.approach_axis)
         """
     @hand_axis.setter
     def hand_axis(self, arg1: typing.Any) -> None:
@@ -2730,12 +2771,12 @@ class AxisAlignmentExpert(Expert):
     """
     Soft: log E = concentration (cos(angle between hand axis and world axis) - 1).
     """
-    def __init__(self, axis: typing.Any, hand_axis: typing.Any = None, *, settings: typing.Any = None, **kwargs) -> None:
+    def __init__(self, axis: typing.Any, hand_axis: typing.Any = None, *, settings: typing.Any = None, hand: Hand = None, **kwargs) -> None:
         """
-        axis: (3,) the desired world axis; hand_axis=None: the settings' hand_axis.
+        axis: (3,) the desired world axis; hand_axis=None: the settings' hand_axis, or (None too) the hand's approach_axis (without a hand: the wrist's +z).
         Settings: settings= a AxisAlignmentSettings (None: its defaults), and/or its fields as keywords,
         which override it (an unknown keyword is a ValueError):
-          hand_axis = array([0., 0., 1.]): (3,) the hand's axis in the wrist frame (the WSG 50's approach axis is its palm z)
+          hand_axis = None: (3,) the hand's axis in the wrist frame; None: the hand's approach_axis (Hand.approach_axis)
           concentration = 20.0: nats: log E = concentration (cos theta - 1), so a 90-degree deviation costs this much
           name = 'approach_axis': the key of its term in a grasp's experts table
         """
@@ -2756,7 +2797,7 @@ class ClearApproachSettings:
       stand_off = 0.1: m: the hand starts this far back along its approach axis from the pre-grasp (>= 0)
       step = 0.02: m: the path is checked at poses this far apart (> 0)
       clearance = 0.002: m: the open hand keeps this far from every point on its way (the points of the collision expert the path is checked against are balls of this radius; scene synthesis builds it so)
-      hand_axis = array([0., 0., 1.]): (3,) the approach axis in the wrist frame (the WSG 50's palm z)
+      hand_axis = None: (3,) the approach axis in the wrist frame; None: the hand's approach_axis (Hand.approach_axis)
       name = 'clear_approach': the key of its term in a grasp's experts table
     """
     __hash__: typing.ClassVar[None] = None
@@ -2792,9 +2833,9 @@ class ClearApproachSettings:
     def clearance(self, arg0: typing.Any) -> None:
         ...
     @property
-    def hand_axis(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+    def hand_axis(self) -> typing.Any:
         """
-        (3,) the approach axis in the wrist frame (the WSG 50's palm z)
+        (3,) the approach axis in the wrist frame; None: the hand's approach_axis (Hand.approach_axis)
         """
     @hand_axis.setter
     def hand_axis(self, arg1: typing.Any) -> None:
@@ -2835,7 +2876,7 @@ class ClearApproachExpert(Expert):
           stand_off = 0.1: m: the hand starts this far back along its approach axis from the pre-grasp (>= 0)
           step = 0.02: m: the path is checked at poses this far apart (> 0)
           clearance = 0.002: m: the open hand keeps this far from every point on its way (the points of the collision expert the path is checked against are balls of this radius; scene synthesis builds it so)
-          hand_axis = array([0., 0., 1.]): (3,) the approach axis in the wrist frame (the WSG 50's palm z)
+          hand_axis = None: (3,) the approach axis in the wrist frame; None: the hand's approach_axis (Hand.approach_axis)
           name = 'clear_approach': the key of its term in a grasp's experts table
         """
     @property
@@ -4156,3 +4197,4 @@ def sim_settle_scene(objects: typing.Any, object_poses: typing.Any, settings: ty
     """
     Simulates the objects without a hand until they rest (at most `seconds`); walls: [xmin, ymin, xmax, ymax, height] of a box standing around them, or None.
     """
+URDF_AXES_ELEMENT: str = 'graspmix'

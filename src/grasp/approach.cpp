@@ -27,10 +27,11 @@ ClearApproachExpert::ClearApproachExpert(std::shared_ptr<const CollisionExpert> 
     throw std::invalid_argument("ClearApproachExpert: step must be a finite distance > 0 (m), got " +
                                 std::to_string(s.step));
   }
-  if (!s.hand_axis.allFinite() || !(s.hand_axis.norm() > 1e-12)) {
+  if (!s.hand_axis) settings_.hand_axis = collision_->hand().approach_axis();
+  if (!settings_.hand_axis->allFinite() || !(settings_.hand_axis->norm() > 1e-12)) {
     throw std::invalid_argument("ClearApproachExpert: hand_axis must be a finite non-zero vector");
   }
-  settings_.hand_axis.normalize();
+  settings_.hand_axis->normalize();
   const auto n_steps = static_cast<int>(std::ceil(s.stand_off / s.step - 1e-9));
   for (int k = 0; k < n_steps; ++k) offsets_.push_back(k * s.step);
   offsets_.push_back(s.stand_off);
@@ -44,7 +45,7 @@ Eigen::VectorXd ClearApproachExpert::log_value(const GraspBatch& b) const {
   // The approach direction of every grasp in the world frame.
   Vec3Array axis(n, 3);
   for (Eigen::Index i = 0; i < n; ++i)
-    axis.row(i) = (pose_from_vector(b.wrists.row(i).transpose()).linear() * settings_.hand_axis).transpose();
+    axis.row(i) = (pose_from_vector(b.wrists.row(i).transpose()).linear() * *settings_.hand_axis).transpose();
   Eigen::VectorXd out = Eigen::VectorXd::Zero(n);
   std::vector<Eigen::Index> alive(static_cast<size_t>(n));
   for (Eigen::Index i = 0; i < n; ++i) alive[static_cast<size_t>(i)] = i;

@@ -116,18 +116,15 @@ ContactQualityExpert::ContactQualityExpert(std::shared_ptr<const Hand> hand, con
       throw std::invalid_argument("ContactQualityExpert: normals row " + std::to_string(i) + " is zero");
     }
   }
-  // Finger links: collision geometry, and a movable joint between them and the wrist.
-  for (int l = 0; l < hand_->n_links(); ++l) {
+  // Finger links: the hand's fingertips (Hand::fingertips: collision geometry, moved by a joint).
+  for (const int l : hand_->fingertips()) {
     const LinkInfo& link = hand_->links()[static_cast<size_t>(l)];
-    if (link.collisions.empty()) continue;
-    bool moves = false, prismatic_only = true;
+    bool prismatic_only = true;
     for (int j = link.parent_joint; j >= 0;) {
       const JointInfo& joint = hand_->joints()[static_cast<size_t>(j)];
-      if (joint.dof >= 0) moves = true;
       if (joint.dof >= 0 && joint.type != JointType::Prismatic) prismatic_only = false;
       j = hand_->links()[static_cast<size_t>(joint.parent_link)].parent_joint;
     }
-    if (!moves) continue;
     // Boxes, and meshes whose proxy has a growth bound (hand.hpp), sweep by slab tests.
     const bool slabs =
         link.collisions.size() <= 8 &&
@@ -142,7 +139,7 @@ ContactQualityExpert::ContactQualityExpert(std::shared_ptr<const Hand> hand, con
     fingers_.push_back(l);
     translating_.push_back(prismatic_only && slabs);
   }
-  if (fingers_.empty()) throw std::invalid_argument("ContactQualityExpert: the hand has no moving link with geometry");
+  if (fingers_.empty()) throw std::invalid_argument("ContactQualityExpert: the hand has no fingertip links");
   index_ = std::make_unique<const Index>(points, normals);
 }
 

@@ -150,6 +150,19 @@ Eigen::VectorXd KinematicFeasibilityExpert::log_value(const GraspBatch& b) const
   return out;
 }
 
+namespace {
+Eigen::Vector3d hand_axis_of(const AxisAlignmentSettings& s, const Hand* hand) {
+  if (s.hand_axis) return *s.hand_axis;
+  // Without a hand: the wrist's +z, the axis this expert aligned before hands had one (and a hand's without
+  // fingertips).
+  return hand ? hand->approach_axis() : Eigen::Vector3d::UnitZ();
+}
+}  // namespace
+
+AxisAlignmentExpert::AxisAlignmentExpert(const Eigen::Vector3d& world_axis, const AxisAlignmentSettings& settings,
+                                         const Hand* hand)
+    : AxisAlignmentExpert(world_axis, hand_axis_of(settings, hand), settings.concentration, settings.name) {}
+
 AxisAlignmentExpert::AxisAlignmentExpert(const Eigen::Vector3d& world_axis, const Eigen::Vector3d& hand_axis,
                                          double concentration, std::string name)
     : concentration_(concentration), name_(std::move(name)) {

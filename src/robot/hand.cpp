@@ -1,4 +1,5 @@
 // Forward kinematics (eq:fk_function) and configuration handling of a Hand.
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -220,6 +221,37 @@ void revolve(const std::vector<std::pair<double, double>>& rings, int segments, 
 }
 
 }  // namespace
+
+int Hand::checked_fingertip(const std::string& link, const std::string& what) const {
+  const auto it = link_index_.find(link);
+  if (it == link_index_.end())
+    throw std::invalid_argument(what + ": fingertip '" + link + "' is not a link of the hand");
+  bool moving = false;
+  for (int l = it->second; l > 0 && !moving;) {
+    const JointInfo& j = joints_[static_cast<size_t>(links_[static_cast<size_t>(l)].parent_joint)];
+    moving = j.type != JointType::Fixed;
+    l = j.parent_link;
+  }
+  if (!moving) throw std::invalid_argument(what + ": fingertip '" + link + "' is not moved by any joint");
+  if (links_[static_cast<size_t>(it->second)].collisions.empty()) {
+    throw std::invalid_argument(what + ": fingertip '" + link + "' has no collision geometry");
+  }
+  return it->second;
+}
+
+void Hand::set_grasp_axes(const Eigen::Vector3d& approach, const std::vector<std::string>& fingertips) {
+  if (!approach.allFinite() || !(approach.norm() > 1e-12)) {
+    throw std::invalid_argument("approach_axis must be three finite numbers, not all zero");
+  }
+  if (fingertips.empty()) throw std::invalid_argument("fingertips: name at least one link");
+  std::vector<int> tips;
+  for (const std::string& name : fingertips) tips.push_back(checked_fingertip(name, "hand '" + name_ + "'"));
+  std::sort(tips.begin(), tips.end());
+  tips.erase(std::unique(tips.begin(), tips.end()), tips.end());
+  approach_axis_ = approach.normalized();
+  fingertips_ = std::move(tips);
+  grasp_axes_source_ = "set";
+}
 
 TriangleMesh Hand::collision_mesh(int link) const {
   if (link < 0 || link >= n_links())

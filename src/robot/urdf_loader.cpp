@@ -22,6 +22,7 @@
 
 #include "graspmix/core/se3.hpp"
 #include "graspmix/robot/hand.hpp"
+#include "robot/hand_axes.hpp"
 #include "robot/hull_proxy.hpp"
 #include "robot/urdf_text.hpp"
 
@@ -485,6 +486,10 @@ Hand Hand::from_urdf_string(const std::string& xml, const std::string& base_dir,
   for (JointInfo& j : hand.joints_) {
     if (j.mimic) resolve_mimic(j, hand.joints_, hand.joint_index_, *model, what);
   }
+  const detail::GraspAxes axes = detail::grasp_axes_of(hand, xml, what, settings);
+  hand.approach_axis_ = axes.approach;
+  hand.fingertips_ = axes.fingertips;
+  if (axes.given) hand.grasp_axes_source_ = "urdf";
   return hand;
 }
 

@@ -13,6 +13,7 @@
 // its approach is its 24 mm jaw, above the 2 cm default. The support plane is exact whatever the step: a
 // link's depth below a plane is linear along a straight path, so it is greatest at one of its ends.
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,8 +37,9 @@ struct ClearApproachSettings {
   /// points are the centres of 3 mm voxels: a hand clear of them by the collision's 1 mm contact tolerance can
   /// still sit 1-2 mm inside the surface they sample, which Bullet calls a start in collision (over 2 mm).
   double clearance = 0.002;
-  /// The approach axis in the wrist frame (the WSG 50's palm z, towards the fingertips); normalised.
-  Eigen::Vector3d hand_axis = Eigen::Vector3d::UnitZ();
+  /// The approach axis in the wrist frame, normalised; unset: the hand's approach_axis() (robot/hand.hpp: read from
+  /// its URDF or inferred from its fingertips; the WSG 50's palm z).
+  std::optional<Eigen::Vector3d> hand_axis;
   std::string name = "clear_approach";  ///< the key of its term in a grasp's experts table
 };
 

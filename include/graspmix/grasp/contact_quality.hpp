@@ -7,8 +7,9 @@
 //   q(t) = p + t (c - p),  t in [0, 1],
 // c being every joint pushed to its limit in the closing direction sign(q - p), or, where q == p (a pre-grasp
 // clamped at a joint limit), the demonstration's sign(h_g - h_e) (a joint it does not move stays); a joint
-// without a finite limit there closes by max(|q - p|, |h_g - h_e|) past q. The finger links are the links
-// with collision geometry moved by a movable joint (the WSG 50's finger_left and finger_right). A finger's
+// without a finite limit there closes by max(|q - p|, |h_g - h_e|) past q. The finger links are the hand's
+// fingertips (Hand::fingertips: the WSG 50's finger_left and finger_right, the xArm gripper's finger pads, not its
+// knuckles). A finger's
 // contact time t_f is the first t at which an object point lies within contact_tolerance of (or inside) its
 // collision geometry:
 //   * a link moved by prismatic joints alone whose shapes are boxes or meshes (parallel grippers) translates

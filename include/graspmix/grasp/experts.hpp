@@ -76,8 +76,9 @@ class KinematicFeasibilityExpert : public Expert {
 };
 
 struct AxisAlignmentSettings {
-  /// The hand's axis in the wrist frame (the WSG 50's approach axis is its palm z).
-  Eigen::Vector3d hand_axis = Eigen::Vector3d::UnitZ();
+  /// The hand's axis in the wrist frame; unset: the hand's approach_axis() (the WSG 50's palm z), the expert given
+  /// the hand (else the wrist's +z).
+  std::optional<Eigen::Vector3d> hand_axis;
   /// nats: log E = concentration (cos theta - 1), so a 90-degree deviation costs this much. 20, the value
   /// grasp synthesis has always run with from Python (it was 5 here): comparable to the contact terms, so
   /// the preference decides between otherwise similar grasps.
@@ -90,10 +91,11 @@ struct AxisAlignmentSettings {
 /// desired world axis. E = 1 when aligned, exp(-2 concentration) when opposite.
 class AxisAlignmentExpert : public Expert {
  public:
-  AxisAlignmentExpert(const Eigen::Vector3d& world_axis, const AxisAlignmentSettings& settings)
-      : AxisAlignmentExpert(world_axis, settings.hand_axis, settings.concentration, settings.name) {}
-  AxisAlignmentExpert(const Eigen::Vector3d& world_axis,
-                      const Eigen::Vector3d& hand_axis = AxisAlignmentSettings{}.hand_axis,
+  /// hand: whose approach_axis() is the hand's axis where settings.hand_axis is unset (without a hand: the wrist's
+  /// +z, the axis before hands had one).
+  AxisAlignmentExpert(const Eigen::Vector3d& world_axis, const AxisAlignmentSettings& settings,
+                      const Hand* hand = nullptr);
+  AxisAlignmentExpert(const Eigen::Vector3d& world_axis, const Eigen::Vector3d& hand_axis,
                       double concentration = AxisAlignmentSettings{}.concentration,
                       std::string name = AxisAlignmentSettings{}.name);
   std::string name() const override { return name_; }

@@ -120,7 +120,18 @@ struct HandLoadSettings {
   /// URDF's folder and its parents (see Hand::resolve_mesh_path).
   std::vector<std::string> package_dirs;
   bool load_meshes = true;  ///< false: mesh shapes keep only their file names (no geometry)
+  /// How the hand's grasp axes are inferred (Hand::approach_axis, Hand::fingertips; robot/hand_axes.cpp):
+  /// degrees within which the direction from the wrist to the fingertips is snapped to the nearest axis of the
+  /// wrist frame (20: the PR2 gripper's fingers lie within 1 degree of +x, a hand tilted by design stays exact);
+  double approach_snap_deg = 20.0;
+  /// degrees within which two candidate links, seen across the approach axis from it, lie on the same finger
+  /// (45: a linkage finger's knuckle and pad lie within a few degrees, three fingers 120 degrees apart).
+  double same_finger_deg = 45.0;
 };
+
+/// A hand's grasp axes as a URDF may give them: `<graspmix approach_axis="x y z" fingertips="a b"/>` under
+/// <robot> (urdfdom and pybullet skip the element); either attribute may be left out.
+inline constexpr const char* kUrdfAxesElement = "graspmix";
 
 class Hand {
  public:
@@ -199,6 +210,29 @@ class Hand {
   /// std::invalid_argument naming the file if it cannot be read or has no triangles.
   static TriangleMesh load_mesh(const std::string& path, const Eigen::Vector3d& scale = Eigen::Vector3d::Ones());
 
+  /// The approach axis in the wrist frame (unit): the direction along which the hand moves onto an object, as the
+  /// clear approach, the approach-axis expert and the grasp exports use it. Given by the URDF's <graspmix
+  /// approach_axis> element, or inferred when the URDF is read: the direction from the wrist to the mean of the
+  /// fingertips' centres (their collision vertices' boxes, joints at mid-range), snapped to the nearest axis of
+  /// the wrist frame when within HandLoadSettings::approach_snap_deg of it (the WSG 50's: exactly +z).
+  const Eigen::Vector3d& approach_axis() const { return approach_axis_; }
+  /// The fingertip links (indices into link_names(), in that order): the links that close on an object, whose
+  /// contacts contact quality scores and between which a grasp's opening is measured. Given by the URDF's
+  /// <graspmix fingertips> element, or inferred: of the links a joint moves that have collision geometry and no
+  /// descendant with geometry (the distal end of each chain), those that another such link outreaches along the
+  /// approach (by 1 mm) on the same side of it (within same_finger_deg across the axis) are dropped, so a linkage
+  /// finger's inner knuckle gives way to its pad.
+  const std::vector<int>& fingertips() const { return fingertips_; }
+  /// "urdf" where the URDF's <graspmix> element gave an axis or the fingertips, "inferred" otherwise, "set" after
+  /// set_grasp_axes.
+  const std::string& grasp_axes_source() const { return grasp_axes_source_; }
+  /// Gives the grasp axes: approach (non-zero, finite; normalised), fingertips (link names, at least one, each
+  /// moved by a joint and with collision geometry). Throws std::invalid_argument naming the bad value.
+  void set_grasp_axes(const Eigen::Vector3d& approach, const std::vector<std::string>& fingertips);
+  /// The index of a link that may be a fingertip (moved by a joint, with collision geometry); throws
+  /// std::invalid_argument starting with `what` and naming the link otherwise.
+  int checked_fingertip(const std::string& link, const std::string& what) const;
+
  private:
   std::string name_, source_;
   std::vector<std::string> joint_names_, link_names_;
@@ -206,6 +240,9 @@ class Hand {
   std::vector<JointInfo> joints_;
   std::vector<int> dof_joint_;  ///< joints() index of each independent joint
   std::map<std::string, int> link_index_, dof_index_, joint_index_;
+  Eigen::Vector3d approach_axis_ = Eigen::Vector3d::UnitZ();
+  std::vector<int> fingertips_;
+  std::string grasp_axes_source_ = "inferred";
 };
 
 }  // namespace graspmix

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import json
 
-from .common import CliError, input_path, output_file
+from .common import CliError, input_path, output_file, parse_floats
 
 COMMANDS = ("hand",)
 
@@ -18,16 +18,34 @@ def add_parsers(sub) -> None:
     s.add_argument("--json", action="store_true", help="print the description as JSON instead")
     s.add_argument("--wrist-link", help="--urdf is a robot's: cut the hand below this link (the new wrist) ...")
     s.add_argument("--out", type=output_file, help="... into this hand-only URDF, then describe it")
+    s.add_argument(
+        "--approach-axis",
+        help="X,Y,Z: the approach axis in the wrist frame, written with --out into the hand's <graspmix> element "
+        "(default: inferred, the direction from the wrist to the fingertips)",
+    )
+    s.add_argument(
+        "--fingertips",
+        help="A,B,...: the fingertip links, written with --out into the hand's <graspmix> element (default: "
+        "inferred, the distal link of each finger chain)",
+    )
     s.set_defaults(func=cmd_hand)
 
 
 def cmd_hand(args) -> int:
-    from ..model.hands import describe_hand, hand_urdf_from_robot
+    from ..model.hands import describe_hand, hand_urdf_from_robot, write_hand_axes
 
-    if (args.wrist_link is None) != (args.out is None):
-        raise CliError("--wrist-link and --out go together (cut a hand from a robot's URDF)")
+    axes = args.approach_axis is not None or args.fingertips is not None
+    if args.out is None and (args.wrist_link is not None or axes):
+        raise CliError("--wrist-link, --approach-axis and --fingertips write a hand: give --out")
+    if args.out is not None and args.wrist_link is None and not axes:
+        raise CliError("--out writes a hand cut with --wrist-link or given --approach-axis/--fingertips")
     if args.wrist_link is not None:
         args.urdf = str(hand_urdf_from_robot(args.urdf, args.wrist_link, args.out))
+    if axes:
+        approach = None if args.approach_axis is None else parse_floats(args.approach_axis, 3, "--approach-axis")
+        tips = None if args.fingertips is None else [n for n in args.fingertips.split(",") if n]
+        args.urdf = str(write_hand_axes(args.urdf, args.out, approach, tips))
+    if args.out is not None:
         print(f"wrote {args.out}")
     if args.png:
         from ..viz.hand import plot_hand
@@ -76,11 +94,16 @@ def format_hand(info: dict) -> list[str]:
     for name, m in info["mimic"].items():
         lines.append(f"  mimic: {name} = {m['multiplier']:g} * {m['joint']} + {m['offset']:g}")
     lines.append(f"independent joints (what a demonstration sets): {', '.join(info['independent_joints']) or 'none'}")
-    lines.append(f"approach axis: {_vec(a['convention'])} of the wrist frame (graspmix's convention)")
+    source = {"urdf": "given by the URDF's <graspmix> element", "set": "set"}.get(
+        a["source"],
+        f"inferred: the wrist-to-fingertips direction, snapped to a wrist axis within {a['snap_deg']:g} deg",
+    )
+    lines.append(f"approach axis: {_vec(a['axis'])} of the wrist frame ({source})")
+    lines.append(f"fingertips: {', '.join(info['fingertips']) or 'none'} (contact quality's fingers; the opening)")
     if a["angle_deg"] is not None:
-        verdict = "agrees" if a["agrees"] else "does NOT agree: --approach-axis would steer the wrong axis"
+        verdict = "agrees" if a["agrees"] else "does NOT agree: give the axis with --approach-axis X,Y,Z --out"
         lines.append(
-            f"  the fingertips lie along {_vec(a['fingers_direction'])} from the wrist, "
+            f"  the fingertips' mean lies along {_vec(a['fingers_direction'])} from the wrist, "
             f"{a['angle_deg']:.0f} deg from it ({verdict})"
         )
     w = info["opening_width"]

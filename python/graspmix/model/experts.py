@@ -108,6 +108,6 @@ def constraint_experts(
     elif reachable is not None:
         raise ValueError("reachable needs the kinematic expert (SynthesisOptions.kinematic is None)")
     if approach_axis is not None:
-        out.append(_core.AxisAlignmentExpert(np.asarray(approach_axis, float), settings=opts.axis_alignment))
+        out.append(_core.AxisAlignmentExpert(np.asarray(approach_axis, float), settings=opts.axis_alignment, hand=hand))
     out.extend(experts)
     return out

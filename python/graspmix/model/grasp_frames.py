@@ -2,14 +2,13 @@
 (the frames are defined in docs/hands-and-frames.md, "The grasps file and what a robot gets from it"):
 
 - ``T_world_wrist_matrix``: the wrist pose as a 4x4 homogeneous matrix;
-- fingertip links: the contact links (those with a ``contact/<link>`` expert) that move with a joint,
-  without those whose descendants are also among them (the distal one of each finger); a grasp with no
-  contact terms takes the moving leaf links that have collision geometry;
+- fingertip links: the hand's (``Hand.fingertips``: given by its URDF's ``<graspmix fingertips>`` or inferred, the
+  distal link of each finger chain);
 - a link's fingertip point: the centre of the box around its collision vertices that lie within
   ``fingertip_tolerance`` of its farthest extent along the approach axis (in the wrist frame);
 - ``T_world_tcp``: the tool centre point, the mean of the fingertip points (for two fingers their midpoint),
   oriented like the wrist;
-- ``approach``: the hand's approach axis (wrist frame, +z by the library's convention) in the world;
+- ``approach``: the hand's approach axis (``Hand.approach_axis``, in the wrist frame) in the world;
 - ``closing`` and ``opening_width`` (two fingertip links only, a parallel gripper): the unit vector from the
   first fingertip point to the second (link order of the URDF), and the gap between the two links' collision
   geometry along it (m; the WSG 50's is twice its joint value);
@@ -19,12 +18,10 @@
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .. import _core
 from ..io.checks import check_float
 
 # The frame keys of a grasps.json entry, in their order (after the keys of the first release).
@@ -43,26 +40,41 @@ FRAME_KEYS = (
 class GraspFrameSettings:
     """How the exports of a grasp are made (a Python-only tool: the defaults live here once)."""
 
-    # The hand's approach axis in the wrist frame: the axis the approach-axis expert aligns
-    # (AxisAlignmentSettings.hand_axis, +z: the WSG 50's palm normal towards the fingertips).
-    approach_axis: tuple = tuple(float(v) for v in _core.AxisAlignmentSettings().hand_axis)
+    # The hand's approach axis in the wrist frame; None: the hand's (Hand.approach_axis, which the experts use).
+    approach_axis: tuple | None = None
     pregrasp_distance: float = 0.10  # m: stand-off of the pre-grasp wrist before the grasp, along -approach
     retreat_distance: float = 0.10  # m: how far the wrist backs out after closing, along -approach
     fingertip_tolerance: float = 0.002  # m: vertices this close to a link's far end form its fingertip
-    fingertip_links: tuple = ()  # the fingertip links by name; empty: derived (module docstring)
+    fingertip_links: tuple = ()  # the fingertip links by name; empty: the hand's (Hand.fingertips)
 
     def checked(self) -> "GraspFrameSettings":
+        if self.approach_axis is None:
+            return self._checked_distances()
         axis = np.asarray(self.approach_axis, dtype=float)
         if axis.shape != (3,) or not np.all(np.isfinite(axis)) or not np.linalg.norm(axis) > 0:
             raise ValueError(f"approach_axis must be 3 finite numbers, not all zero, got {self.approach_axis!r}")
+        return self._checked_distances()
+
+    def _checked_distances(self) -> "GraspFrameSettings":
         check_float(self.pregrasp_distance, "pregrasp_distance", lo=0.0)
         check_float(self.retreat_distance, "retreat_distance", lo=0.0)
         check_float(self.fingertip_tolerance, "fingertip_tolerance", lo=0.0)
         return self
 
+    def for_hand(self, hand) -> "GraspFrameSettings":
+        """These settings with the hand's approach axis and fingertips where they leave them to the hand."""
+        return replace(
+            self,
+            approach_axis=tuple(
+                float(v) for v in (hand.approach_axis if self.approach_axis is None else self.approach_axis)
+            ),
+            fingertip_links=tuple(self.fingertip_links) or tuple(hand.fingertips),
+        ).checked()
+
     def to_json(self) -> dict:
+        axis = {} if self.approach_axis is None else {"approach_axis": [float(v) for v in self.approach_axis]}
         return {
-            "approach_axis": [float(v) for v in self.approach_axis],
+            **axis,
             "pregrasp_distance": float(self.pregrasp_distance),
             "retreat_distance": float(self.retreat_distance),
             "fingertip_tolerance": float(self.fingertip_tolerance),
@@ -92,42 +104,6 @@ def pose_matrix(pose) -> np.ndarray:
     return T
 
 
-def _moving_links(hand) -> tuple[set, dict]:
-    """(links that a non-fixed joint moves relative to the wrist, link -> parent link)."""
-    parent, moves = {}, {}
-    for j in hand.joints:  # parents before children
-        parent[j["child"]] = j["parent"]
-        moves[j["child"]] = j["type"] != "fixed" or moves.get(j["parent"], False)
-    return {link for link, m in moves.items() if m}, parent
-
-
-def fingertip_links(hand, contact_links: Sequence[str] = ()) -> list[str]:
-    """The fingertip links of a hand (module docstring), in the hand's link order."""
-    moving, parent = _moving_links(hand)
-    with_geometry = {n for n in hand.link_names if len(hand.collision_mesh(n)[1])}
-    if contact_links:
-        chosen = {n for n in contact_links if n in moving}
-    else:
-        chosen = {n for n in moving & with_geometry if n not in parent.values()}
-    ancestors = set()
-    for n in chosen:
-        p = parent.get(n)
-        while p is not None:
-            ancestors.add(p)
-            p = parent.get(p)
-    return [n for n in hand.link_names if n in chosen and n not in ancestors]
-
-
-def contact_links_of(grasps) -> list[str]:
-    """Every link with a contact/<link> expert term in any of the grasps (Grasps)."""
-    links = []
-    for g in grasps:
-        for k in g.experts or {}:
-            if k.startswith("contact/") and k[8:] not in links:
-                links.append(k[8:])
-    return links
-
-
 def _distinct_rows(V: np.ndarray) -> np.ndarray:
     """The distinct rows of V (a mesh file repeats a vertex for each triangle it is in; the frames use the
     vertices' extremes, which the copies do not change), by sorting, without np.unique."""
@@ -140,9 +116,13 @@ def _distinct_rows(V: np.ndarray) -> np.ndarray:
 class FrameMaker:
     """Computes the frames of grasps of one hand (batched over the grasps)."""
 
-    def __init__(self, hand, tips: Sequence[str], settings: GraspFrameSettings | None = None):
-        self.hand, self.tips = hand, list(tips)
-        self.settings = (settings or GraspFrameSettings()).checked()
+    def __init__(self, hand, settings: GraspFrameSettings | None = None):
+        """settings: how (default GraspFrameSettings(): the hand's approach axis and fingertips)."""
+        self.settings = (settings or GraspFrameSettings()).for_hand(hand)
+        self.hand, self.tips = hand, list(self.settings.fingertip_links)
+        for n in self.tips:
+            if n not in hand.link_names:
+                raise ValueError(f"fingertip link {n!r} is not a link of hand '{hand.name}'")
         axis = np.asarray(self.settings.approach_axis, dtype=float)
         self.axis = axis / np.linalg.norm(axis)
         self.rows = [hand.link_index(n) for n in self.tips]

@@ -19,7 +19,7 @@ import numpy as np
 from .. import _core
 from ..io import GRASPS_FORMAT, read_document, relative_path, resolve_path
 from ..io.checks import check_int, check_output_path
-from .grasp_frames import FRAME_KEYS, FrameMaker, GraspFrameSettings, contact_links_of, fingertip_links
+from .grasp_frames import FRAME_KEYS, FrameMaker, GraspFrameSettings
 
 # What executing a grasp needs; the other fields describe how it was ranked.
 EXECUTION_KEYS = ("T_world_wrist", "pregrasp_joints", "grasp_joints")
@@ -212,11 +212,8 @@ class GraspSet:
         if not rows:
             return
         hand = self.get_hand()
-        tips = list(self.frame_settings.fingertip_links) or fingertip_links(hand, contact_links_of(rows))
-        for n in tips:
-            if n not in hand.link_names:
-                raise ValueError(f"fingertip link {n!r} is not a link of hand '{hand.name}'")
-        maker = FrameMaker(hand, tips, self.frame_settings)
+        maker = FrameMaker(hand, self.frame_settings)
+        self.frame_settings, tips = maker.settings, maker.tips  # the hand's axis and fingertips made explicit
         wrists = np.array([g.T_world_wrist for g in rows], dtype=float)
         joints = np.array([hand.joints_array(g.grasp_joints) for g in rows], dtype=float)
         for g, f in zip(rows, maker.frames(wrists, joints)):
@@ -311,7 +308,7 @@ class GraspSet:
         if not doc.get("hand"):
             raise ValueError(f"{path}: names no hand")
         frames = doc.get("frames") or {}
-        known = {f.name for f in fields(GraspFrameSettings)} - {"fingertip_links"}
+        known = {f.name for f in fields(GraspFrameSettings)}  # the axis and fingertips the frames were made with
         settings = GraspFrameSettings(
             **{k: tuple(v) if isinstance(v, list) else v for k, v in frames.items() if k in known}
         )

@@ -13,12 +13,8 @@ import numpy as np
 
 from .. import _core
 from ..io.checks import check_input_file, check_output_path, check_path_text
-from .grasp_frames import GraspFrameSettings, fingertip_links
 
-# The hand's approach axis in the wrist frame: the convention of the approach-axis expert
-# (AxisAlignmentSettings.hand_axis, +z of the wrist), as the grasp exports use it.
-APPROACH_AXIS = GraspFrameSettings.approach_axis
-FINGERS_AGREE_DEG = 30.0  # the fingers' direction within this angle of the convention agrees with it
+FINGERS_AGREE_DEG = 30.0  # the fingers' direction within this angle of the hand's approach axis agrees with it
 CONTINUOUS_SPAN = 0.5  # rad either side of 0 to probe a continuous joint
 SPREAD_TOLERANCE = 1e-6  # m: a joint whose limits change its fingertips' spread less neither opens nor closes
 
@@ -129,22 +125,23 @@ def describe_hand(path: str | Path, hand=None) -> dict:
 
     Keys: urdf, name, wrist (the root link, the frame of T_world_wrist), links, joints (type, parent,
     child, axis in the child frame, limits, mimic, independent, closing), independent_joints, mimic,
-    approach_axis (the convention, the fingers' direction from the wrist and the angle between them),
+    approach_axis (the hand's axis, where it came from, the fingers' direction from the wrist and the angle
+    between them), fingertips (Hand.fingertips),
     closing (independent joint -> +1/-1), fingers (two sides of fingertip links, or None), opening_width
     (m at the lower and upper limits, two-finger grippers only, else None)."""
     path = check_input_file(check_path_text(path, "urdf"), "urdf")
     hand = hand or _core.Hand.from_urdf(str(path))
     moving = _moving(hand)
-    tips = fingertip_links(hand)  # the grasp exports' rule: moving links with geometry and no moving child
+    tips = list(hand.fingertips)  # given by the URDF's <graspmix> element or inferred (Hand.fingertips)
     meshes = {name: np.asarray(hand.collision_mesh(name)[0]) for name in hand.link_names}
     lim = _limits(hand)
     mid = lim.mean(axis=1)
     tip_vertices = _vertices(hand, meshes, mid, set(tips))
     pts = np.vstack(list(tip_vertices.values())) if tip_vertices else np.zeros((0, 3))
-    convention = np.array(APPROACH_AXIS)
+    approach = np.asarray(hand.approach_axis, dtype=float)
     fingers_dir = _unit(pts.mean(axis=0)) if len(pts) else np.zeros(3)
-    angle = float(np.degrees(np.arccos(np.clip(fingers_dir @ convention, -1, 1)))) if len(pts) else None
-    axis = fingers_dir if len(pts) else convention
+    angle = float(np.degrees(np.arccos(np.clip(fingers_dir @ approach, -1, 1)))) if len(pts) else None
+    axis = approach
     centre = pts.mean(axis=0) if len(pts) else np.zeros(3)
     closing = _closing(hand, meshes, moving, tips, mid, lim, centre, axis)
     sides = _sides(tip_vertices, centre, axis)
@@ -163,11 +160,14 @@ def describe_hand(path: str | Path, hand=None) -> dict:
         "independent_joints": list(hand.joint_names),
         "mimic": {k: {"joint": m, "multiplier": a, "offset": b} for k, (m, a, b) in hand.mimic_joints.items()},
         "approach_axis": {
-            "convention": list(APPROACH_AXIS),
+            "axis": [float(v) + 0.0 for v in approach],
+            "source": hand.grasp_axes_source,
+            "snap_deg": _core.HandLoadSettings().approach_snap_deg,
             "fingers_direction": [round(float(v), 9) + 0.0 for v in fingers_dir],
             "angle_deg": angle,
             "agrees": angle is not None and angle <= FINGERS_AGREE_DEG,
         },
+        "fingertips": tips,
         "closing": closing,
         "fingers": None if sides is None else [sides[0], sides[1]],
         "opening_width": width,
@@ -242,6 +242,35 @@ def hand_urdf_from_robot(robot_urdf: str | Path, wrist_link: str, out: str | Pat
     ET.indent(hand)
     check_output_path(out, "out")
     out.write_text(ET.tostring(hand, encoding="unicode") + "\n")
+    return out
+
+
+def write_hand_axes(urdf: str | Path, out: str | Path, approach_axis=None, fingertips=None) -> Path:
+    """Writes `urdf` to `out` (mesh paths rewritten relative to it, as hand_urdf_from_robot does) with its grasp
+    axes given in its <graspmix> element: approach_axis (3,) in the wrist frame and/or fingertips (link names);
+    None keeps what the file gives (or the inference). The hand is read back to check them: ValueError naming a
+    bad axis or link. Returns `out`."""
+    urdf = check_input_file(check_path_text(urdf, "urdf"), "urdf")
+    hand = _core.Hand.from_urdf(str(urdf))
+    given = ET.parse(urdf).getroot().find(_core.URDF_AXES_ELEMENT)
+    attrs = dict(given.attrib) if given is not None else {}
+    if approach_axis is not None:
+        a = np.asarray(approach_axis, dtype=float)
+        if a.shape != (3,) or not np.all(np.isfinite(a)) or not np.linalg.norm(a) > 0:
+            raise ValueError(f"approach axis: expected 3 finite numbers, not all zero, got {approach_axis!r}")
+        attrs["approach_axis"] = " ".join(f"{v:.9g}" for v in a / np.linalg.norm(a))
+    if fingertips is not None:
+        unknown = [n for n in fingertips if n not in hand.link_names]
+        if not fingertips or unknown:
+            raise ValueError(f"fingertips: {', '.join(unknown) or 'none given'} (links: {', '.join(hand.link_names)})")
+        attrs["fingertips"] = " ".join(fingertips)
+    out = hand_urdf_from_robot(urdf, hand.root_link, out, name=hand.name)
+    root = ET.parse(out).getroot()
+    if attrs:
+        root.append(ET.Element(_core.URDF_AXES_ELEMENT, attrs))
+    ET.indent(root)
+    out.write_text(ET.tostring(root, encoding="unicode") + "\n")
+    _core.Hand.from_urdf(str(out))  # the axes checked as every reader will
     return out
 
 

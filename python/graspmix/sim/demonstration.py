@@ -23,10 +23,14 @@ from .. import _core
 from ..io.checks import MAX_ITERATIONS, check_float, check_input_file, check_int, check_seed
 from ..model import Demonstration
 from ..model.demonstration import DEMO_GRIP_FORCE, DEMO_MAX_STEPS
+from ..model.grasp_frames import rotation_matrices
 from .acquisition import AcquisitionSettings, TableWorld, acquire
 
 PENETRATION_TOLERANCE = 1e-3  # m: a pre-grasp link deeper than this in the object or the table is refused
 OBJECT_PUSHED = 0.01  # m: an object that moved further while the hand closed was pushed, not grasped
+# degrees: an approach axis further off the direction from the wrist to the object is named in a failed recording's
+# message (a top grasp of a box aims within a few degrees; 60 leaves room for side and edge grasps)
+AIM_OFF_DEG = 60.0
 # A mimic joint is a mechanical linkage, not a second motor: its motor (MIMIC_STIFFNESS times the grip force)
 # holds it on its master's value, so the grip force acts once, as in the real mechanism.
 MIMIC_STIFFNESS = 10.0
@@ -89,8 +93,9 @@ def record(
         links = _link_names(p, c, body, hand.root_link)
         for name, value in hand.all_joint_values(q_pre).items():
             p.resetJointState(body, joints[name], value, physicsClientId=c)
-        _check_pregrasp_collision(p, scene, body, links, _palm_links(hand))
         start = scene.object_pose()
+        aim = aim_hint(hand, wrist, start[:3])
+        _check_pregrasp_collision(p, scene, body, links, _palm_links(hand), aim)
         _close(p, c, hand, body, joints, q_close, grip_force, max_steps)
         reached = {n: p.getJointState(body, joints[n], physicsClientId=c)[0] for n in hand.joint_names}
         p.performCollisionDetection(physicsClientId=c)
@@ -98,7 +103,7 @@ def record(
         shift = float(np.linalg.norm(scene.object_pose()[:3] - start[:3]))
         poses = _link_poses(p, c, body, links, wrist)
     q_grasp = hand.joints_array(reached)
-    _check_outcome(hand, q_pre, q_close, q_grasp, touching, shift)
+    _check_outcome(hand, q_pre, q_close, q_grasp, touching, shift, aim)
     demo = Demonstration(
         hand_path=Path(hand_path).resolve(),
         cloud=cloud.points,
@@ -139,8 +144,47 @@ def _palm_links(hand) -> set:
     return palm
 
 
-def _check_pregrasp_collision(p, scene: TableWorld, body: int, links: dict, palm: set) -> None:
-    """ValueError naming the hand links that penetrate the object or the table at the pre-grasp."""
+def _angle_deg(a, b) -> float:
+    return float(np.degrees(np.arccos(np.clip(np.dot(a, b) / (np.linalg.norm(a) * np.linalg.norm(b)), -1.0, 1.0))))
+
+
+def aim_hint(hand, wrist: np.ndarray, target: np.ndarray) -> str:
+    """What a wrist pose does with the hand's approach axis (Hand.approach_axis): where it points in the world
+    and how far off the target it is; when the pose's quaternion read w-first (as [qw, qx, qy, qz] would be
+    given) points the approach much nearer the target, the quaternion order is named as the likely mistake.
+    Empty when the approach points within AIM_OFF_DEG of the target."""
+    axis = np.asarray(hand.approach_axis, dtype=float)
+    to_target = np.asarray(target, dtype=float) - wrist[:3]
+    if not np.linalg.norm(to_target) > 1e-9:
+        return ""
+    q = wrist[3:] / np.linalg.norm(wrist[3:])
+    points = rotation_matrices(q[None])[0] @ axis
+    off = _angle_deg(points, to_target)
+    if off <= AIM_OFF_DEG:
+        return ""
+    hint = (
+        f"the hand's approach axis {_vec(axis)} (wrist frame) points {_vec(points)} in the world, {off:.0f} deg "
+        f"off the direction from the wrist to the object {_vec(to_target / np.linalg.norm(to_target))}"
+    )
+    w_first = np.r_[q[1:], q[0]]  # the same four numbers meant as w, x, y, z
+    off_w = _angle_deg(rotation_matrices(w_first[None])[0] @ axis, to_target)
+    if off_w <= AIM_OFF_DEG:
+        given = ",".join(f"{v:g}" for v in wrist[3:])
+        meant = ",".join(f"{v:g}" for v in w_first)
+        return (
+            f"{hint}; the wrist quaternion is read x,y,z,w: if {given} was meant w-first, write it as {meant} "
+            f"(the approach then points {off_w:.0f} deg off the object)"
+        )
+    return f"{hint}; turn the wrist so that the approach axis points at the object"
+
+
+def _vec(v) -> str:
+    return "[" + ", ".join(f"{x + 0.0:.2f}" for x in v) + "]"
+
+
+def _check_pregrasp_collision(p, scene: TableWorld, body: int, links: dict, palm: set, aim: str = "") -> None:
+    """ValueError naming the hand links that penetrate the object or the table at the pre-grasp (with `aim`,
+    aim_hint's words on where the approach points, when the palm is inside)."""
     c = scene.client
     p.performCollisionDetection(physicsClientId=c)
     for other, what in ((scene.body, "the object"), (scene.plane, "the table")):
@@ -155,15 +199,16 @@ def _check_pregrasp_collision(p, scene: TableWorld, body: int, links: dict, palm
         inside = sorted(set(depth) & palm)
         hint = (
             f"the wrist/palm ({', '.join(inside)}) is inside {what}: move the wrist back along the approach"
+            + (f"; {aim}" if aim else "")
             if inside
             else "the fingers are inside it: open the pre-grasp further or move the wrist"
         )
         raise ValueError(f"the pre-grasp is in collision with {what}: {named}; {hint}")
 
 
-def _check_outcome(hand, q_pre, q_close, q_grasp, touching: list, shift: float) -> None:
+def _check_outcome(hand, q_pre, q_close, q_grasp, touching: list, shift: float, aim: str = "") -> None:
     """ValueError for a recording that is not a grasp: a joint pushed open, the object pushed away, or a
-    hand that closed without touching the object."""
+    hand that closed without touching the object (with `aim`, aim_hint's words on where the approach points)."""
     direction = np.sign(q_close - q_pre)
     opened = (q_grasp - q_pre) * direction < -OPENED_TOLERANCE
     if np.any(opened):
@@ -179,7 +224,7 @@ def _check_outcome(hand, q_pre, q_close, q_grasp, touching: list, shift: float) 
             "the wrist or palm is probably too deep; move the wrist back along the approach"
         )
     if not touching:
-        raise ValueError("the hand closed without touching the object: move the wrist or close further")
+        raise ValueError("the hand closed without touching the object: " + (aim or "move the wrist or close further"))
 
 
 def _place_hand(p, c: int, hand_path, wrist: np.ndarray):

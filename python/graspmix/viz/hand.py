@@ -64,13 +64,14 @@ def _posed(hand, meshes: dict, q: np.ndarray) -> dict:
 
 
 def _frame(ax, length: float, approach: dict) -> None:
-    """The wrist frame's axes at the origin, the approach axis (the convention) and, where it differs,
-    the direction from the wrist to the fingertips."""
+    """The wrist frame's axes at the origin, the hand's approach axis and, where it differs, the direction
+    from the wrist to the fingertips."""
     for k, colour in enumerate(AXIS_COLOURS):
         d = np.eye(3)[k] * length
         ax.plot([0, d[0]], [0, d[1]], [0, d[2]], color=colour, linewidth=2.5)
-    a = np.asarray(approach["convention"]) * length * 1.6
-    ax.plot([0, a[0]], [0, a[1]], [0, a[2]], color="k", linestyle="--", linewidth=1, label="approach axis (+z)")
+    a = np.asarray(approach["axis"]) * length * 1.6
+    label = "approach axis [" + ", ".join(f"{v + 0.0:.2g}" for v in approach["axis"]) + "]"
+    ax.plot([0, a[0]], [0, a[1]], [0, a[2]], color="k", linestyle="--", linewidth=1, label=label)
     if not approach["agrees"]:
         f = np.asarray(approach["fingers_direction"]) * length * 1.6
         ax.plot([0, f[0]], [0, f[1]], [0, f[2]], color="m", linestyle=":", linewidth=1.5, label="towards the fingers")

@@ -34,7 +34,7 @@ TEST(Experts, AxisAlignmentIsConcentrationTimesCosineMinusOne) {
   // Sideways: 90 degrees.
   const Eigen::Quaterniond side(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX()));
   EXPECT_NEAR(e.log_value({wrist(0.3, side), q})[0], -4.0, 1e-12);
-  EXPECT_THROW(AxisAlignmentExpert(Eigen::Vector3d::Zero()), std::invalid_argument);
+  EXPECT_THROW(AxisAlignmentExpert(Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ()), std::invalid_argument);
 }
 
 TEST(Experts, KinematicFeasibilityRejectsLimitsPlaneAndUnreachable) {

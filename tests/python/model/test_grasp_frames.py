@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from graspmix import Hand, data_path
 from graspmix.model import Grasp, GraspSet
-from graspmix.model.grasp_frames import FRAME_KEYS, GraspFrameSettings, fingertip_links
+from graspmix.model.grasp_frames import FRAME_KEYS, GraspFrameSettings
 from scipy.spatial.transform import Rotation
 
 WSG50 = data_path("hands", "wsg50.urdf")
@@ -79,20 +79,13 @@ def test_stand_off_distances_and_approach_axis_are_settings():
         _set(0.02, fingertip_links=("thumb",))
 
 
-def test_fingertip_links_of_hands():
-    wsg = Hand.from_urdf(WSG50)
-    # The palm touched the demonstrated box but does not move: it is no fingertip.
-    assert fingertip_links(wsg, ["palm", "finger_left", "finger_right"]) == ["finger_left", "finger_right"]
-    assert fingertip_links(wsg) == ["finger_left", "finger_right"]  # moving leaves
-    import pybullet_data
-
-    pr2 = Hand.from_urdf(f"{pybullet_data.getDataPath()}/pr2_gripper.urdf")
-    # The tips are fixed to the revolute fingers: they move, and are the distal link of each finger.
-    assert fingertip_links(pr2) == ["left_tip", "right_tip"]
-    assert fingertip_links(pr2, ["gripper_pole", "left_gripper", "left_tip", "right_gripper"]) == [
-        "left_tip",
-        "right_gripper",
-    ]
+def test_frames_take_the_hands_approach_axis_and_fingertips():
+    """Without settings of their own the frames use Hand.approach_axis and Hand.fingertips, and the file records
+    the axis they were made with."""
+    grasps = _set(0.02)
+    hand = Hand.from_urdf(WSG50)
+    assert grasps.frame_settings.approach_axis == tuple(hand.approach_axis) == (0.0, 0.0, 1.0)
+    assert grasps.fingertips == list(hand.fingertips) == ["finger_left", "finger_right"]
 
 
 def test_grasps_json_keeps_the_old_keys_first(tmp_path):
@@ -135,7 +128,7 @@ def test_frames_of_mesh_fingertips_follow_the_rule_vertex_by_vertex(tmp_path):
     rng = np.random.default_rng(5)
     wrists = np.c_[rng.uniform(-0.1, 0.1, (6, 3)), Rotation.random(6, random_state=rng).as_quat()]
     joints = rng.uniform(0.0, 0.04, (6, 1))
-    frames = FrameMaker(hand, tips).frames(wrists, joints)
+    frames = FrameMaker(hand, GraspFrameSettings(fingertip_links=tuple(tips))).frames(wrists, joints)
     for w, q, f in zip(wrists, joints, frames):
         links = hand.fk(w, q)
         R = Rotation.from_quat(w[3:])

@@ -78,11 +78,12 @@ def test_opening_width_matches_pybullet(urdf, tips, xarm):
         assert d["opening_width"][limit] == pytest.approx(pybullet_gap(urdf, *tips, lim[:, k]), abs=PYBULLET_MARGIN)
 
 
-def test_pr2_fingers_lie_along_x_not_the_convention():
+def test_pr2_fingers_lie_along_x_its_approach_axis():
     d = describe_hand(PR2)
     assert d["independent_joints"] == ["left_gripper_joint", "right_gripper_joint"] and d["mimic"] == {}
     assert np.dot(d["approach_axis"]["fingers_direction"], [1, 0, 0]) > 0.99  # the pole and fingers run along +x
-    assert not d["approach_axis"]["agrees"]
+    assert d["approach_axis"]["axis"] == [1.0, 0.0, 0.0] and d["approach_axis"]["source"] == "inferred"
+    assert d["approach_axis"]["agrees"] and d["fingertips"] == ["left_tip", "right_tip"]
     assert d["closing"] == {"left_gripper_joint": -1, "right_gripper_joint": -1}
     assert d["opening_width"]["upper"] > d["opening_width"]["lower"]
 
@@ -125,7 +126,7 @@ def test_cli_hand(tmp_path, capsys, xarm):
     assert json.loads(capsys.readouterr().out)["independent_joints"] == ["drive_joint"]
     assert main(["hand", "--urdf", PR2, "--png", str(tmp_path / "p.png")]) == 0
     text = capsys.readouterr().out
-    assert "left_gripper_joint, right_gripper_joint" in text and "does NOT agree" in text
+    assert "left_gripper_joint, right_gripper_joint" in text and "approach axis: [1, 0, 0] of the wrist frame" in text
     assert (tmp_path / "p.png").stat().st_size > 0
 
 
@@ -175,3 +176,21 @@ def test_a_joint_that_turns_a_fingertip_about_the_approach_neither_opens_nor_clo
     assert d["closing"] == {"c": 0} and d["opening_width"] is None
     c = d["joints"][0]
     assert c["lower"] is None and c["upper"] is None and c["independent"]
+
+
+def test_xarm_grasps_export_the_opening_between_the_pads(xarm):
+    """A grasps file of the linkage gripper has a closing direction and an opening: the gap between its pads (the
+    fingertips), as pybullet measures it between the same links, at several drive values."""
+    from graspmix.model import Grasp, GraspSet
+
+    q = [0.1, 0.4, 0.7]
+    rows = [
+        Grasp([0, 0, 0.3, 1.0, 0, 0, 0], {"drive_joint": 0.0}, {"drive_joint": v}, rank=i + 1) for i, v in enumerate(q)
+    ]
+    grasps = GraspSet(rows, xarm, "gmm", "", {})
+    assert grasps.fingertips == ["left_finger", "right_finger"]
+    for g, v in zip(grasps, q):
+        assert g.opening_width == pytest.approx(
+            pybullet_gap(xarm, "left_finger", "right_finger", [v]), abs=PYBULLET_MARGIN
+        )
+        assert abs(np.dot(g.closing, g.approach)) < 0.05  # across the approach

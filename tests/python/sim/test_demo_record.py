@@ -168,3 +168,20 @@ def test_cli_demo(tmp_path, capsys):
     assert cli.main(ok + ["--png", str(png), "--max-steps", "3000"]) == 0
     assert png.stat().st_size > 10_000 and png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert Demonstration.load(tmp_path / "d.json").grasp_joints["finger_left_joint"] == pytest.approx(0.03, abs=1.5e-3)
+
+
+def test_aim_hint_names_the_quaternion_order_and_the_approach_axis():
+    """The PR2 gripper approaches along its +x: above an object, x,y,z,w = (0, s, 0, s) turns +x down; the same
+    numbers a w-first user means as (s, 0, s, 0) point +x up, and the hint names the order; a wrist turned so
+    that +x lies flat is told to turn."""
+    import pybullet_data
+    from graspmix import Hand
+    from graspmix.sim.demonstration import aim_hint
+
+    hand = Hand.from_urdf(f"{pybullet_data.getDataPath()}/pr2_gripper.urdf")
+    s, target = np.sqrt(0.5), np.array([0.0, 0.0, 0.0])
+    assert aim_hint(hand, np.array([0, 0, 0.3, 0, s, 0, s]), target) == ""
+    w_first = aim_hint(hand, np.array([0, 0, 0.3, s, 0, s, 0]), target)
+    assert "180 deg off" in w_first and "meant w-first, write it as 0,0.707107,0,0.707107" in w_first
+    flat = aim_hint(hand, np.array([0, 0, 0.3, 0, 0, 0, 1.0]), target)
+    assert "90 deg off" in flat and flat.endswith("turn the wrist so that the approach axis points at the object")

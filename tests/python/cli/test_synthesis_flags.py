@@ -22,7 +22,10 @@ VALUES = {
     "--stand-off": "0.15",
     "--approach-clearance": "0.004",
     "--friction": "0.8",
+    "--workspace": "0,0.1,0,0.2,0.3,0.4",
 }
+# The option's value of a flag's text, where it is not the default's type applied to the text.
+PARSED = {"--workspace": [0.0, 0.1, 0.0, 0.2, 0.3, 0.4]}
 
 
 def _get(options, path):
@@ -46,7 +49,8 @@ def test_every_command_takes_the_same_flags(command):
 def test_a_value_flag_changes_its_option_and_nothing_else(flag, path):
     args = SUB["synthesize"].parse_args(["--cloud", "x.pcd", flag, VALUES[flag]])
     got = synthesis_options(args)
-    expected = SynthesisOptions().updated({path: type(_get(SynthesisOptions(), path))(VALUES[flag])})
+    value = PARSED[flag] if flag in PARSED else type(_get(SynthesisOptions(), path))(VALUES[flag])
+    expected = SynthesisOptions().updated({path: value})
     assert got == expected and got != SynthesisOptions()
 
 

@@ -9,6 +9,7 @@
 #include "graspmix/grasp/contact_model.hpp"
 #include "graspmix/grasp/experts.hpp"
 #include "graspmix/grasp/occupancy.hpp"
+#include "graspmix/grasp/solid_volume.hpp"
 #include "graspmix/grasp/synthesis.hpp"
 #include "settings.hpp"
 
@@ -86,9 +87,29 @@ void bind_occupancy(py::module_& m) {
           "Rays inserted (one per cell and viewpoint), cells by state, wall time (s).");
 }
 
+/// The solid volume of objects standing on a plane (grasp/solid_volume.hpp), as an OccupancyMap.
+void bind_solid_volume(py::module_& m) {
+  m.def(
+      "solid_volume",
+      [](const py::object& points, const py::object& plane, double resolution, double gap) {
+        const Vec3Array P(to_matrix(points, "solid_volume: points", 3, true));
+        const Eigen::Vector4d pl(to_vector(plane, "solid_volume: plane", 4));
+        SolidVolumeSettings s;
+        s.resolution = resolution;
+        s.gap = gap;
+        py::gil_scoped_release release;
+        return std::make_shared<OccupancyMap>(solid_volume(P, pl, s));
+      },
+      py::arg("points"), py::arg("plane"), py::kw_only(), py::arg("resolution") = SolidVolumeSettings{}.resolution,
+      py::arg("gap") = SolidVolumeSettings{}.gap,
+      "The solid columns of objects (points (N, 3)) standing on plane [a, b, c, d]: an OccupancyMap whose occupied\n"
+      "cells lie under the points' tops (the rule: include/graspmix/grasp/solid_volume.hpp); resolution, gap in m.");
+}
+
 /// The collision expert W and its settings and results.
 void bind_collision(py::module_& m) {
   bind_occupancy(m);
+  bind_solid_volume(m);
   SettingsClass<CollisionSettings>(m, "CollisionSettings", "The collision expert W(h) (eq:opt_criterion_std_col).")
       .property(
           "model", [](const CollisionSettings& s) { return to_string(s.model); },
@@ -110,6 +131,10 @@ void bind_collision(py::module_& m) {
              "m per point: each cloud point inside a link adds this much to the total depth (0: depths alone)")
       .field("reference_area", &CollisionSettings::reference_area,
              "m^2: the occupancy model charges a link's volume in blocked cells divided by this")
+      .field(
+          "volume", &CollisionSettings::volume,
+          "keep the hand out of the objects' solid volume too (columns from the plane up to the points: solid_volume)")
+      .field("volume_resolution", &CollisionSettings::volume_resolution, "m: the solid volume's cell, > 0")
       .done();
 
   py::class_<CollisionResult>(m, "CollisionResult",
@@ -213,6 +238,12 @@ void bind_collision(py::module_& m) {
             return e.occupancy() ? py::cast(std::const_pointer_cast<OccupancyMap>(e.occupancy())) : py::none();
           },
           "The OccupancyMap of the occupancy model, or None.")
+      .def_property_readonly(
+          "volume",
+          [](const CollisionExpert& e) -> py::object {
+            return e.volume() ? py::cast(std::const_pointer_cast<OccupancyMap>(e.volume())) : py::none();
+          },
+          "The solid volume charged with settings.volume (an OccupancyMap: solid_volume), or None.")
       .def_property_readonly("cell_size", &CollisionExpert::cell_size, "The grid cell of the cloud index (m).")
       .def_property_readonly(
           "settings", [](const CollisionExpert& e) { return CollisionSettings(e.settings()); },

@@ -8,7 +8,7 @@ import enum
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AnnealingSettings', 'AxisAlignmentExpert', 'AxisAlignmentSettings', 'CleanupResult', 'CleanupSettings', 'ClearApproachExpert', 'ClearApproachSettings', 'CloudData', 'CollisionBatchResult', 'CollisionExpert', 'CollisionFreeExpert', 'CollisionResult', 'CollisionSettings', 'Completion', 'CompletionKind', 'CompletionSettings', 'ConfigModel', 'ConfigModelSettings', 'ContactData', 'ContactModel', 'ContactQualityExpert', 'ContactQualityResult', 'ContactQualitySettings', 'ContactSettings', 'Evaluation', 'Expert', 'FunctionExpert', 'GaussianMixture', 'GmmSettings', 'Grasp', 'GraspSynthesizer', 'Hand', 'HandLoadSettings', 'KdeSettings', 'KinematicFeasibilityExpert', 'KinematicFeasibilitySettings', 'OccupancyMap', 'OccupancySettings', 'PinholeCamera', 'PinholeFit', 'PlaneCandidate', 'PoseDensity', 'PoseKDE', 'PoseMixture', 'QueryDensity', 'QuerySettings', 'SamplingSettings', 'SceneObject', 'SceneSimResult', 'Segmentation', 'SegmentationSettings', 'SettleResult', 'SimObject', 'SimResult', 'SimSettings', 'SpaceState', 'SurfaceCloud', 'SurfaceFeatureSettings', 'SynthesisResult', 'SynthesisTiming', 'SynthesizerSettings', 'VisibilityModel', 'VisibilitySettings', 'build_info', 'camera_pose_matrix', 'complete_object', 'compute_surface_features', 'contact_data', 'learn_contact_models', 'load_cloud', 'load_mesh', 'log_vmf_s3_normaliser', 'orient_plane', 'pose_inverse', 'pose_multiply', 'prepare_cloud', 'quat_exp', 'quat_log', 'save_cloud', 'segment_depth', 'segment_organized', 'segment_scene', 'sim_execute', 'sim_execute_scene', 'sim_settle_scene']
+__all__: list[str] = ['AnnealingSettings', 'AxisAlignmentExpert', 'AxisAlignmentSettings', 'CleanupResult', 'CleanupSettings', 'ClearApproachExpert', 'ClearApproachSettings', 'CloudData', 'CollisionBatchResult', 'CollisionExpert', 'CollisionFreeExpert', 'CollisionResult', 'CollisionSettings', 'Completion', 'CompletionKind', 'CompletionSettings', 'ConfigModel', 'ConfigModelSettings', 'ContactData', 'ContactModel', 'ContactQualityExpert', 'ContactQualityResult', 'ContactQualitySettings', 'ContactSettings', 'Evaluation', 'Expert', 'FunctionExpert', 'GaussianMixture', 'GmmSettings', 'Grasp', 'GraspSynthesizer', 'Hand', 'HandLoadSettings', 'KdeSettings', 'KinematicFeasibilityExpert', 'KinematicFeasibilitySettings', 'OccupancyMap', 'OccupancySettings', 'PinholeCamera', 'PinholeFit', 'PlaneCandidate', 'PoseDensity', 'PoseKDE', 'PoseMixture', 'QueryDensity', 'QuerySettings', 'SamplingSettings', 'SceneObject', 'SceneSimResult', 'Segmentation', 'SegmentationSettings', 'SettleResult', 'SimObject', 'SimResult', 'SimSettings', 'SpaceState', 'SurfaceCloud', 'SurfaceFeatureSettings', 'SynthesisResult', 'SynthesisTiming', 'SynthesizerSettings', 'VisibilityModel', 'VisibilitySettings', 'build_info', 'camera_pose_matrix', 'complete_object', 'compute_surface_features', 'contact_data', 'learn_contact_models', 'load_cloud', 'load_mesh', 'log_vmf_s3_normaliser', 'orient_plane', 'pose_inverse', 'pose_multiply', 'prepare_cloud', 'quat_exp', 'quat_log', 'save_cloud', 'segment_depth', 'segment_organized', 'segment_scene', 'sim_execute', 'sim_execute_scene', 'sim_settle_scene', 'solid_volume']
 class GmmSettings:
     """
     How a GaussianMixture (or PoseMixture) is fitted by EM.
@@ -2110,9 +2110,11 @@ class CollisionSettings:
       contact_tolerance = 0.001: m: depths up to this count as touching, not penetrating (a cloud is a noisy surface)
       inside_weight = 0.0: m per point: each cloud point inside a link adds this much to the total depth (0: depths alone)
       reference_area = 0.0001: m^2: the occupancy model charges a link's volume in blocked cells divided by this
+      volume = False: keep the hand out of the objects' solid volume too (columns from the plane up to the points: solid_volume)
+      volume_resolution = 0.005: m: the solid volume's cell, > 0
     """
     __hash__: typing.ClassVar[None] = None
-    _fields: typing.ClassVar[tuple] = ('model', 'beta', 'point_radius', 'plane_margin', 'cell_size', 'orient_plane', 'contact_tolerance', 'inside_weight', 'reference_area')
+    _fields: typing.ClassVar[tuple] = ('model', 'beta', 'point_radius', 'plane_margin', 'cell_size', 'orient_plane', 'contact_tolerance', 'inside_weight', 'reference_area', 'volume', 'volume_resolution')
     def __copy__(self) -> CollisionSettings:
         ...
     def __deepcopy__(self, memo: typing.Any) -> CollisionSettings:
@@ -2129,7 +2131,7 @@ class CollisionSettings:
     @typing.overload
     def __init__(self, **kwargs) -> None:
         """
-        Keyword constructor: any of the fields (model, beta, point_radius, plane_margin, cell_size, orient_plane, contact_tolerance, inside_weight, reference_area); the others keep their defaults.
+        Keyword constructor: any of the fields (model, beta, point_radius, plane_margin, cell_size, orient_plane, contact_tolerance, inside_weight, reference_area, volume, volume_resolution); the others keep their defaults.
         """
     def __repr__(self) -> str:
         ...
@@ -2206,6 +2208,22 @@ class CollisionSettings:
         """
     @reference_area.setter
     def reference_area(self, arg0: typing.Any) -> None:
+        ...
+    @property
+    def volume(self) -> bool:
+        """
+        keep the hand out of the objects' solid volume too (columns from the plane up to the points: solid_volume)
+        """
+    @volume.setter
+    def volume(self, arg0: typing.Any) -> None:
+        ...
+    @property
+    def volume_resolution(self) -> float:
+        """
+        m: the solid volume's cell, > 0
+        """
+    @volume_resolution.setter
+    def volume_resolution(self, arg0: typing.Any) -> None:
         ...
 class CollisionResult:
     """
@@ -2301,6 +2319,8 @@ class CollisionExpert:
           contact_tolerance = 0.001: m: depths up to this count as touching, not penetrating (a cloud is a noisy surface)
           inside_weight = 0.0: m per point: each cloud point inside a link adds this much to the total depth (0: depths alone)
           reference_area = 0.0001: m^2: the occupancy model charges a link's volume in blocked cells divided by this
+          volume = False: keep the hand out of the objects' solid volume too (columns from the plane up to the points: solid_volume)
+          volume_resolution = 0.005: m: the solid volume's cell, > 0
         """
     def collision_free(self, T_world_wrist: typing.Any, joints: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"]:
         """
@@ -2354,6 +2374,11 @@ class CollisionExpert:
     def settings(self) -> CollisionSettings:
         """
         The CollisionSettings it was built with (a copy).
+        """
+    @property
+    def volume(self) -> typing.Any:
+        """
+        The solid volume charged with settings.volume (an OccupancyMap: solid_volume), or None.
         """
 class ContactSettings:
     """
@@ -4143,4 +4168,9 @@ def sim_execute_scene(hand: Hand, objects: typing.Any, object_poses: typing.Any,
 def sim_settle_scene(objects: typing.Any, object_poses: typing.Any, settings: typing.Any = None, seconds: typing.Any = 2.0, walls: typing.Any = None) -> SettleResult:
     """
     Simulates the objects without a hand until they rest (at most `seconds`); walls: [xmin, ymin, xmax, ymax, height] of a box standing around them, or None.
+    """
+def solid_volume(points: typing.Any, plane: typing.Any, *, resolution: typing.SupportsFloat | typing.SupportsIndex = 0.005, gap: typing.SupportsFloat | typing.SupportsIndex = 0.005) -> OccupancyMap:
+    """
+    The solid columns of objects (points (N, 3)) standing on plane [a, b, c, d]: an OccupancyMap whose occupied
+    cells lie under the points' tops (the rule: include/graspmix/grasp/solid_volume.hpp); resolution, gap in m.
     """

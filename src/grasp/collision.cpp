@@ -15,6 +15,7 @@
 #include "grasp/collision_shapes.hpp"
 #include "graspmix/core/plane.hpp"
 #include "graspmix/core/se3.hpp"
+#include "graspmix/grasp/solid_volume.hpp"
 
 namespace graspmix {
 
@@ -45,6 +46,9 @@ void check_settings(const CollisionSettings& s) {
   }
   if (!(s.reference_area > 0) || !std::isfinite(s.reference_area)) {
     throw std::invalid_argument("reference_area must be finite and > 0 (m^2)");
+  }
+  if (!(s.volume_resolution > 0) || !std::isfinite(s.volume_resolution)) {
+    throw std::invalid_argument("volume_resolution must be finite and > 0 (m)");
   }
   if (!(s.cell_size >= 0) || !std::isfinite(s.cell_size)) {
     throw std::invalid_argument("cell_size must be finite and >= 0 (0 = automatic)");
@@ -132,7 +136,23 @@ CollisionExpert::CollisionExpert(std::shared_ptr<const Hand> hand, const Eigen::
   require_finite(cloud, "cloud");
   index_ = std::make_shared<const Index>(cloud, settings_.cell_size);
   if (plane) plane_ = checked_plane(*plane, cloud, settings_.orient_plane);
-  shapes_ = std::make_shared<const Shapes>(*hand_, plane_, settings_.plane_margin);
+  build_volume(cloud);
+}
+
+void CollisionExpert::build_volume(const Eigen::Ref<const Vec3Array>& cloud) {
+  if (settings_.volume && plane_ && cloud.rows() > 0) {
+    SolidVolumeSettings vs;
+    vs.resolution = settings_.volume_resolution;
+    volume_ = std::make_shared<const OccupancyMap>(solid_volume(cloud, *plane_, vs));
+  }
+  auto shapes = std::make_shared<Shapes>(*hand_, plane_, settings_.plane_margin);
+  if (occupancy_ || volume_) {
+    // One set of interior samples for both maps: at the finer of their cells.
+    const double h = std::min(occupancy_ ? occupancy_->resolution() : std::numeric_limits<double>::infinity(),
+                              volume_ ? volume_->resolution() : std::numeric_limits<double>::infinity());
+    shapes->sample_interiors(h);
+  }
+  shapes_ = std::move(shapes);
 }
 
 CollisionExpert::CollisionExpert(std::shared_ptr<const Hand> hand, std::shared_ptr<const OccupancyMap> occupancy,
@@ -149,9 +169,7 @@ CollisionExpert::CollisionExpert(std::shared_ptr<const Hand> hand, std::shared_p
     const Vec3Array centre = (0.5 * (occupancy_->objects_min() + occupancy_->objects_max())).transpose();
     plane_ = checked_plane(*plane, cloud.rows() > 0 ? Vec3Array(cloud) : centre, settings_.orient_plane);
   }
-  auto shapes = std::make_shared<Shapes>(*hand_, plane_, settings_.plane_margin);
-  shapes->sample_interiors(occupancy_->resolution());
-  shapes_ = std::move(shapes);
+  build_volume(cloud);
 }
 
 Eigen::Index CollisionExpert::n_points() const { return index_->grid.size(); }
@@ -247,6 +265,13 @@ void CollisionExpert::evaluate_into(const Eigen::Isometry3d* link_poses, double*
         cloud_depth[sh.link] += blocked_volume(map, sh, T, tol, points_inside[sh.link]) / settings_.reference_area;
       }
     }
+    if (volume_) {
+      const Eigen::Vector3d centre = T * sh.centre;
+      const Eigen::Vector3d half = T.linear().cwiseAbs() * sh.half;
+      if (volume_->any_blocked(centre - half, centre + half)) {
+        cloud_depth[sh.link] += blocked_volume(*volume_, sh, T, tol, points_inside[sh.link]) / settings_.reference_area;
+      }
+    }
     if (N > 0) cloud_term(*index_, sh, T, settings_.point_radius, tol, cloud_depth[sh.link], points_inside[sh.link]);
     if (plane_) {
       const double depth = plane_term(*shapes_, sh, T, *plane_, settings_.plane_margin);
@@ -288,7 +313,7 @@ CollisionBatchResult CollisionExpert::evaluate_batch(const Eigen::Ref<const Pose
   // Small batches (annealing scores ~10 hands at a time) stay on one thread: waking a team costs more
   // than it saves, and its spinning threads stall badly on a loaded machine.
   // A plane alone (the kinematic expert's test) is a fraction of a microsecond per hand: large batches only.
-  const Eigen::Index parallel_from = index_->grid.size() == 0 && !occupancy_ ? 4096 : 64;
+  const Eigen::Index parallel_from = index_->grid.size() == 0 && !occupancy_ && !volume_ ? 4096 : 64;
   const Eigen::Index N = hand_->fk_each(T_world_wrist, q, parallel_from,
                                         [&](Eigen::Index i, const Eigen::VectorXd&, const Eigen::Isometry3d* poses) {
                                           std::vector<int> inside(static_cast<size_t>(L), 0);

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 #include <unordered_set>
+#include <utility>
 
 #include <octomap/OcTree.h>
 
@@ -200,6 +201,41 @@ OccupancyMap::OccupancyMap(const Eigen::Ref<const Vec3Array>& points, const Eige
   tree.updateInnerOccupancy();
   cells_ = bake_cells(tree, origin_, h_, dims_, plane_);
   for (const std::uint8_t c : cells_) {
+    const auto st = static_cast<CellState>(c);
+    (st == CellState::Free ? stats_.n_free : st == CellState::Occupied ? stats_.n_occupied : stats_.n_unknown) += 1;
+  }
+  build_blocked_sums();
+  stats_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+}
+
+OccupancyMap::OccupancyMap(const Eigen::Vector3d& origin, const Eigen::Vector3i& dims, std::vector<std::uint8_t> cells,
+                           const Eigen::Vector3d& objects_lo, const Eigen::Vector3d& objects_hi,
+                           const std::optional<Eigen::Vector4d>& plane, OccupancySettings settings)
+    : settings_(settings),
+      h_(settings.resolution),
+      origin_(origin),
+      objects_lo_(objects_lo),
+      objects_hi_(objects_hi),
+      cells_(std::move(cells)) {
+  const auto t_start = std::chrono::steady_clock::now();
+  check_settings(settings_);
+  if (!origin.allFinite() || !objects_lo.allFinite() || !objects_hi.allFinite()) {
+    throw std::invalid_argument("occupancy: the origin and the objects' box must be finite");
+  }
+  if ((dims.array() < 1).any()) throw std::invalid_argument("occupancy: dims must be >= 1 along every axis");
+  dims_ = dims.cast<std::int64_t>();
+  if (static_cast<std::int64_t>(cells_.size()) != dims_.prod()) {
+    throw std::invalid_argument("occupancy: " + std::to_string(cells_.size()) + " cells given for dims of " +
+                                std::to_string(dims_.prod()));
+  }
+  if (plane) {
+    const double n = plane->head<3>().norm();
+    if (!plane->allFinite() || !(n > 1e-12))
+      throw std::invalid_argument("occupancy: the plane's normal must be non-zero");
+    plane_ = *plane / n;
+  }
+  for (const std::uint8_t c : cells_) {
+    if (c > static_cast<std::uint8_t>(CellState::Unknown)) throw std::invalid_argument("occupancy: a cell state > 2");
     const auto st = static_cast<CellState>(c);
     (st == CellState::Free ? stats_.n_free : st == CellState::Occupied ? stats_.n_occupied : stats_.n_unknown) += 1;
   }

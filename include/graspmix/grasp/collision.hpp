@@ -86,6 +86,13 @@ struct CollisionSettings {
   /// m^2: the occupancy model charges the volume inside blocked cells divided by this (1 cm^2, about a
   /// fingertip's face: a link pressed 1 mm into a surface over 1 cm^2 costs 1 mm, as a surface depth).
   double reference_area = 1e-4;
+  /// Keep the hand out of the objects' solid volume too, not only away from their points: the columns of
+  /// grasp/solid_volume.hpp over the expert's cloud (observed and completed points) standing on its plane, charged
+  /// as the occupancy model charges blocked cells (a link's volume in them over reference_area, eroded by the
+  /// contact tolerance and half a cell). A completed object is a surface: a finger wholly inside it touches none of
+  /// its points. Needs a plane (without one, or with no point a cell above it, there is no volume: has_volume()).
+  bool volume = false;
+  double volume_resolution = 0.005;  ///< m: the volume's cell (SolidVolumeSettings::resolution), > 0
 };
 
 /// One configuration's penetration, per link in Hand::link_names() order.
@@ -151,6 +158,9 @@ class CollisionExpert {
   Eigen::Index n_points() const;
   /// The map of the occupancy model (null for the surface model).
   const std::shared_ptr<const OccupancyMap>& occupancy() const { return occupancy_; }
+  /// The solid volume charged with settings.volume (null without it, or without a plane).
+  const std::shared_ptr<const OccupancyMap>& volume() const { return volume_; }
+  bool has_volume() const { return volume_ != nullptr; }
   double cell_size() const;
 
   struct Index;   ///< the cloud's grid (defined in src/)
@@ -168,6 +178,9 @@ class CollisionExpert {
   std::shared_ptr<const Index> index_;
   std::shared_ptr<const Shapes> shapes_;
   std::shared_ptr<const OccupancyMap> occupancy_;
+  std::shared_ptr<const OccupancyMap> volume_;
+  /// The volume of the cloud (with settings.volume and a plane) and the links' interior samples for the maps.
+  void build_volume(const Eigen::Ref<const Vec3Array>& cloud);
 };
 
 /// Signed distance (m, negative inside) from every point (N, 3, world frame) to a link's collision

@@ -63,6 +63,14 @@ class OccupancyMap {
                const Eigen::Ref<const Vec3Array>& objects, const std::optional<Eigen::Vector4d>& plane = std::nullopt,
                OccupancySettings settings = {});
 
+  /// A map of given cells (grasp/solid_volume.hpp builds one): `cells`, a CellState per cell with x fastest,
+  /// `dims` cells of `resolution` from `origin`; objects_lo/hi the box of what it maps; plane as above (normalised
+  /// here, its sign kept). Throws std::invalid_argument for a cell count other than dims' product, a state out of
+  /// range, dims < 1, a non-finite origin or bad settings.
+  OccupancyMap(const Eigen::Vector3d& origin, const Eigen::Vector3i& dims, std::vector<std::uint8_t> cells,
+               const Eigen::Vector3d& objects_lo, const Eigen::Vector3d& objects_hi,
+               const std::optional<Eigen::Vector4d>& plane, OccupancySettings settings);
+
   /// The state of the cell holding p (Free outside the region).
   CellState state(const Eigen::Vector3d& p) const {
     Eigen::Vector3d c;

@@ -135,6 +135,9 @@ void bind_collision(py::module_& m) {
           "volume", &CollisionSettings::volume,
           "keep the hand out of the objects' solid volume too (columns from the plane up to the points: solid_volume)")
       .field("volume_resolution", &CollisionSettings::volume_resolution, "m: the solid volume's cell, > 0")
+      .field("unseen_weight", &CollisionSettings::unseen_weight,
+             "occupancy model: a link's volume in unknown cells outside the solid volume is charged at this weight\n"
+             "(soft: in W, not in collision_free; needs OccupancySettings.unknown_is_occupied = False)")
       .done();
 
   py::class_<CollisionResult>(m, "CollisionResult",
@@ -143,6 +146,8 @@ void bind_collision(py::module_& m) {
       .def_readonly("plane_depth", &CollisionResult::plane_depth,
                     "(n_links,) depth of each link below the support plane.")
       .def_readonly("points_inside", &CollisionResult::points_inside, "(n_links,) cloud points inside each link.")
+      .def_readonly("unseen_depth", &CollisionResult::unseen_depth,
+                    "(n_links,) the soft charge of unseen space (CollisionSettings.unseen_weight).")
       .def_readonly("total_depth", &CollisionResult::total_depth)
       .def_readonly("log_w", &CollisionResult::log_w, "log W(h) = -beta * total_depth.")
       .def_readonly("w", &CollisionResult::w, "W(h).")
@@ -155,6 +160,7 @@ void bind_collision(py::module_& m) {
   py::class_<CollisionBatchResult>(m, "CollisionBatchResult", "The collision expert over N configurations.")
       .def_readonly("cloud_depth", &CollisionBatchResult::cloud_depth, "(N, n_links)")
       .def_readonly("plane_depth", &CollisionBatchResult::plane_depth, "(N, n_links)")
+      .def_readonly("unseen_depth", &CollisionBatchResult::unseen_depth, "(N, n_links)")
       .def_readonly("total_depth", &CollisionBatchResult::total_depth, "(N,)")
       .def_readonly("log_w", &CollisionBatchResult::log_w, "(N,)")
       .def_readonly("w", &CollisionBatchResult::w, "(N,)")

@@ -2112,9 +2112,11 @@ class CollisionSettings:
       reference_area = 0.0001: m^2: the occupancy model charges a link's volume in blocked cells divided by this
       volume = False: keep the hand out of the objects' solid volume too (columns from the plane up to the points: solid_volume)
       volume_resolution = 0.005: m: the solid volume's cell, > 0
+      unseen_weight = 0.0: occupancy model: a link's volume in unknown cells outside the solid volume is charged at this weight
+    (soft: in W, not in collision_free; needs OccupancySettings.unknown_is_occupied = False)
     """
     __hash__: typing.ClassVar[None] = None
-    _fields: typing.ClassVar[tuple] = ('model', 'beta', 'point_radius', 'plane_margin', 'cell_size', 'orient_plane', 'contact_tolerance', 'inside_weight', 'reference_area', 'volume', 'volume_resolution')
+    _fields: typing.ClassVar[tuple] = ('model', 'beta', 'point_radius', 'plane_margin', 'cell_size', 'orient_plane', 'contact_tolerance', 'inside_weight', 'reference_area', 'volume', 'volume_resolution', 'unseen_weight')
     def __copy__(self) -> CollisionSettings:
         ...
     def __deepcopy__(self, memo: typing.Any) -> CollisionSettings:
@@ -2131,7 +2133,7 @@ class CollisionSettings:
     @typing.overload
     def __init__(self, **kwargs) -> None:
         """
-        Keyword constructor: any of the fields (model, beta, point_radius, plane_margin, cell_size, orient_plane, contact_tolerance, inside_weight, reference_area, volume, volume_resolution); the others keep their defaults.
+        Keyword constructor: any of the fields (model, beta, point_radius, plane_margin, cell_size, orient_plane, contact_tolerance, inside_weight, reference_area, volume, volume_resolution, unseen_weight); the others keep their defaults.
         """
     def __repr__(self) -> str:
         ...
@@ -2210,6 +2212,15 @@ class CollisionSettings:
     def reference_area(self, arg0: typing.Any) -> None:
         ...
     @property
+    def unseen_weight(self) -> float:
+        """
+        occupancy model: a link's volume in unknown cells outside the solid volume is charged at this weight
+        (soft: in W, not in collision_free; needs OccupancySettings.unknown_is_occupied = False)
+        """
+    @unseen_weight.setter
+    def unseen_weight(self, arg0: typing.Any) -> None:
+        ...
+    @property
     def volume(self) -> bool:
         """
         keep the hand out of the objects' solid volume too (columns from the plane up to the points: solid_volume)
@@ -2258,6 +2269,11 @@ class CollisionResult:
     def total_depth(self) -> float:
         ...
     @property
+    def unseen_depth(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        (n_links,) the soft charge of unseen space (CollisionSettings.unseen_weight).
+        """
+    @property
     def w(self) -> float:
         """
         W(h).
@@ -2292,6 +2308,11 @@ class CollisionBatchResult:
         (N,)
         """
     @property
+    def unseen_depth(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        """
+        (N, n_links)
+        """
+    @property
     def w(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         """
         (N,)
@@ -2321,6 +2342,8 @@ class CollisionExpert:
           reference_area = 0.0001: m^2: the occupancy model charges a link's volume in blocked cells divided by this
           volume = False: keep the hand out of the objects' solid volume too (columns from the plane up to the points: solid_volume)
           volume_resolution = 0.005: m: the solid volume's cell, > 0
+          unseen_weight = 0.0: occupancy model: a link's volume in unknown cells outside the solid volume is charged at this weight
+        (soft: in W, not in collision_free; needs OccupancySettings.unknown_is_occupied = False)
         """
     def collision_free(self, T_world_wrist: typing.Any, joints: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"]:
         """

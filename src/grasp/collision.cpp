@@ -50,6 +50,9 @@ void check_settings(const CollisionSettings& s) {
   if (!(s.volume_resolution > 0) || !std::isfinite(s.volume_resolution)) {
     throw std::invalid_argument("volume_resolution must be finite and > 0 (m)");
   }
+  if (!(s.unseen_weight >= 0) || !std::isfinite(s.unseen_weight)) {
+    throw std::invalid_argument("unseen_weight must be finite and >= 0");
+  }
   if (!(s.cell_size >= 0) || !std::isfinite(s.cell_size)) {
     throw std::invalid_argument("cell_size must be finite and >= 0 (0 = automatic)");
   }
@@ -163,6 +166,11 @@ CollisionExpert::CollisionExpert(std::shared_ptr<const Hand> hand, std::shared_p
   if (!occupancy_) throw std::invalid_argument("occupancy: expected an OccupancyMap, got none");
   settings_.model = CollisionModel::Occupancy;
   check_settings(settings_);
+  if (settings_.unseen_weight > 0 && occupancy_->settings().unknown_is_occupied) {
+    throw std::invalid_argument(
+        "unseen_weight charges unknown cells softly: the map must not count them as obstacles too "
+        "(OccupancySettings.unknown_is_occupied = false)");
+  }
   require_finite(cloud, "cloud");
   index_ = std::make_shared<const Index>(cloud, settings_.cell_size);
   if (plane) {
@@ -250,7 +258,7 @@ double total_depth(const Eigen::VectorXd& cloud_depth, const Eigen::VectorXd& pl
 }  // namespace
 
 void CollisionExpert::evaluate_into(const Eigen::Isometry3d* link_poses, double* cloud_depth, double* plane_depth,
-                                    int* points_inside, const bool* skip) const {
+                                    int* points_inside, double* unseen_depth, const bool* skip) const {
   const double tol = settings_.contact_tolerance;
   const Eigen::Index N = index_->grid.size();
   for (const Shapes::Shape& sh : shapes_->shapes) {
@@ -263,6 +271,14 @@ void CollisionExpert::evaluate_into(const Eigen::Isometry3d* link_poses, double*
       const Eigen::Vector3d half = T.linear().cwiseAbs() * sh.half;
       if (map.any_blocked(centre - half, centre + half)) {  // else every sample lies in a free cell
         cloud_depth[sh.link] += blocked_volume(map, sh, T, tol, points_inside[sh.link]) / settings_.reference_area;
+      }
+    }
+    if (occupancy_ && settings_.unseen_weight > 0) {
+      const Eigen::Vector3d centre = T * sh.centre;
+      const Eigen::Vector3d half = T.linear().cwiseAbs() * sh.half;
+      if (occupancy_->any_unknown(centre - half, centre + half)) {
+        unseen_depth[sh.link] +=
+            settings_.unseen_weight * unseen_volume(*occupancy_, volume_.get(), sh, T, tol) / settings_.reference_area;
       }
     }
     if (volume_) {
@@ -291,11 +307,14 @@ CollisionResult CollisionExpert::evaluate(const Eigen::Isometry3d& T_world_wrist
   res.cloud_depth = Eigen::VectorXd::Zero(L);
   res.plane_depth = Eigen::VectorXd::Zero(L);
   res.points_inside = Eigen::VectorXi::Zero(L);
-  evaluate_into(poses.data(), res.cloud_depth.data(), res.plane_depth.data(), res.points_inside.data());
-  res.total_depth = res.cloud_depth.sum() + res.plane_depth.sum() + settings_.inside_weight * res.points_inside.sum();
+  res.unseen_depth = Eigen::VectorXd::Zero(L);
+  evaluate_into(poses.data(), res.cloud_depth.data(), res.plane_depth.data(), res.points_inside.data(),
+                res.unseen_depth.data());
+  const double hard = res.cloud_depth.sum() + res.plane_depth.sum() + settings_.inside_weight * res.points_inside.sum();
+  res.total_depth = hard + res.unseen_depth.sum();
   res.log_w = -settings_.beta * res.total_depth;
   res.w = std::exp(res.log_w);
-  res.collision_free = res.total_depth <= 0.0;
+  res.collision_free = hard <= 0.0;
   return res;
 }
 
@@ -306,6 +325,7 @@ CollisionBatchResult CollisionExpert::evaluate_batch(const Eigen::Ref<const Pose
   CollisionBatchResult out;
   out.cloud_depth = RowMatrixXd::Zero(n, L);
   out.plane_depth = RowMatrixXd::Zero(n, L);
+  out.unseen_depth = RowMatrixXd::Zero(n, L);
   out.total_depth.resize(n);
   out.log_w.resize(n);
   out.w.resize(n);
@@ -314,21 +334,24 @@ CollisionBatchResult CollisionExpert::evaluate_batch(const Eigen::Ref<const Pose
   // than it saves, and its spinning threads stall badly on a loaded machine.
   // A plane alone (the kinematic expert's test) is a fraction of a microsecond per hand: large batches only.
   const Eigen::Index parallel_from = index_->grid.size() == 0 && !occupancy_ && !volume_ ? 4096 : 64;
-  const Eigen::Index N = hand_->fk_each(T_world_wrist, q, parallel_from,
-                                        [&](Eigen::Index i, const Eigen::VectorXd&, const Eigen::Isometry3d* poses) {
-                                          std::vector<int> inside(static_cast<size_t>(L), 0);
-                                          Eigen::VectorXd cd = Eigen::VectorXd::Zero(L), pd = Eigen::VectorXd::Zero(L);
-                                          evaluate_into(poses, cd.data(), pd.data(), inside.data());
-                                          out.cloud_depth.row(i) = cd.transpose();
-                                          out.plane_depth.row(i) = pd.transpose();
-                                          out.total_depth[i] = total_depth(cd, pd, inside, settings_.inside_weight);
-                                          out.log_w[i] = -settings_.beta * out.total_depth[i];
-                                          out.w[i] = std::exp(out.log_w[i]);
-                                          out.collision_free[i] = out.total_depth[i] <= 0.0;
-                                        });
+  const Eigen::Index N = hand_->fk_each(
+      T_world_wrist, q, parallel_from, [&](Eigen::Index i, const Eigen::VectorXd&, const Eigen::Isometry3d* poses) {
+        std::vector<int> inside(static_cast<size_t>(L), 0);
+        Eigen::VectorXd cd = Eigen::VectorXd::Zero(L), pd = Eigen::VectorXd::Zero(L), ud = Eigen::VectorXd::Zero(L);
+        evaluate_into(poses, cd.data(), pd.data(), inside.data(), ud.data());
+        out.cloud_depth.row(i) = cd.transpose();
+        out.plane_depth.row(i) = pd.transpose();
+        out.unseen_depth.row(i) = ud.transpose();
+        const double hard = total_depth(cd, pd, inside, settings_.inside_weight);
+        out.total_depth[i] = hard + ud.sum();
+        out.log_w[i] = -settings_.beta * out.total_depth[i];
+        out.w[i] = std::exp(out.log_w[i]);
+        out.collision_free[i] = hard <= 0.0;
+      });
   if (N != n) {  // an empty side broadcasts to no hands
     out.cloud_depth.conservativeResize(N, Eigen::NoChange);
     out.plane_depth.conservativeResize(N, Eigen::NoChange);
+    out.unseen_depth.conservativeResize(N, Eigen::NoChange);
     out.total_depth.conservativeResize(N);
     out.log_w.conservativeResize(N);
     out.w.conservativeResize(N);
@@ -348,9 +371,9 @@ std::pair<Eigen::VectorXd, Eigen::VectorXd> CollisionExpert::total_depth_pair(
   std::pair<Eigen::VectorXd, Eigen::VectorXd> out{Eigen::VectorXd(n), Eigen::VectorXd(n)};
   hand_->fk_each(wrists, q, 64, [&](Eigen::Index i, const Eigen::VectorXd&, const Eigen::Isometry3d* poses) {
     std::vector<int> inside(static_cast<size_t>(L), 0);
-    Eigen::VectorXd cd = Eigen::VectorXd::Zero(L), pd = Eigen::VectorXd::Zero(L);
-    evaluate_into(poses, cd.data(), pd.data(), inside.data());
-    out.first[i] = total_depth(cd, pd, inside, settings_.inside_weight);
+    Eigen::VectorXd cd = Eigen::VectorXd::Zero(L), pd = Eigen::VectorXd::Zero(L), ud = Eigen::VectorXd::Zero(L);
+    evaluate_into(poses, cd.data(), pd.data(), inside.data(), ud.data());
+    out.first[i] = total_depth(cd, pd, inside, settings_.inside_weight) + ud.sum();
     // The second configuration: a link posed exactly as in the first (the palm) keeps its terms.
     std::vector<Eigen::Isometry3d> poses2(static_cast<size_t>(L));
     const Eigen::VectorXd qi2 = q2.row(i).transpose();
@@ -358,10 +381,10 @@ std::pair<Eigen::VectorXd, Eigen::VectorXd> CollisionExpert::total_depth_pair(
     std::unique_ptr<bool[]> same(new bool[static_cast<size_t>(L)]);
     for (int l = 0; l < L; ++l) {
       same[l] = poses2[l].matrix() == poses[l].matrix();
-      if (!same[l]) cd[l] = pd[l] = inside[l] = 0;
+      if (!same[l]) cd[l] = pd[l] = ud[l] = inside[l] = 0;
     }
-    evaluate_into(poses2.data(), cd.data(), pd.data(), inside.data(), same.get());
-    out.second[i] = total_depth(cd, pd, inside, settings_.inside_weight);
+    evaluate_into(poses2.data(), cd.data(), pd.data(), inside.data(), ud.data(), same.get());
+    out.second[i] = total_depth(cd, pd, inside, settings_.inside_weight) + ud.sum();
   });
   return out;
 }

@@ -243,23 +243,39 @@ OccupancyMap::OccupancyMap(const Eigen::Vector3d& origin, const Eigen::Vector3i&
   stats_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
 }
 
-void OccupancyMap::build_blocked_sums() {
+template <class Count>
+std::vector<std::int64_t> OccupancyMap::summed(Count count) const {
   const std::int64_t nx = dims_.x(), ny = dims_.y(), nz = dims_.z();
   const std::int64_t sx = nx + 1, sy = ny + 1;
-  blocked_sums_.assign(static_cast<std::size_t>(sx * sy * (nz + 1)), 0);
+  std::vector<std::int64_t> sums(static_cast<std::size_t>(sx * sy * (nz + 1)), 0);
   auto at = [&](std::int64_t i, std::int64_t j, std::int64_t k) -> std::int64_t& {
-    return blocked_sums_[static_cast<std::size_t>((k * sy + j) * sx + i)];
+    return sums[static_cast<std::size_t>((k * sy + j) * sx + i)];
   };
   for (std::int64_t k = 0; k < nz; ++k)
     for (std::int64_t j = 0; j < ny; ++j)
       for (std::int64_t i = 0; i < nx; ++i) {
-        const bool b = blocked(static_cast<CellState>(cells_[static_cast<std::size_t>((k * ny + j) * nx + i)]));
+        const bool b = count(static_cast<CellState>(cells_[static_cast<std::size_t>((k * ny + j) * nx + i)]));
         at(i + 1, j + 1, k + 1) = (b ? 1 : 0) + at(i, j + 1, k + 1) + at(i + 1, j, k + 1) + at(i + 1, j + 1, k) -
                                   at(i, j, k + 1) - at(i, j + 1, k) - at(i + 1, j, k) + at(i, j, k);
       }
+  return sums;
+}
+
+void OccupancyMap::build_blocked_sums() {
+  blocked_sums_ = summed([this](CellState s) { return blocked(s); });
+  unknown_sums_ = summed([](CellState s) { return s == CellState::Unknown; });
 }
 
 bool OccupancyMap::any_blocked(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) const {
+  return any_in(blocked_sums_, lo, hi);
+}
+
+bool OccupancyMap::any_unknown(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) const {
+  return any_in(unknown_sums_, lo, hi);
+}
+
+bool OccupancyMap::any_in(const std::vector<std::int64_t>& sums, const Eigen::Vector3d& lo,
+                          const Eigen::Vector3d& hi) const {
   // The cells the box touches, clipped to the region (outside it every cell is free).
   const Eigen::Vector3d a = ((lo - origin_) / h_).array().floor(), b = ((hi - origin_) / h_).array().floor();
   std::int64_t l[3], u[3];
@@ -270,7 +286,7 @@ bool OccupancyMap::any_blocked(const Eigen::Vector3d& lo, const Eigen::Vector3d&
   }
   const std::int64_t sx = dims_.x() + 1, sy = dims_.y() + 1;
   auto s = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
-    return blocked_sums_[static_cast<std::size_t>((k * sy + j) * sx + i)];
+    return sums[static_cast<std::size_t>((k * sy + j) * sx + i)];
   };
   const std::int64_t n = s(u[0], u[1], u[2]) - s(l[0], u[1], u[2]) - s(u[0], l[1], u[2]) - s(u[0], u[1], l[2]) +
                          s(l[0], l[1], u[2]) + s(l[0], u[1], l[2]) + s(u[0], l[1], l[2]) - s(l[0], l[1], l[2]);

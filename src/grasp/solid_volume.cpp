@@ -76,7 +76,8 @@ OccupancyMap solid_volume(const Eigen::Ref<const Vec3Array>& points, const Eigen
   check_settings(settings);
   if (!points.allFinite()) throw std::invalid_argument("solid_volume: points contain NaN or infinite values");
   const double pn = plane.head<3>().norm();
-  if (!plane.allFinite() || !(pn > 1e-12)) throw std::invalid_argument("solid_volume: the plane's normal must be non-zero");
+  if (!plane.allFinite() || !(pn > 1e-12))
+    throw std::invalid_argument("solid_volume: the plane's normal must be non-zero");
   Eigen::Vector4d pl = plane / pn;
   if (points.rows() > 0) pl = orient_plane(pl, points, PlaneSide::Mean);
   const Eigen::Vector3d n = pl.head<3>();
@@ -130,15 +131,16 @@ OccupancyMap solid_volume(const Eigen::Ref<const Vec3Array>& points, const Eigen
     t = std::max(t, n.dot(p) + pl[3]);
   }
   // Twice: the first pass fills holes along rows and columns, the second the cells where two such lines cross.
-  for (int pass = 0; pass < 2; ++pass) close_holes(fp, static_cast<std::int64_t>(std::floor(settings.gap / fp.f + 1e-9)));
+  for (int pass = 0; pass < 2; ++pass)
+    close_holes(fp, static_cast<std::int64_t>(std::floor(settings.gap / fp.f + 1e-9)));
   // The map's cells: its corners on multiples of h, one cell beyond the columns.
   const Eigen::Vector3d origin = ((lo.array() - h) / h).floor() * h;
   const Eigen::Vector3d corner = ((hi.array() + h) / h).ceil() * h;
   const Eigen::Array3d dd = ((corner - origin) / h).array().round().max(1.0);
   if (dd.prod() > static_cast<double>(settings.max_cells)) {
-    throw std::invalid_argument("solid_volume: the region needs " + std::to_string(static_cast<std::int64_t>(dd.prod())) +
-                                " cells at resolution " + std::to_string(h) + " m, more than max_cells = " +
-                                std::to_string(settings.max_cells));
+    throw std::invalid_argument("solid_volume: the region needs " +
+                                std::to_string(static_cast<std::int64_t>(dd.prod())) + " cells at resolution " +
+                                std::to_string(h) + " m, more than max_cells = " + std::to_string(settings.max_cells));
   }
   const Eigen::Vector3i dims = dd.cast<int>();
   std::vector<std::uint8_t> cells(static_cast<std::size_t>(dims.prod()), static_cast<std::uint8_t>(CellState::Free));
@@ -148,7 +150,8 @@ OccupancyMap solid_volume(const Eigen::Ref<const Vec3Array>& points, const Eigen
         const Eigen::Vector3d c = origin + h * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5);
         const double z = n.dot(c) + pl[3];
         if (z < h || z > fp.top_at(fp.e1.dot(c), fp.e2.dot(c))) continue;
-        cells[(static_cast<std::size_t>(k) * dims.y() + j) * dims.x() + i] = static_cast<std::uint8_t>(CellState::Occupied);
+        cells[(static_cast<std::size_t>(k) * dims.y() + j) * dims.x() + i] =
+            static_cast<std::uint8_t>(CellState::Occupied);
       }
   return OccupancyMap(origin, dims, std::move(cells), olo, ohi, pl, os);
 }

@@ -21,7 +21,7 @@
 //   D_l = 0. Grasp sampling starts links at the surface, so this rarely matters; a denser cloud or a
 //   larger point_radius narrows the gap.
 //   collision_free = no cloud point lies strictly inside any link (ball overlap when r > 0) and no
-//   link reaches below the raised plane, i.e. total == 0.
+//   link reaches below the raised plane, i.e. total == 0 (the soft unseen charge U_l aside, below).
 //
 // The occupancy model (CollisionModel::Occupancy, built on an OccupancyMap of what the cameras saw): in
 // place of D_l, the volume of link l inside blocked cells (occupied, and unknown when the map counts them
@@ -93,6 +93,11 @@ struct CollisionSettings {
   /// its points. Needs a plane (without one, or with no point a cell above it, there is no volume: has_volume()).
   bool volume = false;
   double volume_resolution = 0.005;  ///< m: the volume's cell (SolidVolumeSettings::resolution), > 0
+  /// The soft charge of unseen space (occupancy model only): a link's volume in the map's unknown cells outside the
+  /// solid volume, over reference_area, times this weight (>= 0; 0, the default: no charge). It enters W (total_depth)
+  /// but not collision_free: the unseen is neither free nor solid, so it is preferred less, never refused. The map
+  /// must not count unknown cells as obstacles itself (OccupancySettings::unknown_is_occupied false).
+  double unseen_weight = 0.0;
 };
 
 /// One configuration's penetration, per link in Hand::link_names() order.
@@ -100,7 +105,8 @@ struct CollisionResult {
   Eigen::VectorXd cloud_depth;    ///< D_l (m), or O_l with the occupancy model
   Eigen::VectorXd plane_depth;    ///< P_l (m)
   Eigen::VectorXi points_inside;  ///< cloud points that penetrate each link (occupancy: samples charged)
-  double total_depth = 0.0;       ///< sum_l D_l + P_l + inside_weight * n_l (m; see the header comment)
+  Eigen::VectorXd unseen_depth;   ///< U_l (m): the soft charge of unseen space (CollisionSettings::unseen_weight)
+  double total_depth = 0.0;       ///< sum_l D_l + P_l + inside_weight * n_l + U_l (m; see the header comment)
   double log_w = 0.0;             ///< -beta * total_depth
   double w = 1.0;                 ///< exp(log_w)
   bool collision_free = true;
@@ -110,6 +116,7 @@ struct CollisionResult {
 struct CollisionBatchResult {
   RowMatrixXd cloud_depth;
   RowMatrixXd plane_depth;
+  RowMatrixXd unseen_depth;
   Eigen::VectorXd total_depth;
   Eigen::VectorXd log_w;
   Eigen::VectorXd w;
@@ -170,7 +177,7 @@ class CollisionExpert {
   /// Adds the terms of the links posed at link_poses (all, or those with skip[l] false) into the per-link
   /// outputs.
   void evaluate_into(const Eigen::Isometry3d* link_poses, double* cloud_depth, double* plane_depth, int* points_inside,
-                     const bool* skip = nullptr) const;
+                     double* unseen_depth, const bool* skip = nullptr) const;
 
   std::shared_ptr<const Hand> hand_;
   CollisionSettings settings_;

@@ -25,8 +25,8 @@
 namespace graspmix {
 
 struct SolidVolumeSettings {
-  double resolution = 0.005;  ///< m: the cell of the baked map (the footprint's is half of it), > 0
-  double gap = 0.005;         ///< m: empty footprint cells are filled between solid ones this close (>= 0)
+  double resolution = 0.005;            ///< m: the cell of the baked map (the footprint's is half of it), > 0
+  double gap = 0.005;                   ///< m: empty footprint cells are filled between solid ones this close (>= 0)
   std::int64_t max_cells = 50'000'000;  ///< the baked map's largest size (cells)
 };
 

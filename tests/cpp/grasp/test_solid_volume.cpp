@@ -105,7 +105,8 @@ TEST(SolidVolume, BoxInsideIsOccupiedOutsideFree) {
   // Exact within a cell's diagonal (a cell is occupied by its centre).
   expect_states(map, Eigen::Vector3d(-0.05, -0.1, 0), Eigen::Vector3d(0.15, 0.1, 0.15), std::sqrt(3.0) * h,
                 [](const Eigen::Vector3d& p) {
-                  return -Eigen::Vector3d(std::abs(p.x() - 0.05) - 0.05, std::abs(p.y()) - 0.05, std::abs(p.z() - 0.05) - 0.05)
+                  return -Eigen::Vector3d(std::abs(p.x() - 0.05) - 0.05, std::abs(p.y()) - 0.05,
+                                          std::abs(p.z() - 0.05) - 0.05)
                               .maxCoeff();
                 });
   EXPECT_EQ(map.state(Eigen::Vector3d(0.05, 0, 0.05)), CellState::Occupied);  // the middle: no point within 5 cm
@@ -115,9 +116,8 @@ TEST(SolidVolume, CylinderInsideIsOccupiedOutsideFree) {
   const double r = 0.04, H = 0.11;
   const OccupancyMap map = graspmix::solid_volume(to_array(cylinder_points(r, H)), kTable);
   expect_states(map, Eigen::Vector3d(-0.08, -0.08, 0), Eigen::Vector3d(0.08, 0.08, 0.15),
-                std::sqrt(3.0) * map.resolution(), [&](const Eigen::Vector3d& p) {
-                  return std::min(r - p.head<2>().norm(), std::min(H - p.z(), p.z()));
-                });
+                std::sqrt(3.0) * map.resolution(),
+                [&](const Eigen::Vector3d& p) { return std::min(r - p.head<2>().norm(), std::min(H - p.z(), p.z())); });
 }
 
 TEST(SolidVolume, SparseTopIsClosedGapBetweenObjectsIsNot) {
@@ -127,7 +127,8 @@ TEST(SolidVolume, SparseTopIsClosedGapBetweenObjectsIsNot) {
   const OccupancyMap map = graspmix::solid_volume(to_array(pts), kTable);
   int holes = 0;
   for (double x = 0.01; x < 0.09; x += 0.0011)
-    for (double y = -0.04; y < 0.04; y += 0.0013) holes += map.state(Eigen::Vector3d(x, y, 0.05)) != CellState::Occupied;
+    for (double y = -0.04; y < 0.04; y += 0.0013)
+      holes += map.state(Eigen::Vector3d(x, y, 0.05)) != CellState::Occupied;
   EXPECT_EQ(holes, 0);
   for (double y = -0.04; y < 0.04; y += 0.001)
     for (double z = 0.02; z < 0.09; z += 0.005) EXPECT_EQ(map.state(Eigen::Vector3d(0.11, y, z)), CellState::Free);
@@ -143,7 +144,7 @@ TEST(SolidVolume, TiltedPlaneAndTablePoints) {
   const OccupancyMap map = graspmix::solid_volume(to_array(pts), Eigen::Vector4d(-n.x(), -n.y(), -n.z(), 0));
   EXPECT_EQ(map.state(R * Eigen::Vector3d(0.05, 0, 0.05)), CellState::Occupied);
   EXPECT_EQ(map.state(R * Eigen::Vector3d(0.05, 0, 0.12)), CellState::Free);
-  EXPECT_EQ(map.state(R * Eigen::Vector3d(0.05, -0.08, 0.02)), CellState::Free);  // above the table's points
+  EXPECT_EQ(map.state(R * Eigen::Vector3d(0.05, -0.08, 0.02)), CellState::Free);   // above the table's points
   EXPECT_EQ(map.state(R * Eigen::Vector3d(0.05, -0.08, -0.02)), CellState::Free);  // under the table
 }
 
@@ -196,4 +197,45 @@ TEST(CollisionVolume, AFingerInsideACompletedObjectIsChargedOneOutsideIsNot) {
   EXPECT_FALSE(CollisionExpert(finger(), pts, std::nullopt, with).has_volume());
   with.volume_resolution = 0;
   EXPECT_THROW(CollisionExpert(finger(), pts, kTable, with), std::invalid_argument);
+}
+
+TEST(CollisionUnseen, SpaceBehindASeenFaceIsChargedSoftlyOutsideTheVolume) {
+  // One camera at -x sees the box's face x = 0; the completion gives its other faces (box_points).
+  std::vector<Eigen::Vector3d> face;
+  for (const auto& p : box_points())
+    if (p.x() == 0.0) face.push_back(p);
+  const Vec3Array seen = to_array(face), completed = to_array(box_points());
+  graspmix::OccupancySettings free_unknown;
+  free_unknown.unknown_is_occupied = false;
+  const auto map =
+      std::make_shared<const OccupancyMap>(seen, Eigen::RowVector3d(-0.5, 0, 0.05), completed, kTable, free_unknown);
+  CollisionSettings s;
+  s.unseen_weight = 0.1;
+  const CollisionExpert soft(finger(), map, seen, kTable, s);
+  const Eigen::VectorXd q(0);
+  // In front of the face: seen free, no charge. Behind it (in the box, unseen): charged, yet collision-free.
+  EXPECT_EQ(soft.evaluate(at(-0.03, 0, 0.05), q).total_depth, 0.0);
+  const graspmix::CollisionResult behind = soft.evaluate(at(0.05, 0, 0.05), q);
+  EXPECT_GT(behind.unseen_depth.sum(), 0.0);
+  EXPECT_DOUBLE_EQ(behind.total_depth, behind.unseen_depth.sum());
+  EXPECT_TRUE(behind.collision_free);
+  // Linear in the weight.
+  s.unseen_weight = 0.2;
+  const CollisionExpert twice(finger(), map, seen, kTable, s);
+  EXPECT_NEAR(twice.evaluate(at(0.05, 0, 0.05), q).unseen_depth.sum(), 2 * behind.unseen_depth.sum(), 1e-12);
+  // With the completed box's volume, its inside is solid (hard) and no longer unseen; beyond its back face
+  // (x > 0.1), the unseen is still charged softly.
+  s.volume = true;
+  const CollisionExpert both(finger(), map, completed, kTable, s);
+  const graspmix::CollisionResult inside = both.evaluate(at(0.05, 0, 0.05), q);
+  EXPECT_EQ(inside.unseen_depth.sum(), 0.0);
+  EXPECT_FALSE(inside.collision_free);
+  const graspmix::CollisionResult beyond = both.evaluate(at(0.13, 0, 0.05), q);
+  EXPECT_GT(beyond.unseen_depth.sum(), 0.0);
+  EXPECT_TRUE(beyond.collision_free);
+  // Unknown cells counted as obstacles by the map and charged softly too: refused.
+  const auto hard = std::make_shared<const OccupancyMap>(seen, Eigen::RowVector3d(-0.5, 0, 0.05), seen, kTable);
+  EXPECT_THROW(CollisionExpert(finger(), hard, seen, kTable, s), std::invalid_argument);
+  s.unseen_weight = -1;
+  EXPECT_THROW(CollisionExpert(finger(), map, seen, kTable, s), std::invalid_argument);
 }

@@ -72,3 +72,27 @@ def test_bad_input_is_a_value_error(completed, finger):
     with pytest.raises(ValueError, match="volume_resolution"):
         bad = _core.CollisionSettings(volume=True, volume_resolution=-1.0)
         _core.CollisionExpert(finger, scene.solid_points(), plane=scene.plane, settings=bad)
+
+
+def test_unseen_space_beyond_the_completion_is_charged_softly(completed, finger, box_urdf):
+    """The occupancy model with unknown cells free, the volume and the soft unseen charge: the completed box's
+    inside is refused, the unseen shadow beyond it is charged but not refused, the seen-free front costs nothing."""
+    scene, c = completed
+    acq = acquire(box_urdf(SIZE), seed=0, settings=AcquisitionSettings(cameras=[Camera(eye=EYE)], keep="scene"))
+    occ = _core.OccupancyMap(
+        acq.points,
+        acq.viewpoints,
+        scene.points,
+        scene.plane,
+        settings=_core.OccupancySettings(unknown_is_occupied=False),
+    )
+    s = _core.CollisionSettings(volume=True, unseen_weight=0.1)
+    expert = _core.CollisionExpert(finger, scene.solid_points(), plane=scene.plane, occupancy=occ, settings=s)
+    away = -np.array(EYE[:2] + (0,)) / np.linalg.norm(EYE[:2])  # from the box, away from the camera
+    poses = np.array([[*p, 0, 0, 0, 1] for p in (c, c + 0.09 * away, c - 0.12 * away)])
+    r = expert.evaluate_batch(poses, np.zeros((1, 0)))
+    assert r.collision_free.tolist() == [False, True, True]
+    assert r.unseen_depth.sum(axis=1)[1] > 0 and r.unseen_depth.sum(axis=1)[2] == 0
+    with pytest.raises(ValueError, match="unknown_is_occupied"):
+        solid = _core.OccupancyMap(acq.points, acq.viewpoints, scene.points, scene.plane)
+        _core.CollisionExpert(finger, scene.solid_points(), plane=scene.plane, occupancy=solid, settings=s)

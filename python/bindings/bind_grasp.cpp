@@ -138,6 +138,8 @@ void bind_collision(py::module_& m) {
       .field("unseen_weight", &CollisionSettings::unseen_weight,
              "occupancy model: a link's volume in unknown cells outside the solid volume is charged at this weight\n"
              "(soft: in W, not in collision_free; needs OccupancySettings.unknown_is_occupied = False)")
+      .field("unseen_margin", &CollisionSettings::unseen_margin,
+             "m: with the volume, unseen space within this of it is not charged (>= 0)")
       .done();
 
   py::class_<CollisionResult>(m, "CollisionResult",

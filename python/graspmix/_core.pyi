@@ -2114,9 +2114,10 @@ class CollisionSettings:
       volume_resolution = 0.005: m: the solid volume's cell, > 0
       unseen_weight = 0.0: occupancy model: a link's volume in unknown cells outside the solid volume is charged at this weight
     (soft: in W, not in collision_free; needs OccupancySettings.unknown_is_occupied = False)
+      unseen_margin = 0.0: m: with the volume, unseen space within this of it is not charged (>= 0)
     """
     __hash__: typing.ClassVar[None] = None
-    _fields: typing.ClassVar[tuple] = ('model', 'beta', 'point_radius', 'plane_margin', 'cell_size', 'orient_plane', 'contact_tolerance', 'inside_weight', 'reference_area', 'volume', 'volume_resolution', 'unseen_weight')
+    _fields: typing.ClassVar[tuple] = ('model', 'beta', 'point_radius', 'plane_margin', 'cell_size', 'orient_plane', 'contact_tolerance', 'inside_weight', 'reference_area', 'volume', 'volume_resolution', 'unseen_weight', 'unseen_margin')
     def __copy__(self) -> CollisionSettings:
         ...
     def __deepcopy__(self, memo: typing.Any) -> CollisionSettings:
@@ -2133,7 +2134,7 @@ class CollisionSettings:
     @typing.overload
     def __init__(self, **kwargs) -> None:
         """
-        Keyword constructor: any of the fields (model, beta, point_radius, plane_margin, cell_size, orient_plane, contact_tolerance, inside_weight, reference_area, volume, volume_resolution, unseen_weight); the others keep their defaults.
+        Keyword constructor: any of the fields (model, beta, point_radius, plane_margin, cell_size, orient_plane, contact_tolerance, inside_weight, reference_area, volume, volume_resolution, unseen_weight, unseen_margin); the others keep their defaults.
         """
     def __repr__(self) -> str:
         ...
@@ -2210,6 +2211,14 @@ class CollisionSettings:
         """
     @reference_area.setter
     def reference_area(self, arg0: typing.Any) -> None:
+        ...
+    @property
+    def unseen_margin(self) -> float:
+        """
+        m: with the volume, unseen space within this of it is not charged (>= 0)
+        """
+    @unseen_margin.setter
+    def unseen_margin(self, arg0: typing.Any) -> None:
         ...
     @property
     def unseen_weight(self) -> float:
@@ -2344,6 +2353,7 @@ class CollisionExpert:
           volume_resolution = 0.005: m: the solid volume's cell, > 0
           unseen_weight = 0.0: occupancy model: a link's volume in unknown cells outside the solid volume is charged at this weight
         (soft: in W, not in collision_free; needs OccupancySettings.unknown_is_occupied = False)
+          unseen_margin = 0.0: m: with the volume, unseen space within this of it is not charged (>= 0)
         """
     def collision_free(self, T_world_wrist: typing.Any, joints: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"]:
         """

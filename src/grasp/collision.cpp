@@ -53,6 +53,9 @@ void check_settings(const CollisionSettings& s) {
   if (!(s.unseen_weight >= 0) || !std::isfinite(s.unseen_weight)) {
     throw std::invalid_argument("unseen_weight must be finite and >= 0");
   }
+  if (!(s.unseen_margin >= 0) || !std::isfinite(s.unseen_margin)) {
+    throw std::invalid_argument("unseen_margin must be finite and >= 0 (m)");
+  }
   if (!(s.cell_size >= 0) || !std::isfinite(s.cell_size)) {
     throw std::invalid_argument("cell_size must be finite and >= 0 (0 = automatic)");
   }
@@ -277,8 +280,9 @@ void CollisionExpert::evaluate_into(const Eigen::Isometry3d* link_poses, double*
       const Eigen::Vector3d centre = T * sh.centre;
       const Eigen::Vector3d half = T.linear().cwiseAbs() * sh.half;
       if (occupancy_->any_unknown(centre - half, centre + half)) {
-        unseen_depth[sh.link] +=
-            settings_.unseen_weight * unseen_volume(*occupancy_, volume_.get(), sh, T, tol) / settings_.reference_area;
+        unseen_depth[sh.link] += settings_.unseen_weight *
+                                 unseen_volume(*occupancy_, volume_.get(), settings_.unseen_margin, sh, T, tol) /
+                                 settings_.reference_area;
       }
     }
     if (volume_) {

@@ -188,14 +188,17 @@ double blocked_volume(const OccupancyMap& map, const CollisionExpert::Shapes::Sh
       [&](const Eigen::Vector3d&, CellState st) { return map.blocked(st); });
 }
 
-double unseen_volume(const OccupancyMap& map, const OccupancyMap* solid, const CollisionExpert::Shapes::Shape& sh,
-                     const Eigen::Isometry3d& T, double tol) {
+double unseen_volume(const OccupancyMap& map, const OccupancyMap* solid, double margin,
+                     const CollisionExpert::Shapes::Shape& sh, const Eigen::Isometry3d& T, double tol) {
   int count = 0;
+  const Eigen::Vector3d m = Eigen::Vector3d::Constant(margin);
   return charged_volume(
       map, sh, T, tol, count,
       [&](const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) { return map.any_unknown(lo, hi); },
       [&](const Eigen::Vector3d& x, CellState st) {
-        return st == CellState::Unknown && !(solid && solid->state(x) == CellState::Occupied);
+        if (st != CellState::Unknown) return false;
+        if (!solid) return true;
+        return margin > 0 ? !solid->any_blocked(x - m, x + m) : solid->state(x) != CellState::Occupied;
       });
 }
 

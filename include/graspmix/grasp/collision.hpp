@@ -98,6 +98,9 @@ struct CollisionSettings {
   /// but not collision_free: the unseen is neither free nor solid, so it is preferred less, never refused. The map
   /// must not count unknown cells as obstacles itself (OccupancySettings::unknown_is_occupied false).
   double unseen_weight = 0.0;
+  /// m: with the volume, unseen space within this of it (along every axis) is not charged: room for a finger at a
+  /// completed side the completion placed a little short (>= 0; 0: only the volume itself is exempt).
+  double unseen_margin = 0.0;
 };
 
 /// One configuration's penetration, per link in Hand::link_names() order.

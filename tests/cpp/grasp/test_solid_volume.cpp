@@ -233,6 +233,20 @@ TEST(CollisionUnseen, SpaceBehindASeenFaceIsChargedSoftlyOutsideTheVolume) {
   const graspmix::CollisionResult beyond = both.evaluate(at(0.13, 0, 0.05), q);
   EXPECT_GT(beyond.unseen_depth.sum(), 0.0);
   EXPECT_TRUE(beyond.collision_free);
+  // With a margin, unseen cells near the volume are exempt: the finger 2-4 cm beyond the back face, within 5 cm.
+  s.unseen_margin = 0.05;
+  EXPECT_EQ(CollisionExpert(finger(), map, completed, kTable, s).evaluate(at(0.13, 0, 0.05), q).unseen_depth.sum(),
+            0.0);
+  // 1 cm exempts the part of a finger 0-2 cm beyond the back face that lies within 1 cm of it.
+  const double no_margin = both.evaluate(at(0.11, 0, 0.05), q).unseen_depth.sum();
+  s.unseen_margin = 0.01;
+  const double near =
+      CollisionExpert(finger(), map, completed, kTable, s).evaluate(at(0.11, 0, 0.05), q).unseen_depth.sum();
+  EXPECT_GT(near, 0.0);
+  EXPECT_LT(near, no_margin);
+  s.unseen_margin = -0.01;
+  EXPECT_THROW(CollisionExpert(finger(), map, completed, kTable, s), std::invalid_argument);
+  s.unseen_margin = 0.0;
   // Unknown cells counted as obstacles by the map and charged softly too: refused.
   const auto hard = std::make_shared<const OccupancyMap>(seen, Eigen::RowVector3d(-0.5, 0, 0.05), seen, kTable);
   EXPECT_THROW(CollisionExpert(finger(), hard, seen, kTable, s), std::invalid_argument);

@@ -140,6 +140,9 @@ void bind_collision(py::module_& m) {
              "(soft: in W, not in collision_free; needs OccupancySettings.unknown_is_occupied = False)")
       .field("unseen_margin", &CollisionSettings::unseen_margin,
              "m: with the volume, unseen space within this of it is not charged (>= 0)")
+      .field(
+          "occupied_cells", &CollisionSettings::occupied_cells,
+          "the occupancy model charges the volume in occupied (seen surface) cells; False: their points' depths only")
       .done();
 
   py::class_<CollisionResult>(m, "CollisionResult",

@@ -2115,9 +2115,10 @@ class CollisionSettings:
       unseen_weight = 0.0: occupancy model: a link's volume in unknown cells outside the solid volume is charged at this weight
     (soft: in W, not in collision_free; needs OccupancySettings.unknown_is_occupied = False)
       unseen_margin = 0.0: m: with the volume, unseen space within this of it is not charged (>= 0)
+      occupied_cells = True: the occupancy model charges the volume in occupied (seen surface) cells; False: their points' depths only
     """
     __hash__: typing.ClassVar[None] = None
-    _fields: typing.ClassVar[tuple] = ('model', 'beta', 'point_radius', 'plane_margin', 'cell_size', 'orient_plane', 'contact_tolerance', 'inside_weight', 'reference_area', 'volume', 'volume_resolution', 'unseen_weight', 'unseen_margin')
+    _fields: typing.ClassVar[tuple] = ('model', 'beta', 'point_radius', 'plane_margin', 'cell_size', 'orient_plane', 'contact_tolerance', 'inside_weight', 'reference_area', 'volume', 'volume_resolution', 'unseen_weight', 'unseen_margin', 'occupied_cells')
     def __copy__(self) -> CollisionSettings:
         ...
     def __deepcopy__(self, memo: typing.Any) -> CollisionSettings:
@@ -2134,7 +2135,7 @@ class CollisionSettings:
     @typing.overload
     def __init__(self, **kwargs) -> None:
         """
-        Keyword constructor: any of the fields (model, beta, point_radius, plane_margin, cell_size, orient_plane, contact_tolerance, inside_weight, reference_area, volume, volume_resolution, unseen_weight, unseen_margin); the others keep their defaults.
+        Keyword constructor: any of the fields (model, beta, point_radius, plane_margin, cell_size, orient_plane, contact_tolerance, inside_weight, reference_area, volume, volume_resolution, unseen_weight, unseen_margin, occupied_cells); the others keep their defaults.
         """
     def __repr__(self) -> str:
         ...
@@ -2179,6 +2180,14 @@ class CollisionSettings:
         """
     @model.setter
     def model(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def occupied_cells(self) -> bool:
+        """
+        the occupancy model charges the volume in occupied (seen surface) cells; False: their points' depths only
+        """
+    @occupied_cells.setter
+    def occupied_cells(self, arg0: typing.Any) -> None:
         ...
     @property
     def orient_plane(self) -> bool:
@@ -2354,6 +2363,7 @@ class CollisionExpert:
           unseen_weight = 0.0: occupancy model: a link's volume in unknown cells outside the solid volume is charged at this weight
         (soft: in W, not in collision_free; needs OccupancySettings.unknown_is_occupied = False)
           unseen_margin = 0.0: m: with the volume, unseen space within this of it is not charged (>= 0)
+          occupied_cells = True: the occupancy model charges the volume in occupied (seen surface) cells; False: their points' depths only
         """
     def collision_free(self, T_world_wrist: typing.Any, joints: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"]:
         """

@@ -268,7 +268,7 @@ void CollisionExpert::evaluate_into(const Eigen::Isometry3d* link_poses, double*
     if (skip && skip[sh.link]) continue;
     const Eigen::Isometry3d T = link_poses[sh.link] * sh.src->T_link_shape;
     // Occupancy: the shape's volume in blocked cells, when its world box touches any.
-    if (occupancy_) {
+    if (occupancy_ && settings_.occupied_cells) {
       const OccupancyMap& map = *occupancy_;
       const Eigen::Vector3d centre = T * sh.centre;
       const Eigen::Vector3d half = T.linear().cwiseAbs() * sh.half;

@@ -101,6 +101,9 @@ struct CollisionSettings {
   /// m: with the volume, unseen space within this of it (along every axis) is not charged: room for a finger at a
   /// completed side the completion placed a little short (>= 0; 0: only the volume itself is exempt).
   double unseen_margin = 0.0;
+  /// The occupancy model charges a link's volume in the map's occupied cells (the seen surface's); false: the seen
+  /// surface is charged by its points' depths D_l alone (the map then only gives the unseen space its charge).
+  bool occupied_cells = true;
 };
 
 /// One configuration's penetration, per link in Hand::link_names() order.

@@ -247,6 +247,16 @@ TEST(CollisionUnseen, SpaceBehindASeenFaceIsChargedSoftlyOutsideTheVolume) {
   s.unseen_margin = -0.01;
   EXPECT_THROW(CollisionExpert(finger(), map, completed, kTable, s), std::invalid_argument);
   s.unseen_margin = 0.0;
+  // Pressed 1 cm into the seen face: the occupied cells' volume and the points' depth; without the cells, the depth.
+  s.unseen_weight = 0.1;
+  s.volume = false;
+  const graspmix::CollisionResult pressed = CollisionExpert(finger(), map, seen, kTable, s).evaluate(at(0, 0, 0.05), q);
+  s.occupied_cells = false;
+  const graspmix::CollisionResult points_only =
+      CollisionExpert(finger(), map, seen, kTable, s).evaluate(at(0, 0, 0.05), q);
+  EXPECT_NEAR(points_only.cloud_depth.sum(), 0.01, 1e-9);
+  EXPECT_GT(pressed.cloud_depth.sum(), points_only.cloud_depth.sum());
+  EXPECT_DOUBLE_EQ(pressed.unseen_depth.sum(), points_only.unseen_depth.sum());
   // Unknown cells counted as obstacles by the map and charged softly too: refused.
   const auto hard = std::make_shared<const OccupancyMap>(seen, Eigen::RowVector3d(-0.5, 0, 0.05), seen, kTable);
   EXPECT_THROW(CollisionExpert(finger(), hard, seen, kTable, s), std::invalid_argument);

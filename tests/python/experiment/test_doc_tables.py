@@ -23,6 +23,7 @@ PAGES = {
         "image-heldout",
         "volume-dev",
         "volume-heldout",
+        "volume-four-views",
     },
 }
 SCRIPTS = ("scripts/findings_table.py", "scripts/ablation_table.py", "scripts/clutter_table.py")

@@ -24,6 +24,7 @@ PAGES = {
         "volume-dev",
         "volume-heldout",
         "volume-four-views",
+        "volume-clutter",
     },
 }
 SCRIPTS = ("scripts/findings_table.py", "scripts/ablation_table.py", "scripts/clutter_table.py")

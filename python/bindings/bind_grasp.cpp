@@ -25,76 +25,6 @@ std::optional<Eigen::Vector3d> axis_or_none(const py::object& v, const char* nam
   return Eigen::Vector3d(to_vector(v, name, 3));
 }
 
-/// The occupancy map of what the cameras saw (OccupancyMap) and its settings.
-void bind_occupancy(py::module_& m) {
-  SettingsClass<OccupancySettings>(m, "OccupancySettings",
-                                   "The occupancy map of a scene from its cameras' rays (OccupancyMap).")
-      .field("resolution", &OccupancySettings::resolution, "m: cell size (OctoMap's resolution), > 0")
-      .field("margin", &OccupancySettings::margin, "m: the objects' bounding box grown by this is the mapped region")
-      .field("unknown_is_occupied", &OccupancySettings::unknown_is_occupied,
-             "cells no ray reached are obstacles (space the cameras did not see is not free)")
-      .field("max_cells", &OccupancySettings::max_cells, "the dense grid's largest size (cells)")
-      .done();
-  py::class_<OccupancyMap, std::shared_ptr<OccupancyMap>>(
-      m, "OccupancyMap",
-      "Free, occupied and unknown space of a scene: OctoMap's ray insertion of every point from its own viewpoint,\n"
-      "baked into a dense grid over the objects' box grown by a margin (free outside it, and within one cell of\n"
-      "the support plane). The rule: include/graspmix/grasp/occupancy.hpp.")
-      .def(py::init([](const py::object& points, const py::object& viewpoints, const py::object& objects,
-                       const py::object& plane, const py::object& settings, const py::kwargs& kw) {
-             const Vec3Array P(to_matrix(points, "OccupancyMap: points", 3));
-             if (viewpoints.is_none()) throw py::value_error("OccupancyMap: viewpoints are needed (the cameras' rays)");
-             const Vec3Array V = Vec3Array(to_matrix(viewpoints, "OccupancyMap: viewpoints", 3, true));
-             const Vec3Array O =
-                 objects.is_none() ? Vec3Array(0, 3) : Vec3Array(to_matrix(objects, "OccupancyMap: objects", 3, true));
-             std::optional<Eigen::Vector4d> pl;
-             if (!plane.is_none()) pl = Eigen::Vector4d(to_vector(plane, "OccupancyMap: plane", 4));
-             const OccupancySettings s = settings_from<OccupancySettings>(settings, kw, "OccupancyMap");
-             py::gil_scoped_release release;
-             return std::make_shared<OccupancyMap>(P, V, O, pl, s);
-           }),
-           py::arg("points"), py::arg("viewpoints"), py::arg("objects") = py::none(), py::arg("plane") = py::none(),
-           py::kw_only(), py::arg("settings") = py::none(),
-           ("points (N, 3), the whole cloud; viewpoints (3,) or (N, 3), the camera of each point; objects (M, 3): the\n"
-            "points whose box (grown by margin) is mapped (None: all points); plane [a, b, c, d] or None.\n" +
-            settings_doc<OccupancySettings>())
-               .c_str())
-      .def(
-          "state",
-          [](const OccupancyMap& map, const py::object& points) {
-            const Vec3Array P(to_matrix(points, "state: points", 3, true));
-            Eigen::Matrix<std::uint8_t, Eigen::Dynamic, 1> out(P.rows());
-            for (Eigen::Index i = 0; i < P.rows(); ++i)
-              out[i] = static_cast<std::uint8_t>(map.state(P.row(i).transpose()));
-            return out;
-          },
-          py::arg("points"), "(N,) uint8 state of each point's cell: 0 free, 1 occupied, 2 unknown (free outside).")
-      .def_property_readonly("resolution", &OccupancyMap::resolution)
-      .def_property_readonly("region_min", &OccupancyMap::region_min, "(3,) lower corner of the mapped region (m).")
-      .def_property_readonly("region_max", &OccupancyMap::region_max, "(3,) upper corner of the mapped region (m).")
-      .def_property_readonly("dims", &OccupancyMap::dims, "(3,) cells along x, y, z.")
-      .def_property_readonly(
-          "plane",
-          [](const OccupancyMap& m) -> py::object {
-            return m.has_plane() ? py::cast(Eigen::Vector4d(m.plane())) : py::none();
-          },
-          "The support plane, normalised, its normal towards the cameras, or None.")
-      .def_property_readonly("settings", [](const OccupancyMap& m) { return OccupancySettings(m.settings()); })
-      .def_property_readonly(
-          "stats",
-          [](const OccupancyMap& m) {
-            const OccupancyStats& s = m.stats();
-            py::dict d;
-            d["n_rays"] = s.n_rays;
-            d["n_free"] = s.n_free;
-            d["n_occupied"] = s.n_occupied;
-            d["n_unknown"] = s.n_unknown;
-            d["seconds"] = s.seconds;
-            return d;
-          },
-          "Rays inserted (one per cell and viewpoint), cells by state, wall time (s).");
-}
-
 /// The collision expert W and its settings and results.
 void bind_collision(py::module_& m) {
   bind_occupancy(m);
@@ -119,6 +49,18 @@ void bind_collision(py::module_& m) {
              "m per point: each cloud point inside a link adds this much to the total depth (0: depths alone)")
       .field("reference_area", &CollisionSettings::reference_area,
              "m^2: the occupancy model charges a link's volume in blocked cells divided by this")
+      .field(
+          "volume", &CollisionSettings::volume,
+          "keep the hand out of the objects' solid volume too (columns from the plane up to the points: solid_volume)")
+      .field("volume_resolution", &CollisionSettings::volume_resolution, "m: the solid volume's cell, > 0")
+      .field("unseen_weight", &CollisionSettings::unseen_weight,
+             "occupancy model: a link's volume in unknown cells outside the solid volume is charged at this weight\n"
+             "(soft: in W, not in collision_free; needs OccupancySettings.unknown_is_occupied = False)")
+      .field("unseen_margin", &CollisionSettings::unseen_margin,
+             "m: with the volume, unseen space within this of it is not charged (>= 0)")
+      .field(
+          "occupied_cells", &CollisionSettings::occupied_cells,
+          "the occupancy model charges the volume in occupied (seen surface) cells; False: their points' depths only")
       .done();
 
   py::class_<CollisionResult>(m, "CollisionResult",
@@ -127,6 +69,8 @@ void bind_collision(py::module_& m) {
       .def_readonly("plane_depth", &CollisionResult::plane_depth,
                     "(n_links,) depth of each link below the support plane.")
       .def_readonly("points_inside", &CollisionResult::points_inside, "(n_links,) cloud points inside each link.")
+      .def_readonly("unseen_depth", &CollisionResult::unseen_depth,
+                    "(n_links,) the soft charge of unseen space (CollisionSettings.unseen_weight).")
       .def_readonly("total_depth", &CollisionResult::total_depth)
       .def_readonly("log_w", &CollisionResult::log_w, "log W(h) = -beta * total_depth.")
       .def_readonly("w", &CollisionResult::w, "W(h).")
@@ -139,6 +83,7 @@ void bind_collision(py::module_& m) {
   py::class_<CollisionBatchResult>(m, "CollisionBatchResult", "The collision expert over N configurations.")
       .def_readonly("cloud_depth", &CollisionBatchResult::cloud_depth, "(N, n_links)")
       .def_readonly("plane_depth", &CollisionBatchResult::plane_depth, "(N, n_links)")
+      .def_readonly("unseen_depth", &CollisionBatchResult::unseen_depth, "(N, n_links)")
       .def_readonly("total_depth", &CollisionBatchResult::total_depth, "(N,)")
       .def_readonly("log_w", &CollisionBatchResult::log_w, "(N,)")
       .def_readonly("w", &CollisionBatchResult::w, "(N,)")
@@ -222,6 +167,12 @@ void bind_collision(py::module_& m) {
             return e.occupancy() ? py::cast(std::const_pointer_cast<OccupancyMap>(e.occupancy())) : py::none();
           },
           "The OccupancyMap of the occupancy model, or None.")
+      .def_property_readonly(
+          "volume",
+          [](const CollisionExpert& e) -> py::object {
+            return e.volume() ? py::cast(std::const_pointer_cast<OccupancyMap>(e.volume())) : py::none();
+          },
+          "The solid volume charged with settings.volume (an OccupancyMap: solid_volume), or None.")
       .def_property_readonly("cell_size", &CollisionExpert::cell_size, "The grid cell of the cloud index (m).")
       .def_property_readonly(
           "settings", [](const CollisionExpert& e) { return CollisionSettings(e.settings()); },

@@ -76,6 +76,8 @@ void bind_robot(py::module_& m);
 void bind_grasp(py::module_& m);
 /// Part of bind_grasp: the synthesiser (bind_grasp_synthesis.cpp).
 void bind_synthesis(py::module_& m);
+/// Part of bind_grasp: the occupancy map and the solid volume (bind_grasp_occupancy.cpp).
+void bind_occupancy(py::module_& m);
 /// Part of bind_grasp: the contact-quality expert (bind_grasp_quality.cpp).
 void bind_contact_quality(py::module_& m);
 void bind_sim(py::module_& m);

@@ -8,7 +8,7 @@ import enum
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AnnealingSettings', 'AxisAlignmentExpert', 'AxisAlignmentSettings', 'CleanupResult', 'CleanupSettings', 'ClearApproachExpert', 'ClearApproachSettings', 'CloudData', 'CollisionBatchResult', 'CollisionExpert', 'CollisionFreeExpert', 'CollisionResult', 'CollisionSettings', 'Completion', 'CompletionKind', 'CompletionSettings', 'ConfigModel', 'ConfigModelSettings', 'ContactData', 'ContactModel', 'ContactQualityExpert', 'ContactQualityResult', 'ContactQualitySettings', 'ContactSettings', 'Evaluation', 'Expert', 'FunctionExpert', 'GaussianMixture', 'GmmSettings', 'Grasp', 'GraspSynthesizer', 'Hand', 'HandLoadSettings', 'KdeSettings', 'KinematicFeasibilityExpert', 'KinematicFeasibilitySettings', 'OccupancyMap', 'OccupancySettings', 'PinholeCamera', 'PinholeFit', 'PlaneCandidate', 'PoseDensity', 'PoseKDE', 'PoseMixture', 'QueryDensity', 'QuerySettings', 'SamplingSettings', 'SceneObject', 'SceneSimResult', 'Segmentation', 'SegmentationSettings', 'SettleResult', 'SimObject', 'SimResult', 'SimSettings', 'SpaceState', 'SurfaceCloud', 'SurfaceFeatureSettings', 'SynthesisResult', 'SynthesisTiming', 'SynthesizerSettings', 'URDF_AXES_ELEMENT', 'VisibilityModel', 'VisibilitySettings', 'build_info', 'camera_pose_matrix', 'complete_object', 'compute_surface_features', 'contact_data', 'learn_contact_models', 'load_cloud', 'load_mesh', 'log_vmf_s3_normaliser', 'orient_plane', 'pose_inverse', 'pose_multiply', 'prepare_cloud', 'quat_exp', 'quat_log', 'save_cloud', 'segment_depth', 'segment_organized', 'segment_scene', 'sim_execute', 'sim_execute_scene', 'sim_settle_scene']
+__all__: list[str] = ['AnnealingSettings', 'AxisAlignmentExpert', 'AxisAlignmentSettings', 'CleanupResult', 'CleanupSettings', 'ClearApproachExpert', 'ClearApproachSettings', 'CloudData', 'CollisionBatchResult', 'CollisionExpert', 'CollisionFreeExpert', 'CollisionResult', 'CollisionSettings', 'Completion', 'CompletionKind', 'CompletionSettings', 'ConfigModel', 'ConfigModelSettings', 'ContactData', 'ContactModel', 'ContactQualityExpert', 'ContactQualityResult', 'ContactQualitySettings', 'ContactSettings', 'Evaluation', 'Expert', 'FunctionExpert', 'GaussianMixture', 'GmmSettings', 'Grasp', 'GraspSynthesizer', 'Hand', 'HandLoadSettings', 'KdeSettings', 'KinematicFeasibilityExpert', 'KinematicFeasibilitySettings', 'OccupancyMap', 'OccupancySettings', 'PinholeCamera', 'PinholeFit', 'PlaneCandidate', 'PoseDensity', 'PoseKDE', 'PoseMixture', 'QueryDensity', 'QuerySettings', 'SamplingSettings', 'SceneObject', 'SceneSimResult', 'Segmentation', 'SegmentationSettings', 'SettleResult', 'SimObject', 'SimResult', 'SimSettings', 'SpaceState', 'SurfaceCloud', 'SurfaceFeatureSettings', 'SynthesisResult', 'SynthesisTiming', 'SynthesizerSettings', 'URDF_AXES_ELEMENT', 'VisibilityModel', 'VisibilitySettings', 'build_info', 'camera_pose_matrix', 'complete_object', 'compute_surface_features', 'contact_data', 'learn_contact_models', 'load_cloud', 'load_mesh', 'log_vmf_s3_normaliser', 'orient_plane', 'pose_inverse', 'pose_multiply', 'prepare_cloud', 'quat_exp', 'quat_log', 'save_cloud', 'segment_depth', 'segment_organized', 'segment_scene', 'sim_execute', 'sim_execute_scene', 'sim_settle_scene', 'solid_volume']
 class GmmSettings:
     """
     How a GaussianMixture (or PoseMixture) is fitted by EM.
@@ -2160,9 +2160,15 @@ class CollisionSettings:
       contact_tolerance = 0.001: m: depths up to this count as touching, not penetrating (a cloud is a noisy surface)
       inside_weight = 0.0: m per point: each cloud point inside a link adds this much to the total depth (0: depths alone)
       reference_area = 0.0001: m^2: the occupancy model charges a link's volume in blocked cells divided by this
+      volume = False: keep the hand out of the objects' solid volume too (columns from the plane up to the points: solid_volume)
+      volume_resolution = 0.005: m: the solid volume's cell, > 0
+      unseen_weight = 0.0: occupancy model: a link's volume in unknown cells outside the solid volume is charged at this weight
+    (soft: in W, not in collision_free; needs OccupancySettings.unknown_is_occupied = False)
+      unseen_margin = 0.0: m: with the volume, unseen space within this of it is not charged (>= 0)
+      occupied_cells = True: the occupancy model charges the volume in occupied (seen surface) cells; False: their points' depths only
     """
     __hash__: typing.ClassVar[None] = None
-    _fields: typing.ClassVar[tuple] = ('model', 'beta', 'point_radius', 'plane_margin', 'cell_size', 'orient_plane', 'contact_tolerance', 'inside_weight', 'reference_area')
+    _fields: typing.ClassVar[tuple] = ('model', 'beta', 'point_radius', 'plane_margin', 'cell_size', 'orient_plane', 'contact_tolerance', 'inside_weight', 'reference_area', 'volume', 'volume_resolution', 'unseen_weight', 'unseen_margin', 'occupied_cells')
     def __copy__(self) -> CollisionSettings:
         ...
     def __deepcopy__(self, memo: typing.Any) -> CollisionSettings:
@@ -2179,7 +2185,7 @@ class CollisionSettings:
     @typing.overload
     def __init__(self, **kwargs) -> None:
         """
-        Keyword constructor: any of the fields (model, beta, point_radius, plane_margin, cell_size, orient_plane, contact_tolerance, inside_weight, reference_area); the others keep their defaults.
+        Keyword constructor: any of the fields (model, beta, point_radius, plane_margin, cell_size, orient_plane, contact_tolerance, inside_weight, reference_area, volume, volume_resolution, unseen_weight, unseen_margin, occupied_cells); the others keep their defaults.
         """
     def __repr__(self) -> str:
         ...
@@ -2226,6 +2232,14 @@ class CollisionSettings:
     def model(self, arg1: typing.Any) -> None:
         ...
     @property
+    def occupied_cells(self) -> bool:
+        """
+        the occupancy model charges the volume in occupied (seen surface) cells; False: their points' depths only
+        """
+    @occupied_cells.setter
+    def occupied_cells(self, arg0: typing.Any) -> None:
+        ...
+    @property
     def orient_plane(self) -> bool:
         """
         flip the plane's sign so the cloud's mean lies on its free (positive) side
@@ -2256,6 +2270,39 @@ class CollisionSettings:
         """
     @reference_area.setter
     def reference_area(self, arg0: typing.Any) -> None:
+        ...
+    @property
+    def unseen_margin(self) -> float:
+        """
+        m: with the volume, unseen space within this of it is not charged (>= 0)
+        """
+    @unseen_margin.setter
+    def unseen_margin(self, arg0: typing.Any) -> None:
+        ...
+    @property
+    def unseen_weight(self) -> float:
+        """
+        occupancy model: a link's volume in unknown cells outside the solid volume is charged at this weight
+        (soft: in W, not in collision_free; needs OccupancySettings.unknown_is_occupied = False)
+        """
+    @unseen_weight.setter
+    def unseen_weight(self, arg0: typing.Any) -> None:
+        ...
+    @property
+    def volume(self) -> bool:
+        """
+        keep the hand out of the objects' solid volume too (columns from the plane up to the points: solid_volume)
+        """
+    @volume.setter
+    def volume(self, arg0: typing.Any) -> None:
+        ...
+    @property
+    def volume_resolution(self) -> float:
+        """
+        m: the solid volume's cell, > 0
+        """
+    @volume_resolution.setter
+    def volume_resolution(self, arg0: typing.Any) -> None:
         ...
 class CollisionResult:
     """
@@ -2289,6 +2336,11 @@ class CollisionResult:
     @property
     def total_depth(self) -> float:
         ...
+    @property
+    def unseen_depth(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        (n_links,) the soft charge of unseen space (CollisionSettings.unseen_weight).
+        """
     @property
     def w(self) -> float:
         """
@@ -2324,6 +2376,11 @@ class CollisionBatchResult:
         (N,)
         """
     @property
+    def unseen_depth(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        """
+        (N, n_links)
+        """
+    @property
     def w(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         """
         (N,)
@@ -2351,6 +2408,12 @@ class CollisionExpert:
           contact_tolerance = 0.001: m: depths up to this count as touching, not penetrating (a cloud is a noisy surface)
           inside_weight = 0.0: m per point: each cloud point inside a link adds this much to the total depth (0: depths alone)
           reference_area = 0.0001: m^2: the occupancy model charges a link's volume in blocked cells divided by this
+          volume = False: keep the hand out of the objects' solid volume too (columns from the plane up to the points: solid_volume)
+          volume_resolution = 0.005: m: the solid volume's cell, > 0
+          unseen_weight = 0.0: occupancy model: a link's volume in unknown cells outside the solid volume is charged at this weight
+        (soft: in W, not in collision_free; needs OccupancySettings.unknown_is_occupied = False)
+          unseen_margin = 0.0: m: with the volume, unseen space within this of it is not charged (>= 0)
+          occupied_cells = True: the occupancy model charges the volume in occupied (seen surface) cells; False: their points' depths only
         """
     def collision_free(self, T_world_wrist: typing.Any, joints: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"]:
         """
@@ -2404,6 +2467,11 @@ class CollisionExpert:
     def settings(self) -> CollisionSettings:
         """
         The CollisionSettings it was built with (a copy).
+        """
+    @property
+    def volume(self) -> typing.Any:
+        """
+        The solid volume charged with settings.volume (an OccupancyMap: solid_volume), or None.
         """
 class ContactSettings:
     """
@@ -4196,5 +4264,10 @@ def sim_execute_scene(hand: Hand, objects: typing.Any, object_poses: typing.Any,
 def sim_settle_scene(objects: typing.Any, object_poses: typing.Any, settings: typing.Any = None, seconds: typing.Any = 2.0, walls: typing.Any = None) -> SettleResult:
     """
     Simulates the objects without a hand until they rest (at most `seconds`); walls: [xmin, ymin, xmax, ymax, height] of a box standing around them, or None.
+    """
+def solid_volume(points: typing.Any, plane: typing.Any, *, resolution: typing.SupportsFloat | typing.SupportsIndex = 0.005, gap: typing.SupportsFloat | typing.SupportsIndex = 0.005) -> OccupancyMap:
+    """
+    The solid columns of objects (points (N, 3)) standing on plane [a, b, c, d]: an OccupancyMap whose occupied
+    cells lie under the points' tops (the rule: include/graspmix/grasp/solid_volume.hpp); resolution, gap in m.
     """
 URDF_AXES_ELEMENT: str = 'graspmix'

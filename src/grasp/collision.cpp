@@ -15,6 +15,7 @@
 #include "grasp/collision_shapes.hpp"
 #include "graspmix/core/plane.hpp"
 #include "graspmix/core/se3.hpp"
+#include "graspmix/grasp/solid_volume.hpp"
 
 namespace graspmix {
 
@@ -45,6 +46,15 @@ void check_settings(const CollisionSettings& s) {
   }
   if (!(s.reference_area > 0) || !std::isfinite(s.reference_area)) {
     throw std::invalid_argument("reference_area must be finite and > 0 (m^2)");
+  }
+  if (!(s.volume_resolution > 0) || !std::isfinite(s.volume_resolution)) {
+    throw std::invalid_argument("volume_resolution must be finite and > 0 (m)");
+  }
+  if (!(s.unseen_weight >= 0) || !std::isfinite(s.unseen_weight)) {
+    throw std::invalid_argument("unseen_weight must be finite and >= 0");
+  }
+  if (!(s.unseen_margin >= 0) || !std::isfinite(s.unseen_margin)) {
+    throw std::invalid_argument("unseen_margin must be finite and >= 0 (m)");
   }
   if (!(s.cell_size >= 0) || !std::isfinite(s.cell_size)) {
     throw std::invalid_argument("cell_size must be finite and >= 0 (0 = automatic)");
@@ -132,7 +142,23 @@ CollisionExpert::CollisionExpert(std::shared_ptr<const Hand> hand, const Eigen::
   require_finite(cloud, "cloud");
   index_ = std::make_shared<const Index>(cloud, settings_.cell_size);
   if (plane) plane_ = checked_plane(*plane, cloud, settings_.orient_plane);
-  shapes_ = std::make_shared<const Shapes>(*hand_, plane_, settings_.plane_margin);
+  build_volume(cloud);
+}
+
+void CollisionExpert::build_volume(const Eigen::Ref<const Vec3Array>& cloud) {
+  if (settings_.volume && plane_ && cloud.rows() > 0) {
+    SolidVolumeSettings vs;
+    vs.resolution = settings_.volume_resolution;
+    volume_ = std::make_shared<const OccupancyMap>(solid_volume(cloud, *plane_, vs));
+  }
+  auto shapes = std::make_shared<Shapes>(*hand_, plane_, settings_.plane_margin);
+  if (occupancy_ || volume_) {
+    // One set of interior samples for both maps: at the finer of their cells.
+    const double h = std::min(occupancy_ ? occupancy_->resolution() : std::numeric_limits<double>::infinity(),
+                              volume_ ? volume_->resolution() : std::numeric_limits<double>::infinity());
+    shapes->sample_interiors(h);
+  }
+  shapes_ = std::move(shapes);
 }
 
 CollisionExpert::CollisionExpert(std::shared_ptr<const Hand> hand, std::shared_ptr<const OccupancyMap> occupancy,
@@ -143,15 +169,18 @@ CollisionExpert::CollisionExpert(std::shared_ptr<const Hand> hand, std::shared_p
   if (!occupancy_) throw std::invalid_argument("occupancy: expected an OccupancyMap, got none");
   settings_.model = CollisionModel::Occupancy;
   check_settings(settings_);
+  if (settings_.unseen_weight > 0 && occupancy_->settings().unknown_is_occupied) {
+    throw std::invalid_argument(
+        "unseen_weight charges unknown cells softly: the map must not count them as obstacles too "
+        "(OccupancySettings.unknown_is_occupied = false)");
+  }
   require_finite(cloud, "cloud");
   index_ = std::make_shared<const Index>(cloud, settings_.cell_size);
   if (plane) {
     const Vec3Array centre = (0.5 * (occupancy_->objects_min() + occupancy_->objects_max())).transpose();
     plane_ = checked_plane(*plane, cloud.rows() > 0 ? Vec3Array(cloud) : centre, settings_.orient_plane);
   }
-  auto shapes = std::make_shared<Shapes>(*hand_, plane_, settings_.plane_margin);
-  shapes->sample_interiors(occupancy_->resolution());
-  shapes_ = std::move(shapes);
+  build_volume(cloud);
 }
 
 Eigen::Index CollisionExpert::n_points() const { return index_->grid.size(); }
@@ -232,19 +261,35 @@ double total_depth(const Eigen::VectorXd& cloud_depth, const Eigen::VectorXd& pl
 }  // namespace
 
 void CollisionExpert::evaluate_into(const Eigen::Isometry3d* link_poses, double* cloud_depth, double* plane_depth,
-                                    int* points_inside, const bool* skip) const {
+                                    int* points_inside, double* unseen_depth, const bool* skip) const {
   const double tol = settings_.contact_tolerance;
   const Eigen::Index N = index_->grid.size();
   for (const Shapes::Shape& sh : shapes_->shapes) {
     if (skip && skip[sh.link]) continue;
     const Eigen::Isometry3d T = link_poses[sh.link] * sh.src->T_link_shape;
     // Occupancy: the shape's volume in blocked cells, when its world box touches any.
-    if (occupancy_) {
+    if (occupancy_ && settings_.occupied_cells) {
       const OccupancyMap& map = *occupancy_;
       const Eigen::Vector3d centre = T * sh.centre;
       const Eigen::Vector3d half = T.linear().cwiseAbs() * sh.half;
       if (map.any_blocked(centre - half, centre + half)) {  // else every sample lies in a free cell
         cloud_depth[sh.link] += blocked_volume(map, sh, T, tol, points_inside[sh.link]) / settings_.reference_area;
+      }
+    }
+    if (occupancy_ && settings_.unseen_weight > 0) {
+      const Eigen::Vector3d centre = T * sh.centre;
+      const Eigen::Vector3d half = T.linear().cwiseAbs() * sh.half;
+      if (occupancy_->any_unknown(centre - half, centre + half)) {
+        unseen_depth[sh.link] += settings_.unseen_weight *
+                                 unseen_volume(*occupancy_, volume_.get(), settings_.unseen_margin, sh, T, tol) /
+                                 settings_.reference_area;
+      }
+    }
+    if (volume_) {
+      const Eigen::Vector3d centre = T * sh.centre;
+      const Eigen::Vector3d half = T.linear().cwiseAbs() * sh.half;
+      if (volume_->any_blocked(centre - half, centre + half)) {
+        cloud_depth[sh.link] += blocked_volume(*volume_, sh, T, tol, points_inside[sh.link]) / settings_.reference_area;
       }
     }
     if (N > 0) cloud_term(*index_, sh, T, settings_.point_radius, tol, cloud_depth[sh.link], points_inside[sh.link]);
@@ -266,11 +311,14 @@ CollisionResult CollisionExpert::evaluate(const Eigen::Isometry3d& T_world_wrist
   res.cloud_depth = Eigen::VectorXd::Zero(L);
   res.plane_depth = Eigen::VectorXd::Zero(L);
   res.points_inside = Eigen::VectorXi::Zero(L);
-  evaluate_into(poses.data(), res.cloud_depth.data(), res.plane_depth.data(), res.points_inside.data());
-  res.total_depth = res.cloud_depth.sum() + res.plane_depth.sum() + settings_.inside_weight * res.points_inside.sum();
+  res.unseen_depth = Eigen::VectorXd::Zero(L);
+  evaluate_into(poses.data(), res.cloud_depth.data(), res.plane_depth.data(), res.points_inside.data(),
+                res.unseen_depth.data());
+  const double hard = res.cloud_depth.sum() + res.plane_depth.sum() + settings_.inside_weight * res.points_inside.sum();
+  res.total_depth = hard + res.unseen_depth.sum();
   res.log_w = -settings_.beta * res.total_depth;
   res.w = std::exp(res.log_w);
-  res.collision_free = res.total_depth <= 0.0;
+  res.collision_free = hard <= 0.0;
   return res;
 }
 
@@ -281,6 +329,7 @@ CollisionBatchResult CollisionExpert::evaluate_batch(const Eigen::Ref<const Pose
   CollisionBatchResult out;
   out.cloud_depth = RowMatrixXd::Zero(n, L);
   out.plane_depth = RowMatrixXd::Zero(n, L);
+  out.unseen_depth = RowMatrixXd::Zero(n, L);
   out.total_depth.resize(n);
   out.log_w.resize(n);
   out.w.resize(n);
@@ -288,22 +337,25 @@ CollisionBatchResult CollisionExpert::evaluate_batch(const Eigen::Ref<const Pose
   // Small batches (annealing scores ~10 hands at a time) stay on one thread: waking a team costs more
   // than it saves, and its spinning threads stall badly on a loaded machine.
   // A plane alone (the kinematic expert's test) is a fraction of a microsecond per hand: large batches only.
-  const Eigen::Index parallel_from = index_->grid.size() == 0 && !occupancy_ ? 4096 : 64;
-  const Eigen::Index N = hand_->fk_each(T_world_wrist, q, parallel_from,
-                                        [&](Eigen::Index i, const Eigen::VectorXd&, const Eigen::Isometry3d* poses) {
-                                          std::vector<int> inside(static_cast<size_t>(L), 0);
-                                          Eigen::VectorXd cd = Eigen::VectorXd::Zero(L), pd = Eigen::VectorXd::Zero(L);
-                                          evaluate_into(poses, cd.data(), pd.data(), inside.data());
-                                          out.cloud_depth.row(i) = cd.transpose();
-                                          out.plane_depth.row(i) = pd.transpose();
-                                          out.total_depth[i] = total_depth(cd, pd, inside, settings_.inside_weight);
-                                          out.log_w[i] = -settings_.beta * out.total_depth[i];
-                                          out.w[i] = std::exp(out.log_w[i]);
-                                          out.collision_free[i] = out.total_depth[i] <= 0.0;
-                                        });
+  const Eigen::Index parallel_from = index_->grid.size() == 0 && !occupancy_ && !volume_ ? 4096 : 64;
+  const Eigen::Index N = hand_->fk_each(
+      T_world_wrist, q, parallel_from, [&](Eigen::Index i, const Eigen::VectorXd&, const Eigen::Isometry3d* poses) {
+        std::vector<int> inside(static_cast<size_t>(L), 0);
+        Eigen::VectorXd cd = Eigen::VectorXd::Zero(L), pd = Eigen::VectorXd::Zero(L), ud = Eigen::VectorXd::Zero(L);
+        evaluate_into(poses, cd.data(), pd.data(), inside.data(), ud.data());
+        out.cloud_depth.row(i) = cd.transpose();
+        out.plane_depth.row(i) = pd.transpose();
+        out.unseen_depth.row(i) = ud.transpose();
+        const double hard = total_depth(cd, pd, inside, settings_.inside_weight);
+        out.total_depth[i] = hard + ud.sum();
+        out.log_w[i] = -settings_.beta * out.total_depth[i];
+        out.w[i] = std::exp(out.log_w[i]);
+        out.collision_free[i] = hard <= 0.0;
+      });
   if (N != n) {  // an empty side broadcasts to no hands
     out.cloud_depth.conservativeResize(N, Eigen::NoChange);
     out.plane_depth.conservativeResize(N, Eigen::NoChange);
+    out.unseen_depth.conservativeResize(N, Eigen::NoChange);
     out.total_depth.conservativeResize(N);
     out.log_w.conservativeResize(N);
     out.w.conservativeResize(N);
@@ -323,9 +375,9 @@ std::pair<Eigen::VectorXd, Eigen::VectorXd> CollisionExpert::total_depth_pair(
   std::pair<Eigen::VectorXd, Eigen::VectorXd> out{Eigen::VectorXd(n), Eigen::VectorXd(n)};
   hand_->fk_each(wrists, q, 64, [&](Eigen::Index i, const Eigen::VectorXd&, const Eigen::Isometry3d* poses) {
     std::vector<int> inside(static_cast<size_t>(L), 0);
-    Eigen::VectorXd cd = Eigen::VectorXd::Zero(L), pd = Eigen::VectorXd::Zero(L);
-    evaluate_into(poses, cd.data(), pd.data(), inside.data());
-    out.first[i] = total_depth(cd, pd, inside, settings_.inside_weight);
+    Eigen::VectorXd cd = Eigen::VectorXd::Zero(L), pd = Eigen::VectorXd::Zero(L), ud = Eigen::VectorXd::Zero(L);
+    evaluate_into(poses, cd.data(), pd.data(), inside.data(), ud.data());
+    out.first[i] = total_depth(cd, pd, inside, settings_.inside_weight) + ud.sum();
     // The second configuration: a link posed exactly as in the first (the palm) keeps its terms.
     std::vector<Eigen::Isometry3d> poses2(static_cast<size_t>(L));
     const Eigen::VectorXd qi2 = q2.row(i).transpose();
@@ -333,10 +385,10 @@ std::pair<Eigen::VectorXd, Eigen::VectorXd> CollisionExpert::total_depth_pair(
     std::unique_ptr<bool[]> same(new bool[static_cast<size_t>(L)]);
     for (int l = 0; l < L; ++l) {
       same[l] = poses2[l].matrix() == poses[l].matrix();
-      if (!same[l]) cd[l] = pd[l] = inside[l] = 0;
+      if (!same[l]) cd[l] = pd[l] = ud[l] = inside[l] = 0;
     }
-    evaluate_into(poses2.data(), cd.data(), pd.data(), inside.data(), same.get());
-    out.second[i] = total_depth(cd, pd, inside, settings_.inside_weight);
+    evaluate_into(poses2.data(), cd.data(), pd.data(), inside.data(), ud.data(), same.get());
+    out.second[i] = total_depth(cd, pd, inside, settings_.inside_weight) + ud.sum();
   });
   return out;
 }

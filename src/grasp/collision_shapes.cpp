@@ -152,8 +152,13 @@ double plane_term(const CollisionExpert::Shapes& shapes, const CollisionExpert::
   return result.isCollision() ? std::abs(result.getContact(0).penetration_depth) : 0.0;
 }
 
-double blocked_volume(const OccupancyMap& map, const CollisionExpert::Shapes::Shape& sh, const Eigen::Isometry3d& T,
-                      double tol, int& count) {
+namespace {
+
+/// The volume of the shape's samples charged: those for which `charged(sample, its cell's state)` holds and whose
+/// cell's centre lies deeper than tol + h/2 inside the shape. `any(lo, hi)`: whether a box may hold a charged cell.
+template <class Any, class Charged>
+double charged_volume(const OccupancyMap& map, const CollisionExpert::Shapes::Shape& sh, const Eigen::Isometry3d& T,
+                      double tol, int& count, Any any, Charged charged) {
   const double erosion = tol + 0.5 * map.resolution();
   const Eigen::Matrix3d& R = T.linear();
   const Eigen::Matrix3d absR = R.cwiseAbs();
@@ -161,15 +166,40 @@ double blocked_volume(const OccupancyMap& map, const CollisionExpert::Shapes::Sh
   int n = 0;
   for (const auto& b : sh.blocks) {
     const Eigen::Vector3d c = T * b.centre, half = absR * b.half;
-    if (!map.any_blocked(c - half, c + half)) continue;
+    if (!any(c - half, c + half)) continue;
     for (std::size_t s = b.begin; s < b.end; ++s) {
       Eigen::Vector3d centre;
-      if (!map.blocked(map.cell(R * sh.samples[s] + t, centre))) continue;
+      const Eigen::Vector3d x = R * sh.samples[s] + t;
+      if (!charged(x, map.cell(x, centre))) continue;
       if (-signed_distance(*sh.src, R.transpose() * (centre - t)) > erosion) ++n;
     }
   }
   count += n;
   return n * sh.sample_volume;
+}
+
+}  // namespace
+
+double blocked_volume(const OccupancyMap& map, const CollisionExpert::Shapes::Shape& sh, const Eigen::Isometry3d& T,
+                      double tol, int& count) {
+  return charged_volume(
+      map, sh, T, tol, count,
+      [&](const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) { return map.any_blocked(lo, hi); },
+      [&](const Eigen::Vector3d&, CellState st) { return map.blocked(st); });
+}
+
+double unseen_volume(const OccupancyMap& map, const OccupancyMap* solid, double margin,
+                     const CollisionExpert::Shapes::Shape& sh, const Eigen::Isometry3d& T, double tol) {
+  int count = 0;
+  const Eigen::Vector3d m = Eigen::Vector3d::Constant(margin);
+  return charged_volume(
+      map, sh, T, tol, count,
+      [&](const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) { return map.any_unknown(lo, hi); },
+      [&](const Eigen::Vector3d& x, CellState st) {
+        if (st != CellState::Unknown) return false;
+        if (!solid) return true;
+        return margin > 0 ? !solid->any_blocked(x - m, x + m) : solid->state(x) != CellState::Occupied;
+      });
 }
 
 }  // namespace graspmix

@@ -49,4 +49,10 @@ double plane_term(const CollisionExpert::Shapes& shapes, const CollisionExpert::
 double blocked_volume(const OccupancyMap& map, const CollisionExpert::Shapes::Shape& sh, const Eigen::Isometry3d& T,
                       double tol, int& count);
 
+/// The same volume over the map's unknown cells whose sample lies outside the solid volume (`solid`'s occupied
+/// cells; none when null) and, with margin > 0, farther than `margin` from it along every axis (no occupied cell in
+/// the cube of half-side margin around it): the unseen space a soft charge weighs (CollisionSettings::unseen_weight).
+double unseen_volume(const OccupancyMap& map, const OccupancyMap* solid, double margin,
+                     const CollisionExpert::Shapes::Shape& sh, const Eigen::Isometry3d& T, double tol);
+
 }  // namespace graspmix

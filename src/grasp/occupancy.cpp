@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 #include <unordered_set>
+#include <utility>
 
 #include <octomap/OcTree.h>
 
@@ -207,23 +208,74 @@ OccupancyMap::OccupancyMap(const Eigen::Ref<const Vec3Array>& points, const Eige
   stats_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
 }
 
-void OccupancyMap::build_blocked_sums() {
+OccupancyMap::OccupancyMap(const Eigen::Vector3d& origin, const Eigen::Vector3i& dims, std::vector<std::uint8_t> cells,
+                           const Eigen::Vector3d& objects_lo, const Eigen::Vector3d& objects_hi,
+                           const std::optional<Eigen::Vector4d>& plane, OccupancySettings settings)
+    : settings_(settings),
+      h_(settings.resolution),
+      origin_(origin),
+      objects_lo_(objects_lo),
+      objects_hi_(objects_hi),
+      cells_(std::move(cells)) {
+  const auto t_start = std::chrono::steady_clock::now();
+  check_settings(settings_);
+  if (!origin.allFinite() || !objects_lo.allFinite() || !objects_hi.allFinite()) {
+    throw std::invalid_argument("occupancy: the origin and the objects' box must be finite");
+  }
+  if ((dims.array() < 1).any()) throw std::invalid_argument("occupancy: dims must be >= 1 along every axis");
+  dims_ = dims.cast<std::int64_t>();
+  if (static_cast<std::int64_t>(cells_.size()) != dims_.prod()) {
+    throw std::invalid_argument("occupancy: " + std::to_string(cells_.size()) + " cells given for dims of " +
+                                std::to_string(dims_.prod()));
+  }
+  if (plane) {
+    const double n = plane->head<3>().norm();
+    if (!plane->allFinite() || !(n > 1e-12))
+      throw std::invalid_argument("occupancy: the plane's normal must be non-zero");
+    plane_ = *plane / n;
+  }
+  for (const std::uint8_t c : cells_) {
+    if (c > static_cast<std::uint8_t>(CellState::Unknown)) throw std::invalid_argument("occupancy: a cell state > 2");
+    const auto st = static_cast<CellState>(c);
+    (st == CellState::Free ? stats_.n_free : st == CellState::Occupied ? stats_.n_occupied : stats_.n_unknown) += 1;
+  }
+  build_blocked_sums();
+  stats_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+}
+
+template <class Count>
+std::vector<std::int64_t> OccupancyMap::summed(Count count) const {
   const std::int64_t nx = dims_.x(), ny = dims_.y(), nz = dims_.z();
   const std::int64_t sx = nx + 1, sy = ny + 1;
-  blocked_sums_.assign(static_cast<std::size_t>(sx * sy * (nz + 1)), 0);
+  std::vector<std::int64_t> sums(static_cast<std::size_t>(sx * sy * (nz + 1)), 0);
   auto at = [&](std::int64_t i, std::int64_t j, std::int64_t k) -> std::int64_t& {
-    return blocked_sums_[static_cast<std::size_t>((k * sy + j) * sx + i)];
+    return sums[static_cast<std::size_t>((k * sy + j) * sx + i)];
   };
   for (std::int64_t k = 0; k < nz; ++k)
     for (std::int64_t j = 0; j < ny; ++j)
       for (std::int64_t i = 0; i < nx; ++i) {
-        const bool b = blocked(static_cast<CellState>(cells_[static_cast<std::size_t>((k * ny + j) * nx + i)]));
+        const bool b = count(static_cast<CellState>(cells_[static_cast<std::size_t>((k * ny + j) * nx + i)]));
         at(i + 1, j + 1, k + 1) = (b ? 1 : 0) + at(i, j + 1, k + 1) + at(i + 1, j, k + 1) + at(i + 1, j + 1, k) -
                                   at(i, j, k + 1) - at(i, j + 1, k) - at(i + 1, j, k) + at(i, j, k);
       }
+  return sums;
+}
+
+void OccupancyMap::build_blocked_sums() {
+  blocked_sums_ = summed([this](CellState s) { return blocked(s); });
+  unknown_sums_ = summed([](CellState s) { return s == CellState::Unknown; });
 }
 
 bool OccupancyMap::any_blocked(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) const {
+  return any_in(blocked_sums_, lo, hi);
+}
+
+bool OccupancyMap::any_unknown(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) const {
+  return any_in(unknown_sums_, lo, hi);
+}
+
+bool OccupancyMap::any_in(const std::vector<std::int64_t>& sums, const Eigen::Vector3d& lo,
+                          const Eigen::Vector3d& hi) const {
   // The cells the box touches, clipped to the region (outside it every cell is free).
   const Eigen::Vector3d a = ((lo - origin_) / h_).array().floor(), b = ((hi - origin_) / h_).array().floor();
   std::int64_t l[3], u[3];
@@ -234,7 +286,7 @@ bool OccupancyMap::any_blocked(const Eigen::Vector3d& lo, const Eigen::Vector3d&
   }
   const std::int64_t sx = dims_.x() + 1, sy = dims_.y() + 1;
   auto s = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
-    return blocked_sums_[static_cast<std::size_t>((k * sy + j) * sx + i)];
+    return sums[static_cast<std::size_t>((k * sy + j) * sx + i)];
   };
   const std::int64_t n = s(u[0], u[1], u[2]) - s(l[0], u[1], u[2]) - s(u[0], l[1], u[2]) - s(u[0], u[1], l[2]) +
                          s(l[0], l[1], u[2]) + s(l[0], u[1], l[2]) + s(u[0], l[1], l[2]) - s(l[0], l[1], l[2]);

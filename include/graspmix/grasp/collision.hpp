@@ -21,7 +21,7 @@
 //   D_l = 0. Grasp sampling starts links at the surface, so this rarely matters; a denser cloud or a
 //   larger point_radius narrows the gap.
 //   collision_free = no cloud point lies strictly inside any link (ball overlap when r > 0) and no
-//   link reaches below the raised plane, i.e. total == 0.
+//   link reaches below the raised plane, i.e. total == 0 (the soft unseen charge U_l aside, below).
 //
 // The occupancy model (CollisionModel::Occupancy, built on an OccupancyMap of what the cameras saw): in
 // place of D_l, the volume of link l inside blocked cells (occupied, and unknown when the map counts them
@@ -86,6 +86,24 @@ struct CollisionSettings {
   /// m^2: the occupancy model charges the volume inside blocked cells divided by this (1 cm^2, about a
   /// fingertip's face: a link pressed 1 mm into a surface over 1 cm^2 costs 1 mm, as a surface depth).
   double reference_area = 1e-4;
+  /// Keep the hand out of the objects' solid volume too, not only away from their points: the columns of
+  /// grasp/solid_volume.hpp over the expert's cloud (observed and completed points) standing on its plane, charged
+  /// as the occupancy model charges blocked cells (a link's volume in them over reference_area, eroded by the
+  /// contact tolerance and half a cell). A completed object is a surface: a finger wholly inside it touches none of
+  /// its points. Needs a plane (without one, or with no point a cell above it, there is no volume: has_volume()).
+  bool volume = false;
+  double volume_resolution = 0.005;  ///< m: the volume's cell (SolidVolumeSettings::resolution), > 0
+  /// The soft charge of unseen space (occupancy model only): a link's volume in the map's unknown cells outside the
+  /// solid volume, over reference_area, times this weight (>= 0; 0, the default: no charge). It enters W (total_depth)
+  /// but not collision_free: the unseen is neither free nor solid, so it is preferred less, never refused. The map
+  /// must not count unknown cells as obstacles itself (OccupancySettings::unknown_is_occupied false).
+  double unseen_weight = 0.0;
+  /// m: with the volume, unseen space within this of it (along every axis) is not charged: room for a finger at a
+  /// completed side the completion placed a little short (>= 0; 0: only the volume itself is exempt).
+  double unseen_margin = 0.0;
+  /// The occupancy model charges a link's volume in the map's occupied cells (the seen surface's); false: the seen
+  /// surface is charged by its points' depths D_l alone (the map then only gives the unseen space its charge).
+  bool occupied_cells = true;
 };
 
 /// One configuration's penetration, per link in Hand::link_names() order.
@@ -93,7 +111,8 @@ struct CollisionResult {
   Eigen::VectorXd cloud_depth;    ///< D_l (m), or O_l with the occupancy model
   Eigen::VectorXd plane_depth;    ///< P_l (m)
   Eigen::VectorXi points_inside;  ///< cloud points that penetrate each link (occupancy: samples charged)
-  double total_depth = 0.0;       ///< sum_l D_l + P_l + inside_weight * n_l (m; see the header comment)
+  Eigen::VectorXd unseen_depth;   ///< U_l (m): the soft charge of unseen space (CollisionSettings::unseen_weight)
+  double total_depth = 0.0;       ///< sum_l D_l + P_l + inside_weight * n_l + U_l (m; see the header comment)
   double log_w = 0.0;             ///< -beta * total_depth
   double w = 1.0;                 ///< exp(log_w)
   bool collision_free = true;
@@ -103,6 +122,7 @@ struct CollisionResult {
 struct CollisionBatchResult {
   RowMatrixXd cloud_depth;
   RowMatrixXd plane_depth;
+  RowMatrixXd unseen_depth;
   Eigen::VectorXd total_depth;
   Eigen::VectorXd log_w;
   Eigen::VectorXd w;
@@ -151,6 +171,9 @@ class CollisionExpert {
   Eigen::Index n_points() const;
   /// The map of the occupancy model (null for the surface model).
   const std::shared_ptr<const OccupancyMap>& occupancy() const { return occupancy_; }
+  /// The solid volume charged with settings.volume (null without it, or without a plane).
+  const std::shared_ptr<const OccupancyMap>& volume() const { return volume_; }
+  bool has_volume() const { return volume_ != nullptr; }
   double cell_size() const;
 
   struct Index;   ///< the cloud's grid (defined in src/)
@@ -160,7 +183,7 @@ class CollisionExpert {
   /// Adds the terms of the links posed at link_poses (all, or those with skip[l] false) into the per-link
   /// outputs.
   void evaluate_into(const Eigen::Isometry3d* link_poses, double* cloud_depth, double* plane_depth, int* points_inside,
-                     const bool* skip = nullptr) const;
+                     double* unseen_depth, const bool* skip = nullptr) const;
 
   std::shared_ptr<const Hand> hand_;
   CollisionSettings settings_;
@@ -168,6 +191,9 @@ class CollisionExpert {
   std::shared_ptr<const Index> index_;
   std::shared_ptr<const Shapes> shapes_;
   std::shared_ptr<const OccupancyMap> occupancy_;
+  std::shared_ptr<const OccupancyMap> volume_;
+  /// The volume of the cloud (with settings.volume and a plane) and the links' interior samples for the maps.
+  void build_volume(const Eigen::Ref<const Vec3Array>& cloud);
 };
 
 /// Signed distance (m, negative inside) from every point (N, 3, world frame) to a link's collision

@@ -63,6 +63,14 @@ class OccupancyMap {
                const Eigen::Ref<const Vec3Array>& objects, const std::optional<Eigen::Vector4d>& plane = std::nullopt,
                OccupancySettings settings = {});
 
+  /// A map of given cells (grasp/solid_volume.hpp builds one): `cells`, a CellState per cell with x fastest,
+  /// `dims` cells of `resolution` from `origin`; objects_lo/hi the box of what it maps; plane as above (normalised
+  /// here, its sign kept). Throws std::invalid_argument for a cell count other than dims' product, a state out of
+  /// range, dims < 1, a non-finite origin or bad settings.
+  OccupancyMap(const Eigen::Vector3d& origin, const Eigen::Vector3i& dims, std::vector<std::uint8_t> cells,
+               const Eigen::Vector3d& objects_lo, const Eigen::Vector3d& objects_hi,
+               const std::optional<Eigen::Vector4d>& plane, OccupancySettings settings);
+
   /// The state of the cell holding p (Free outside the region).
   CellState state(const Eigen::Vector3d& p) const {
     Eigen::Vector3d c;
@@ -85,6 +93,8 @@ class OccupancyMap {
   /// Whether any blocked cell touches the axis-aligned box [lo, hi] (world): O(1), from a summed-volume table of
   /// the blocked cells built with the map. A false answer means the box lies wholly in free cells.
   bool any_blocked(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) const;
+  /// Whether any unknown cell touches the box [lo, hi] (world), in O(1) likewise.
+  bool any_unknown(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) const;
 
   double resolution() const { return h_; }
   /// The region of interest: [lo, hi] corners of the dense grid (aligned to the OctoMap's cells).
@@ -110,7 +120,12 @@ class OccupancyMap {
   std::vector<std::uint8_t> cells_;  ///< CellState per cell, x fastest
   /// blocked cells in [0, i) x [0, j) x [0, k), (dims + 1) per axis, x fastest: any_blocked's table
   std::vector<std::int64_t> blocked_sums_;
+  std::vector<std::int64_t> unknown_sums_;  ///< the same of the unknown cells: any_unknown's table
   void build_blocked_sums();
+  /// The summed-volume table of the cells for which `count` is true.
+  template <class Count>
+  std::vector<std::int64_t> summed(Count count) const;
+  bool any_in(const std::vector<std::int64_t>& sums, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) const;
   OccupancyStats stats_;
 };
 

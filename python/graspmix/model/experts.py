@@ -57,8 +57,11 @@ def collision_expert(
     hand, points, plane, opts: SynthesisOptions, occupancy=None, point_radius: float | None = None
 ) -> "_core.CollisionExpert":
     """W on the query cloud and the support plane (and, with an OccupancyMap, on the space the cameras did not
-    see free: the occupancy model), by opts.collision; point_radius (m) overrides its points' radius."""
+    see free: the occupancy model), by opts.collision; point_radius (m) overrides its points' radius. Without a map
+    it is the surface model whatever opts.collision.model says (a scene's neighbours' expert: their points only)."""
     extra = {} if point_radius is None else {"point_radius": point_radius}
+    if occupancy is None:
+        extra["model"] = "surface"
     return _core.CollisionExpert(hand, points, plane=plane, occupancy=occupancy, settings=opts.collision, **extra)
 
 

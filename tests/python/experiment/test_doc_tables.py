@@ -13,7 +13,19 @@ REPO = Path(__file__).resolve().parents[3]
 # page -> the tables (markers) it holds
 PAGES = {
     "docs/experiment.md": {"findings", "defaults", "ablation", "heldout", "heldout-paper"},
-    "docs/one-view.md": {"dev", "heldout", "four-views", "paper", "clutter", "image-dev", "image-heldout"},
+    "docs/one-view.md": {
+        "dev",
+        "heldout",
+        "four-views",
+        "paper",
+        "clutter",
+        "image-dev",
+        "image-heldout",
+        "volume-dev",
+        "volume-heldout",
+        "volume-four-views",
+        "volume-clutter",
+    },
 }
 SCRIPTS = ("scripts/findings_table.py", "scripts/ablation_table.py", "scripts/clutter_table.py")
 

@@ -160,3 +160,15 @@ def test_an_object_only_cloud_under_the_occupancy_model_rejects_every_grasp_and_
     assert len(err.splitlines()) == 1 and "no sampled grasp passed the hard experts" in err and "clear_approach" in err
     grasps = graspmix.GraspSet.load(tmp_path / "g.json")
     assert len(grasps) == 40 and not any(np.isfinite(g.log_likelihood) for g in grasps)
+
+
+def test_an_expert_without_a_map_is_the_surface_model_under_the_occupancy_option(seen):
+    """A scene's neighbours' expert is built from points alone, also when the synthesis runs the occupancy model:
+    collision_expert without a map gives the surface model (it raised before, failing every scene of two objects)."""
+    from graspmix.model.experts import collision_expert
+
+    _, scene, occ, _, _ = seen
+    opts = SynthesisOptions(collision=_core.CollisionSettings(model="occupancy"))
+    hand = graspmix.Hand.from_urdf(graspmix.data_path("hands", "wsg50.urdf"))
+    assert collision_expert(hand, scene.points, None, opts).model == "surface"
+    assert collision_expert(hand, scene.points, scene.plane, opts, occ).model == "occupancy"

@@ -1,0 +1,98 @@
+"""The solid volume of a completed object (solid_volume) on a box rendered by pybullet from one camera, against the
+renderer's ground truth (the box's pose and size), and the collision expert's volume term (CollisionSettings.volume):
+a finger inside the completed box, near none of its points, is charged; one clear of it is not."""
+
+import numpy as np
+import pytest
+from graspmix import _core
+from graspmix.perception import segment_scene
+from graspmix.sim.acquisition import AcquisitionSettings, Camera, acquire
+
+EYE = (0.5, 0.1, 0.45)  # sees the box's +x face and its top
+SIZE = (0.06, 0.06, 0.10)  # m
+FINGER = """<robot name="finger"><link name="finger"><collision><geometry><box size="0.02 0.04 0.06"/></geometry>
+</collision></link></robot>"""
+
+
+@pytest.fixture(scope="module")
+def completed(box_urdf):
+    acq = acquire(box_urdf(SIZE), seed=0, settings=AcquisitionSettings(cameras=[Camera(eye=EYE)], keep="scene"))
+    scene = segment_scene(acq.points, acq.viewpoints).complete()
+    return scene, np.asarray(acq.object_pose[:3])
+
+
+def test_the_completed_box_is_solid_inside_and_free_outside(completed):
+    scene, c = completed
+    vol = _core.solid_volume(scene.solid_points(), scene.plane)
+    occupied = 1
+    half = np.array(SIZE) / 2
+    rng = np.random.default_rng(0)
+    p = c + rng.uniform(-1.5, 1.5, (4000, 3)) * half
+    inside_by = -np.max(np.abs(p - c) - half, axis=1)  # the box's exact signed depth
+    state = vol.state(p)
+    margin = np.sqrt(3) * vol.resolution + 0.003  # a cell's diagonal and the completion's 6 mm gap, halved
+    deep, out = inside_by > margin, inside_by < -margin
+    assert deep.sum() > 200 and out.sum() > 1000
+    assert np.mean(state[deep] == occupied) > 0.97  # the unseen half included: the completion's
+    assert np.all(state[out] != occupied)
+
+
+@pytest.fixture(scope="module")
+def finger(tmp_path_factory):
+    urdf = tmp_path_factory.mktemp("finger") / "finger.urdf"
+    urdf.write_text(FINGER)
+    return _core.Hand.from_urdf(str(urdf))
+
+
+def test_a_finger_inside_the_completed_box_is_charged_only_with_the_volume(completed, finger):
+    scene, c = completed
+    hand = finger
+    points = scene.solid_points()
+    # The box's middle: every observed or completed point 5 mm or more outside the finger (2 x 4 x 6 cm).
+    assert np.all(np.max(np.abs(points - c) - [0.01, 0.02, 0.03], axis=1) > 0.005)
+    pose = np.array([[*c, 0, 0, 0, 1], [*(c + [0.1, 0, 0]), 0, 0, 0, 1]])
+    q = np.zeros((1, 0))
+    plain = _core.CollisionExpert(hand, points, plane=scene.plane)
+    volume = _core.CollisionExpert(hand, points, plane=scene.plane, settings=_core.CollisionSettings(volume=True))
+    assert plain.volume is None and volume.volume is not None
+    assert plain.evaluate_batch(pose, q).collision_free.tolist() == [True, True]
+    r = volume.evaluate_batch(pose, q)
+    assert r.collision_free.tolist() == [False, True]
+    assert 0 < r.total_depth[0] <= 0.02 * 0.04 * 0.06 / volume.settings.reference_area + 1e-12
+
+
+def test_bad_input_is_a_value_error(completed, finger):
+    scene, _ = completed
+    with pytest.raises(ValueError, match="plane"):
+        _core.solid_volume(scene.solid_points(), [0, 0, 0, 0])
+    with pytest.raises(ValueError, match="resolution"):
+        _core.solid_volume(scene.solid_points(), scene.plane, resolution=0.0)
+    with pytest.raises(ValueError, match="NaN"):
+        _core.solid_volume(np.full((3, 3), np.nan), scene.plane)
+    with pytest.raises(ValueError, match="volume_resolution"):
+        bad = _core.CollisionSettings(volume=True, volume_resolution=-1.0)
+        _core.CollisionExpert(finger, scene.solid_points(), plane=scene.plane, settings=bad)
+
+
+def test_unseen_space_beyond_the_completion_is_charged_softly(completed, finger, box_urdf):
+    """The occupancy model with unknown cells free, the volume and the soft unseen charge: the completed box's
+    inside is refused, the unseen shadow beyond it is charged but not refused, the seen-free front costs nothing."""
+    scene, c = completed
+    acq = acquire(box_urdf(SIZE), seed=0, settings=AcquisitionSettings(cameras=[Camera(eye=EYE)], keep="scene"))
+    occ = _core.OccupancyMap(
+        acq.points,
+        acq.viewpoints,
+        scene.points,
+        scene.plane,
+        settings=_core.OccupancySettings(unknown_is_occupied=False),
+    )
+    s = _core.CollisionSettings(volume=True, unseen_weight=0.1)
+    expert = _core.CollisionExpert(finger, scene.solid_points(), plane=scene.plane, occupancy=occ, settings=s)
+    away = -np.array(EYE[:2] + (0,)) / np.linalg.norm(EYE[:2])  # from the box, away from the camera
+    poses = np.array([[*p, 0, 0, 0, 1] for p in (c, c + 0.09 * away, c - 0.12 * away)])
+    r = expert.evaluate_batch(poses, np.zeros((1, 0)))
+    assert r.collision_free.tolist() == [False, True, True]
+    assert r.unseen_depth.sum(axis=1)[1] > 0 and r.unseen_depth.sum(axis=1)[2] == 0
+    with pytest.raises(ValueError, match="unknown_is_occupied"):
+        solid = _core.OccupancyMap(acq.points, acq.viewpoints, scene.points, scene.plane)
+        _core.CollisionExpert(finger, scene.solid_points(), plane=scene.plane, occupancy=solid, settings=s)

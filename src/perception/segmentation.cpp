@@ -57,8 +57,8 @@ VisibilitySettings detail::visibility_settings(const SegmentationSettings& s) {
 void detail::nothing_in_workspace(const SegmentationSettings& s, const char* what) {
   std::ostringstream box;
   for (std::size_t k = 0; k < s.workspace.size(); ++k) box << (k ? ", " : "") << s.workspace[k];
-  bad(std::string(what) + ": nothing inside the workspace [" + box.str() +
-      "] (x_min, y_min, z_min, x_max, y_max, z_max in the world frame, m)");
+  throw std::invalid_argument(std::string(what) + ": nothing inside the workspace [" + box.str() +
+                              "] (x_min, y_min, z_min, x_max, y_max, z_max in the world frame, m)");
 }
 
 void detail::check_segmentation_settings(const SegmentationSettings& s) {
@@ -485,7 +485,7 @@ Segmentation segment_scene(const Vec3Array& points, const Vec3Array& viewpoints,
     std::vector<Eigen::Index> rows;
     for (Eigen::Index r = 0; r < points.rows(); ++r)
       if (detail::in_workspace(s, points.row(r).transpose())) rows.push_back(r);
-    if (rows.empty()) detail::nothing_in_workspace(s, "points");
+    if (rows.empty()) detail::nothing_in_workspace(s, "segment_scene: points");
     const auto n = static_cast<Eigen::Index>(rows.size());
     Vec3Array P(n, 3), V(viewpoints.rows() > 1 ? n : viewpoints.rows(), 3);
     for (Eigen::Index i = 0; i < n; ++i) P.row(i) = points.row(rows[static_cast<std::size_t>(i)]);

@@ -38,7 +38,7 @@ inline bool in_workspace(const SegmentationSettings& s, const Eigen::Vector3d& p
   return true;
 }
 
-/// The error of an input with no point (or return) inside the workspace.
+/// The error of an input with no point (or return) inside the workspace: std::invalid_argument("<what>: nothing ...").
 [[noreturn]] void nothing_in_workspace(const SegmentationSettings& s, const char* what);
 
 /// Throws std::invalid_argument ("segment_scene: ...") naming the first setting out of range.

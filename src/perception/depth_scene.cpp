@@ -145,10 +145,10 @@ Blocks voxelised(const Blocks& b, double voxel_size) {
   return out;
 }
 
-/// The rows of b on one side of a height above `plane`: above it (more than `height`), or on it (at most).
-Blocks by_height(const Blocks& b, const Eigen::Vector4d& plane, double height, bool above) {
+/// The rows of b at most `height` above `plane` (or below it): the table.
+Blocks on_plane(const Blocks& b, const Eigen::Vector4d& plane, double height) {
   const Eigen::VectorXd h = (b.points * plane.head<3>()).array() + plane[3];
-  const auto keep = [&](Eigen::Index i) { return above ? h[i] > height : !(h[i] > height); };
+  const auto keep = [&](Eigen::Index i) { return !(h[i] > height); };
   Eigen::Index n = 0;
   for (Eigen::Index i = 0; i < h.size(); ++i) n += keep(i) ? 1 : 0;
   Blocks out{Vec3Array(n, 3), Eigen::VectorXi(n)};
@@ -195,7 +195,7 @@ Segmentation segment_image(const Eigen::Ref<const Vec3Array>& S, const Eigen::Re
     if (out.plane_found || out.plane_given) {
       BlockFilter above{s, &out.plane, s.table_clearance};  // only the fine blocks above the table are made
       const Blocks up = block_points(S, H, W, fine, s.voxel_size, T, above);
-      const Blocks on = by_height(coarse, out.plane, s.table_clearance, false);
+      const Blocks on = on_plane(coarse, out.plane, s.table_clearance);
       down = joined(voxelised(up, s.voxel_size), on);
       // n_plane counts the fine blocks on the table, not the coarse ones that stand in for them
       dropped = static_cast<std::size_t>(above.seen - up.points.rows());

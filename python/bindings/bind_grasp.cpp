@@ -54,8 +54,9 @@ void bind_collision(py::module_& m) {
           "keep the hand out of the objects' solid volume too (columns from the plane up to the points: solid_volume)")
       .field("volume_resolution", &CollisionSettings::volume_resolution, "m: the solid volume's cell, > 0")
       .field("unseen_weight", &CollisionSettings::unseen_weight,
-             "occupancy model: a link's volume in unknown cells outside the solid volume is charged at this weight\n"
-             "(soft: in W, not in collision_free; needs OccupancySettings.unknown_is_occupied = False)")
+             "a link's volume in the unknown cells of a map of what the cameras saw (the occupancy model's, or the\n"
+             "surface model's unseen map) outside the solid volume is charged at this weight (soft: in W, not in\n"
+             "collision_free; the occupancy model's map needs OccupancySettings.unknown_is_occupied = False)")
       .field("unseen_margin", &CollisionSettings::unseen_margin,
              "m: with the volume, unseen space within this of it is not charged (>= 0)")
       .field(
@@ -96,22 +97,28 @@ void bind_collision(py::module_& m) {
       "cylinders, spheres; meshes as their convex hulls); plane depth: the deepest point of the link below the\n"
       "plane (FCL half-space). The cloud is indexed once at construction.")
       .def(py::init([](HandPtr hand, const py::object& cloud, const py::object& plane,
-                       const std::shared_ptr<OccupancyMap>& occupancy, const py::object& settings,
-                       const py::kwargs& kw) {
+                       const std::shared_ptr<OccupancyMap>& occupancy, const std::shared_ptr<OccupancyMap>& unseen,
+                       const py::object& settings, const py::kwargs& kw) {
              if (!hand) throw py::value_error("hand: expected a Hand, got None");
+             if (occupancy && unseen) {
+               throw py::value_error(
+                   "CollisionExpert: occupancy= or unseen=, not both (the occupancy model charges "
+                   "the unknown cells of its own map)");
+             }
              const CollisionSettings s = settings_from<CollisionSettings>(settings, kw, "CollisionExpert");
              std::optional<Eigen::Vector4d> pl;
              if (!plane.is_none()) pl = Eigen::Vector4d(to_vector(plane, "plane", 4));
              const Vec3Array P = cloud.is_none() ? Vec3Array(0, 3) : Vec3Array(to_matrix(cloud, "cloud", 3));
              py::gil_scoped_release release;
              if (occupancy) return std::make_shared<CollisionExpert>(std::move(hand), occupancy, P, pl, s);
-             return std::make_shared<CollisionExpert>(std::move(hand), P, pl, s);
+             return std::make_shared<CollisionExpert>(std::move(hand), P, pl, s, unseen);
            }),
            py::arg("hand"), py::arg("cloud"), py::arg("plane") = py::none(), py::kw_only(),
-           py::arg("occupancy") = py::none(), py::arg("settings") = py::none(),
+           py::arg("occupancy") = py::none(), py::arg("unseen") = py::none(), py::arg("settings") = py::none(),
            ("hand: Hand; cloud: (N, 3) points (world frame) or None; plane: [a, b, c, d] of a x + b y + c z + d = 0\n"
             "or None; occupancy: an OccupancyMap for the occupancy model (its volume charge, plus the cloud's\n"
-            "depths), None for the surface model (settings.model names it).\n" +
+            "depths), None for the surface model (settings.model names it); unseen: the surface model's map whose\n"
+            "unknown cells settings.unseen_weight charges (OccupancyMap.from_visibility), or None.\n" +
             settings_doc<CollisionSettings>())
                .c_str())
       .def(
@@ -173,6 +180,12 @@ void bind_collision(py::module_& m) {
             return e.volume() ? py::cast(std::const_pointer_cast<OccupancyMap>(e.volume())) : py::none();
           },
           "The solid volume charged with settings.volume (an OccupancyMap: solid_volume), or None.")
+      .def_property_readonly(
+          "unseen",
+          [](const CollisionExpert& e) -> py::object {
+            return e.unseen() ? py::cast(std::const_pointer_cast<OccupancyMap>(e.unseen())) : py::none();
+          },
+          "The map whose unknown cells settings.unseen_weight charges (the occupancy model's, or unseen=), or None.")
       .def_property_readonly("cell_size", &CollisionExpert::cell_size, "The grid cell of the cloud index (m).")
       .def_property_readonly(
           "settings", [](const CollisionExpert& e) { return CollisionSettings(e.settings()); },

@@ -7,6 +7,7 @@
 #include "common.hpp"
 #include "graspmix/grasp/occupancy.hpp"
 #include "graspmix/grasp/solid_volume.hpp"
+#include "graspmix/perception/visibility.hpp"
 #include "settings.hpp"
 
 namespace graspmix::py_bind {
@@ -47,6 +48,22 @@ void bind_occupancy_only(py::module_& m) {
             "points whose box (grown by margin) is mapped (None: all points); plane [a, b, c, d] or None.\n" +
             settings_doc<OccupancySettings>())
                .c_str())
+      .def_static(
+          "from_visibility",
+          [](const VisibilityModel& visibility, const py::object& objects, const py::object& plane,
+             const py::object& settings, const py::kwargs& kw) {
+            const Vec3Array O(to_matrix(objects, "OccupancyMap.from_visibility: objects", 3, true));
+            std::optional<Eigen::Vector4d> pl;
+            if (!plane.is_none()) pl = Eigen::Vector4d(to_vector(plane, "OccupancyMap.from_visibility: plane", 4));
+            const OccupancySettings s = settings_from<OccupancySettings>(settings, kw, "OccupancyMap.from_visibility");
+            py::gil_scoped_release release;
+            return std::make_shared<OccupancyMap>(visibility, O, pl, s);
+          },
+          py::arg("visibility"), py::arg("objects"), py::arg("plane") = py::none(), py::kw_only(),
+          py::arg("settings") = py::none(),
+          "The same region and rules from a VisibilityModel's views instead of OctoMap's rays: each cell by its\n"
+          "centre's state (seen free -> free, surface -> occupied, unseen -> unknown). objects (M, 3): the points\n"
+          "whose box, grown by margin, is mapped; plane [a, b, c, d] or None.")
       .def(
           "state",
           [](const OccupancyMap& map, const py::object& points) {

@@ -2099,6 +2099,13 @@ class OccupancyMap:
     baked into a dense grid over the objects' box grown by a margin (free outside it, and within one cell of
     the support plane). The rule: include/graspmix/grasp/occupancy.hpp.
     """
+    @staticmethod
+    def from_visibility(visibility: VisibilityModel, objects: typing.Any, plane: typing.Any = None, *, settings: typing.Any = None, **kwargs) -> OccupancyMap:
+        """
+        The same region and rules from a VisibilityModel's views instead of OctoMap's rays: each cell by its
+        centre's state (seen free -> free, surface -> occupied, unseen -> unknown). objects (M, 3): the points
+        whose box, grown by margin, is mapped; plane [a, b, c, d] or None.
+        """
     def __init__(self, points: typing.Any, viewpoints: typing.Any, objects: typing.Any = None, plane: typing.Any = None, *, settings: typing.Any = None, **kwargs) -> None:
         """
         points (N, 3), the whole cloud; viewpoints (3,) or (N, 3), the camera of each point; objects (M, 3): the
@@ -2162,8 +2169,9 @@ class CollisionSettings:
       reference_area = 0.0001: m^2: the occupancy model charges a link's volume in blocked cells divided by this
       volume = False: keep the hand out of the objects' solid volume too (columns from the plane up to the points: solid_volume)
       volume_resolution = 0.005: m: the solid volume's cell, > 0
-      unseen_weight = 0.0: occupancy model: a link's volume in unknown cells outside the solid volume is charged at this weight
-    (soft: in W, not in collision_free; needs OccupancySettings.unknown_is_occupied = False)
+      unseen_weight = 0.0: a link's volume in the unknown cells of a map of what the cameras saw (the occupancy model's, or the
+    surface model's unseen map) outside the solid volume is charged at this weight (soft: in W, not in
+    collision_free; the occupancy model's map needs OccupancySettings.unknown_is_occupied = False)
       unseen_margin = 0.0: m: with the volume, unseen space within this of it is not charged (>= 0)
       occupied_cells = True: the occupancy model charges the volume in occupied (seen surface) cells; False: their points' depths only
     """
@@ -2282,8 +2290,9 @@ class CollisionSettings:
     @property
     def unseen_weight(self) -> float:
         """
-        occupancy model: a link's volume in unknown cells outside the solid volume is charged at this weight
-        (soft: in W, not in collision_free; needs OccupancySettings.unknown_is_occupied = False)
+        a link's volume in the unknown cells of a map of what the cameras saw (the occupancy model's, or the
+        surface model's unseen map) outside the solid volume is charged at this weight (soft: in W, not in
+        collision_free; the occupancy model's map needs OccupancySettings.unknown_is_occupied = False)
         """
     @unseen_weight.setter
     def unseen_weight(self, arg0: typing.Any) -> None:
@@ -2392,11 +2401,12 @@ class CollisionExpert:
     cylinders, spheres; meshes as their convex hulls); plane depth: the deepest point of the link below the
     plane (FCL half-space). The cloud is indexed once at construction.
     """
-    def __init__(self, hand: Hand, cloud: typing.Any, plane: typing.Any = None, *, occupancy: OccupancyMap = None, settings: typing.Any = None, **kwargs) -> None:
+    def __init__(self, hand: Hand, cloud: typing.Any, plane: typing.Any = None, *, occupancy: OccupancyMap = None, unseen: OccupancyMap = None, settings: typing.Any = None, **kwargs) -> None:
         """
         hand: Hand; cloud: (N, 3) points (world frame) or None; plane: [a, b, c, d] of a x + b y + c z + d = 0
         or None; occupancy: an OccupancyMap for the occupancy model (its volume charge, plus the cloud's
-        depths), None for the surface model (settings.model names it).
+        depths), None for the surface model (settings.model names it); unseen: the surface model's map whose
+        unknown cells settings.unseen_weight charges (OccupancyMap.from_visibility), or None.
         Settings: settings= a CollisionSettings (None: its defaults), and/or its fields as keywords,
         which override it (an unknown keyword is a ValueError):
           model = 'surface': surface (the cloud's points) | occupancy (an OccupancyMap of what the cameras saw)
@@ -2410,8 +2420,9 @@ class CollisionExpert:
           reference_area = 0.0001: m^2: the occupancy model charges a link's volume in blocked cells divided by this
           volume = False: keep the hand out of the objects' solid volume too (columns from the plane up to the points: solid_volume)
           volume_resolution = 0.005: m: the solid volume's cell, > 0
-          unseen_weight = 0.0: occupancy model: a link's volume in unknown cells outside the solid volume is charged at this weight
-        (soft: in W, not in collision_free; needs OccupancySettings.unknown_is_occupied = False)
+          unseen_weight = 0.0: a link's volume in the unknown cells of a map of what the cameras saw (the occupancy model's, or the
+        surface model's unseen map) outside the solid volume is charged at this weight (soft: in W, not in
+        collision_free; the occupancy model's map needs OccupancySettings.unknown_is_occupied = False)
           unseen_margin = 0.0: m: with the volume, unseen space within this of it is not charged (>= 0)
           occupied_cells = True: the occupancy model charges the volume in occupied (seen surface) cells; False: their points' depths only
         """
@@ -2467,6 +2478,11 @@ class CollisionExpert:
     def settings(self) -> CollisionSettings:
         """
         The CollisionSettings it was built with (a copy).
+        """
+    @property
+    def unseen(self) -> typing.Any:
+        """
+        The map whose unknown cells settings.unseen_weight charges (the occupancy model's, or unseen=), or None.
         """
     @property
     def volume(self) -> typing.Any:

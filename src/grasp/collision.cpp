@@ -130,8 +130,9 @@ CollisionExpert::Index::Index(const Eigen::Ref<const Vec3Array>& cloud, double c
 /// and the plane as an FCL half-space.
 
 CollisionExpert::CollisionExpert(std::shared_ptr<const Hand> hand, const Eigen::Ref<const Vec3Array>& cloud,
-                                 const std::optional<Eigen::Vector4d>& plane, CollisionSettings settings)
-    : hand_(std::move(hand)), settings_(settings) {
+                                 const std::optional<Eigen::Vector4d>& plane, CollisionSettings settings,
+                                 std::shared_ptr<const OccupancyMap> unseen)
+    : hand_(std::move(hand)), settings_(settings), unseen_(std::move(unseen)) {
   if (!hand_) throw std::invalid_argument("hand: expected a Hand, got none");
   check_settings(settings_);
   if (settings_.model != CollisionModel::Surface) {
@@ -152,10 +153,11 @@ void CollisionExpert::build_volume(const Eigen::Ref<const Vec3Array>& cloud) {
     volume_ = std::make_shared<const OccupancyMap>(solid_volume(cloud, *plane_, vs));
   }
   auto shapes = std::make_shared<Shapes>(*hand_, plane_, settings_.plane_margin);
-  if (occupancy_ || volume_) {
-    // One set of interior samples for both maps: at the finer of their cells.
-    const double h = std::min(occupancy_ ? occupancy_->resolution() : std::numeric_limits<double>::infinity(),
-                              volume_ ? volume_->resolution() : std::numeric_limits<double>::infinity());
+  if (occupancy_ || volume_ || unseen_) {
+    // One set of interior samples for every map: at the finest of their cells.
+    constexpr double none = std::numeric_limits<double>::infinity();
+    const double h = std::min({occupancy_ ? occupancy_->resolution() : none, volume_ ? volume_->resolution() : none,
+                               unseen_ ? unseen_->resolution() : none});
     shapes->sample_interiors(h);
   }
   shapes_ = std::move(shapes);
@@ -164,7 +166,7 @@ void CollisionExpert::build_volume(const Eigen::Ref<const Vec3Array>& cloud) {
 CollisionExpert::CollisionExpert(std::shared_ptr<const Hand> hand, std::shared_ptr<const OccupancyMap> occupancy,
                                  const Eigen::Ref<const Vec3Array>& cloud, const std::optional<Eigen::Vector4d>& plane,
                                  CollisionSettings settings)
-    : hand_(std::move(hand)), settings_(settings), occupancy_(std::move(occupancy)) {
+    : hand_(std::move(hand)), settings_(settings), occupancy_(std::move(occupancy)), unseen_(occupancy_) {
   if (!hand_) throw std::invalid_argument("hand: expected a Hand, got none");
   if (!occupancy_) throw std::invalid_argument("occupancy: expected an OccupancyMap, got none");
   settings_.model = CollisionModel::Occupancy;
@@ -276,12 +278,12 @@ void CollisionExpert::evaluate_into(const Eigen::Isometry3d* link_poses, double*
         cloud_depth[sh.link] += blocked_volume(map, sh, T, tol, points_inside[sh.link]) / settings_.reference_area;
       }
     }
-    if (occupancy_ && settings_.unseen_weight > 0) {
+    if (unseen_ && settings_.unseen_weight > 0) {
       const Eigen::Vector3d centre = T * sh.centre;
       const Eigen::Vector3d half = T.linear().cwiseAbs() * sh.half;
-      if (occupancy_->any_unknown(centre - half, centre + half)) {
+      if (unseen_->any_unknown(centre - half, centre + half)) {
         unseen_depth[sh.link] += settings_.unseen_weight *
-                                 unseen_volume(*occupancy_, volume_.get(), settings_.unseen_margin, sh, T, tol) /
+                                 unseen_volume(*unseen_, volume_.get(), settings_.unseen_margin, sh, T, tol) /
                                  settings_.reference_area;
       }
     }
@@ -337,7 +339,7 @@ CollisionBatchResult CollisionExpert::evaluate_batch(const Eigen::Ref<const Pose
   // Small batches (annealing scores ~10 hands at a time) stay on one thread: waking a team costs more
   // than it saves, and its spinning threads stall badly on a loaded machine.
   // A plane alone (the kinematic expert's test) is a fraction of a microsecond per hand: large batches only.
-  const Eigen::Index parallel_from = index_->grid.size() == 0 && !occupancy_ && !volume_ ? 4096 : 64;
+  const Eigen::Index parallel_from = index_->grid.size() == 0 && !occupancy_ && !volume_ && !unseen_ ? 4096 : 64;
   const Eigen::Index N = hand_->fk_each(
       T_world_wrist, q, parallel_from, [&](Eigen::Index i, const Eigen::VectorXd&, const Eigen::Isometry3d* poses) {
         std::vector<int> inside(static_cast<size_t>(L), 0);

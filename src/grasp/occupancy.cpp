@@ -1,4 +1,5 @@
-// The occupancy map: OctoMap ray insertion clipped to the region of interest, baked into a dense grid.
+// The occupancy map: OctoMap ray insertion clipped to the region of interest, or a visibility model's views, baked
+// into a dense grid.
 #include "graspmix/grasp/occupancy.hpp"
 
 #include <algorithm>
@@ -117,6 +118,30 @@ RayCells cast_rays(const octomap::OcTree& tree, const Eigen::Ref<const Vec3Array
 
 using Dims = Eigen::Matrix<std::int64_t, 3, 1>;
 
+/// Cells whose centre is less than one cell above the plane are free (the plane has an exact term of its own in
+/// the collision expert, and the table's points would otherwise make the layer just above it solid).
+void free_above_plane(std::vector<std::uint8_t>& cells, const Eigen::Vector3d& origin, double h, const Dims& dims,
+                      const std::optional<Eigen::Vector4d>& plane) {
+  if (!plane) return;
+  const Eigen::Vector3d n = plane->head<3>();
+  for (std::int64_t k = 0; k < dims.z(); ++k)
+    for (std::int64_t j = 0; j < dims.y(); ++j)
+      for (std::int64_t i = 0; i < dims.x(); ++i) {
+        const Eigen::Vector3d c = origin + h * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5);
+        if (n.dot(c) + (*plane)[3] < h) {
+          cells[static_cast<std::size_t>((k * dims.y() + j) * dims.x() + i)] =
+              static_cast<std::uint8_t>(CellState::Free);
+        }
+      }
+}
+
+/// A plane normalised (throws for a degenerate one).
+Eigen::Vector4d normalised_plane(const Eigen::Vector4d& p) {
+  const double n = p.head<3>().norm();
+  if (!p.allFinite() || !(n > 1e-12)) throw std::invalid_argument("occupancy: the plane's normal must be non-zero");
+  return p / n;
+}
+
 /// The dense grid over [origin, origin + h dims] from the tree's leaves (a pruned leaf fills all its
 /// cells): never reached is unknown. Cells whose centre is less than one cell above the plane are free.
 std::vector<std::uint8_t> bake_cells(const octomap::OcTree& tree, const Eigen::Vector3d& origin, double h,
@@ -137,18 +162,7 @@ std::vector<std::uint8_t> bake_cells(const octomap::OcTree& tree, const Eigen::V
         for (std::int64_t i = l0.x(); i < l1.x(); ++i)
           cells[static_cast<std::size_t>((k * dims.y() + j) * dims.x() + i)] = state;
   }
-  if (plane) {
-    const Eigen::Vector3d n = plane->head<3>();
-    for (std::int64_t k = 0; k < dims.z(); ++k)
-      for (std::int64_t j = 0; j < dims.y(); ++j)
-        for (std::int64_t i = 0; i < dims.x(); ++i) {
-          const Eigen::Vector3d c = origin + h * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5);
-          if (n.dot(c) + (*plane)[3] < h) {
-            cells[static_cast<std::size_t>((k * dims.y() + j) * dims.x() + i)] =
-                static_cast<std::uint8_t>(CellState::Free);
-          }
-        }
-  }
+  free_above_plane(cells, origin, h, dims, plane);
   return cells;
 }
 
@@ -172,13 +186,61 @@ OccupancyMap::OccupancyMap(const Eigen::Ref<const Vec3Array>& points, const Eige
                                   "cloud in the camera's frame, or the viewpoint missing?)");
     }
   }
-  if (plane) {
-    Eigen::Vector4d p = *plane;
-    const double n = p.head<3>().norm();
-    if (!p.allFinite() || !(n > 1e-12)) throw std::invalid_argument("occupancy: the plane's normal must be non-zero");
-    plane_ = orient_plane(p / n, viewpoints, PlaneSide::Mean);  // the cameras' side is free
+  if (plane) plane_ = orient_plane(normalised_plane(*plane), viewpoints, PlaneSide::Mean);  // the cameras' side
+  set_region();
+  octomap::OcTree tree(h_);
+  const RayCells rays = cast_rays(tree, points, viewpoints, region_min(), region_max());
+  stats_.n_rays = rays.n_rays;
+  // One scan: a cell a ray ends in is occupied, whatever other rays cross it.
+  for (const octomap::OcTreeKey& k : rays.free) {
+    if (!rays.occupied.count(k)) tree.updateNode(k, false, true);
   }
-  // The dense grid: the grown box, its corners on OctoMap's cell boundaries (multiples of h).
+  for (const octomap::OcTreeKey& k : rays.occupied) tree.updateNode(k, true, true);
+  tree.updateInnerOccupancy();
+  cells_ = bake_cells(tree, origin_, h_, dims_, plane_);
+  finish_cells();
+  stats_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+}
+
+OccupancyMap::OccupancyMap(const VisibilityModel& visibility, const Eigen::Ref<const Vec3Array>& objects,
+                           const std::optional<Eigen::Vector4d>& plane, OccupancySettings settings)
+    : settings_(settings), h_(settings.resolution) {
+  const auto t_start = std::chrono::steady_clock::now();
+  check_settings(settings_);
+  if (visibility.n_views() == 0) throw std::invalid_argument("occupancy: the visibility model has no view");
+  if (objects.rows() == 0) throw std::invalid_argument("occupancy: no object points to map the region around");
+  if (!objects.allFinite()) throw std::invalid_argument("occupancy: object points contain NaN or infinite values");
+  objects_lo_ = objects.colwise().minCoeff().transpose();
+  objects_hi_ = objects.colwise().maxCoeff().transpose();
+  if (plane) {
+    Vec3Array sensors(visibility.n_views(), 3);
+    for (int i = 0; i < visibility.n_views(); ++i) sensors.row(i) = visibility.view(i).T_world_sensor.translation();
+    plane_ = orient_plane(normalised_plane(*plane), sensors, PlaneSide::Mean);  // the sensors' side is free
+  }
+  set_region();
+  const std::int64_t nx = dims_.x(), ny = dims_.y(), nz = dims_.z();
+  Vec3Array centres(nx * ny * nz, 3);
+  for (std::int64_t k = 0; k < nz; ++k)
+    for (std::int64_t j = 0; j < ny; ++j)
+      for (std::int64_t i = 0; i < nx; ++i) {
+        centres.row((k * ny + j) * nx + i) = origin_ + h_ * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5);
+      }
+  const std::vector<SpaceState> states = visibility.classify(centres);
+  cells_.resize(states.size());
+  for (std::size_t c = 0; c < states.size(); ++c) {
+    const SpaceState st = states[c];
+    cells_[c] = static_cast<std::uint8_t>(st == SpaceState::SeenFree  ? CellState::Free
+                                          : st == SpaceState::Surface ? CellState::Occupied
+                                                                      : CellState::Unknown);
+  }
+  free_above_plane(cells_, origin_, h_, dims_, plane_);
+  stats_.n_rays = 0;
+  finish_cells();
+  stats_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+}
+
+void OccupancyMap::set_region() {
+  // The grown box, its corners on OctoMap's cell boundaries (multiples of h).
   const Eigen::Vector3d lo = ((objects_lo_.array() - settings_.margin) / h_).floor() * h_;
   const Eigen::Vector3d hi = ((objects_hi_.array() + settings_.margin) / h_).ceil() * h_;
   dims_ = ((hi - lo) / h_).array().round().cast<std::int64_t>().max(1);
@@ -190,22 +252,15 @@ OccupancyMap::OccupancyMap(const Eigen::Ref<const Vec3Array>& points, const Eige
                                 std::to_string(settings_.max_cells) + " (coarsen the resolution or the margin)");
   }
   origin_ = lo;
-  octomap::OcTree tree(h_);
-  const RayCells rays = cast_rays(tree, points, viewpoints, region_min(), region_max());
-  stats_.n_rays = rays.n_rays;
-  // One scan: a cell a ray ends in is occupied, whatever other rays cross it.
-  for (const octomap::OcTreeKey& k : rays.free) {
-    if (!rays.occupied.count(k)) tree.updateNode(k, false, true);
-  }
-  for (const octomap::OcTreeKey& k : rays.occupied) tree.updateNode(k, true, true);
-  tree.updateInnerOccupancy();
-  cells_ = bake_cells(tree, origin_, h_, dims_, plane_);
+}
+
+void OccupancyMap::finish_cells() {
   for (const std::uint8_t c : cells_) {
+    if (c > static_cast<std::uint8_t>(CellState::Unknown)) throw std::invalid_argument("occupancy: a cell state > 2");
     const auto st = static_cast<CellState>(c);
     (st == CellState::Free ? stats_.n_free : st == CellState::Occupied ? stats_.n_occupied : stats_.n_unknown) += 1;
   }
   build_blocked_sums();
-  stats_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
 }
 
 OccupancyMap::OccupancyMap(const Eigen::Vector3d& origin, const Eigen::Vector3i& dims, std::vector<std::uint8_t> cells,
@@ -228,18 +283,8 @@ OccupancyMap::OccupancyMap(const Eigen::Vector3d& origin, const Eigen::Vector3i&
     throw std::invalid_argument("occupancy: " + std::to_string(cells_.size()) + " cells given for dims of " +
                                 std::to_string(dims_.prod()));
   }
-  if (plane) {
-    const double n = plane->head<3>().norm();
-    if (!plane->allFinite() || !(n > 1e-12))
-      throw std::invalid_argument("occupancy: the plane's normal must be non-zero");
-    plane_ = *plane / n;
-  }
-  for (const std::uint8_t c : cells_) {
-    if (c > static_cast<std::uint8_t>(CellState::Unknown)) throw std::invalid_argument("occupancy: a cell state > 2");
-    const auto st = static_cast<CellState>(c);
-    (st == CellState::Free ? stats_.n_free : st == CellState::Occupied ? stats_.n_occupied : stats_.n_unknown) += 1;
-  }
-  build_blocked_sums();
+  if (plane) plane_ = normalised_plane(*plane);
+  finish_cells();
   stats_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
 }
 

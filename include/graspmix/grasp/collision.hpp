@@ -93,10 +93,11 @@ struct CollisionSettings {
   /// its points. Needs a plane (without one, or with no point a cell above it, there is no volume: has_volume()).
   bool volume = false;
   double volume_resolution = 0.005;  ///< m: the volume's cell (SolidVolumeSettings::resolution), > 0
-  /// The soft charge of unseen space (occupancy model only): a link's volume in the map's unknown cells outside the
-  /// solid volume, over reference_area, times this weight (>= 0; 0, the default: no charge). It enters W (total_depth)
-  /// but not collision_free: the unseen is neither free nor solid, so it is preferred less, never refused. The map
-  /// must not count unknown cells as obstacles itself (OccupancySettings::unknown_is_occupied false).
+  /// The soft charge of unseen space: a link's volume in the unknown cells of a map of what the cameras saw (the
+  /// occupancy model's map, or the surface model's `unseen` map) outside the solid volume, over reference_area, times
+  /// this weight (>= 0; 0, the default: no charge). It enters W (total_depth) but not collision_free: the unseen is
+  /// neither free nor solid, so it is preferred less, never refused. The occupancy model's map must not count unknown
+  /// cells as obstacles itself (OccupancySettings::unknown_is_occupied false).
   double unseen_weight = 0.0;
   /// m: with the volume, unseen space within this of it (along every axis) is not charged: room for a finger at a
   /// completed side the completion placed a little short (>= 0; 0: only the volume itself is exempt).
@@ -136,8 +137,11 @@ class CollisionExpert {
   /// plane: [a, b, c, d] with a x + b y + c z + d = 0 (the support plane, e.g. from prepare_cloud); it
   /// is normalised, and (with orient_plane) its sign chosen so the cloud lies above it.
   /// Throws std::invalid_argument for non-finite points, a degenerate plane or bad settings.
+  /// unseen: the map whose Unknown cells the soft unseen charge counts (settings.unseen_weight), e.g. one baked from
+  /// the scene's visibility model (OccupancyMap's VisibilityModel constructor); null: no unseen charge.
   CollisionExpert(std::shared_ptr<const Hand> hand, const Eigen::Ref<const Vec3Array>& cloud,
-                  const std::optional<Eigen::Vector4d>& plane = std::nullopt, CollisionSettings settings = {});
+                  const std::optional<Eigen::Vector4d>& plane = std::nullopt, CollisionSettings settings = {},
+                  std::shared_ptr<const OccupancyMap> unseen = nullptr);
 
   /// The occupancy model on a map of the scene (settings.model is set to Occupancy): O_l plus, when a cloud
   /// is given, the surface model's D_l on it (exact depths of shallow contacts, which the map's cells are
@@ -173,6 +177,9 @@ class CollisionExpert {
   const std::shared_ptr<const OccupancyMap>& occupancy() const { return occupancy_; }
   /// The solid volume charged with settings.volume (null without it, or without a plane).
   const std::shared_ptr<const OccupancyMap>& volume() const { return volume_; }
+  /// The map whose unknown cells the unseen charge counts: the occupancy model's, the surface model's `unseen`, or
+  /// null.
+  const std::shared_ptr<const OccupancyMap>& unseen() const { return unseen_; }
   bool has_volume() const { return volume_ != nullptr; }
   double cell_size() const;
 
@@ -192,6 +199,7 @@ class CollisionExpert {
   std::shared_ptr<const Shapes> shapes_;
   std::shared_ptr<const OccupancyMap> occupancy_;
   std::shared_ptr<const OccupancyMap> volume_;
+  std::shared_ptr<const OccupancyMap> unseen_;
   /// The volume of the cloud (with settings.volume and a plane) and the links' interior samples for the maps.
   void build_volume(const Eigen::Ref<const Vec3Array>& cloud);
 };

@@ -27,6 +27,7 @@
 #include <Eigen/Geometry>
 
 #include "graspmix/core/types.hpp"
+#include "graspmix/perception/visibility.hpp"
 
 namespace graspmix {
 
@@ -62,6 +63,16 @@ class OccupancyMap {
   OccupancyMap(const Eigen::Ref<const Vec3Array>& points, const Eigen::Ref<const Vec3Array>& viewpoints,
                const Eigen::Ref<const Vec3Array>& objects, const std::optional<Eigen::Vector4d>& plane = std::nullopt,
                OccupancySettings settings = {});
+
+  /// The same region and rules from a visibility model's views (perception/visibility.hpp) instead of OctoMap's rays:
+  /// each cell by the state of its centre, SeenFree -> Free, Surface -> Occupied, Unseen -> Unknown (so a cell is
+  /// occupied within the model's surface_tolerance of a seen surface, not only where a point ends). The views are
+  /// already built, so this reads their images, O(1) a cell, where the rays cost O(points x cells along a ray).
+  /// objects (M >= 1, 3): the points whose box, grown by settings.margin, is the region; plane as above (oriented
+  /// towards the views' sensors). Throws std::invalid_argument for a model of no view, no or non-finite object
+  /// points, a degenerate plane and bad settings, as the rays' constructor.
+  OccupancyMap(const VisibilityModel& visibility, const Eigen::Ref<const Vec3Array>& objects,
+               const std::optional<Eigen::Vector4d>& plane = std::nullopt, OccupancySettings settings = {});
 
   /// A map of given cells (grasp/solid_volume.hpp builds one): `cells`, a CellState per cell with x fastest,
   /// `dims` cells of `resolution` from `origin`; objects_lo/hi the box of what it maps; plane as above (normalised
@@ -122,6 +133,11 @@ class OccupancyMap {
   std::vector<std::int64_t> blocked_sums_;
   std::vector<std::int64_t> unknown_sums_;  ///< the same of the unknown cells: any_unknown's table
   void build_blocked_sums();
+  /// The region of interest around objects_lo_/hi_ (grown by the margin, its corners on multiples of the
+  /// resolution) into origin_ and dims_; throws past max_cells.
+  void set_region();
+  /// Counts the cells by state into stats_ and builds the summed-volume tables.
+  void finish_cells();
   /// The summed-volume table of the cells for which `count` is true.
   template <class Count>
   std::vector<std::int64_t> summed(Count count) const;

@@ -53,16 +53,28 @@ def occupancy_map(points, viewpoints, objects, plane, opts: SynthesisOptions) ->
     return _core.OccupancyMap(points, viewpoints, objects, plane, settings=opts.occupancy)
 
 
+def unseen_map(scene, opts: SynthesisOptions):
+    """The map whose unknown cells the surface model's soft unseen charge counts (opts.collision.unseen_weight):
+    the scene's visibility model baked over its objects' box grown by opts.occupancy's margin; None when the charge
+    is off, the occupancy model has its own map, or the scene has no view (no viewpoint: nothing is unseen)."""
+    if opts.collision.unseen_weight <= 0 or opts.collision.model != "surface" or scene.visibility is None:
+        return None
+    return _core.OccupancyMap.from_visibility(scene.visibility, scene.points, scene.plane, settings=opts.occupancy)
+
+
 def collision_expert(
-    hand, points, plane, opts: SynthesisOptions, occupancy=None, point_radius: float | None = None
+    hand, points, plane, opts: SynthesisOptions, occupancy=None, point_radius: float | None = None, unseen=None
 ) -> "_core.CollisionExpert":
     """W on the query cloud and the support plane (and, with an OccupancyMap, on the space the cameras did not
     see free: the occupancy model), by opts.collision; point_radius (m) overrides its points' radius. Without a map
-    it is the surface model whatever opts.collision.model says (a scene's neighbours' expert: their points only)."""
+    it is the surface model whatever opts.collision.model says (a scene's neighbours' expert: their points only),
+    charging the unknown cells of `unseen` (unseen_map) softly."""
     extra = {} if point_radius is None else {"point_radius": point_radius}
     if occupancy is None:
         extra["model"] = "surface"
-    return _core.CollisionExpert(hand, points, plane=plane, occupancy=occupancy, settings=opts.collision, **extra)
+    return _core.CollisionExpert(
+        hand, points, plane=plane, occupancy=occupancy, unseen=unseen, settings=opts.collision, **extra
+    )
 
 
 def approach_collision(hand, points, plane, opts: SynthesisOptions, occupancy=None):

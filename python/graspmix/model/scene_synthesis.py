@@ -29,6 +29,7 @@ from .experts import (
     constraint_experts,
     contact_quality_expert,
     occupancy_map,
+    unseen_map,
 )
 from .grasp_types import REFERENCE_EXPERT
 from .grasps import STAGES, grasps_from_result
@@ -147,7 +148,8 @@ def synthesize_targets(
     """Runs the model's synthesiser on every target object against the whole scene and ranks all grasps.
     cloud: the scene's source (segment_query's: a CameraView or (points, viewpoints)): with collision="occupancy"
     the scene's OccupancyMap is built from its whole cloud (whole_cloud) once and shared by every target (its time:
-    timing["occupancy"]).
+    timing["occupancy"]); the surface model's unseen charge bakes the scene's visibility model instead (unseen_map,
+    its time likewise).
     types: the model's grasp types to sample (default all); each samples n_samples grasps of its own and
     optimises its own best, so a synthesis of T types costs about T times one type's (the stage times are
     sums over types and targets)."""
@@ -157,8 +159,11 @@ def synthesize_targets(
         points, viewpoints = whole_cloud(cloud, scene)
         occupancy = occupancy_map(points, viewpoints, scene.points, scene.plane, opts)
         timing["occupancy"] = occupancy.stats["seconds"]
+    unseen = unseen_map(scene, opts)
+    if unseen is not None:
+        timing["occupancy"] = unseen.stats["seconds"]
     solid = scene.solid_points()  # observed and completed: the hand stays out of both
-    collision = collision_expert(model.hand, solid, scene.plane, opts, occupancy)
+    collision = collision_expert(model.hand, solid, scene.plane, opts, occupancy, unseen=unseen)
     approach = approach_collision(model.hand, solid, scene.plane, opts, occupancy)
     # The same for every target; each target adds its own neighbours' expert at the end.
     shared = constraint_experts(

@@ -96,3 +96,41 @@ def test_unseen_space_beyond_the_completion_is_charged_softly(completed, finger,
     with pytest.raises(ValueError, match="unknown_is_occupied"):
         solid = _core.OccupancyMap(acq.points, acq.viewpoints, scene.points, scene.plane)
         _core.CollisionExpert(finger, scene.solid_points(), plane=scene.plane, occupancy=solid, settings=s)
+
+
+def test_the_surface_model_charges_the_scenes_unseen_space_from_its_visibility_model(completed, finger, box_urdf):
+    """The unseen map baked from the scene's visibility model (OccupancyMap.from_visibility) against the rays'
+    map of the same view: the same region, nearly every cell the same, and the same charges on the surface model
+    as on the occupancy model with the seen surface left to the points."""
+    scene, c = completed
+    acq = acquire(box_urdf(SIZE), seed=0, settings=AcquisitionSettings(cameras=[Camera(eye=EYE)], keep="scene"))
+    free_unknown = _core.OccupancySettings(unknown_is_occupied=False)
+    rays = _core.OccupancyMap(acq.points, acq.viewpoints, scene.points, scene.plane, settings=free_unknown)
+    seen = _core.OccupancyMap.from_visibility(scene.visibility, scene.points, scene.plane, settings=free_unknown)
+    assert np.allclose(seen.region_min, rays.region_min) and list(seen.dims) == list(rays.dims)
+    h = seen.resolution
+    ijk = np.stack(np.meshgrid(*[np.arange(n) for n in seen.dims], indexing="ij"), -1).reshape(-1, 3)
+    centres = seen.region_min + h * (ijk + 0.5)
+    assert np.mean(seen.state(centres) == rays.state(centres)) > 0.95
+    assert seen.stats["n_rays"] == 0 and seen.stats["n_unknown"] > 1000
+    s = _core.CollisionSettings(volume=True, unseen_weight=0.1)
+    surface = _core.CollisionExpert(finger, scene.solid_points(), plane=scene.plane, unseen=seen, settings=s)
+    assert surface.model == "surface" and surface.unseen is not None
+    away = -np.array(EYE[:2] + (0,)) / np.linalg.norm(EYE[:2])
+    poses = np.array([[*p, 0, 0, 0, 1] for p in (c, c + 0.09 * away, c - 0.12 * away)])
+    r = surface.evaluate_batch(poses, np.zeros((1, 0)))
+    assert r.collision_free.tolist() == [False, True, True]
+    assert r.unseen_depth.sum(axis=1)[1] > 0 and r.unseen_depth.sum(axis=1)[2] == 0
+    # The occupancy model on the same map, its occupied cells not charged: the same numbers.
+    occ = _core.CollisionExpert(
+        finger,
+        scene.solid_points(),
+        plane=scene.plane,
+        occupancy=seen,
+        settings=_core.CollisionSettings(volume=True, unseen_weight=0.1, occupied_cells=False),
+    )
+    assert np.array_equal(occ.evaluate_batch(poses, np.zeros((1, 0))).total_depth, r.total_depth)
+    with pytest.raises(ValueError, match="not both"):
+        _core.CollisionExpert(finger, scene.solid_points(), occupancy=seen, unseen=seen, settings=s)
+    with pytest.raises(ValueError, match="no object points"):
+        _core.OccupancyMap.from_visibility(scene.visibility, np.zeros((0, 3)), scene.plane)

@@ -13,6 +13,7 @@ import pytest
 from graspmix import Hand
 from graspmix.cli import main
 from graspmix.io import data_path
+from graspmix.model.grasp_frames import opening_widths
 from graspmix.model.hands import describe_hand, hand_urdf_from_robot
 from graspmix.viz.hand import plot_hand
 from scipy.spatial.transform import Rotation
@@ -78,6 +79,14 @@ def test_opening_width_matches_pybullet(urdf, tips, xarm):
     lim = np.array(Hand.from_urdf(urdf).joint_limits)
     for k, limit in enumerate(("lower", "upper")):
         assert d["opening_width"][limit] == pytest.approx(pybullet_gap(urdf, *tips, lim[:, k]), abs=PYBULLET_MARGIN)
+
+
+def test_pr2_opening_widths_match_pybullet():
+    """The gap demo and synthesize print (grasp_frames.opening_widths), for revolute fingers, against pybullet's
+    closest distance between the fingertip links at the same joints (apart: at 0 rad the tips overlap)."""
+    q = [[0.1, 0.1], [0.3, 0.3], [0.5, 0.3], [0.548, 0.548]]
+    for w, qk in zip(opening_widths(Hand.from_urdf(PR2), q), q):
+        assert w == pytest.approx(pybullet_gap(PR2, "left_tip", "right_tip", qk), abs=PYBULLET_MARGIN)
 
 
 def test_pr2_fingers_lie_along_x_its_approach_axis():

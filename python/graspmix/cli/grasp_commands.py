@@ -12,6 +12,7 @@ from .. import _core
 from ..io import data_path
 from ..io.checks import MAX_COMPONENTS, MAX_ITERATIONS
 from ..model import GraspModel, default_model_path, learn
+from ..model.grasp_frames import opening_widths
 from ..model.settings import METHODS, LearnSettings
 from ..perception import kind_name, parse_target
 from .common import CliError, float_in, input_path, int_in, output_file, parse_floats, parse_joints, seed
@@ -38,8 +39,10 @@ def cmd_demo(args: argparse.Namespace) -> int:
         _core.save_cloud(args.cloud_out, demo.cloud)
         demo.cloud_path = Path(args.cloud_out).resolve()
     demo.save(out)
-    joints = ", ".join(f"{k}={v:.4f}" for k, v in demo.grasp_joints.items())
-    print(f"demonstration: {len(demo.cloud)} object points, hand stopped at {joints}; wrote {out}")
+    print(f"demonstration: {len(demo.cloud)} object points; the hand closed on the object")
+    for line in describe_opening(demo):
+        print(f"  {line}")
+    print(f"wrote {out}")
     if args.png:
         from ..viz.demonstration import plot_demonstration
 
@@ -81,6 +84,24 @@ def _demo_spec(text: str) -> str:
     return text
 
 
+GAP_LABEL = "opening: finger gap (m)"  # what synthesize and demo print for a hand with two fingertip links
+JOINTS_LABEL = "grasp joints (m or rad)"  # and for any other hand, or beside the gap
+
+
+def joints_text(joints: dict) -> str:
+    return ", ".join(f"{k}={v:.4f}" for k, v in joints.items())
+
+
+def describe_opening(demo) -> list:
+    """The lines demo prints of a recorded grasp, in the quantity synthesize prints: the finger gap at the grasp
+    and at the pre-grasp (Grasp.opening_width's rule: grasp_frames.opening_widths), then the joints (m or rad,
+    the URDF's units; a prismatic joint's value is not the gap: the WSG 50's is half of it)."""
+    hand = _core.Hand.from_urdf(str(demo.hand_path))
+    grasp, pre = opening_widths(hand, [demo.grasp_joints, demo.pregrasp_joints])
+    lines = [] if grasp is None else [f"{GAP_LABEL}: {grasp:.4f} at the grasp, {pre:.4f} at the pre-grasp"]
+    return lines + [f"{JOINTS_LABEL}: {joints_text(demo.grasp_joints)} (pre-grasp {joints_text(demo.pregrasp_joints)})"]
+
+
 def print_grasps(grasps, top: int) -> None:
     """A table of the best `top` grasps: log-likelihood, every expert's term, wrist position, and the opening:
     for a two-finger hand the gap between the fingers in m (from the hand's forward kinematics at the grasp
@@ -92,7 +113,7 @@ def print_grasps(grasps, top: int) -> None:
     short = [k.replace("contact/", "Q:") for k in keys]
     head = " ".join(f"{k:>14}" for k in short)
     gap = all(g.opening_width is not None for g in rows)
-    last = "opening: finger gap (m)" if gap else "grasp joints (m or rad)"
+    last = GAP_LABEL if gap else JOINTS_LABEL
     typed = any(g.type for g in rows)
     kind = f" {'type':>14}" if typed else ""
     print(f"{'rank':>4} {'object':>6}{kind} {'log L':>9} {head}   wrist position (m)        {last}")
@@ -102,7 +123,7 @@ def print_grasps(grasps, top: int) -> None:
         if gap:
             opening = f"{g.opening_width:.4f}"
         else:
-            opening = ", ".join(f"{k}={v:.4f}" for k, v in g.grasp_joints.items())
+            opening = joints_text(g.grasp_joints)
         on = g.object
         kind = f" {g.type or '-':>14}" if typed else ""
         print(

@@ -81,6 +81,18 @@ class GraspFrameSettings:
         }
 
 
+def opening_widths(hand, joints) -> list:
+    """The opening (``opening_width`` of FrameMaker.frames: the gap between the two fingertip links' collision
+    geometry across the fingers, m; None unless the hand has two fingertip links) of `hand` at each configuration
+    of `joints` (a list of name -> value, or of arrays in ``hand.joint_names`` order). ValueError for an unknown or
+    missing joint. The wrist pose does not change it, so the wrist is placed at the origin."""
+    if not len(joints):
+        return []
+    q = np.array([hand.joints_array(j) for j in joints], dtype=float)
+    wrists = np.tile([0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0], (len(q), 1))
+    return [f["opening_width"] for f in FrameMaker(hand).frames(wrists, q)]
+
+
 def rotation_matrices(quats) -> np.ndarray:
     """Unit quaternions [qx, qy, qz, qw] (N, 4) as rotation matrices (N, 3, 3)."""
     q = np.asarray(quats, dtype=float).reshape(-1, 4)

@@ -5,7 +5,6 @@ geometry, so it holds for any hand graspmix can load."""
 
 from __future__ import annotations
 
-import os
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
@@ -209,9 +208,10 @@ def _joint(j: dict, hand, closing: dict) -> dict:
 def hand_urdf_from_robot(robot_urdf: str | Path, wrist_link: str, out: str | Path, name: str | None = None) -> Path:
     """Writes a hand-only URDF cut from a robot's URDF: the link `wrist_link` becomes the root (the wrist
     frame) and every link and joint below it is kept (mimic joints, limits and collision shapes as they
-    are); the links above it, transmissions and simulator tags are dropped. Mesh file names are rewritten
-    relative to `out`'s folder (package://pkg/... is looked up in the robot URDF's folder and its
-    parents, as Hand.from_urdf does). Returns `out`; ValueError for an unknown link."""
+    are); the links above it, transmissions and simulator tags are dropped. Mesh file names are written as
+    absolute paths (package://pkg/... looked up in the robot URDF's folder and its parents, as Hand.from_urdf
+    does), so `out` loads wherever it is moved while the robot's meshes stay where they are. Returns `out`;
+    ValueError for an unknown link or a mesh that is not found."""
     robot_urdf = check_input_file(check_path_text(robot_urdf, "robot urdf"), "robot urdf")
     out = Path(check_path_text(out, "out"))
     try:
@@ -238,7 +238,7 @@ def hand_urdf_from_robot(robot_urdf: str | Path, wrist_link: str, out: str | Pat
     hand.extend(kept_joints)
     base = robot_urdf.resolve().parent
     for mesh in hand.iter("mesh"):
-        mesh.set("filename", os.path.relpath(_mesh_file(mesh.get("filename"), base), out.resolve().parent))
+        mesh.set("filename", str(_mesh_file(mesh.get("filename"), base)))
     ET.indent(hand)
     check_output_path(out, "out")
     out.write_text(ET.tostring(hand, encoding="unicode") + "\n")
@@ -246,7 +246,7 @@ def hand_urdf_from_robot(robot_urdf: str | Path, wrist_link: str, out: str | Pat
 
 
 def write_hand_axes(urdf: str | Path, out: str | Path, approach_axis=None, fingertips=None) -> Path:
-    """Writes `urdf` to `out` (mesh paths rewritten relative to it, as hand_urdf_from_robot does) with its grasp
+    """Writes `urdf` to `out` (mesh paths made absolute, as hand_urdf_from_robot does) with its grasp
     axes given in its <graspmix> element: approach_axis (3,) in the wrist frame and/or fingertips (link names);
     None keeps what the file gives (or the inference). The hand is read back to check them: ValueError naming a
     bad axis or link. Returns `out`."""

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from graspmix import Hand, data_path
 from graspmix.model import Grasp, GraspSet
-from graspmix.model.grasp_frames import FRAME_KEYS, GraspFrameSettings
+from graspmix.model.grasp_frames import FRAME_KEYS, GraspFrameSettings, opening_widths
 from scipy.spatial.transform import Rotation
 
 WSG50 = data_path("hands", "wsg50.urdf")
@@ -111,6 +111,21 @@ def test_synthesize_table_prints_the_opening_in_metres(capsys):
     print_grasps(_set(0.0123, fingertip_links=("finger_left",)), 5)
     head, row = capsys.readouterr().out.splitlines()
     assert head.endswith("grasp joints (m or rad)") and row.endswith("finger_left_joint=0.0123")
+
+
+def test_opening_widths_are_the_exports_gap():
+    """What demo prints: the WSG 50's gap is twice its joint value (the URDF), whatever form the joints take, and
+    the gap a grasps file exports at the same joints; bad joints are a ValueError naming them."""
+    hand = Hand.from_urdf(WSG50)
+    q = [0.0, 0.0123, 0.055]
+    widths = opening_widths(hand, [{"finger_left_joint": q[0]}, {"finger_left_joint": q[1]}, np.array([q[2]])])
+    np.testing.assert_allclose(widths, 2 * np.array(q), atol=1e-12)
+    assert widths[1] == pytest.approx(_set(q[1]).best().opening_width, abs=1e-12)  # at another wrist
+    assert opening_widths(hand, []) == []
+    with pytest.raises(ValueError, match="unknown joint 'nope'"):
+        opening_widths(hand, [{"nope": 0.01}])
+    with pytest.raises(ValueError, match="'finger_left_joint' has a non-finite value"):
+        opening_widths(hand, [{"finger_left_joint": float("nan")}])
 
 
 def test_frames_of_mesh_fingertips_follow_the_rule_vertex_by_vertex(tmp_path):

@@ -13,11 +13,14 @@ import pytest
 from graspmix import Hand
 from graspmix.cli import main
 from graspmix.io import data_path
+from graspmix.model.grasp_frames import opening_widths
 from graspmix.model.hands import describe_hand, hand_urdf_from_robot
 from graspmix.viz.hand import plot_hand
+from scipy.spatial.transform import Rotation
 
 PR2 = f"{pybullet_data.getDataPath()}/pr2_gripper.urdf"
 XARM_ROBOT = f"{pybullet_data.getDataPath()}/xarm/xarm6_with_gripper.urdf"
+PANDA_ROBOT = f"{pybullet_data.getDataPath()}/franka_panda/panda.urdf"
 WSG50 = str(data_path("hands", "wsg50.urdf"))
 PYBULLET_MARGIN = 2.5e-3  # m: pybullet's collision margins on convex shapes, and Euclidean vs across distance
 
@@ -78,6 +81,14 @@ def test_opening_width_matches_pybullet(urdf, tips, xarm):
         assert d["opening_width"][limit] == pytest.approx(pybullet_gap(urdf, *tips, lim[:, k]), abs=PYBULLET_MARGIN)
 
 
+def test_pr2_opening_widths_match_pybullet():
+    """The gap demo and synthesize print (grasp_frames.opening_widths), for revolute fingers, against pybullet's
+    closest distance between the fingertip links at the same joints (apart: at 0 rad the tips overlap)."""
+    q = [[0.1, 0.1], [0.3, 0.3], [0.5, 0.3], [0.548, 0.548]]
+    for w, qk in zip(opening_widths(Hand.from_urdf(PR2), q), q):
+        assert w == pytest.approx(pybullet_gap(PR2, "left_tip", "right_tip", qk), abs=PYBULLET_MARGIN)
+
+
 def test_pr2_fingers_lie_along_x_its_approach_axis():
     d = describe_hand(PR2)
     assert d["independent_joints"] == ["left_gripper_joint", "right_gripper_joint"] and d["mimic"] == {}
@@ -130,6 +141,35 @@ def test_cli_hand(tmp_path, capsys, xarm):
     assert (tmp_path / "p.png").stat().st_size > 0
 
 
+def test_a_cut_hand_loads_after_it_is_moved(tmp_path, capsys):
+    """`hand --wrist-link --out` writes mesh paths that do not depend on where the file is: moved two folders
+    deeper (where a path relative to the first folder would miss), graspmix reads the robot's own meshes for
+    each link, and pybullet's boxes around the links are those of graspmix's collision vertices, posed alike."""
+    written = tmp_path / "a" / "hand.urdf"
+    written.parent.mkdir()
+    assert main(["hand", "--urdf", PANDA_ROBOT, "--wrist-link", "panda_hand", "--out", str(written)]) == 0
+    moved = tmp_path / "b" / "c" / "d" / "hand.urdf"
+    moved.parent.mkdir(parents=True)
+    written.rename(moved)
+    capsys.readouterr()
+    assert main(["hand", "--urdf", str(moved), "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["fingertips"] == ["panda_leftfinger", "panda_rightfinger"]
+    hand, robot = Hand.from_urdf(moved), Hand.from_urdf(PANDA_ROBOT)
+    for name in hand.link_names:
+        np.testing.assert_array_equal(hand.collision_mesh(name)[0], robot.collision_mesh(name)[0])
+    q = np.array([0.03])
+    poses = hand.fk(np.array([0, 0, 0, 0, 0, 0, 1.0]), q)
+    with pybullet_posed(moved, hand, q) as (c, body, link):
+        link[hand.root_link] = -1
+        for i, name in enumerate(hand.link_names):
+            V = np.asarray(hand.collision_mesh(name)[0])
+            if len(V):
+                W = Rotation.from_quat(poses[i][3:]).apply(V) + poses[i][:3]
+                lo, hi = p.getAABB(body, link[name], physicsClientId=c)
+                np.testing.assert_allclose(lo, W.min(axis=0), atol=2 * PYBULLET_MARGIN)
+                np.testing.assert_allclose(hi, W.max(axis=0), atol=2 * PYBULLET_MARGIN)
+
+
 @pytest.mark.parametrize(
     "args",
     [
@@ -137,12 +177,18 @@ def test_cli_hand(tmp_path, capsys, xarm):
         ["--urdf", "{missing}"],
         ["--urdf", XARM_ROBOT, "--wrist-link", "nope", "--out", "{out}"],
         ["--urdf", XARM_ROBOT, "--wrist-link", "link6"],
+        ["--urdf", "{no_mesh}", "--wrist-link", "a", "--out", "{out}"],
     ],
 )
 def test_cli_hand_bad_input_is_one_line(tmp_path, capsys, args):
     bad = tmp_path / "bad.urdf"
     bad.write_text("<robot name='x'><link name='a'>")
-    names = {"bad": bad, "missing": tmp_path / "none.urdf", "out": tmp_path / "o.urdf"}
+    no_mesh = tmp_path / "no_mesh.urdf"
+    no_mesh.write_text(
+        "<robot name='x'><link name='a'><collision><geometry><mesh filename='gone.stl'/></geometry>"
+        "</collision></link></robot>"
+    )
+    names = {"bad": bad, "missing": tmp_path / "none.urdf", "out": tmp_path / "o.urdf", "no_mesh": no_mesh}
     assert main(["hand"] + [a.format(**names) for a in args]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and err.startswith("graspmix_cli hand: ")

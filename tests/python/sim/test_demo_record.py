@@ -165,9 +165,21 @@ def test_cli_demo(tmp_path, capsys):
     )
     assert not (tmp_path / "d.json").exists()
     png = tmp_path / "d.png"
+    capsys.readouterr()
     assert cli.main(ok + ["--png", str(png), "--max-steps", "3000"]) == 0
     assert png.stat().st_size > 10_000 and png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
-    assert Demonstration.load(tmp_path / "d.json").grasp_joints["finger_left_joint"] == pytest.approx(0.03, abs=1.5e-3)
+    q = Demonstration.load(tmp_path / "d.json").grasp_joints["finger_left_joint"]
+    assert q == pytest.approx(0.03, abs=1.5e-3)
+    # The opening first, in synthesize's quantity and words: the WSG 50's finger gap, twice its joint value (the
+    # URDF), which the fingers closed to the box's 60 mm; then the joints, labelled.
+    out = capsys.readouterr().out.splitlines()
+    assert out[1].strip().startswith("opening: finger gap (m): ") and out[2].strip().startswith(
+        "grasp joints (m or rad)"
+    )
+    gap, pre = (float(x.split()[0]) for x in out[1].split(": ")[2].split(", "))
+    assert gap == pytest.approx(2 * q, abs=1e-4) and gap == pytest.approx(0.060, abs=3e-3)
+    assert pre == pytest.approx(2 * 0.05, abs=1e-4)
+    assert f"finger_left_joint={q:.4f}" in out[2]
 
 
 def test_aim_hint_names_the_quaternion_order_and_the_approach_axis():

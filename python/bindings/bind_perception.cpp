@@ -211,6 +211,9 @@ void bind_perception(py::module_& m) {
              "m: Segmentation.visibility's surface_tolerance (within this of the observed surface is Surface)")
       .field("visibility_resolution", &SegmentationSettings::visibility_resolution,
              "rad: the bin of Segmentation.visibility's range images (VisibilitySettings.angular_resolution)")
+      .field("visibility_median_window", &SegmentationSettings::visibility_median_window,
+             "px: segment_depth's visibility model keeps the depth image median-filtered over (2 r + 1)^2 pixels\n"
+             "(0: as it is), against lone outline pixels that see through an object")
       .field("image_stride", &SegmentationSettings::image_stride,
              "px: segment_depth's block side, 0 = the largest within half a voxel_size at the median depth")
       .field("plane_image_stride", &SegmentationSettings::plane_image_stride,

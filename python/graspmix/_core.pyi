@@ -657,12 +657,14 @@ class SegmentationSettings:
       join_max_size = 0.15: m, join rule 3: the joined cluster's largest principal-box side
       visibility_tolerance = 0.008: m: Segmentation.visibility's surface_tolerance (within this of the observed surface is Surface)
       visibility_resolution = 0.005: rad: the bin of Segmentation.visibility's range images (VisibilitySettings.angular_resolution)
+      visibility_median_window = 1: px: segment_depth's visibility model keeps the depth image median-filtered over (2 r + 1)^2 pixels
+    (0: as it is), against lone outline pixels that see through an object
       image_stride = 0: px: segment_depth's block side, 0 = the largest within half a voxel_size at the median depth
       plane_image_stride = 4: px: segment_depth's block side for the support plane's search (at most image_stride: those)
       workspace = []: m: the world-frame box [x_min, y_min, z_min, x_max, y_max, z_max] the input is cropped to first; [] = none
     """
     __hash__: typing.ClassVar[None] = None
-    _fields: typing.ClassVar[tuple] = ('voxel_size', 'plane_distance', 'plane_max_iterations', 'seed', 'find_plane', 'plane_candidates', 'plane_min_fraction', 'plane_behind_distance', 'plane_max_behind_fraction', 'plane_margin', 'table_clearance', 'remove_outliers', 'outlier_neighbours', 'outlier_std_ratio', 'cluster_tolerance', 'min_cluster_size', 'max_cluster_size', 'merge_seen_through', 'merge_through_fraction', 'merge_inset', 'join_occluded', 'join_max_gap', 'join_seen_margin', 'join_max_size', 'visibility_tolerance', 'visibility_resolution', 'image_stride', 'plane_image_stride', 'workspace')
+    _fields: typing.ClassVar[tuple] = ('voxel_size', 'plane_distance', 'plane_max_iterations', 'seed', 'find_plane', 'plane_candidates', 'plane_min_fraction', 'plane_behind_distance', 'plane_max_behind_fraction', 'plane_margin', 'table_clearance', 'remove_outliers', 'outlier_neighbours', 'outlier_std_ratio', 'cluster_tolerance', 'min_cluster_size', 'max_cluster_size', 'merge_seen_through', 'merge_through_fraction', 'merge_inset', 'join_occluded', 'join_max_gap', 'join_seen_margin', 'join_max_size', 'visibility_tolerance', 'visibility_resolution', 'visibility_median_window', 'image_stride', 'plane_image_stride', 'workspace')
     def __copy__(self) -> SegmentationSettings:
         ...
     def __deepcopy__(self, memo: typing.Any) -> SegmentationSettings:
@@ -679,7 +681,7 @@ class SegmentationSettings:
     @typing.overload
     def __init__(self, **kwargs) -> None:
         """
-        Keyword constructor: any of the fields (voxel_size, plane_distance, plane_max_iterations, seed, find_plane, plane_candidates, plane_min_fraction, plane_behind_distance, plane_max_behind_fraction, plane_margin, table_clearance, remove_outliers, outlier_neighbours, outlier_std_ratio, cluster_tolerance, min_cluster_size, max_cluster_size, merge_seen_through, merge_through_fraction, merge_inset, join_occluded, join_max_gap, join_seen_margin, join_max_size, visibility_tolerance, visibility_resolution, image_stride, plane_image_stride, workspace); the others keep their defaults.
+        Keyword constructor: any of the fields (voxel_size, plane_distance, plane_max_iterations, seed, find_plane, plane_candidates, plane_min_fraction, plane_behind_distance, plane_max_behind_fraction, plane_margin, table_clearance, remove_outliers, outlier_neighbours, outlier_std_ratio, cluster_tolerance, min_cluster_size, max_cluster_size, merge_seen_through, merge_through_fraction, merge_inset, join_occluded, join_max_gap, join_seen_margin, join_max_size, visibility_tolerance, visibility_resolution, visibility_median_window, image_stride, plane_image_stride, workspace); the others keep their defaults.
         """
     def __repr__(self) -> str:
         ...
@@ -884,6 +886,15 @@ class SegmentationSettings:
         """
     @table_clearance.setter
     def table_clearance(self, arg0: typing.Any) -> None:
+        ...
+    @property
+    def visibility_median_window(self) -> int:
+        """
+        px: segment_depth's visibility model keeps the depth image median-filtered over (2 r + 1)^2 pixels
+        (0: as it is), against lone outline pixels that see through an object
+        """
+    @visibility_median_window.setter
+    def visibility_median_window(self, arg0: typing.Any) -> None:
         ...
     @property
     def visibility_resolution(self) -> float:
@@ -2167,12 +2178,12 @@ class CollisionSettings:
       contact_tolerance = 0.001: m: depths up to this count as touching, not penetrating (a cloud is a noisy surface)
       inside_weight = 0.0: m per point: each cloud point inside a link adds this much to the total depth (0: depths alone)
       reference_area = 0.0001: m^2: the occupancy model charges a link's volume in blocked cells divided by this
-      volume = False: keep the hand out of the objects' solid volume too (columns from the plane up to the points: solid_volume)
+      volume = True: keep the hand out of the objects' solid volume too (columns from the plane up to the points: solid_volume)
       volume_resolution = 0.005: m: the solid volume's cell, > 0
-      unseen_weight = 0.0: a link's volume in the unknown cells of a map of what the cameras saw (the occupancy model's, or the
+      unseen_weight = 0.1: a link's volume in the unknown cells of a map of what the cameras saw (the occupancy model's, or the
     surface model's unseen map) outside the solid volume is charged at this weight (soft: in W, not in
     collision_free; the occupancy model's map needs OccupancySettings.unknown_is_occupied = False)
-      unseen_margin = 0.0: m: with the volume, unseen space within this of it is not charged (>= 0)
+      unseen_margin = 0.01: m: with the volume, unseen space within this of it is not charged (>= 0)
       occupied_cells = True: the occupancy model charges the volume in occupied (seen surface) cells; False: their points' depths only
     """
     __hash__: typing.ClassVar[None] = None
@@ -2418,12 +2429,12 @@ class CollisionExpert:
           contact_tolerance = 0.001: m: depths up to this count as touching, not penetrating (a cloud is a noisy surface)
           inside_weight = 0.0: m per point: each cloud point inside a link adds this much to the total depth (0: depths alone)
           reference_area = 0.0001: m^2: the occupancy model charges a link's volume in blocked cells divided by this
-          volume = False: keep the hand out of the objects' solid volume too (columns from the plane up to the points: solid_volume)
+          volume = True: keep the hand out of the objects' solid volume too (columns from the plane up to the points: solid_volume)
           volume_resolution = 0.005: m: the solid volume's cell, > 0
-          unseen_weight = 0.0: a link's volume in the unknown cells of a map of what the cameras saw (the occupancy model's, or the
+          unseen_weight = 0.1: a link's volume in the unknown cells of a map of what the cameras saw (the occupancy model's, or the
         surface model's unseen map) outside the solid volume is charged at this weight (soft: in W, not in
         collision_free; the occupancy model's map needs OccupancySettings.unknown_is_occupied = False)
-          unseen_margin = 0.0: m: with the volume, unseen space within this of it is not charged (>= 0)
+          unseen_margin = 0.01: m: with the volume, unseen space within this of it is not charged (>= 0)
           occupied_cells = True: the occupancy model charges the volume in occupied (seen surface) cells; False: their points' depths only
         """
     def collision_free(self, T_world_wrist: typing.Any, joints: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"]:
@@ -4172,6 +4183,8 @@ def segment_depth(depth: typing.Any, camera: PinholeCamera, T_world_camera: typi
       join_max_size = 0.15: m, join rule 3: the joined cluster's largest principal-box side
       visibility_tolerance = 0.008: m: Segmentation.visibility's surface_tolerance (within this of the observed surface is Surface)
       visibility_resolution = 0.005: rad: the bin of Segmentation.visibility's range images (VisibilitySettings.angular_resolution)
+      visibility_median_window = 1: px: segment_depth's visibility model keeps the depth image median-filtered over (2 r + 1)^2 pixels
+    (0: as it is), against lone outline pixels that see through an object
       image_stride = 0: px: segment_depth's block side, 0 = the largest within half a voxel_size at the median depth
       plane_image_stride = 4: px: segment_depth's block side for the support plane's search (at most image_stride: those)
       workspace = []: m: the world-frame box [x_min, y_min, z_min, x_max, y_max, z_max] the input is cropped to first; [] = none
@@ -4209,6 +4222,8 @@ def segment_organized(points: typing.Any, T_world_camera: typing.Any, plane: typ
       join_max_size = 0.15: m, join rule 3: the joined cluster's largest principal-box side
       visibility_tolerance = 0.008: m: Segmentation.visibility's surface_tolerance (within this of the observed surface is Surface)
       visibility_resolution = 0.005: rad: the bin of Segmentation.visibility's range images (VisibilitySettings.angular_resolution)
+      visibility_median_window = 1: px: segment_depth's visibility model keeps the depth image median-filtered over (2 r + 1)^2 pixels
+    (0: as it is), against lone outline pixels that see through an object
       image_stride = 0: px: segment_depth's block side, 0 = the largest within half a voxel_size at the median depth
       plane_image_stride = 4: px: segment_depth's block side for the support plane's search (at most image_stride: those)
       workspace = []: m: the world-frame box [x_min, y_min, z_min, x_max, y_max, z_max] the input is cropped to first; [] = none
@@ -4244,6 +4259,8 @@ def segment_scene(points: typing.Any, viewpoints: typing.Any = None, plane: typi
       join_max_size = 0.15: m, join rule 3: the joined cluster's largest principal-box side
       visibility_tolerance = 0.008: m: Segmentation.visibility's surface_tolerance (within this of the observed surface is Surface)
       visibility_resolution = 0.005: rad: the bin of Segmentation.visibility's range images (VisibilitySettings.angular_resolution)
+      visibility_median_window = 1: px: segment_depth's visibility model keeps the depth image median-filtered over (2 r + 1)^2 pixels
+    (0: as it is), against lone outline pixels that see through an object
       image_stride = 0: px: segment_depth's block side, 0 = the largest within half a voxel_size at the median depth
       plane_image_stride = 4: px: segment_depth's block side for the support plane's search (at most image_stride: those)
       workspace = []: m: the world-frame box [x_min, y_min, z_min, x_max, y_max, z_max] the input is cropped to first; [] = none

@@ -146,11 +146,38 @@ CollisionExpert::CollisionExpert(std::shared_ptr<const Hand> hand, const Eigen::
   build_volume(cloud);
 }
 
+namespace {
+
+/// The volume's occupied cells kept only where the map of what the cameras saw calls them unknown (behind what they
+/// saw): where a camera saw through a column (under a mug's handle, through it) or saw its surface (within the map's
+/// tolerance: the points' own depths charge that band), it is free.
+OccupancyMap carve_seen_free(const OccupancyMap& volume, const OccupancyMap& seen) {
+  const Eigen::Vector3i d = volume.dims();
+  const double h = volume.resolution();
+  std::vector<std::uint8_t> cells(static_cast<std::size_t>(d.prod()));
+  for (int k = 0; k < d.z(); ++k)
+    for (int j = 0; j < d.y(); ++j)
+      for (int i = 0; i < d.x(); ++i) {
+        const Eigen::Vector3d c = volume.region_min() + h * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5);
+        const bool inside =
+            (c.array() >= seen.region_min().array()).all() && (c.array() < seen.region_max().array()).all();
+        CellState st = volume.state(c);
+        if (st == CellState::Occupied && inside && seen.state(c) != CellState::Unknown) st = CellState::Free;
+        cells[static_cast<std::size_t>((k * d.y() + j) * d.x() + i)] = static_cast<std::uint8_t>(st);
+      }
+  return OccupancyMap(volume.region_min(), d, std::move(cells), volume.objects_min(), volume.objects_max(),
+                      volume.has_plane() ? std::optional<Eigen::Vector4d>(volume.plane()) : std::nullopt,
+                      volume.settings());
+}
+
+}  // namespace
+
 void CollisionExpert::build_volume(const Eigen::Ref<const Vec3Array>& cloud) {
   if (settings_.volume && plane_ && cloud.rows() > 0) {
     SolidVolumeSettings vs;
     vs.resolution = settings_.volume_resolution;
     volume_ = std::make_shared<const OccupancyMap>(solid_volume(cloud, *plane_, vs));
+    if (unseen_) volume_ = std::make_shared<const OccupancyMap>(carve_seen_free(*volume_, *unseen_));
   }
   auto shapes = std::make_shared<Shapes>(*hand_, plane_, settings_.plane_margin);
   if (occupancy_ || volume_ || unseen_) {
@@ -171,11 +198,8 @@ CollisionExpert::CollisionExpert(std::shared_ptr<const Hand> hand, std::shared_p
   if (!occupancy_) throw std::invalid_argument("occupancy: expected an OccupancyMap, got none");
   settings_.model = CollisionModel::Occupancy;
   check_settings(settings_);
-  if (settings_.unseen_weight > 0 && occupancy_->settings().unknown_is_occupied) {
-    throw std::invalid_argument(
-        "unseen_weight charges unknown cells softly: the map must not count them as obstacles too "
-        "(OccupancySettings.unknown_is_occupied = false)");
-  }
+  // A map that counts unknown cells as obstacles charges them in full: no soft charge on top.
+  if (occupancy_->settings().unknown_is_occupied) unseen_.reset();
   require_finite(cloud, "cloud");
   index_ = std::make_shared<const Index>(cloud, settings_.cell_size);
   if (plane) {

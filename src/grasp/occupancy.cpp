@@ -225,13 +225,16 @@ OccupancyMap::OccupancyMap(const VisibilityModel& visibility, const Eigen::Ref<c
       for (std::int64_t i = 0; i < nx; ++i) {
         centres.row((k * ny + j) * nx + i) = origin_ + h_ * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5);
       }
-  const std::vector<SpaceState> states = visibility.classify(centres);
-  cells_.resize(states.size());
-  for (std::size_t c = 0; c < states.size(); ++c) {
-    const SpaceState st = states[c];
-    cells_[c] = static_cast<std::uint8_t>(st == SpaceState::SeenFree  ? CellState::Free
-                                          : st == SpaceState::Surface ? CellState::Occupied
-                                                                      : CellState::Unknown);
+  const Eigen::VectorXd d = visibility.signed_distances(centres);
+  const double tol = visibility.settings().surface_tolerance;
+  cells_.resize(static_cast<std::size_t>(d.size()));
+  for (Eigen::Index c = 0; c < d.size(); ++c) {
+    // Behind an observed surface: unknown. No view says anything (NaN): free, see the header.
+    const CellState st = std::isnan(d[c]) ? CellState::Free
+                         : d[c] > tol     ? CellState::Free
+                         : d[c] >= -tol   ? CellState::Occupied
+                                          : CellState::Unknown;
+    cells_[static_cast<std::size_t>(c)] = static_cast<std::uint8_t>(st);
   }
   free_above_plane(cells_, origin_, h_, dims_, plane_);
   stats_.n_rays = 0;

@@ -133,6 +133,33 @@ DepthImage nearest_pool(const Eigen::Ref<const DepthImage>& depth, const Pinhole
   return out;
 }
 
+/// The depth image the scene's visibility model keeps: each pixel with a return the median of the returns within r
+/// pixels of it (a (2r + 1)^2 window; r = 0: the image itself). A depth sensor's silhouettes are ragged (the
+/// simulated cameras' lateral noise, a real one's flying pixels): an object's pixel at its outline that took the
+/// depth of the table behind sees through the object, and its ray would refute every completion there; the median
+/// removes such lone pixels and keeps edges where they are.
+DepthImage median_filtered(const Eigen::Ref<const DepthImage>& depth, int r) {
+  DepthImage out = depth;
+  if (r == 0) return out;
+  const Eigen::Index H = depth.rows(), W = depth.cols();
+#pragma omp parallel for schedule(static)
+  for (Eigen::Index v = 0; v < H; ++v) {
+    std::vector<double> window;
+    window.reserve(static_cast<std::size_t>((2 * r + 1) * (2 * r + 1)));
+    for (Eigen::Index u = 0; u < W; ++u) {
+      if (!has_return(depth(v, u))) continue;
+      window.clear();
+      for (Eigen::Index y = std::max<Eigen::Index>(0, v - r); y <= std::min(H - 1, v + r); ++y)
+        for (Eigen::Index x = std::max<Eigen::Index>(0, u - r); x <= std::min(W - 1, u + r); ++x)
+          if (has_return(depth(y, x))) window.push_back(depth(y, x));
+      const auto mid = window.begin() + static_cast<std::ptrdiff_t>(window.size() / 2);
+      std::nth_element(window.begin(), mid, window.end());
+      out(v, u) = *mid;
+    }
+  }
+  return out;
+}
+
 /// The blocks' points through prepare_cloud's voxel grid, each with the pixel of the block it came from.
 Blocks voxelised(const Blocks& b, double voxel_size) {
   CleanupSettings voxel;  // prepare_cloud's voxel grid only: the sources follow every centroid
@@ -211,8 +238,8 @@ Segmentation segment_image(const Eigen::Ref<const Vec3Array>& S, const Eigen::Re
   out.n_after_voxel = static_cast<std::size_t>(down.points.rows());
   out.times.voxel += since(t_step);
   t_step = Clock::now();
-  const auto sharp = std::make_shared<const VisibilityModel>(
-      VisibilityModel::from_depth(depth, camera, T, detail::visibility_settings(s)));
+  const auto sharp = std::make_shared<const VisibilityModel>(VisibilityModel::from_depth(
+      median_filtered(depth, s.visibility_median_window), camera, T, detail::visibility_settings(s)));
   out.visibility = std::make_shared<const VisibilityModel>(VisibilityModel::from_depth(
       nearest_pool(depth, camera, s.visibility_resolution), camera, T, detail::visibility_settings(s)));
   out.times.visibility = since(t_step);

@@ -65,9 +65,13 @@ class OccupancyMap {
                OccupancySettings settings = {});
 
   /// The same region and rules from a visibility model's views (perception/visibility.hpp) instead of OctoMap's rays:
-  /// each cell by the state of its centre, SeenFree -> Free, Surface -> Occupied, Unseen -> Unknown (so a cell is
-  /// occupied within the model's surface_tolerance of a seen surface, not only where a point ends). The views are
-  /// already built, so this reads their images, O(1) a cell, where the rays cost O(points x cells along a ray).
+  /// each cell by the state of its centre, SeenFree -> Free, Surface -> Occupied, Unseen behind an observed surface ->
+  /// Unknown (so a cell is occupied within the model's surface_tolerance of a seen surface, not only where a point
+  /// ends). A cell no view says anything about (outside every image, on a pixel with no return, an empty bin of an
+  /// unorganized cloud's range image) is Free: what is unknown is the shadow behind what the cameras saw. An
+  /// unorganized cloud keeps no record of the rays that returned nothing, so a cloud cropped to its objects (no
+  /// table) would otherwise leave all the space around them unknown. The views are already built, so this reads
+  /// their images, O(1) a cell, where the rays cost O(points x cells along a ray).
   /// objects (M >= 1, 3): the points whose box, grown by settings.margin, is the region; plane as above (oriented
   /// towards the views' sensors). Throws std::invalid_argument for a model of no view, no or non-finite object
   /// points, a degenerate plane and bad settings, as the rays' constructor.

@@ -137,11 +137,14 @@ class SynthesisOptions:
     # -- presets and changes
     @classmethod
     def paper(cls, **parts) -> "SynthesisOptions":
-        """The paper's synthesis: the collision expert on the cloud's points, no clear approach, no contact
-        quality, no completion (the experiment's "paper" preset); `parts` as the constructor's."""
+        """The paper's synthesis: the collision expert on the cloud's points and the plane alone (no solid volume,
+        no charge of unseen space), no clear approach, no contact quality, no completion (the experiment's "paper"
+        preset); `parts` as the constructor's."""
         return cls(
             **{
-                "collision": _core.CollisionSettings(model="surface"),
+                "collision": _core.CollisionSettings(
+                    model="surface", volume=False, unseen_weight=0.0, unseen_margin=0.0
+                ),
                 "approach": None,
                 "contact_quality": None,
                 "completion": None,

@@ -244,3 +244,17 @@ TEST(Occupancy, FromVisibilityAgreesWithTheRaysAndTheExactGeometry) {
   EXPECT_THROW(OccupancyMap(vis, bad, kTable), std::invalid_argument);
   EXPECT_THROW(OccupancyMap(vis, box, Eigen::Vector4d::Zero()), std::invalid_argument);
 }
+
+TEST(Occupancy, FromVisibilityLeavesWhatNoViewSawFreeAndTheShadowUnknown) {
+  // An unorganized cloud of a box's face cropped to the box (no table): the spherical view's bins around the face are
+  // empty. Only the shadow behind the face is unknown; beside it no view says anything, which is not an obstacle.
+  const Vec3Array face = seen_face();
+  const graspmix::VisibilityModel vis = graspmix::VisibilityModel::from_points(face, kCamera);
+  const OccupancyMap map(vis, face);
+  EXPECT_EQ(map.state({0.05, 0.0, 0.0}), CellState::Unknown);  // behind the face, in the box
+  EXPECT_EQ(map.state({-0.05, 0.0, 0.0}), CellState::Free);    // in front of it: seen free
+  EXPECT_EQ(map.state({0.05, 0.09, 0.0}), CellState::Free);    // beside the box: no view says anything
+  EXPECT_TRUE(std::isnan(vis.signed_distance({0.05, 0.09, 0.0})));
+  // The rays' map calls that unknown: no ray crossed it.
+  EXPECT_EQ(OccupancyMap(face, kCamera.transpose(), face).state({0.05, 0.09, 0.0}), CellState::Unknown);
+}

@@ -171,9 +171,10 @@ TEST(SolidVolume, BadInput) {
 TEST(CollisionVolume, AFingerInsideACompletedObjectIsChargedOneOutsideIsNot) {
   // The box's points; the finger (2 x 4 x 6 cm) in its middle is more than 2 cm from every one of them.
   const Vec3Array pts = to_array(box_points());
-  CollisionSettings with;
-  with.volume = true;
-  const CollisionExpert surface(finger(), pts, kTable), volume(finger(), pts, kTable, with);
+  CollisionSettings with, without;
+  with.volume = true;  // the default
+  without.volume = false;
+  const CollisionExpert surface(finger(), pts, kTable, without), volume(finger(), pts, kTable, with);
   ASSERT_TRUE(volume.has_volume());
   EXPECT_FALSE(surface.has_volume());
   const Eigen::VectorXd q(0);
@@ -210,6 +211,8 @@ TEST(CollisionUnseen, SpaceBehindASeenFaceIsChargedSoftlyOutsideTheVolume) {
   const auto map =
       std::make_shared<const OccupancyMap>(seen, Eigen::RowVector3d(-0.5, 0, 0.05), completed, kTable, free_unknown);
   CollisionSettings s;
+  s.volume = false;  // first the charge alone, no margin
+  s.unseen_margin = 0.0;
   s.unseen_weight = 0.1;
   const CollisionExpert soft(finger(), map, seen, kTable, s);
   const Eigen::VectorXd q(0);
@@ -257,9 +260,48 @@ TEST(CollisionUnseen, SpaceBehindASeenFaceIsChargedSoftlyOutsideTheVolume) {
   EXPECT_NEAR(points_only.cloud_depth.sum(), 0.01, 1e-9);
   EXPECT_GT(pressed.cloud_depth.sum(), points_only.cloud_depth.sum());
   EXPECT_DOUBLE_EQ(pressed.unseen_depth.sum(), points_only.unseen_depth.sum());
-  // Unknown cells counted as obstacles by the map and charged softly too: refused.
+  // Unknown cells counted as obstacles by the map: charged in full as blocked, not softly on top.
   const auto hard = std::make_shared<const OccupancyMap>(seen, Eigen::RowVector3d(-0.5, 0, 0.05), seen, kTable);
-  EXPECT_THROW(CollisionExpert(finger(), hard, seen, kTable, s), std::invalid_argument);
+  s.occupied_cells = true;
+  const CollisionExpert blocked(finger(), hard, seen, kTable, s);
+  EXPECT_EQ(blocked.unseen(), nullptr);
+  const graspmix::CollisionResult in_hard = blocked.evaluate(at(0.05, 0, 0.05), q);
+  EXPECT_EQ(in_hard.unseen_depth.sum(), 0.0);
+  EXPECT_GT(in_hard.cloud_depth.sum(), 0.0);
+  EXPECT_FALSE(in_hard.collision_free);
   s.unseen_weight = -1;
   EXPECT_THROW(CollisionExpert(finger(), map, seen, kTable, s), std::invalid_argument);
+}
+
+TEST(CollisionVolume, WhatTheCamerasSawThroughIsNotSolid) {
+  // A plate 8 cm above the table (a shelf) on no visible legs, and a wall behind it that a camera at 4 cm height sees
+  // under the plate: the plate's columns fill the space under it down to the table, which the camera saw free.
+  std::vector<Eigen::Vector3d> pts;
+  for (int i = 0; i <= 40; ++i)
+    for (int j = 0; j <= 40; ++j) {
+      pts.emplace_back(0.0025 * i, -0.05 + 0.0025 * j, 0.08);      // the plate
+      pts.emplace_back(0.3, -0.05 + 0.0025 * j, 0.07 * i / 40.0);  // the wall behind it
+      pts.emplace_back(0.1 + 0.005 * i, -0.05 + 0.0025 * j, 0.0);  // the table between them
+    }
+  const Vec3Array P = to_array(pts);
+  // The wall is a block's front face; its top (x 0.3 to 0.36, unseen from below) comes from a completion.
+  for (int i = 0; i <= 24; ++i)
+    for (int j = 0; j <= 40; ++j) pts.emplace_back(0.3 + 0.0025 * i, -0.05 + 0.0025 * j, 0.07);
+  const Vec3Array solid = to_array(pts);
+  graspmix::OccupancySettings free_unknown;
+  free_unknown.unknown_is_occupied = false;
+  const auto seen = std::make_shared<const OccupancyMap>(P, Eigen::RowVector3d(-0.5, 0, 0.04), P, kTable, free_unknown);
+  const Eigen::VectorXd q(0);
+  CollisionSettings s;  // the defaults: the volume and the unseen charge
+  const CollisionExpert columns(finger(), solid, kTable, s), carved(finger(), solid, kTable, s, seen);
+  // Under the plate (the finger from 1 to 7 cm high): solid by the columns alone, seen free with the camera's map.
+  const graspmix::CollisionResult under = columns.evaluate(at(0.05, 0, 0.04), q);
+  EXPECT_FALSE(under.collision_free);
+  const graspmix::CollisionResult seen_under = carved.evaluate(at(0.05, 0, 0.04), q);
+  EXPECT_TRUE(seen_under.collision_free);
+  EXPECT_EQ(seen_under.total_depth, 0.0);
+  // In the block behind the wall, where the camera did not see: still solid.
+  EXPECT_FALSE(carved.evaluate(at(0.33, 0, 0.035), q).collision_free);
+  EXPECT_FALSE(columns.evaluate(at(0.33, 0, 0.035), q).collision_free);
+  EXPECT_TRUE(carved.has_volume());
 }

@@ -243,6 +243,66 @@ TEST(DepthScene, TheWorkspaceCropsTheInputFirst) {
   EXPECT_NE(message([&] { segment_depth(image(), kCam, kPose, away); }).find("6 numbers"), std::string::npos);
 }
 
+TEST(DepthScene, TheMedianWindowKeepsLoneOutlinePixelsFromSeeingThroughAnObject) {
+  // Every fourth pixel of box A's outline (a box pixel beside a table pixel 5 cm or more behind it) takes that
+  // table pixel's depth, as a sensor's lateral noise or a flying pixel gives it: its ray then sees through the box's
+  // edge.
+  DepthImage ragged = image();
+  const Eigen::Index H = ragged.rows(), W = ragged.cols();
+  std::vector<std::pair<Eigen::Index, Eigen::Index>> through;
+  int k = 0;
+  for (Eigen::Index v = 1; v + 1 < H; ++v)
+    for (Eigen::Index u = 1; u + 1 < W; ++u) {
+      const Eigen::Vector3d on = kPose * kCam.back_project(u, v, image()(v, u));
+      if (!inside(on, kBoxA_lo, kBoxA_hi, 1e-9) || on.z() < 0.01) continue;
+      const double behind =  // the deepest of the four pixels beside it
+          std::max({image()(v, u + 1), image()(v, u - 1), image()(v + 1, u), image()(v - 1, u)});
+      if (behind < image()(v, u) + 0.05 || k++ % 4) continue;
+      ragged(v, u) = behind;
+      through.emplace_back(v, u);
+    }
+  ASSERT_GT(through.size(), 10u);
+  SegmentationSettings median, as_is;
+  median.visibility_median_window = 1;  // the default
+  as_is.visibility_median_window = 0;
+  const Segmentation raw = segment_depth(ragged, kCam, kPose, as_is),
+                     filtered = segment_depth(ragged, kCam, kPose, median);
+  // The point of box A's surface 2 mm deep along each such pixel's ray: seen free through the ragged pixel, on the
+  // surface again once the median has put the pixel back on the box: wherever most of its 3 x 3 window is box
+  // (along the outline's straight runs; at a silhouette's corner most of the window is table, and stays so).
+  int raw_free = 0, restored = 0, boxed = 0;
+  for (const auto& [v, u] : through) {
+    const Eigen::Vector3d p = kPose * kCam.back_project(u, v, image()(v, u) + 0.002);
+    raw_free += raw.visibility->state(p) == SpaceState::SeenFree;
+    int box = 0;
+    for (int dv = -1; dv <= 1; ++dv)
+      for (int du = -1; du <= 1; ++du) box += std::abs(ragged(v + dv, u + du) - image()(v, u)) < 0.02;
+    if (box < 5) continue;
+    ++boxed;
+    restored += filtered.visibility->state(p) == SpaceState::Surface;
+  }
+  EXPECT_EQ(raw_free, static_cast<int>(through.size()));
+  EXPECT_GT(boxed, 5);
+  EXPECT_EQ(restored, boxed);
+  // On the clean image the median changes no pixel a plane fills (a linear ramp's median is its centre): the same
+  // state everywhere but within a pixel of an edge.
+  const Segmentation clean = segment_depth(image(), kCam, kPose, as_is),
+                     clean_median = segment_depth(image(), kCam, kPose, median);
+  int n = 0, same = 0;
+  for (Eigen::Index v = 0; v < H; v += 3)
+    for (Eigen::Index u = 0; u < W; u += 3)
+      for (const double delta : {-0.02, -0.003, 0.003, 0.02}) {
+        const Eigen::Vector3d p = kPose * kCam.back_project(u, v, image()(v, u) + delta);
+        ++n;
+        same += clean.visibility->state(p) == clean_median.visibility->state(p);
+      }
+  EXPECT_GT(static_cast<double>(same) / n, 0.97);
+  SegmentationSettings bad;
+  bad.visibility_median_window = 6;
+  EXPECT_NE(message([&] { segment_depth(image(), kCam, kPose, bad); }).find("visibility_median_window"),
+            std::string::npos);
+}
+
 TEST(DepthScene, BadInputNamesWhatIsWrong) {
   DepthImage small(10, 10);
   small.setConstant(0.5);

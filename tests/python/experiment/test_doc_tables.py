@@ -25,6 +25,8 @@ PAGES = {
         "volume-heldout",
         "volume-four-views",
         "volume-clutter",
+        "median-dev",
+        "median-clutter-dev",
     },
 }
 SCRIPTS = ("scripts/findings_table.py", "scripts/ablation_table.py", "scripts/clutter_table.py")

@@ -48,7 +48,7 @@ def test_a_finger_inside_costs_more_than_one_grazing_and_the_charge_grows_with_d
     _, scene, occ, c, _ = seen
     finger = _core.Hand.from_urdf_string(FINGER, ".")
     occupancy = _core.CollisionExpert(finger, scene.points, scene.plane, occupancy=occ)
-    surface = _core.CollisionExpert(finger, scene.points, scene.plane)
+    surface = _core.CollisionExpert(finger, scene.points, scene.plane, settings=_core.CollisionSettings(volume=False))
     assert occupancy.model == "occupancy" and surface.model == "surface"
     # Down into the seen top face (the finger is 6 cm tall): 0 is touching.
     top = c[2] + SIZE[2] / 2

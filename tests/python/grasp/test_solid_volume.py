@@ -52,8 +52,8 @@ def test_a_finger_inside_the_completed_box_is_charged_only_with_the_volume(compl
     assert np.all(np.max(np.abs(points - c) - [0.01, 0.02, 0.03], axis=1) > 0.005)
     pose = np.array([[*c, 0, 0, 0, 1], [*(c + [0.1, 0, 0]), 0, 0, 0, 1]])
     q = np.zeros((1, 0))
-    plain = _core.CollisionExpert(hand, points, plane=scene.plane)
-    volume = _core.CollisionExpert(hand, points, plane=scene.plane, settings=_core.CollisionSettings(volume=True))
+    plain = _core.CollisionExpert(hand, points, plane=scene.plane, settings=_core.CollisionSettings(volume=False))
+    volume = _core.CollisionExpert(hand, points, plane=scene.plane)  # the volume is on by default
     assert plain.volume is None and volume.volume is not None
     assert plain.evaluate_batch(pose, q).collision_free.tolist() == [True, True]
     r = volume.evaluate_batch(pose, q)
@@ -93,9 +93,12 @@ def test_unseen_space_beyond_the_completion_is_charged_softly(completed, finger,
     r = expert.evaluate_batch(poses, np.zeros((1, 0)))
     assert r.collision_free.tolist() == [False, True, True]
     assert r.unseen_depth.sum(axis=1)[1] > 0 and r.unseen_depth.sum(axis=1)[2] == 0
-    with pytest.raises(ValueError, match="unknown_is_occupied"):
-        solid = _core.OccupancyMap(acq.points, acq.viewpoints, scene.points, scene.plane)
-        _core.CollisionExpert(finger, scene.solid_points(), plane=scene.plane, occupancy=solid, settings=s)
+    # A map whose unknown cells are obstacles charges them in full (blocked), not softly on top.
+    solid = _core.OccupancyMap(acq.points, acq.viewpoints, scene.points, scene.plane)
+    hard = _core.CollisionExpert(finger, scene.solid_points(), plane=scene.plane, occupancy=solid, settings=s)
+    assert hard.unseen is None
+    h = hard.evaluate_batch(poses, np.zeros((1, 0)))
+    assert np.all(h.unseen_depth == 0) and not h.collision_free[1] and h.collision_free[2]
 
 
 def test_the_surface_model_charges_the_scenes_unseen_space_from_its_visibility_model(completed, finger, box_urdf):

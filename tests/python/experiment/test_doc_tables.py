@@ -27,6 +27,10 @@ PAGES = {
         "volume-clutter",
         "median-dev",
         "median-clutter-dev",
+        "median-test60",
+        "median-heldout",
+        "median-four-views",
+        "median-clutter",
     },
 }
 SCRIPTS = ("scripts/findings_table.py", "scripts/ablation_table.py", "scripts/clutter_table.py")

@@ -2993,7 +2993,7 @@ class ContactQualitySettings:
     which override it (an unknown keyword is a ValueError):
       friction = 0.5: Coulomb coefficient mu (> 0): the friction cone's half-angle is atan(mu)
       concentration = 10.0: nats per radian beyond the friction cone, per contact
-      air_penalty = 5.0: nats per finger that closes on nothing
+      air_penalty = 40.0: nats per finger that closes on nothing
       contact_tolerance = 0.001: m: points within this of a link's surface are in contact
       closing_steps = 16: steps of the closing motion before bisection (links that do not translate)
       name = 'contact_quality': the key of its term in a grasp's experts table
@@ -3129,7 +3129,7 @@ class ContactQualityExpert(Expert):
         which override it (an unknown keyword is a ValueError):
           friction = 0.5: Coulomb coefficient mu (> 0): the friction cone's half-angle is atan(mu)
           concentration = 10.0: nats per radian beyond the friction cone, per contact
-          air_penalty = 5.0: nats per finger that closes on nothing
+          air_penalty = 40.0: nats per finger that closes on nothing
           contact_tolerance = 0.001: m: points within this of a link's surface are in contact
           closing_steps = 16: steps of the closing motion before bisection (links that do not translate)
           name = 'contact_quality': the key of its term in a grasp's experts table

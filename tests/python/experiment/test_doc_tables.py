@@ -31,6 +31,11 @@ PAGES = {
         "median-heldout",
         "median-four-views",
         "median-clutter",
+        "air-test60",
+        "air-dev",
+        "air-heldout",
+        "air-four-views",
+        "air-clutter",
     },
 }
 SCRIPTS = ("scripts/findings_table.py", "scripts/ablation_table.py", "scripts/clutter_table.py")

@@ -53,10 +53,11 @@ void bind_collision(py::module_& m) {
           "volume", &CollisionSettings::volume,
           "keep the hand out of the objects' solid volume too (columns from the plane up to the points: solid_volume)")
       .field("volume_resolution", &CollisionSettings::volume_resolution, "m: the solid volume's cell, > 0")
-      .field("unseen_weight", &CollisionSettings::unseen_weight,
-             "a link's volume in the unknown cells of a map of what the cameras saw (the occupancy model's, or the\n"
-             "surface model's unseen map) outside the solid volume is charged at this weight (soft: in W, not in\n"
-             "collision_free; the occupancy model's map needs OccupancySettings.unknown_is_occupied = False)")
+      .field(
+          "unseen_weight", &CollisionSettings::unseen_weight,
+          "a link's volume in the unknown cells of a map of what the cameras saw (the occupancy model's, or the\n"
+          "surface model's unseen map) outside the solid volume is charged at this weight (soft: in W, not in\n"
+          "collision_free; an occupancy map with OccupancySettings.unknown_is_occupied charges them in full instead)")
       .field("unseen_margin", &CollisionSettings::unseen_margin,
              "m: with the volume, unseen space within this of it is not charged (>= 0)")
       .field(

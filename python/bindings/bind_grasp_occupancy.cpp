@@ -97,7 +97,8 @@ void bind_occupancy_only(py::module_& m) {
             d["seconds"] = s.seconds;
             return d;
           },
-          "Rays inserted (one per cell and viewpoint), cells by state, wall time (s).");
+          "Rays inserted (one per cell and viewpoint; 0 for a map from a visibility model), cells by state, wall time\n"
+          "(s).");
 }
 
 /// The solid volume of objects standing on a plane (grasp/solid_volume.hpp), as an OccupancyMap.

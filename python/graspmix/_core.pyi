@@ -2161,7 +2161,8 @@ class OccupancyMap:
     @property
     def stats(self) -> dict:
         """
-        Rays inserted (one per cell and viewpoint), cells by state, wall time (s).
+        Rays inserted (one per cell and viewpoint; 0 for a map from a visibility model), cells by state, wall time
+        (s).
         """
 class CollisionSettings:
     """
@@ -2182,7 +2183,7 @@ class CollisionSettings:
       volume_resolution = 0.005: m: the solid volume's cell, > 0
       unseen_weight = 0.1: a link's volume in the unknown cells of a map of what the cameras saw (the occupancy model's, or the
     surface model's unseen map) outside the solid volume is charged at this weight (soft: in W, not in
-    collision_free; the occupancy model's map needs OccupancySettings.unknown_is_occupied = False)
+    collision_free; an occupancy map with OccupancySettings.unknown_is_occupied charges them in full instead)
       unseen_margin = 0.01: m: with the volume, unseen space within this of it is not charged (>= 0)
       occupied_cells = True: the occupancy model charges the volume in occupied (seen surface) cells; False: their points' depths only
     """
@@ -2303,7 +2304,7 @@ class CollisionSettings:
         """
         a link's volume in the unknown cells of a map of what the cameras saw (the occupancy model's, or the
         surface model's unseen map) outside the solid volume is charged at this weight (soft: in W, not in
-        collision_free; the occupancy model's map needs OccupancySettings.unknown_is_occupied = False)
+        collision_free; an occupancy map with OccupancySettings.unknown_is_occupied charges them in full instead)
         """
     @unseen_weight.setter
     def unseen_weight(self, arg0: typing.Any) -> None:
@@ -2433,7 +2434,7 @@ class CollisionExpert:
           volume_resolution = 0.005: m: the solid volume's cell, > 0
           unseen_weight = 0.1: a link's volume in the unknown cells of a map of what the cameras saw (the occupancy model's, or the
         surface model's unseen map) outside the solid volume is charged at this weight (soft: in W, not in
-        collision_free; the occupancy model's map needs OccupancySettings.unknown_is_occupied = False)
+        collision_free; an occupancy map with OccupancySettings.unknown_is_occupied charges them in full instead)
           unseen_margin = 0.01: m: with the volume, unseen space within this of it is not charged (>= 0)
           occupied_cells = True: the occupancy model charges the volume in occupied (seen surface) cells; False: their points' depths only
         """

@@ -293,30 +293,21 @@ void CollisionExpert::evaluate_into(const Eigen::Isometry3d* link_poses, double*
   for (const Shapes::Shape& sh : shapes_->shapes) {
     if (skip && skip[sh.link]) continue;
     const Eigen::Isometry3d T = link_poses[sh.link] * sh.src->T_link_shape;
-    // Occupancy: the shape's volume in blocked cells, when its world box touches any.
-    if (occupancy_ && settings_.occupied_cells) {
-      const OccupancyMap& map = *occupancy_;
-      const Eigen::Vector3d centre = T * sh.centre;
-      const Eigen::Vector3d half = T.linear().cwiseAbs() * sh.half;
-      if (map.any_blocked(centre - half, centre + half)) {  // else every sample lies in a free cell
-        cloud_depth[sh.link] += blocked_volume(map, sh, T, tol, points_inside[sh.link]) / settings_.reference_area;
-      }
+    // The maps' terms, each when the shape's world box touches a cell it charges (else every sample is free).
+    const Eigen::Vector3d centre = T * sh.centre;
+    const Eigen::Vector3d half = T.linear().cwiseAbs() * sh.half;
+    const Eigen::Vector3d lo = centre - half, hi = centre + half;
+    if (occupancy_ && settings_.occupied_cells && occupancy_->any_blocked(lo, hi)) {
+      cloud_depth[sh.link] +=
+          blocked_volume(*occupancy_, sh, T, tol, points_inside[sh.link]) / settings_.reference_area;
     }
-    if (unseen_ && settings_.unseen_weight > 0) {
-      const Eigen::Vector3d centre = T * sh.centre;
-      const Eigen::Vector3d half = T.linear().cwiseAbs() * sh.half;
-      if (unseen_->any_unknown(centre - half, centre + half)) {
-        unseen_depth[sh.link] += settings_.unseen_weight *
-                                 unseen_volume(*unseen_, volume_.get(), settings_.unseen_margin, sh, T, tol) /
-                                 settings_.reference_area;
-      }
+    if (unseen_ && settings_.unseen_weight > 0 && unseen_->any_unknown(lo, hi)) {
+      unseen_depth[sh.link] += settings_.unseen_weight *
+                               unseen_volume(*unseen_, volume_.get(), settings_.unseen_margin, sh, T, tol) /
+                               settings_.reference_area;
     }
-    if (volume_) {
-      const Eigen::Vector3d centre = T * sh.centre;
-      const Eigen::Vector3d half = T.linear().cwiseAbs() * sh.half;
-      if (volume_->any_blocked(centre - half, centre + half)) {
-        cloud_depth[sh.link] += blocked_volume(*volume_, sh, T, tol, points_inside[sh.link]) / settings_.reference_area;
-      }
+    if (volume_ && volume_->any_blocked(lo, hi)) {
+      cloud_depth[sh.link] += blocked_volume(*volume_, sh, T, tol, points_inside[sh.link]) / settings_.reference_area;
     }
     if (N > 0) cloud_term(*index_, sh, T, settings_.point_radius, tol, cloud_depth[sh.link], points_inside[sh.link]);
     if (plane_) {

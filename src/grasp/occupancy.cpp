@@ -118,17 +118,21 @@ RayCells cast_rays(const octomap::OcTree& tree, const Eigen::Ref<const Vec3Array
 
 using Dims = Eigen::Matrix<std::int64_t, 3, 1>;
 
-/// Cells whose centre is less than one cell above the plane are free (the plane has an exact term of its own in
-/// the collision expert, and the table's points would otherwise make the layer just above it solid).
+/// Whether a cell's centre c lies less than one cell (h) above the plane: such cells are free (the plane has an
+/// exact term of its own in the collision expert, and the table's points would otherwise make the layer just above
+/// it solid).
+bool in_table_layer(const std::optional<Eigen::Vector4d>& plane, const Eigen::Vector3d& c, double h) {
+  return plane && plane->head<3>().dot(c) + (*plane)[3] < h;
+}
+
+/// The cells in_table_layer made free.
 void free_above_plane(std::vector<std::uint8_t>& cells, const Eigen::Vector3d& origin, double h, const Dims& dims,
                       const std::optional<Eigen::Vector4d>& plane) {
   if (!plane) return;
-  const Eigen::Vector3d n = plane->head<3>();
   for (std::int64_t k = 0; k < dims.z(); ++k)
     for (std::int64_t j = 0; j < dims.y(); ++j)
       for (std::int64_t i = 0; i < dims.x(); ++i) {
-        const Eigen::Vector3d c = origin + h * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5);
-        if (n.dot(c) + (*plane)[3] < h) {
+        if (in_table_layer(plane, origin + h * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5), h)) {
           cells[static_cast<std::size_t>((k * dims.y() + j) * dims.x() + i)] =
               static_cast<std::uint8_t>(CellState::Free);
         }
@@ -218,34 +222,28 @@ OccupancyMap::OccupancyMap(const VisibilityModel& visibility, const Eigen::Ref<c
     plane_ = orient_plane(normalised_plane(*plane), sensors, PlaneSide::Mean);  // the sensors' side is free
   }
   set_region();
-  const std::int64_t nx = dims_.x(), ny = dims_.y(), nz = dims_.z();
-  // Only the cells a cell or more above the plane are asked about (the rest are free, as free_above_plane has it).
-  cells_.assign(static_cast<std::size_t>(nx * ny * nz), static_cast<std::uint8_t>(CellState::Free));
-  std::vector<std::int64_t> asked;
-  asked.reserve(cells_.size());
-  for (std::int64_t k = 0; k < nz; ++k)
-    for (std::int64_t j = 0; j < ny; ++j)
-      for (std::int64_t i = 0; i < nx; ++i) {
+  // Only the cells above the table's layer are asked about (the others are free).
+  cells_.assign(static_cast<std::size_t>(dims_.prod()), static_cast<std::uint8_t>(CellState::Free));
+  std::vector<std::size_t> asked;
+  Vec3Array centres(dims_.prod(), 3);
+  for (std::int64_t k = 0; k < dims_.z(); ++k)
+    for (std::int64_t j = 0; j < dims_.y(); ++j)
+      for (std::int64_t i = 0; i < dims_.x(); ++i) {
         const Eigen::Vector3d c = origin_ + h_ * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5);
-        if (!plane_ || plane_->head<3>().dot(c) + (*plane_)[3] >= h_) asked.push_back((k * ny + j) * nx + i);
+        if (in_table_layer(plane_, c, h_)) continue;
+        centres.row(static_cast<Eigen::Index>(asked.size())) = c;
+        asked.push_back(static_cast<std::size_t>((k * dims_.y() + j) * dims_.x() + i));
       }
-  Vec3Array centres(static_cast<Eigen::Index>(asked.size()), 3);
-  for (std::size_t a = 0; a < asked.size(); ++a) {
-    const std::int64_t c = asked[a], i = c % nx, j = (c / nx) % ny, k = c / (nx * ny);
-    centres.row(static_cast<Eigen::Index>(a)) = origin_ + h_ * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5);
-  }
-  const Eigen::VectorXd d = visibility.signed_distances(centres);
+  const Eigen::VectorXd d = visibility.signed_distances(centres.topRows(static_cast<Eigen::Index>(asked.size())));
   const double tol = visibility.settings().surface_tolerance;
   for (std::size_t a = 0; a < asked.size(); ++a) {
     const double x = d[static_cast<Eigen::Index>(a)];
-    // Behind an observed surface: unknown. No view says anything (NaN): free, see the header.
-    const CellState st = std::isnan(x) ? CellState::Free
-                         : x > tol     ? CellState::Free
-                         : x >= -tol   ? CellState::Occupied
-                                       : CellState::Unknown;
-    cells_[static_cast<std::size_t>(asked[a])] = static_cast<std::uint8_t>(st);
+    // No view says anything (NaN): free, see the header; else the visibility model's state of the distance.
+    const SpaceState st = std::isnan(x) ? SpaceState::SeenFree : state_of_distance(x, tol);
+    cells_[asked[a]] = static_cast<std::uint8_t>(st == SpaceState::SeenFree  ? CellState::Free
+                                                 : st == SpaceState::Surface ? CellState::Occupied
+                                                                             : CellState::Unknown);
   }
-  stats_.n_rays = 0;
   finish_cells();
   stats_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
 }

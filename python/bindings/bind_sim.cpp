@@ -121,7 +121,7 @@ void bind_sim(py::module_& m) {
       .field("support_friction", &SimSettings::support_friction, "lateral friction of the support plane")
       .field("object_mass", &SimSettings::object_mass, "kg; < 0: the URDF's")
       .field("grip_force", &SimSettings::grip_force, "N (N m): force limit of every finger joint motor")
-      .field("close_speed", &SimSettings::close_speed, "m/s (rad/s): joint speed limit while closing")
+      .field("close_speed", &SimSettings::close_speed, "m/s: fingertip speed limit while closing (sim_closing_speeds)")
       .field("close_overshoot", &SimSettings::close_overshoot,
              "motor targets lie this fraction of (grasp - pregrasp) past the grasp joints")
       .field("close_time", &SimSettings::close_time, "s spent closing before the lift")
@@ -208,6 +208,18 @@ void bind_sim(py::module_& m) {
       ("Executes one grasp in Bullet (arrays in hand.joint_names order); see graspmix.sim.execute.\n" +
        settings_doc<SimSettings>())
           .c_str());
+  m.def(
+      "sim_closing_speeds",
+      [](const std::shared_ptr<Hand>& hand, const py::object& pregrasp, const py::object& grasp,
+         const py::object& settings_obj, const py::kwargs& kw) {
+        const SimSettings settings = settings_from<SimSettings>(settings_obj, kw, "sim_closing_speeds");
+        if (!hand) throw py::value_error("hand: expected a Hand, got None");
+        return closing_speeds(*hand, to_vector(pregrasp, "pregrasp_joints"), to_vector(grasp, "grasp_joints"),
+                              settings);
+      },
+      py::arg("hand"), py::arg("pregrasp"), py::arg("grasp"), py::arg("settings") = py::none(),
+      "The speed limit of every URDF joint (hand.joints order; m/s or rad/s, 0 for fixed joints) while the hand "
+      "closes from pregrasp to grasp (arrays in hand.joint_names order): the fingertips move at close_speed m/s.");
   bind_scene_sim(m);
 }
 

@@ -8,7 +8,7 @@ import enum
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AnnealingSettings', 'AxisAlignmentExpert', 'AxisAlignmentSettings', 'CleanupResult', 'CleanupSettings', 'ClearApproachExpert', 'ClearApproachSettings', 'CloudData', 'CollisionBatchResult', 'CollisionExpert', 'CollisionFreeExpert', 'CollisionResult', 'CollisionSettings', 'Completion', 'CompletionKind', 'CompletionSettings', 'ConfigModel', 'ConfigModelSettings', 'ContactData', 'ContactModel', 'ContactQualityExpert', 'ContactQualityResult', 'ContactQualitySettings', 'ContactSettings', 'Evaluation', 'Expert', 'FunctionExpert', 'GaussianMixture', 'GmmSettings', 'Grasp', 'GraspSynthesizer', 'Hand', 'HandLoadSettings', 'KdeSettings', 'KinematicFeasibilityExpert', 'KinematicFeasibilitySettings', 'OccupancyMap', 'OccupancySettings', 'PinholeCamera', 'PinholeFit', 'PlaneCandidate', 'PoseDensity', 'PoseKDE', 'PoseMixture', 'QueryDensity', 'QuerySettings', 'SamplingSettings', 'SceneObject', 'SceneSimResult', 'Segmentation', 'SegmentationSettings', 'SettleResult', 'SimObject', 'SimResult', 'SimSettings', 'SpaceState', 'SurfaceCloud', 'SurfaceFeatureSettings', 'SynthesisResult', 'SynthesisTiming', 'SynthesizerSettings', 'URDF_AXES_ELEMENT', 'VisibilityModel', 'VisibilitySettings', 'build_info', 'camera_pose_matrix', 'complete_object', 'compute_surface_features', 'contact_data', 'learn_contact_models', 'load_cloud', 'load_mesh', 'log_vmf_s3_normaliser', 'orient_plane', 'pose_inverse', 'pose_multiply', 'prepare_cloud', 'quat_exp', 'quat_log', 'save_cloud', 'segment_depth', 'segment_organized', 'segment_scene', 'sim_execute', 'sim_execute_scene', 'sim_settle_scene', 'solid_volume']
+__all__: list[str] = ['AnnealingSettings', 'AxisAlignmentExpert', 'AxisAlignmentSettings', 'CleanupResult', 'CleanupSettings', 'ClearApproachExpert', 'ClearApproachSettings', 'CloudData', 'CollisionBatchResult', 'CollisionExpert', 'CollisionFreeExpert', 'CollisionResult', 'CollisionSettings', 'Completion', 'CompletionKind', 'CompletionSettings', 'ConfigModel', 'ConfigModelSettings', 'ContactData', 'ContactModel', 'ContactQualityExpert', 'ContactQualityResult', 'ContactQualitySettings', 'ContactSettings', 'Evaluation', 'Expert', 'FunctionExpert', 'GaussianMixture', 'GmmSettings', 'Grasp', 'GraspSynthesizer', 'Hand', 'HandLoadSettings', 'KdeSettings', 'KinematicFeasibilityExpert', 'KinematicFeasibilitySettings', 'OccupancyMap', 'OccupancySettings', 'PinholeCamera', 'PinholeFit', 'PlaneCandidate', 'PoseDensity', 'PoseKDE', 'PoseMixture', 'QueryDensity', 'QuerySettings', 'SamplingSettings', 'SceneObject', 'SceneSimResult', 'Segmentation', 'SegmentationSettings', 'SettleResult', 'SimObject', 'SimResult', 'SimSettings', 'SpaceState', 'SurfaceCloud', 'SurfaceFeatureSettings', 'SynthesisResult', 'SynthesisTiming', 'SynthesizerSettings', 'URDF_AXES_ELEMENT', 'VisibilityModel', 'VisibilitySettings', 'build_info', 'camera_pose_matrix', 'complete_object', 'compute_surface_features', 'contact_data', 'learn_contact_models', 'load_cloud', 'load_mesh', 'log_vmf_s3_normaliser', 'orient_plane', 'pose_inverse', 'pose_multiply', 'prepare_cloud', 'quat_exp', 'quat_log', 'save_cloud', 'segment_depth', 'segment_organized', 'segment_scene', 'sim_closing_speeds', 'sim_execute', 'sim_execute_scene', 'sim_settle_scene', 'solid_volume']
 class GmmSettings:
     """
     How a GaussianMixture (or PoseMixture) is fitted by EM.
@@ -3707,7 +3707,7 @@ class SimSettings:
       support_friction = 1.0: lateral friction of the support plane
       object_mass = -1.0: kg; < 0: the URDF's
       grip_force = 40.0: N (N m): force limit of every finger joint motor
-      close_speed = 0.2: m/s (rad/s): joint speed limit while closing
+      close_speed = 0.2: m/s: fingertip speed limit while closing (sim_closing_speeds)
       close_overshoot = 0.5: motor targets lie this fraction of (grasp - pregrasp) past the grasp joints
       close_time = 0.5: s spent closing before the lift
       position_gain = 20.0: 1/s: joint velocity command = gain * position error
@@ -3754,7 +3754,7 @@ class SimSettings:
     @property
     def close_speed(self) -> float:
         """
-        m/s (rad/s): joint speed limit while closing
+        m/s: fingertip speed limit while closing (sim_closing_speeds)
         """
     @close_speed.setter
     def close_speed(self, arg0: typing.Any) -> None:
@@ -4266,6 +4266,10 @@ def segment_scene(points: typing.Any, viewpoints: typing.Any = None, plane: typi
       plane_image_stride = 4: px: segment_depth's block side for the support plane's search (at most image_stride: those)
       workspace = []: m: the world-frame box [x_min, y_min, z_min, x_max, y_max, z_max] the input is cropped to first; [] = none
     """
+def sim_closing_speeds(hand: Hand, pregrasp: typing.Any, grasp: typing.Any, settings: typing.Any = None, **kwargs) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+    """
+    The speed limit of every URDF joint (hand.joints order; m/s or rad/s, 0 for fixed joints) while the hand closes from pregrasp to grasp (arrays in hand.joint_names order): the fingertips move at close_speed m/s.
+    """
 def sim_execute(hand: Hand, object: SimObject, T_world_object: typing.Any, T_world_wrist: typing.Any, pregrasp: typing.Any, grasp: typing.Any, settings: typing.Any = None, **kwargs) -> SimResult:
     """
     Executes one grasp in Bullet (arrays in hand.joint_names order); see graspmix.sim.execute.
@@ -4279,7 +4283,7 @@ def sim_execute(hand: Hand, object: SimObject, T_world_object: typing.Any, T_wor
       support_friction = 1.0: lateral friction of the support plane
       object_mass = -1.0: kg; < 0: the URDF's
       grip_force = 40.0: N (N m): force limit of every finger joint motor
-      close_speed = 0.2: m/s (rad/s): joint speed limit while closing
+      close_speed = 0.2: m/s: fingertip speed limit while closing (sim_closing_speeds)
       close_overshoot = 0.5: motor targets lie this fraction of (grasp - pregrasp) past the grasp joints
       close_time = 0.5: s spent closing before the lift
       position_gain = 20.0: 1/s: joint velocity command = gain * position error

@@ -128,7 +128,7 @@ class Execution {
     const Eigen::VectorXd q_start = hand_.all_joint_values(pregrasp);
     const Eigen::VectorXd q_grasp = hand_.all_joint_values(grasp);
     add_hand(T_world_wrist, q_start);
-    add_drives(q_start, q_grasp);
+    add_drives(q_start, q_grasp, closing_speeds(hand_, pregrasp, grasp, s_));
   }
 
   /// The paper's protocol: 1. start in collision? 2. close, 3. lift, 4. hold; then which objects rose in
@@ -233,7 +233,7 @@ class Execution {
   }
 
   /// Motors on every movable joint (velocity commands, force-limited) and the URDF limits.
-  void add_drives(const Eigen::VectorXd& q_start, const Eigen::VectorXd& q_grasp) {
+  void add_drives(const Eigen::VectorXd& q_start, const Eigen::VectorXd& q_grasp, const Eigen::VectorXd& speeds) {
     const auto& links = hand_.links();
     const auto& joints = hand_.joints();
     lift_motor_ = add_motor(0, s_.lift_force);
@@ -248,10 +248,7 @@ class Execution {
         w_.world->addMultiBodyConstraint(limit.get());
         w_.constraints.push_back(std::move(limit));
       }
-      // Fast enough to reach the grasp joints within half the closing time, whatever the joint's travel.
-      const double speed =
-          std::max(s_.close_speed, 2.0 * std::abs(q_grasp[ji] - q_start[ji]) / std::max(s_.close_time, dt_));
-      fingers_.push_back({i, target, speed, add_motor(i, s_.grip_force)});
+      fingers_.push_back({i, target, speeds[ji], add_motor(i, s_.grip_force)});
     }
   }
 
@@ -352,6 +349,45 @@ class Execution {
 };
 
 }  // namespace
+
+Eigen::VectorXd closing_speeds(const Hand& hand, const Eigen::Ref<const Eigen::VectorXd>& pregrasp,
+                               const Eigen::Ref<const Eigen::VectorXd>& grasp, const SimSettings& s) {
+  check_settings(s);
+  hand.check_configuration(pregrasp, "pregrasp_joints");
+  hand.check_configuration(grasp, "grasp_joints");
+  // Each fingertip link's point: the centre of the box around its collision vertices, in the link frame.
+  std::vector<std::pair<int, Eigen::Vector3d>> tips;
+  for (int l : hand.fingertips()) {
+    const TriangleMesh m = hand.collision_mesh(l);
+    if (m.vertices.rows() == 0) continue;
+    tips.emplace_back(l, 0.5 * (m.vertices.colwise().minCoeff() + m.vertices.colwise().maxCoeff()).transpose());
+  }
+  const Eigen::Isometry3d I = Eigen::Isometry3d::Identity();
+  Eigen::VectorXd dof_speed(hand.n_dofs());
+  for (int d = 0; d < hand.n_dofs(); ++d) {
+    // The fingertips' speed per unit joint speed, by central differences of the forward kinematics (exact to
+    // O(h^2) for a revolute joint's circle; a mimic linkage moves with its master).
+    const double h = 1e-6;
+    Eigen::VectorXd qp = pregrasp, qm = pregrasp;
+    qp[d] += h;
+    qm[d] -= h;
+    const std::vector<Eigen::Isometry3d> Pp = hand.fk(I, qp), Pm = hand.fk(I, qm);
+    double rate = 0.0;
+    for (const auto& [l, c] : tips) {
+      rate = std::max(rate, (Pp[static_cast<size_t>(l)] * c - Pm[static_cast<size_t>(l)] * c).norm() / (2.0 * h));
+    }
+    const double tip_limited = rate > 1e-9 ? s.close_speed / rate : s.close_speed;
+    // Fast enough to reach the grasp joints within half the closing time, whatever the joint's travel.
+    dof_speed[d] = std::max(tip_limited, 2.0 * std::abs(grasp[d] - pregrasp[d]) / std::max(s.close_time, s.time_step));
+  }
+  const auto& joints = hand.joints();
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(joints.size()));
+  for (size_t j = 0; j < joints.size(); ++j) {
+    if (joints[j].dof >= 0)
+      out[static_cast<Eigen::Index>(j)] = std::abs(joints[j].multiplier) * dof_speed[joints[j].dof];
+  }
+  return out;
+}
 
 const char* to_string(SimOutcome outcome) {
   switch (outcome) {

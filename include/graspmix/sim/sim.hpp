@@ -49,8 +49,9 @@ struct SimSettings {
   double support_friction = 1.0;  ///< the plane (pybullet_data's plane.urdf uses 1)
   double object_mass = -1.0;      ///< kg; < 0: the URDF's <inertial><mass>
   double grip_force = 40.0;       ///< N (N m for revolute joints): force limit of every finger joint motor
-  /// m/s (rad/s): joint speed limit while closing; a joint whose travel from pregrasp to grasp needs
-  /// more to get there within close_time / 2 moves at that faster speed.
+  /// m/s: speed limit of the fingertips while closing (see closing_speeds: a revolute finger turns at
+  /// close_speed / its fingertips' distance from the axis); a joint whose travel from pregrasp to grasp
+  /// needs more to get there within close_time / 2 moves at that faster speed.
   double close_speed = 0.2;
   double close_overshoot = 0.5;      ///< the motors aim this fraction of (grasp - pregrasp) past the grasp joints
   double close_time = 0.5;           ///< s spent closing before the lift
@@ -108,6 +109,16 @@ struct SimResult {
   double simulated_time = 0.0;                                             ///< s
   double wall_time = 0.0;  ///< s (measured only; never affects the outcome)
 };
+
+/// The speed limit of every URDF joint (joints() order; m/s or rad/s, 0 for fixed joints) while the hand
+/// closes from `pregrasp` to `grasp`: each independent joint moves its fastest fingertip point (the centre of
+/// a fingertip link's collision box, Hand::fingertips) at settings.close_speed m/s at the pre-grasp, or
+/// faster if its travel needs more to end within close_time / 2; a mimic joint moves at |multiplier| times
+/// its master's speed, so a linkage keeps its proportions. A joint that moves no fingertip gets close_speed
+/// in its own units. (Without this a revolute finger turned at close_speed rad/s: the PR2 gripper's
+/// fingertips, 0.1 m from their axes, closed ten times slower than a prismatic finger.)
+Eigen::VectorXd closing_speeds(const Hand& hand, const Eigen::Ref<const Eigen::VectorXd>& pregrasp,
+                               const Eigen::Ref<const Eigen::VectorXd>& grasp, const SimSettings& settings = {});
 
 /// Executes one grasp: hand at T_world_wrist, pre-grasp configuration `pregrasp`, grasp configuration
 /// `grasp` (both in hand.joint_names() order), object's link frame at T_world_object. Throws

@@ -97,6 +97,8 @@ def _hand_drives(p, kw: dict, s: SimSettings, h, hid: int, pre, fin) -> tuple[di
     start = h.all_joint_values(pre)
     goal = h.all_joint_values(fin)
     limits = {j["name"]: j["limits"] for j in h.joints}
+    # The protocol's speed limits (the fingertips at close_speed m/s): the same numbers as the C++ simulation's.
+    speeds = dict(zip((j["name"] for j in h.joints), _core.sim_closing_speeds(h, pre, fin, s)))
     drives = []
     for name, q0 in start.items():
         p.resetJointState(hid, joints[name], q0, **kw)
@@ -104,8 +106,7 @@ def _hand_drives(p, kw: dict, s: SimSettings, h, hid: int, pre, fin) -> tuple[di
         lo, hi = limits[name]
         if math.isfinite(lo) and math.isfinite(hi) and lo <= hi:
             target = min(max(target, lo), hi)
-        speed = max(s.close_speed, 2.0 * abs(goal[name] - q0) / max(s.close_time, s.time_step))
-        drives.append((joints[name], target, speed))
+        drives.append((joints[name], target, float(speeds[name])))
     return joints, drives
 
 

@@ -246,3 +246,64 @@ def test_start_penetrations_name_the_links_and_depths():
     assert set(below) == {("plane", "finger_left"), ("plane", "finger_right")}
     for depth in below.values():
         assert depth == pytest.approx(0.01, abs=0.002)
+
+
+def _fingertip_speeds_in_pybullet(urdf, hand, q_all, qd_all):
+    """Each fingertip point's speed (m/s), by pybullet's kinematics of the hand's URDF at joint values q_all
+    and joint speeds qd_all (name -> value); the point is the centre of the box around the link's collision
+    vertices, as graspmix defines it."""
+    import pybullet as p
+
+    cid = p.connect(p.DIRECT)
+    try:
+        kw = {"physicsClientId": cid}
+        hid = p.loadURDF(str(urdf), useFixedBase=True, **kw)
+        index = {p.getJointInfo(hid, j, **kw)[1].decode(): j for j in range(p.getNumJoints(hid, **kw))}
+        links = {p.getJointInfo(hid, j, **kw)[12].decode(): j for j in range(p.getNumJoints(hid, **kw))}
+        for name, q in q_all.items():
+            p.resetJointState(hid, index[name], q, targetVelocity=qd_all[name], **kw)
+        out = {}
+        for tip in hand.fingertips:
+            v, _ = hand.collision_mesh(tip)
+            centre = (v.min(0) + v.max(0)) / 2
+            st = p.getLinkState(hid, links[tip], computeLinkVelocity=1, computeForwardKinematics=1, **kw)
+            from scipy.spatial.transform import Rotation
+
+            point = np.asarray(st[4]) + Rotation.from_quat(st[5]).apply(centre)  # link frame -> world
+            vel = np.asarray(st[6]) + np.cross(st[7], point - np.asarray(st[0]))  # COM velocity + w x r
+            out[tip] = float(np.linalg.norm(vel))
+        return out
+    finally:
+        p.disconnect(cid)
+
+
+@pytest.mark.parametrize("close_speed", [0.2, 0.05])
+def test_closing_speeds_move_every_fingertip_at_close_speed(close_speed):
+    # A revolute finger turns at close_speed / its lever, a prismatic one slides at close_speed (m/s), as
+    # pybullet's kinematics of the same URDFs measures; a long travel is still covered in close_time / 2.
+    s = sim.make_settings(close_speed=close_speed)
+    for urdf in (PR2, graspmix.io.default_hand_path()):
+        hand = sim.load_hand(urdf)
+        names = hand.joint_names
+        pre = {"left_gripper_joint": 0.5, "right_gripper_joint": 0.5} if urdf == PR2 else {names[0]: 0.04}
+        # A grasp a hair from the pre-grasp, so that the travel does not set the speed.
+        fin = {n: v - 1e-4 for n, v in pre.items()}
+        qp = np.array([pre[n] for n in names])
+        speeds = graspmix._core.sim_closing_speeds(hand, qp, np.array([fin[n] for n in names]), s)
+        joint_names = [j["name"] for j in hand.joints]
+        q_all = hand.all_joint_values(qp)
+        qd_all = {n: float(v) for n, v in zip(joint_names, speeds) if n in q_all}
+        for n in q_all:  # each joint moves its way: closing, as a mimic's multiplier turns it
+            qd_all[n] *= np.sign(hand.all_joint_values(np.array([fin[m] for m in names]))[n] - q_all[n]) or 1.0
+        tips = _fingertip_speeds_in_pybullet(urdf, hand, q_all, qd_all)
+        assert len(tips) == 2
+        for tip, v in tips.items():
+            assert v == pytest.approx(close_speed, rel=1e-4), (urdf.name, tip)
+    # The PR2's left tip: a box centred at (0.105, -0.005, 0) in the finger's frame, whose z is the joint axis.
+    hand = sim.load_hand(PR2)
+    far = graspmix._core.sim_closing_speeds(hand, np.array([0.5, 0.5]), np.array([0.5, 0.5]), s)
+    left = [j["name"] for j in hand.joints].index("left_gripper_joint")
+    assert far[left] == pytest.approx(close_speed / math.hypot(0.105, 0.005), rel=1e-6)
+    # Travel: 0.5 rad in close_time / 2 = 0.25 s needs 2 rad/s.
+    travel = graspmix._core.sim_closing_speeds(hand, np.array([0.5, 0.5]), np.array([0.0, 0.0]), s)
+    assert travel[left] == pytest.approx(max(2.0, close_speed / math.hypot(0.105, 0.005)))

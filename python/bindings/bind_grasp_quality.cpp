@@ -30,8 +30,6 @@ void bind_contact_quality(py::module_& m) {
       .field("concentration", &ContactQualitySettings::concentration,
              "nats per radian beyond the friction cone, per contact")
       .field("air_penalty", &ContactQualitySettings::air_penalty, "nats per finger that closes on nothing")
-      .field("lever_weight", &ContactQualitySettings::lever_weight,
-             "nats per cm of gravity's arm about the grasp line from the object's centroid (with `up` given)")
       .field("contact_tolerance", &ContactQualitySettings::contact_tolerance,
              "m: points within this of a link's surface are in contact")
       .field("closing_steps", &ContactQualitySettings::closing_steps,
@@ -61,34 +59,28 @@ void bind_contact_quality(py::module_& m) {
       .def_readonly("angles", &ContactQualityResult::angles,
                     "(N, F) angle (rad) between each contact's normal axis and the grasp line, in the scored pair")
       .def_readonly("patch_size", &ContactQualityResult::patch_size, "(N, F) points in each contact patch")
-      .def_readonly("lever", &ContactQualityResult::lever,
-                    "(N,) gravity's arm (m) about the scored pair's line from the centroid (NaN: no pair or no up)")
       .def_readonly("log_value", &ContactQualityResult::log_value, "(N,) log E");
 
   py::class_<ContactQualityExpert, Expert, std::shared_ptr<ContactQualityExpert>>(
       m, "ContactQualityExpert",
       "Soft: close the hand from each grasp's pre-grasp until each finger meets the cloud, then\n"
-      "log E = -concentration * sum_i max(0, theta_i - atan(friction)) - air_penalty * (fingers on nothing)\n"
-      "        - lever_weight * lever / 1 cm,\n"
-      "theta_i the angle between contact i's normal axis and the line between the contacts, lever gravity's arm\n"
-      "about that line from the points' centroid (with `up`)\n"
+      "log E = -concentration * sum_i max(0, theta_i - atan(friction)) - air_penalty * (fingers on nothing),\n"
+      "theta_i the angle between contact i's normal axis and the line between the contacts\n"
       "(include/graspmix/grasp/contact_quality.hpp).")
       .def(py::init([](HandPtr hand, const py::object& points, const py::object& normals, const ConfigModel& config,
-                       const py::object& up, const py::object& settings, const py::kwargs& kw) {
+                       const py::object& settings, const py::kwargs& kw) {
              if (!hand) throw py::value_error("hand: expected a Hand, got None");
              const ContactQualitySettings s =
                  settings_from<ContactQualitySettings>(settings, kw, "ContactQualityExpert");
              const Vec3Array P(to_matrix(points, "points", 3));
              const Vec3Array N(to_matrix(normals, "normals", 3));
-             const Eigen::Vector3d u = up.is_none() ? Eigen::Vector3d::Zero() : Eigen::Vector3d(to_vector(up, "up", 3));
              py::gil_scoped_release release;
-             return std::make_shared<ContactQualityExpert>(std::move(hand), P, N, config, s, u);
+             return std::make_shared<ContactQualityExpert>(std::move(hand), P, N, config, s);
            }),
            py::arg("hand"), py::arg("points"), py::arg("normals"), py::arg("pregrasp_config"), py::kw_only(),
-           py::arg("up") = py::none(), py::arg("settings") = py::none(),
+           py::arg("settings") = py::none(),
            ("hand: Hand; points, normals: (N, 3) the object's cloud and surface normals (world frame; a normal's\n"
-            "sign is ignored); pregrasp_config: a ConfigModel whose pregrasp_for(q) opens each grasp;\n"
-            "up: (3,) the direction against gravity (the support plane's normal), for the lever term; None: none.\n" +
+            "sign is ignored); pregrasp_config: a ConfigModel whose pregrasp_for(q) opens each grasp.\n" +
             settings_doc<ContactQualitySettings>())
                .c_str())
       .def(
@@ -112,9 +104,6 @@ void bind_contact_quality(py::module_& m) {
           },
           "Names of the finger links.")
       .def_property_readonly("n_points", &ContactQualityExpert::n_points)
-      .def_property_readonly("up", &ContactQualityExpert::up, "(3,) unit, against gravity; zero: no lever term")
-      .def_property_readonly("centroid", &ContactQualityExpert::centroid,
-                             "(3,) the points' centroid: the lever's centre of mass")
       .def_property_readonly(
           "settings", [](const ContactQualityExpert& e) { return ContactQualitySettings(e.settings()); },
           "The ContactQualitySettings it was built with (a copy).");

@@ -214,9 +214,6 @@ void bind_perception(py::module_& m) {
       .field("visibility_median_window", &SegmentationSettings::visibility_median_window,
              "px: segment_depth's visibility model keeps the depth image median-filtered over (2 r + 1)^2 pixels\n"
              "(0: as it is), against lone outline pixels that see through an object")
-      .field("image_median_window", &SegmentationSettings::image_median_window,
-             "px: segment_depth's and segment_organized's points, plane and objects from the image median-filtered\n"
-             "over (2 r + 1)^2 pixels (0: as it is)")
       .field("image_stride", &SegmentationSettings::image_stride,
              "px: segment_depth's block side, 0 = the largest within half a voxel_size at the median depth")
       .field("plane_image_stride", &SegmentationSettings::plane_image_stride,

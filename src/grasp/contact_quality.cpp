@@ -20,8 +20,6 @@ using closing::Contact;
 using closing::kInf;
 using closing::kNaN;
 
-constexpr double kLeverUnit = 0.01;  ///< m: lever_weight is per cm
-
 void check_settings(const ContactQualitySettings& s) {
   const std::string w = "ContactQualitySettings: ";
   if (!(s.friction > 0.0) || !std::isfinite(s.friction))
@@ -31,9 +29,6 @@ void check_settings(const ContactQualitySettings& s) {
   }
   if (!(s.air_penalty >= 0.0) || !std::isfinite(s.air_penalty)) {
     throw std::invalid_argument(w + "air_penalty must be finite and >= 0");
-  }
-  if (!(s.lever_weight >= 0.0) || !std::isfinite(s.lever_weight)) {
-    throw std::invalid_argument(w + "lever_weight must be finite and >= 0");
   }
   if (!(s.contact_tolerance >= 0.0) || !std::isfinite(s.contact_tolerance)) {
     throw std::invalid_argument(w + "contact_tolerance must be finite and >= 0");
@@ -57,16 +52,8 @@ Eigen::VectorXd closed_configuration(const Eigen::VectorXd& p, const Eigen::Vect
   return c;
 }
 
-/// What score() charges the lever against: the direction against gravity (zero: no lever) and the centroid.
-struct Gravity {
-  Eigen::Vector3d up, centroid;
-};
-
-/// log E of the contacts; the angles of the scored pair into `angles` (NaN elsewhere), its lever into `lever`
-/// (NaN without a pair or without `up`).
-double score(const std::vector<Contact>& contacts, const ContactQualitySettings& s, const Gravity& g, double* angles,
-             double* lever) {
-  *lever = kNaN;
+/// log E of the contacts; the angles of the scored pair into `angles` (NaN elsewhere).
+double score(const std::vector<Contact>& contacts, const ContactQualitySettings& s, double* angles) {
   const double cone = std::atan(s.friction);
   const int F = static_cast<int>(contacts.size());
   int air = 0;
@@ -77,7 +64,6 @@ double score(const std::vector<Contact>& contacts, const ContactQualitySettings&
   double best = kInf;
   int ba = -1, bb = -1;
   double best_th[2] = {kNaN, kNaN};
-  Eigen::Vector3d best_d = Eigen::Vector3d::Zero();
   for (int a = 0; a < F; ++a) {
     const Contact& ca = contacts[static_cast<size_t>(a)];
     if (ca.patch == 0) continue;
@@ -98,7 +84,6 @@ double score(const std::vector<Contact>& contacts, const ContactQualitySettings&
         bb = b;
         best_th[0] = ta;
         best_th[1] = tb;
-        best_d = d;
       }
     }
   }
@@ -107,11 +92,6 @@ double score(const std::vector<Contact>& contacts, const ContactQualitySettings&
     angles[ba] = best_th[0];
     angles[bb] = best_th[1];
     cost += s.concentration * best;
-    if (g.up.squaredNorm() > 0.0) {
-      // Gravity's torque about the line (c_a, d) per unit weight: (m - c_a) x (-up) . d = (m - c_a) . (up x d).
-      *lever = std::abs((g.centroid - contacts[static_cast<size_t>(ba)].point).dot(g.up.cross(best_d)));
-      cost += s.lever_weight * *lever / kLeverUnit;
-    }
   }
   return cost > 0.0 ? -cost : 0.0;  // never -0
 }
@@ -120,7 +100,7 @@ double score(const std::vector<Contact>& contacts, const ContactQualitySettings&
 
 ContactQualityExpert::ContactQualityExpert(std::shared_ptr<const Hand> hand, const Eigen::Ref<const Vec3Array>& points,
                                            const Eigen::Ref<const Vec3Array>& normals, ConfigModel config,
-                                           ContactQualitySettings settings, const Eigen::Vector3d& up)
+                                           ContactQualitySettings settings)
     : hand_(std::move(hand)), config_(std::move(config)), settings_(std::move(settings)) {
   if (!hand_) throw std::invalid_argument("ContactQualityExpert: no hand");
   check_settings(settings_);
@@ -131,9 +111,6 @@ ContactQualityExpert::ContactQualityExpert(std::shared_ptr<const Hand> hand, con
   }
   require_finite(points, "ContactQualityExpert: points");
   require_finite(normals, "ContactQualityExpert: normals");
-  if (!up.allFinite()) throw std::invalid_argument("ContactQualityExpert: up must be finite");
-  if (up.squaredNorm() > 0.0) up_ = up.normalized();
-  if (points.rows() > 0) centroid_ = points.colwise().mean().transpose();
   for (Eigen::Index i = 0; i < normals.rows(); ++i) {
     if (!(normals.row(i).norm() > 1e-12)) {
       throw std::invalid_argument("ContactQualityExpert: normals row " + std::to_string(i) + " is zero");
@@ -189,8 +166,6 @@ ContactQualityResult ContactQualityExpert::evaluate(const Eigen::Ref<const PoseA
   r.angles = RowMatrixXd::Constant(n, F, kNaN);
   r.patch_size = Eigen::MatrixXi::Zero(n, F);
   r.log_value = Eigen::VectorXd::Zero(n);
-  r.lever = Eigen::VectorXd::Constant(n, kNaN);
-  const Gravity gravity{up_, centroid_};
   const double tol = settings_.contact_tolerance;
   std::string error;
   // Small batches (annealing scores ~10 grasps at a time) stay on one thread, as the collision expert's.
@@ -232,7 +207,7 @@ ContactQualityResult ContactQualityExpert::evaluate(const Eigen::Ref<const PoseA
         r.normals.block<1, 3>(i, 3 * f) = ct.normal.transpose();
         r.patch_size(i, f) = ct.patch;
       }
-      r.log_value[i] = score(contacts, settings_, gravity, angles.data(), &r.lever[i]);
+      r.log_value[i] = score(contacts, settings_, angles.data());
       r.angles.row(i) = angles.transpose();
     }
   }

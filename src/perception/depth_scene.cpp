@@ -312,12 +312,7 @@ Segmentation segment_depth(const Eigen::Ref<const DepthImage>& depth, const Pinh
   detail::check_segmentation_settings(settings);
   const std::int64_t n = camera.check_image(depth, "depth");
   check_view(n, T_world_camera, "depth");
-  if (settings.image_median_window == 0) {
-    return segment_image(camera.back_project(depth, "depth"), depth, camera, T_world_camera, settings, plane, t0, n);
-  }
-  const DepthImage filtered = median_filtered(depth, settings.image_median_window);
-  return segment_image(camera.back_project(filtered, "depth"), filtered, camera, T_world_camera, settings, plane, t0,
-                       n);
+  return segment_image(camera.back_project(depth, "depth"), depth, camera, T_world_camera, settings, plane, t0, n);
 }
 
 namespace {
@@ -336,16 +331,6 @@ OrganizedInput checked_organized(const Eigen::Ref<const Vec3Array>& points, int 
   return in;
 }
 
-/// segment_image on an organized cloud's points, or on those of its image median-filtered (image_median_window).
-Segmentation segment_organized_image(const Eigen::Ref<const Vec3Array>& points, const OrganizedInput& in,
-                                     const PinholeCamera& camera, const Eigen::Isometry3d& T,
-                                     const SegmentationSettings& s, const std::optional<Eigen::Vector4d>& plane,
-                                     Clock::time_point t0) {
-  if (s.image_median_window == 0) return segment_image(points, in.depth, camera, T, s, plane, t0, in.n_returns);
-  const DepthImage filtered = median_filtered(in.depth, s.image_median_window);
-  return segment_image(camera.back_project(filtered, "points"), filtered, camera, T, s, plane, t0, in.n_returns);
-}
-
 }  // namespace
 
 Segmentation segment_organized(const Eigen::Ref<const Vec3Array>& points, int height, int width,
@@ -355,7 +340,7 @@ Segmentation segment_organized(const Eigen::Ref<const Vec3Array>& points, int he
   detail::check_segmentation_settings(settings);
   const OrganizedInput in = checked_organized(points, height, width, T_world_camera);
   const PinholeFit fit = fit_pinhole(points, height, width, max_fit_rms, "points");
-  return segment_organized_image(points, in, fit.camera, T_world_camera, settings, plane, t0);
+  return segment_image(points, in.depth, fit.camera, T_world_camera, settings, plane, t0, in.n_returns);
 }
 
 Segmentation segment_organized(const Eigen::Ref<const Vec3Array>& points, const PinholeCamera& camera,
@@ -364,7 +349,7 @@ Segmentation segment_organized(const Eigen::Ref<const Vec3Array>& points, const 
   const auto t0 = Clock::now();
   detail::check_segmentation_settings(settings);
   const OrganizedInput in = checked_organized(points, camera.height(), camera.width(), T_world_camera);
-  return segment_organized_image(points, in, camera, T_world_camera, settings, plane, t0);
+  return segment_image(points, in.depth, camera, T_world_camera, settings, plane, t0, in.n_returns);
 }
 
 }  // namespace graspmix

@@ -76,7 +76,6 @@ void detail::check_segmentation_settings(const SegmentationSettings& s) {
   }
   if (s.visibility_median_window < 0 || s.visibility_median_window > 5)
     bad("visibility_median_window must be in [0, 5] px");
-  if (s.image_median_window < 0 || s.image_median_window > 5) bad("image_median_window must be in [0, 5] px");
   if (s.image_stride < 0) bad("image_stride must be >= 0 (0: chosen from voxel_size)");
   if (s.plane_image_stride < 1) bad("plane_image_stride must be >= 1");
 }

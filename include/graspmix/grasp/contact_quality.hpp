@@ -29,16 +29,7 @@
 //   log E = -concentration * sum_i max(0, theta_i - atan(friction)) - air_penalty * (fingers without contact).
 // With more than two contacts every pair is scored and the best pair counts (a pair inside its cones is
 // enough to hold); the Ferrari-Canny epsilon is not implemented. With fewer than two contacts only the air
-// term is charged.
-//
-// The lever (with the direction against gravity, `up`, given): lifted, the object hangs from the line of the
-// scored pair's contacts, and gravity turns it about that line with the arm
-//   lever = |(m - c1) . (up x d)|,
-// m the centroid of the expert's points (the observed and completed object: its centre of mass, the density
-// taken uniform over the surface). Two pads resist that turn only by their torsional friction, so a grasp whose
-// line passes far from the centre of mass slips when lifted. The term, added to log E above:
-//   - lever_weight * lever / (1 cm)   (a line along gravity has no arm).
-// log E is finite and <= 0: a soft expert.
+// term is charged. log E is finite and <= 0: a soft expert.
 #include <memory>
 #include <string>
 #include <vector>
@@ -63,9 +54,6 @@ struct ContactQualitySettings {
   /// 40 lifted 82.7 / 84.0 / 85.0 / 85.6%, 80 on test60 as 40 (docs/one-view.md); it was 5, what 0.5 rad outside the
   /// cone costs.
   double air_penalty = 40.0;
-  /// nats per cm of the lever (above): the arm of gravity's turn about the grasp's line, from the object's
-  /// centroid. 0: off. Only with `up` given to the expert (a synthesis gives the support plane's normal).
-  double lever_weight = 0.0;
   double contact_tolerance = 1e-3;       ///< m: points within this of a link's surface are in contact (>= 0)
   int closing_steps = 16;                ///< steps of the closing motion before bisection (links that do not translate)
   std::string name = "contact_quality";  ///< the key of its term in a grasp's experts table
@@ -80,7 +68,6 @@ struct ContactQualityResult {
   RowMatrixXd normals;         ///< (N, F * 3) contact normal axes, unit, pointing towards the finger (NaN: none)
   RowMatrixXd angles;          ///< (N, F) theta_f (rad) in the scored pair; NaN for fingers outside it
   Eigen::MatrixXi patch_size;  ///< (N, F) points in each contact patch (0: no contact)
-  Eigen::VectorXd lever;       ///< (N) the lever (m) of the scored pair; NaN without a pair or without `up`
   Eigen::VectorXd log_value;   ///< (N) log E
 };
 
@@ -90,11 +77,10 @@ class ContactQualityExpert : public Expert {
   /// as an axis, its sign ignored). config: the configuration model whose pregrasps_for(q) opens each grasp.
   /// Throws std::invalid_argument for a null hand, a hand without finger links, a configuration model of
   /// another dimension, points and normals of different shapes, non-finite values, zero normals, or bad
-  /// settings (friction <= 0, a negative concentration, penalty, lever weight or tolerance, closing_steps < 1).
-  /// up: the direction against gravity (world; normalised here), for the lever term; zero: not known, no lever.
+  /// settings (friction <= 0, a negative concentration, penalty or tolerance, closing_steps < 1).
   ContactQualityExpert(std::shared_ptr<const Hand> hand, const Eigen::Ref<const Vec3Array>& points,
                        const Eigen::Ref<const Vec3Array>& normals, ConfigModel config,
-                       ContactQualitySettings settings = {}, const Eigen::Vector3d& up = Eigen::Vector3d::Zero());
+                       ContactQualitySettings settings = {});
   ~ContactQualityExpert() override;
 
   std::string name() const override { return settings_.name; }
@@ -109,8 +95,6 @@ class ContactQualityExpert : public Expert {
   const ContactQualitySettings& settings() const { return settings_; }
   const ConfigModel& config() const { return config_; }
   Eigen::Index n_points() const;
-  const Eigen::Vector3d& up() const { return up_; }              ///< unit, or zero (no lever term)
-  const Eigen::Vector3d& centroid() const { return centroid_; }  ///< of the points: the lever's centre of mass
 
   struct Index;  ///< the cloud's grid and normals (defined in src/)
 
@@ -118,7 +102,6 @@ class ContactQualityExpert : public Expert {
   std::shared_ptr<const Hand> hand_;
   ConfigModel config_;
   ContactQualitySettings settings_;
-  Eigen::Vector3d up_ = Eigen::Vector3d::Zero(), centroid_ = Eigen::Vector3d::Zero();
   std::vector<int> fingers_;
   std::vector<bool> translating_;  ///< per finger: moved by prismatic joints only, box or mesh shapes only
   std::unique_ptr<const Index> index_;

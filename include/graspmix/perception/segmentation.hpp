@@ -138,10 +138,6 @@ struct SegmentationSettings {
   /// the development objects (one view, GMM, 300 attempts) it lifted 84.0% under the paper's depth noise against
   /// 71.3% without (clean 88.7 / 89.3%), 2 lifted less (docs/one-view.md).
   int visibility_median_window = 1;
-  /// px: a depth image's or organized cloud's scene (segment_depth, segment_organized) makes its points, plane and
-  /// objects (and its visibility model, with visibility_median_window on top) from the image median-filtered over
-  /// (2 r + 1)^2 pixels, r this (0: the image as it is, in [0, 5]): the depth cameras' own spatial filter.
-  int image_median_window = 0;
   /// A depth image's scene (segment_depth): pixels per block side of the image-space subsampling, 0 = chosen
   /// per image, the largest block whose side at the median depth of the returns stays within half a voxel_size.
   int image_stride = 0;

@@ -93,16 +93,12 @@ def clear_approach_expert(collision, config, opts: SynthesisOptions):
     return _core.ClearApproachExpert(collision, config, settings=opts.approach)
 
 
-def contact_quality_expert(hand, surface, config, opts: SynthesisOptions, plane=None):
+def contact_quality_expert(hand, surface, config, opts: SynthesisOptions):
     """The soft contact-quality expert of one target object (its surface: points and normals) and grasp type (its
-    ConfigModel opens the hand), gravity against the support plane's normal (its lever term; none without a
-    plane); None when opts.contact_quality is None."""
+    ConfigModel opens the hand); None when opts.contact_quality is None."""
     if opts.contact_quality is None:
         return None
-    up = None if plane is None or not np.any(plane[:3]) else np.asarray(plane[:3], dtype=float)
-    return _core.ContactQualityExpert(
-        hand, surface.points, surface.normals, config, up=up, settings=opts.contact_quality
-    )
+    return _core.ContactQualityExpert(hand, surface.points, surface.normals, config, settings=opts.contact_quality)
 
 
 def constraint_experts(

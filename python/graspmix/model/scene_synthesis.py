@@ -179,7 +179,7 @@ def synthesize_targets(
             own = (
                 clear_of_neighbours(model, scene, i, opts, config),
                 clear_approach_expert(approach, config, opts),
-                contact_quality_expert(model.hand, surface, config, opts, scene.plane),
+                contact_quality_expert(model.hand, surface, config, opts),
             )
             extra = shared + [e for e in own if e is not None]
             weights = query_weights(scene, i, surface, opts)

@@ -36,6 +36,9 @@ PAGES = {
         "air-heldout",
         "air-four-views",
         "air-clutter",
+        "lever-test60",
+        "lever-dev",
+        "lever-clutter-dev",
     },
 }
 SCRIPTS = ("scripts/findings_table.py", "scripts/ablation_table.py", "scripts/clutter_table.py")

@@ -175,7 +175,9 @@ def add_parsers(sub) -> None:
     s.add_argument("--out-scene", type=output_file, help="write the scene that remains (lifted objects removed)")
     s.add_argument("--grasps", type=input_path, required=True, help="grasps.json (format graspmix.grasps/1)")
     s.add_argument("--rank", type=int_in(1), default=1, help="which grasp (1 = the best)")
-    s.add_argument("--hand", type=input_path, help="hand URDF (default: the grasps file's hand, else the bundled WSG 50)")
+    s.add_argument(
+        "--hand", type=input_path, help="hand URDF (default: the grasps file's hand, else the bundled WSG 50)"
+    )
     s.add_argument("--grip-force", type=float_in(gt=0.0), help=f"N (default {d.grip_force:g})")
     s.add_argument("--lift-height", type=float_in(gt=0.0), help=f"m (default {d.lift_height:g})")
     s.add_argument(

@@ -1,11 +1,12 @@
-"""Hands of pybullet_data made into graspmix models the way a new user would (issue 27's trial).
+"""Hands of pybullet_data, and the bundled three-finger hand, made into graspmix models the way a new user would
+(issue 27's trial).
 
-    python scripts/hand_models.py OUT_DIR [--hands panda,xarm,pr2] [--method gmm] [--seed 0]
+    python scripts/hand_models.py OUT_DIR [--hands panda,xarm,pr2,three_finger] [--method gmm] [--seed 0]
 
 For each hand, with the project's own command line only (a subprocess per step, so this is the recipe a user
 types): `graspmix_cli hand --urdf ROBOT --wrist-link LINK --out OUT_DIR/NAME/hand.urdf` cuts the hand from its
-robot (the PR2 gripper is used as shipped), `graspmix_cli demo` records one top-down demonstration of the bundled
-box (60 x 100 x 140 mm standing on the table; the fingers close across its 60 mm side, about 4-5 cm below its
+robot (the PR2 gripper and the bundled data/hands/three_finger.urdf are used as shipped), `graspmix_cli demo`
+records one top-down demonstration of the bundled box (60 x 100 x 140 mm standing on the table; the fingers close across its 60 mm side, about 4-5 cm below its
 top) and `graspmix_cli learn` fits a model. Written under OUT_DIR/NAME/: hand.urdf (cut hands), demo.json,
 demo.pcd, demo.png, model.json. The WSG 50's model is the bundled data/models/box_wsg50_gmm.json, made the
 same way (data/demos/box_wsg50.json). A step that fails stops the script with its command and message.
@@ -20,6 +21,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import pybullet_data
+from graspmix.io import resolve_path
 
 PYBULLET_DATA = Path(pybullet_data.getDataPath())
 # The wrist turned so that its +z (the approach) points down and its y, along which these fingers close, along
@@ -30,7 +32,7 @@ DOWN_Y_ACROSS = "0.7071068,0.7071068,0,0"
 @dataclass(frozen=True)
 class HandRecipe:
     name: str
-    robot: str  # relative to pybullet_data
+    robot: str  # relative to pybullet_data, or package://graspmix/... (the bundled data)
     wrist_link: str | None  # None: the URDF is a hand already (used as shipped)
     wrist: str  # x,y,z,qx,qy,qz,qw of the wrist over the box (its top at z = 0.14 m)
     pregrasp: str
@@ -66,6 +68,19 @@ HANDS = {
         "left_gripper_joint=0.5,right_gripper_joint=0.5",
         "left_gripper_joint=0,right_gripper_joint=0",
     ),
+    # Bundled: finger_1 on the wrist's +x, turned to the world's +y onto the box's narrow face (60 mm wide);
+    # finger_2 and finger_3 (120 degrees on) close with their inner edges on its broad faces, 60 mm apart. A centric hand
+    # stops when all three touch: the wrist 10 mm off the box's centre along +y makes them touch together
+    # (finger_1_joint about 0.040, the inner faces 40 mm from the axis). Fingertips 158 mm below the wrist: the
+    # tips 40 mm below the top, the jaws 40 mm above it.
+    "three_finger": HandRecipe(
+        "three_finger",
+        "package://graspmix/hands/three_finger.urdf",
+        None,
+        f"0,0.01,0.258,{DOWN_Y_ACROSS}",
+        "finger_1_joint=0.065",
+        "finger_1_joint=0.008",
+    ),
 }
 
 
@@ -80,11 +95,12 @@ def run(args: list[str]) -> None:
 
 
 def hand_urdf(recipe: HandRecipe, folder: Path) -> Path:
-    """The hand's URDF: cut from its robot into folder/hand.urdf, or pybullet_data's own."""
+    """The hand's URDF: cut from its robot into folder/hand.urdf, or the file itself (pybullet_data's, bundled)."""
     if recipe.wrist_link is None:
-        return PYBULLET_DATA / recipe.robot
+        return resolve_path(recipe.robot, PYBULLET_DATA)
     out = folder / "hand.urdf"
-    run(["hand", "--urdf", str(PYBULLET_DATA / recipe.robot), "--wrist-link", recipe.wrist_link, "--out", str(out)])
+    robot = resolve_path(recipe.robot, PYBULLET_DATA)
+    run(["hand", "--urdf", str(robot), "--wrist-link", recipe.wrist_link, "--out", str(out)])
     return out
 
 

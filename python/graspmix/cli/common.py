@@ -6,6 +6,7 @@ before any work starts, by the helpers of graspmix.io.checks."""
 from __future__ import annotations
 
 import argparse
+import re
 import sys
 
 import numpy as np
@@ -26,9 +27,21 @@ class CliError(Exception):
     """A user error: printed as one line, exit status 2."""
 
 
+# What argparse takes for a negative number (its own rule, ^-\d+$|^-\d*\.\d+$), widened to a comma-separated list
+# of numbers whose first is negative, as poses and points are given.
+_NUMBER = r"\d*\.?\d+(?:[eE][-+]?\d+)?"
+NEGATIVE_NUMBERS = re.compile(rf"^-{_NUMBER}(?:,[-+]?{_NUMBER})*$")
+
+
 class OneLineParser(argparse.ArgumentParser):
     """argparse's parser, but an error is one line on stderr ("graspmix_cli sub: error: ...") and exit
-    status 2, like every other error of the command line (argparse prints the usage first)."""
+    status 2, like every other error of the command line (argparse prints the usage first). A value that
+    starts with a minus sign and is a comma-separated list of numbers (`--wrist -0.004,0,0.258,1,0,0,0`) is
+    a value, as a single negative number is to argparse, not an unknown option."""
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = NEGATIVE_NUMBERS
 
     def error(self, message: str):
         text = " ".join(message.split())

@@ -1,6 +1,7 @@
 """graspmix_cli hand: what a hand URDF holds as graspmix reads it (links, joints, limits, mimic
 relations, the independent joints a demonstration sets, the wrist frame, the approach axis, closing
-directions, the opening width of a two-finger gripper), and a picture of it at its limits."""
+directions, the opening width of a two-finger gripper or the diameter three or more fingers around the
+approach axis leave free), and a picture of it at its limits."""
 
 from __future__ import annotations
 
@@ -112,6 +113,13 @@ def format_hand(info: dict) -> list[str]:
         lines.append(
             f"two-finger gripper ({sides}): opening {1000 * w['lower'] + 0.0:.1f} mm at the lower limits, "
             f"{1000 * w['upper'] + 0.0:.1f} mm at the upper limits"
+        )
+    d = info.get("opening_diameter")
+    if d:
+        lines.append(
+            f"{len(info['fingertips'])} fingertips around the approach axis: opening (the circle about the axis "
+            f"they leave free) {1000 * d['lower'] + 0.0:.1f} mm across at the lower limits, "
+            f"{1000 * d['upper'] + 0.0:.1f} mm at the upper limits"
         )
     return lines
 

@@ -1,7 +1,8 @@
 """What a hand is, read from its URDF: links, joints, mimic relations, the wrist frame, the approach axis,
-each joint's closing direction and, for a two-finger gripper, its opening width at the joint limits
-(describe_hand; `graspmix_cli hand`). Everything is derived by forward kinematics of the collision
-geometry, so it holds for any hand graspmix can load."""
+each joint's closing direction and its opening at the joint limits: a two-finger gripper's width, or the
+diameter that three or more fingers around the approach axis leave free (describe_hand; `graspmix_cli
+hand`). Everything is derived by forward kinematics of the collision geometry, so it holds for any hand
+graspmix can load."""
 
 from __future__ import annotations
 
@@ -118,6 +119,31 @@ def _width(hand, meshes, q, side_a, side_b, d, axis) -> float:
     return round(float((verts[tip(side_b)] @ d).min() - (verts[tip(side_a)] @ d).max()), 9)
 
 
+def _clear_diameter(hand, meshes, q, tips, centre, axis) -> float:
+    """Diameter of the widest circle about the line through centre along axis that the fingertip links leave
+    free: twice the least distance from the line to a link's collision geometry (its convex hull, seen along the
+    axis), 0 where a link reaches across the line. A centric hand's opening (three or more fingers around it)."""
+    from scipy.spatial import ConvexHull, QhullError
+
+    u = _unit(np.cross(axis, [1.0, 0.0, 0.0] if abs(axis[0]) < 0.9 else [0.0, 1.0, 0.0]))
+    v = np.cross(axis, u)
+    radius = np.inf
+    for pts in _vertices(hand, meshes, q, set(tips)).values():
+        flat = (pts - centre) @ np.column_stack([u, v])  # (V, 2) across the axis, the line at the origin
+        try:
+            hull = ConvexHull(flat)
+        except QhullError:  # flat seen edge-on: its points are the nearest guess
+            radius = min(radius, float(np.linalg.norm(flat, axis=1).min()))
+            continue
+        if np.all(hull.equations[:, 2] <= 0.0):  # the line passes through the link
+            return 0.0
+        ring = flat[hull.vertices]
+        a, b = ring, np.roll(ring, -1, axis=0)
+        t = np.clip(np.einsum("ij,ij->i", -a, b - a) / np.einsum("ij,ij->i", b - a, b - a), 0.0, 1.0)
+        radius = min(radius, float(np.linalg.norm(a + t[:, None] * (b - a), axis=1).min()))
+    return round(2.0 * radius, 9)
+
+
 def describe_hand(path: str | Path, hand=None) -> dict:
     """A hand's description from its URDF (see the module's docstring). ValueError for a file that is
     missing or not a URDF graspmix can load. hand: the loaded graspmix.Hand, to skip reading it again.
@@ -127,7 +153,9 @@ def describe_hand(path: str | Path, hand=None) -> dict:
     approach_axis (the hand's axis, where it came from, the fingers' direction from the wrist and the angle
     between them), fingertips (Hand.fingertips),
     closing (independent joint -> +1/-1), fingers (two sides of fingertip links, or None), opening_width
-    (m at the lower and upper limits, two-finger grippers only, else None)."""
+    (m at the lower and upper limits, two-finger grippers only, else None), opening_diameter (m at the lower
+    and upper limits, hands of three or more fingertips around the approach axis only, else None: the widest
+    circle about the axis through the fingertips' centre that they leave free)."""
     path = check_input_file(check_path_text(path, "urdf"), "urdf")
     hand = hand or _core.Hand.from_urdf(str(path))
     moving = _moving(hand)
@@ -150,6 +178,12 @@ def describe_hand(path: str | Path, hand=None) -> dict:
             limit: _width(hand, meshes, lim[:, i], sides[0], sides[1], sides[2], axis)
             for i, limit in enumerate(("lower", "upper"))
         }
+    diameter = None
+    if sides is None and len(tip_vertices) >= 3:
+        diameter = {
+            limit: _clear_diameter(hand, meshes, lim[:, i], tips, centre, axis)
+            for i, limit in enumerate(("lower", "upper"))
+        }
     return {
         "urdf": str(path),
         "name": hand.name,
@@ -170,6 +204,7 @@ def describe_hand(path: str | Path, hand=None) -> dict:
         "closing": closing,
         "fingers": None if sides is None else [sides[0], sides[1]],
         "opening_width": width,
+        "opening_diameter": diameter,
     }
 
 

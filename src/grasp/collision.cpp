@@ -179,7 +179,7 @@ void CollisionExpert::build_volume(const Eigen::Ref<const Vec3Array>& cloud) {
     volume_ = std::make_shared<const OccupancyMap>(solid_volume(cloud, *plane_, vs));
     if (unseen_) volume_ = std::make_shared<const OccupancyMap>(carve_seen_free(*volume_, *unseen_));
   }
-  auto shapes = std::make_shared<Shapes>(*hand_, plane_, settings_.plane_margin);
+  auto shapes = std::make_shared<Shapes>(hand_, plane_, settings_.plane_margin);
   if (occupancy_ || volume_ || unseen_) {
     // One set of interior samples for every map: at the finest of their cells.
     constexpr double none = std::numeric_limits<double>::infinity();

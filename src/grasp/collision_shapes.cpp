@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 
@@ -24,7 +26,7 @@ using detail::signed_distance;
 
 namespace {
 
-std::shared_ptr<fcl::CollisionGeometryd> make_fcl_geometry(const CollisionShape& s) {
+std::shared_ptr<const fcl::CollisionGeometryd> make_fcl_geometry(const CollisionShape& s) {
   switch (s.type) {
     case ShapeType::Box:
       return std::make_shared<fcl::Boxd>(s.size.x(), s.size.y(), s.size.z());
@@ -47,13 +49,32 @@ std::shared_ptr<fcl::CollisionGeometryd> make_fcl_geometry(const CollisionShape&
   return nullptr;
 }
 
+/// What of a hand's shapes outlives one expert, per shape in Shapes' order: its FCL geometry and its interior
+/// samples per grid spacing, each made when first asked for. Kept while the hand lives (a weak reference: an entry
+/// whose hand is gone is dropped at the next look-up).
+struct HandShapes {
+  std::vector<std::shared_ptr<const fcl::CollisionGeometryd>> geometry;
+  std::map<double, std::vector<std::shared_ptr<const CollisionExpert::Shapes::Interior>>> interiors;
+};
+
+std::mutex cache_mutex;
+std::map<std::weak_ptr<const Hand>, HandShapes, std::owner_less<std::weak_ptr<const Hand>>> cache;
+
+/// The hand's entry (empty at first); call with cache_mutex held.
+HandShapes& hand_entry(const std::shared_ptr<const Hand>& hand) {
+  for (auto it = cache.begin(); it != cache.end();) it = it->first.expired() ? cache.erase(it) : std::next(it);
+  return cache[hand];
+}
+
 }  // namespace
 
-CollisionExpert::Shapes::Shapes(const Hand& hand, const std::optional<Eigen::Vector4d>& plane, double plane_margin) {
-  for (int l = 0; l < hand.n_links(); ++l) {
-    for (const CollisionShape& s : hand.links()[static_cast<size_t>(l)].collisions) {
+CollisionExpert::Shapes::Shapes(const std::shared_ptr<const Hand>& hand_ptr,
+                                const std::optional<Eigen::Vector4d>& plane, double plane_margin)
+    : hand(hand_ptr) {
+  for (int l = 0; l < hand->n_links(); ++l) {
+    for (const CollisionShape& s : hand->links()[static_cast<size_t>(l)].collisions) {
       if (s.type == ShapeType::Mesh && !s.hull_planes) {
-        throw std::invalid_argument("hand: link '" + hand.link_names()[static_cast<size_t>(l)] +
+        throw std::invalid_argument("hand: link '" + hand->link_names()[static_cast<size_t>(l)] +
                                     "' has a mesh without geometry (the hand was read with load_meshes = false)");
       }
       Shape sh;
@@ -77,11 +98,17 @@ CollisionExpert::Shapes::Shapes(const Hand& hand, const std::optional<Eigen::Vec
           break;
         }
       }
-      if (plane) sh.fcl_geometry = make_fcl_geometry(s);
       shapes.push_back(std::move(sh));
     }
   }
   if (plane) {
+    // FCL's geometry of a mesh is its hull (FCL checks the hull's topology when it is made: made once per hand).
+    const std::lock_guard<std::mutex> lock(cache_mutex);
+    HandShapes& entry = hand_entry(hand);
+    if (entry.geometry.empty()) {
+      for (const Shape& sh : shapes) entry.geometry.push_back(make_fcl_geometry(*sh.src));
+    }
+    for (std::size_t i = 0; i < shapes.size(); ++i) shapes[i].fcl_geometry = entry.geometry[i];
     // FCL's half-space is {x : n . x <= d}: the table below the (raised) plane n . x + d0 = margin.
     halfspace = std::make_shared<fcl::Halfspaced>(Eigen::Vector3d(plane->head<3>()), plane_margin - (*plane)[3]);
   }
@@ -89,47 +116,60 @@ CollisionExpert::Shapes::Shapes(const Hand& hand, const std::optional<Eigen::Vec
 
 namespace {
 
-/// Appends to sh the interior samples of the grid cells [lo, hi) (indices of the grid first + spacing * (i, j, k))
+/// Appends to `in` the interior samples of the grid cells [lo, hi) (indices of the grid first + spacing * (i, j, k))
 /// as one block with their bounding box, when any lies inside the shape.
-void add_block(CollisionExpert::Shapes::Shape& sh, const Eigen::Vector3d& first, double spacing,
-               const Eigen::Vector3i& lo, const Eigen::Vector3i& hi) {
-  CollisionExpert::Shapes::Shape::Block b;
-  b.begin = sh.samples.size();
+void add_block(CollisionExpert::Shapes::Interior& in, const CollisionShape& src, const Eigen::Vector3d& first,
+               double spacing, const Eigen::Vector3i& lo, const Eigen::Vector3i& hi) {
+  CollisionExpert::Shapes::Interior::Block b;
+  b.begin = in.samples.size();
   Eigen::Vector3d box_lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), box_hi = -box_lo;
   for (int k = lo.z(); k < hi.z(); ++k)
     for (int j = lo.y(); j < hi.y(); ++j)
       for (int i = lo.x(); i < hi.x(); ++i) {
         const Eigen::Vector3d p = first + spacing * Eigen::Vector3d(i, j, k);
-        if (signed_distance(*sh.src, p) >= 0) continue;
-        sh.samples.push_back(p);
+        if (signed_distance(src, p) >= 0) continue;
+        in.samples.push_back(p);
         box_lo = box_lo.cwiseMin(p);
         box_hi = box_hi.cwiseMax(p);
       }
-  b.end = sh.samples.size();
+  b.end = in.samples.size();
   if (b.end == b.begin) return;
   b.centre = 0.5 * (box_lo + box_hi);
   b.half = 0.5 * (box_hi - box_lo);
-  sh.blocks.push_back(b);
+  in.blocks.push_back(b);
+}
+
+/// One shape's interior samples: a grid of spacing min(h, half its thinnest side) centred on its box.
+std::shared_ptr<const CollisionExpert::Shapes::Interior> make_interior(const CollisionExpert::Shapes::Shape& sh,
+                                                                       double h) {
+  constexpr int kBlock = 4;
+  auto in = std::make_shared<CollisionExpert::Shapes::Interior>();
+  const double spacing = std::min(h, sh.half.minCoeff());  // at least two samples across
+  if (!(spacing > 0)) return in;
+  const Eigen::Vector3i n = (2.0 * sh.half / spacing).array().ceil().cast<int>().max(1);
+  // The grid centred on the shape's box, so that a symmetric shape gets symmetric samples.
+  const Eigen::Vector3d first = sh.centre - 0.5 * spacing * (n.cast<double>() - Eigen::Vector3d::Ones());
+  for (int kb = 0; kb < n.z(); kb += kBlock)
+    for (int jb = 0; jb < n.y(); jb += kBlock)
+      for (int ib = 0; ib < n.x(); ib += kBlock) {
+        const Eigen::Vector3i lo(ib, jb, kb);
+        add_block(*in, *sh.src, first, spacing, lo, (lo + Eigen::Vector3i::Constant(kBlock)).cwiseMin(n));
+      }
+  in->sample_volume = spacing * spacing * spacing;
+  return in;
 }
 
 }  // namespace
 
 void CollisionExpert::Shapes::sample_interiors(double h) {
-  constexpr int kBlock = 4;
-  for (Shape& sh : shapes) {
-    const double spacing = std::min(h, sh.half.minCoeff());  // at least two samples across
-    if (!(spacing > 0)) continue;
-    const Eigen::Vector3i n = (2.0 * sh.half / spacing).array().ceil().cast<int>().max(1);
-    // The grid centred on the shape's box, so that a symmetric shape gets symmetric samples.
-    const Eigen::Vector3d first = sh.centre - 0.5 * spacing * (n.cast<double>() - Eigen::Vector3d::Ones());
-    for (int kb = 0; kb < n.z(); kb += kBlock)
-      for (int jb = 0; jb < n.y(); jb += kBlock)
-        for (int ib = 0; ib < n.x(); ib += kBlock) {
-          const Eigen::Vector3i lo(ib, jb, kb);
-          add_block(sh, first, spacing, lo, (lo + Eigen::Vector3i::Constant(kBlock)).cwiseMin(n));
-        }
-    sh.sample_volume = spacing * spacing * spacing;
+  // A mesh link's samples cost a signed distance through its hull's planes per grid point (some 20 ms for the xArm
+  // gripper's base link): made once per hand and spacing.
+  const std::lock_guard<std::mutex> lock(cache_mutex);
+  auto& made = hand_entry(hand).interiors[h];
+  if (made.empty()) {
+    for (const Shape& sh : shapes) made.push_back(make_interior(sh, h));
   }
+  for (std::size_t i = 0; i < shapes.size(); ++i) shapes[i].interior = made[i];
 }
 
 double plane_term(const CollisionExpert::Shapes& shapes, const CollisionExpert::Shapes::Shape& sh,
@@ -164,18 +204,20 @@ double charged_volume(const OccupancyMap& map, const CollisionExpert::Shapes::Sh
   const Eigen::Matrix3d absR = R.cwiseAbs();
   const Eigen::Vector3d t = T.translation();
   int n = 0;
-  for (const auto& b : sh.blocks) {
+  if (!sh.interior) return 0.0;
+  const CollisionExpert::Shapes::Interior& in = *sh.interior;
+  for (const auto& b : in.blocks) {
     const Eigen::Vector3d c = T * b.centre, half = absR * b.half;
     if (!any(c - half, c + half)) continue;
     for (std::size_t s = b.begin; s < b.end; ++s) {
       Eigen::Vector3d centre;
-      const Eigen::Vector3d x = R * sh.samples[s] + t;
+      const Eigen::Vector3d x = R * in.samples[s] + t;
       if (!charged(x, map.cell(x, centre))) continue;
       if (-signed_distance(*sh.src, R.transpose() * (centre - t)) > erosion) ++n;
     }
   }
   count += n;
-  return n * sh.sample_volume;
+  return n * in.sample_volume;
 }
 
 }  // namespace

@@ -15,15 +15,14 @@
 namespace graspmix {
 
 struct CollisionExpert::Shapes {
-  Shapes(const Hand& hand, const std::optional<Eigen::Vector4d>& plane, double plane_margin);
-  struct Shape {
-    int link = -1;
-    const CollisionShape* src = nullptr;
-    Eigen::Vector3d half = Eigen::Vector3d::Zero();    ///< half extents of the local bounding box
-    Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< centre of the local bounding box
-    std::shared_ptr<fcl::CollisionGeometryd> fcl_geometry;
-    std::vector<Eigen::Vector3d> samples;  ///< interior points (shape frame), for the occupancy model
-    double sample_volume = 0.0;            ///< m^3 each stands for
+  /// The FCL geometry and the interior samples depend on the hand alone: they are made once per hand (and grid
+  /// spacing) and shared by every expert of that hand while it lives (a synthesis builds several: the scene's, the
+  /// clear approach's, each target's neighbours').
+  Shapes(const std::shared_ptr<const Hand>& hand, const std::optional<Eigen::Vector4d>& plane, double plane_margin);
+  /// A shape's interior samples (shape frame), for the occupancy model.
+  struct Interior {
+    std::vector<Eigen::Vector3d> samples;
+    double sample_volume = 0.0;  ///< m^3 each stands for
     /// The samples in blocks of up to kBlock^3 grid neighbours: [begin, end) of samples and the block's box
     /// (shape frame), so that a block wholly in free cells is skipped at once (OccupancyMap::any_blocked).
     struct Block {
@@ -32,8 +31,17 @@ struct CollisionExpert::Shapes {
     };
     std::vector<Block> blocks;
   };
+  struct Shape {
+    int link = -1;
+    const CollisionShape* src = nullptr;
+    Eigen::Vector3d half = Eigen::Vector3d::Zero();    ///< half extents of the local bounding box
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< centre of the local bounding box
+    std::shared_ptr<const fcl::CollisionGeometryd> fcl_geometry;
+    std::shared_ptr<const Interior> interior;  ///< null until sample_interiors
+  };
   /// Fills every shape's interior samples: a grid of spacing min(h, half its thinnest side).
   void sample_interiors(double h);
+  std::shared_ptr<const Hand> hand;
   std::vector<Shape> shapes;
   std::shared_ptr<fcl::Halfspaced> halfspace;
 };

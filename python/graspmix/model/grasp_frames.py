@@ -18,6 +18,7 @@
 
 from __future__ import annotations
 
+import weakref
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -125,6 +126,44 @@ def _distinct_rows(V: np.ndarray) -> np.ndarray:
     return S[np.r_[True, np.any(S[1:] != S[:-1], axis=1)]]
 
 
+# hand -> {link name: its distinct collision vertices}: a hand's geometry does not change, and a mesh link's
+# vertices take milliseconds to gather (the xArm's fingertips have 10k mesh vertices, 2,426 distinct)
+_VERTICES: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
+
+
+def link_vertices(hand, name: str) -> np.ndarray:
+    """The distinct collision vertices of link `name` of `hand` (those its triangles use; link frame, read-only),
+    gathered once per hand. ValueError for a link without collision geometry."""
+    per_hand = _VERTICES.setdefault(hand, {})
+    if name not in per_hand:
+        V, T = hand.collision_mesh(name)
+        if len(T) == 0:
+            raise ValueError(f"fingertip link {name!r} of hand '{hand.name}' has no collision geometry")
+        used = np.zeros(len(V), dtype=bool)  # not np.unique: its first call imports numpy.ma (~35 ms)
+        used[np.asarray(T).ravel()] = True
+        V = _distinct_rows(np.asarray(V)[used])
+        V.flags.writeable = False
+        per_hand[name] = V
+    return per_hand[name]
+
+
+# The multiply-adds of a product that BLAS (OpenBLAS) computes on the calling thread; above it, it wakes its threads.
+BLAS_SERIAL_MADDS = 2**18
+
+
+def vertex_products(V: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """V @ b.T (V (m, 3), b (n, 3)) in blocks of b's rows small enough for BLAS to compute each on this thread: waking
+    its threads costs more than such a product (milliseconds on a busy machine: the xArm's fingertips have 2,426
+    vertices) and leaves them spinning for a while, taking the cores from what runs next. Every block has two rows
+    or more (with one it would be a matrix-vector product, which rounds differently), so each value is the one
+    product's, bit for bit (tests/python/model/test_grasp_frames.py)."""
+    n = len(b)
+    blocks = min(-(-len(V) * n * 3 // BLAS_SERIAL_MADDS), n // 2)
+    if blocks <= 1:
+        return V @ b.T
+    return np.hstack([V @ part.T for part in np.array_split(b, blocks)])
+
+
 class FrameMaker:
     """Computes the frames of grasps of one hand (batched over the grasps)."""
 
@@ -138,14 +177,8 @@ class FrameMaker:
         axis = np.asarray(self.settings.approach_axis, dtype=float)
         self.axis = axis / np.linalg.norm(axis)
         self.rows = [hand.link_index(n) for n in self.tips]
-        self.vertices = []  # each fingertip link's collision vertices (those its triangles use), link frame
-        for n in self.tips:
-            V, T = hand.collision_mesh(n)
-            if len(T) == 0:
-                raise ValueError(f"fingertip link {n!r} of hand '{hand.name}' has no collision geometry")
-            used = np.zeros(len(V), dtype=bool)  # not np.unique: its first call imports numpy.ma (~35 ms)
-            used[np.asarray(T).ravel()] = True
-            self.vertices.append(_distinct_rows(np.asarray(V)[used]))
+        # each fingertip link's collision vertices (those its triangles use), link frame
+        self.vertices = [link_vertices(hand, n) for n in self.tips]
 
     def frames(self, wrists: np.ndarray, joints: np.ndarray) -> list[dict]:
         """The frame keys (FRAME_KEYS) of grasps with wrists (N, 7) and grasp joints (N, n_dofs)."""
@@ -183,7 +216,7 @@ class FrameMaker:
         row, V = self.rows[k], self.vertices[k]
         b = np.einsum("nji,nj->ni", rotation_matrices(links[:, row, 3:]), d)  # d in the link frame
         t = links[:, row, :3] if origin is None else links[:, row, :3] - origin
-        return V @ b.T + np.einsum("ni,ni->n", t, d)[None, :]
+        return vertex_products(V, b) + np.einsum("ni,ni->n", t, d)[None, :]
 
     def _tips(self, links, wrists, R):
         """The fingertip point per tip link (N, 3): the box, in the wrist frame, of the link's vertices within

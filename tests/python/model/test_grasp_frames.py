@@ -160,3 +160,35 @@ def test_frames_of_mesh_fingertips_follow_the_rule_vertex_by_vertex(tmp_path):
         c = (tip_points[1] - tip_points[0]) / np.linalg.norm(tip_points[1] - tip_points[0])
         np.testing.assert_allclose(f["closing"], c, atol=1e-9)
         assert f["opening_width"] == pytest.approx((pts[1] @ c).min() - (pts[0] @ c).max(), abs=1e-12)
+
+
+@pytest.mark.parametrize("n", [1, 2, 3, 37, 200, 201])
+def test_vertex_products_in_blocks_are_the_one_product_bit_for_bit(n, monkeypatch):
+    """The fingertips' products taken in blocks of grasps (so that BLAS keeps them on the calling thread) give the
+    values of the one product, exactly, however the blocks fall (down to blocks of two rows)."""
+    from graspmix.model import grasp_frames
+
+    rng = np.random.default_rng(n)
+    V = rng.normal(scale=0.03, size=(2426, 3))
+    b = rng.normal(size=(n, 3))
+    one = V @ b.T
+    for madds in (2**18, 1000, 1):
+        monkeypatch.setattr(grasp_frames, "BLAS_SERIAL_MADDS", madds)
+        np.testing.assert_array_equal(grasp_frames.vertex_products(V, b), one)
+
+
+def test_fingertip_vertices_are_gathered_once_per_hand():
+    """A hand's fingertip vertices are read once (the same read-only array for every FrameMaker of that hand) and
+    are the distinct vertices of its collision mesh; another hand object reads its own."""
+    from graspmix.model.grasp_frames import FrameMaker, link_vertices
+
+    hand = Hand.from_urdf(WSG50)
+    a, b = FrameMaker(hand), FrameMaker(hand)
+    assert all(x is y for x, y in zip(a.vertices, b.vertices)) and not a.vertices[0].flags.writeable
+    V, T = hand.collision_mesh(a.tips[0])
+    np.testing.assert_array_equal(
+        np.unique(np.asarray(V)[np.unique(np.asarray(T))], axis=0), np.unique(a.vertices[0], axis=0)
+    )
+    other = Hand.from_urdf(WSG50)
+    assert link_vertices(other, a.tips[0]) is not a.vertices[0]
+    np.testing.assert_array_equal(link_vertices(other, a.tips[0]), a.vertices[0])

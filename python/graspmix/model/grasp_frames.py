@@ -147,6 +147,44 @@ def link_vertices(hand, name: str) -> np.ndarray:
     return per_hand[name]
 
 
+# Fingertip links with more distinct vertices than this keep, for the frames' products, only those that can decide them.
+MANY_VERTICES = 256
+# m: how far beyond fingertip_tolerance a vertex inside a hull is still kept (against rounding, which is ~1e-15 m)
+HULL_MARGIN = 1e-6
+
+
+def frame_vertices(hand, name: str, tolerance: float) -> np.ndarray:
+    """The rows of link_vertices(hand, name) that can decide a frame, in their order: those not deeper than
+    `tolerance` + HULL_MARGIN inside the convex hull of one of the link's mesh shapes (the hand's hull_planes, in the
+    shape frame; loosened by however far the shape's own vertices stand outside them). The frames use, along a unit
+    direction, the vertices' largest (or smallest) value and those within `tolerance` of it; a vertex at depth g
+    inside a hull within the link's vertices' hull is at least g short of that largest value along every direction,
+    so the frames of these rows are those of all, bit for bit (the same products, a subset of rows). All rows for a
+    link of up to MANY_VERTICES. Cached per hand."""
+    V = link_vertices(hand, name)
+    key = (name, float(tolerance))
+    per_hand = _VERTICES[hand]
+    if key in per_hand:
+        return per_hand[key]
+    keep = np.ones(len(V), dtype=bool)
+    if len(V) > MANY_VERTICES:
+        for shape in hand.collision_shapes(name):
+            planes = shape.get("hull_planes")
+            if planes is None or len(planes) == 0:
+                continue
+            planes = np.asarray(planes, dtype=float)
+            n, offset = planes[:, :3], planes[:, 3]
+            origin = np.asarray(shape["origin"], dtype=float)
+            X = (V - origin[:3]) @ rotation_matrices(origin[3:])[0]  # the link's vertices in the shape frame
+            loose = max(0.0, float(np.max(np.asarray(shape["vertices"], dtype=float) @ n.T - offset)))
+            depth = np.min(offset - X @ n.T, axis=1)
+            keep &= depth <= tolerance + HULL_MARGIN + loose
+    out = V[keep]
+    out.flags.writeable = False
+    per_hand[key] = out
+    return out
+
+
 # The multiply-adds of a product that BLAS (OpenBLAS) computes on the calling thread; above it, it wakes its threads.
 BLAS_SERIAL_MADDS = 2**18
 
@@ -177,8 +215,10 @@ class FrameMaker:
         axis = np.asarray(self.settings.approach_axis, dtype=float)
         self.axis = axis / np.linalg.norm(axis)
         self.rows = [hand.link_index(n) for n in self.tips]
-        # each fingertip link's collision vertices (those its triangles use), link frame
+        # each fingertip link's collision vertices (those its triangles use), link frame, and those of them that
+        # decide the frames along a unit direction
         self.vertices = [link_vertices(hand, n) for n in self.tips]
+        self.deciding = [frame_vertices(hand, n, self.settings.fingertip_tolerance) for n in self.tips]
 
     def frames(self, wrists: np.ndarray, joints: np.ndarray) -> list[dict]:
         """The frame keys (FRAME_KEYS) of grasps with wrists (N, 7) and grasp joints (N, n_dofs)."""
@@ -203,17 +243,20 @@ class FrameMaker:
             cols["T_world_tcp"] = np.hstack([np.mean(tips, axis=0), wrists[:, 3:]]).tolist()
         if len(tips) == 2:
             c = tips[1] - tips[0]
-            c /= np.maximum(np.linalg.norm(c, axis=1, keepdims=True), 1e-12)
+            norm = np.linalg.norm(c, axis=1, keepdims=True)
+            c /= np.maximum(norm, 1e-12)
             cols["closing"] = c.tolist()
+            # The deciding vertices decide along unit directions: all of them where the fingertips coincide.
+            vs = self.deciding if np.all(norm >= 1e-12) else self.vertices
             cols["opening_width"] = (
-                self._along(links, 1, c).min(axis=0) - self._along(links, 0, c).max(axis=0)
+                self._along(links, 1, c, V=vs[1]).min(axis=0) - self._along(links, 0, c, V=vs[0]).max(axis=0)
             ).tolist()
         return [{k: cols[k][i] for k in FRAME_KEYS} for i in range(n)]
 
-    def _along(self, links, k, d, origin=None):
-        """(V, N): each vertex of fingertip link k measured along the world directions d (N, 3) from origin (N, 3;
+    def _along(self, links, k, d, origin=None, *, V):
+        """(V, N): each vertex V (of fingertip link k) measured along the world directions d (N, 3) from origin (N, 3;
         default the world's), for every grasp: one matrix product, without the vertices' world positions."""
-        row, V = self.rows[k], self.vertices[k]
+        row = self.rows[k]
         b = np.einsum("nji,nj->ni", rotation_matrices(links[:, row, 3:]), d)  # d in the link frame
         t = links[:, row, :3] if origin is None else links[:, row, :3] - origin
         return vertex_products(V, b) + np.einsum("ni,ni->n", t, d)[None, :]
@@ -223,8 +266,8 @@ class FrameMaker:
         fingertip_tolerance of its farthest extent along the approach."""
         tips = []
         approach = R @ self.axis
-        for k, (row, V) in enumerate(zip(self.rows, self.vertices)):
-            along = self._along(links, k, approach, wrists[:, :3])
+        for k, (row, V) in enumerate(zip(self.rows, self.deciding)):
+            along = self._along(links, k, approach, wrists[:, :3], V=V)
             near = along >= along.max(axis=0, keepdims=True) - self.settings.fingertip_tolerance
             g, v = np.nonzero(near.T)  # (grasp, vertex) pairs, grasp-major: few vertices per grasp, one at least
             # The near vertices in the wrist frame: R^T (R_link v + t_link - t_wrist).

@@ -192,3 +192,34 @@ def test_fingertip_vertices_are_gathered_once_per_hand():
     other = Hand.from_urdf(WSG50)
     assert link_vertices(other, a.tips[0]) is not a.vertices[0]
     np.testing.assert_array_equal(link_vertices(other, a.tips[0]), a.vertices[0])
+
+
+@pytest.mark.parametrize("tolerance", [0.0, 0.002, 0.01])
+def test_frames_of_the_deciding_vertices_are_those_of_all_bit_for_bit(tolerance, tmp_path, monkeypatch):
+    """The xArm gripper's pads (2,426 distinct vertices each): the frames from the vertices that can decide them
+    (FrameMaker.deciding, fewer) equal, bit for bit, those from every vertex, at random wrists and openings (wrists
+    far from the origin too) and at several fingertip tolerances; the near-coincident fingertips of a shut gripper
+    included."""
+    import pybullet_data
+    from graspmix.model import grasp_frames
+    from graspmix.model.hands import hand_urdf_from_robot
+
+    urdf = hand_urdf_from_robot(
+        f"{pybullet_data.getDataPath()}/xarm/xarm6_with_gripper.urdf", "xarm_gripper_base_link", tmp_path / "x.urdf"
+    )
+    settings = GraspFrameSettings(fingertip_tolerance=tolerance)
+    rng = np.random.default_rng(11)
+    n = 300
+    wrists = np.c_[rng.uniform(-0.3, 0.3, (n, 3)), Rotation.random(n, random_state=rng).as_quat()]
+    wrists[: n // 3, :3] += 25.0  # larger world coordinates, larger rounding
+    hand = Hand.from_urdf(urdf)
+    lo, hi = np.asarray(hand.joint_limits).reshape(-1, 2).T
+    joints = rng.uniform(lo, hi, (n, len(lo)))
+    joints[:10] = hi  # shut
+    maker = grasp_frames.FrameMaker(hand, settings)
+    assert all(len(d) < len(v) for d, v in zip(maker.deciding, maker.vertices))
+    fast = maker.frames(wrists, joints)
+    monkeypatch.setattr(grasp_frames, "MANY_VERTICES", 10**9)  # another hand object: every vertex decides
+    every = grasp_frames.FrameMaker(Hand.from_urdf(urdf), settings)
+    assert all(len(d) == len(v) for d, v in zip(every.deciding, every.vertices))
+    assert fast == every.frames(wrists, joints)

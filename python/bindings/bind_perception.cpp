@@ -207,6 +207,18 @@ void bind_perception(py::module_& m) {
              "m, join rule 2: the gap was seen empty when the views saw more than this beyond it (median)")
       .field("join_max_size", &SegmentationSettings::join_max_size,
              "m, join rule 3: the joined cluster's largest principal-box side")
+      .field("split_touching", &SegmentationSettings::split_touching,
+             "a cluster is cut along its concave creases into the objects touching in it (the split rule)")
+      .field("split_voxel_resolution", &SegmentationSettings::split_voxel_resolution,
+             "m: the split rule's supervoxel voxel (at least voxel_size)")
+      .field("split_seed_resolution", &SegmentationSettings::split_seed_resolution,
+             "m: the split rule's supervoxel seed spacing")
+      .field("split_concavity_tolerance", &SegmentationSettings::split_concavity_tolerance,
+             "rad: a crease less concave than this is no cut (LCCP)")
+      .field("split_min_points", &SegmentationSettings::split_min_points,
+             "a split piece with fewer points goes back to the neighbour it touches most")
+      .field("split_max_size", &SegmentationSettings::split_max_size,
+             "m: one object's largest principal-box side; only larger clusters are cut, and pieces re-join within it")
       .field("visibility_tolerance", &SegmentationSettings::visibility_tolerance,
              "m: Segmentation.visibility's surface_tolerance (within this of the observed surface is Surface)")
       .field("visibility_resolution", &SegmentationSettings::visibility_resolution,
@@ -278,6 +290,7 @@ void bind_perception(py::module_& m) {
       .def_readonly("n_small_clusters", &Segmentation::n_small_clusters, "points of clusters dropped as noise")
       .def_readonly("n_merged", &Segmentation::n_merged, "clusters joined to a larger one (seen through it)")
       .def_readonly("n_joined", &Segmentation::n_joined, "clusters joined to another (a shadow between them)")
+      .def_readonly("n_split", &Segmentation::n_split, "clusters cut off another by the split rule")
       .def_readonly("n_output", &Segmentation::n_output)
       .def_readonly("seconds", &Segmentation::seconds, "wall time of the whole segmentation")
       .def_property_readonly(
@@ -293,6 +306,7 @@ void bind_perception(py::module_& m) {
             d["clusters"] = t.clusters;
             d["merge"] = t.merge;
             d["join"] = t.join;
+            d["split"] = t.split;
             d["objects"] = t.objects;
             return d;
           },

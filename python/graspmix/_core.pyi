@@ -655,6 +655,12 @@ class SegmentationSettings:
       join_max_gap = 0.03: m, join rule 1: clusters farther apart never join
       join_seen_margin = 0.005: m, join rule 2: the gap was seen empty when the views saw more than this beyond it (median)
       join_max_size = 0.15: m, join rule 3: the joined cluster's largest principal-box side
+      split_touching = True: a cluster is cut along its concave creases into the objects touching in it (the split rule)
+      split_voxel_resolution = 0.004: m: the split rule's supervoxel voxel (at least voxel_size)
+      split_seed_resolution = 0.015: m: the split rule's supervoxel seed spacing
+      split_concavity_tolerance = 0.35: rad: a crease less concave than this is no cut (LCCP)
+      split_min_points = 150: a split piece with fewer points goes back to the neighbour it touches most
+      split_max_size = 0.15: m: one object's largest principal-box side; only larger clusters are cut, and pieces re-join within it
       visibility_tolerance = 0.008: m: Segmentation.visibility's surface_tolerance (within this of the observed surface is Surface)
       visibility_resolution = 0.005: rad: the bin of Segmentation.visibility's range images (VisibilitySettings.angular_resolution)
       visibility_median_window = 1: px: segment_depth's visibility model keeps the depth image median-filtered over (2 r + 1)^2 pixels
@@ -664,7 +670,7 @@ class SegmentationSettings:
       workspace = []: m: the world-frame box [x_min, y_min, z_min, x_max, y_max, z_max] the input is cropped to first; [] = none
     """
     __hash__: typing.ClassVar[None] = None
-    _fields: typing.ClassVar[tuple] = ('voxel_size', 'plane_distance', 'plane_max_iterations', 'seed', 'find_plane', 'plane_candidates', 'plane_min_fraction', 'plane_behind_distance', 'plane_max_behind_fraction', 'plane_margin', 'table_clearance', 'remove_outliers', 'outlier_neighbours', 'outlier_std_ratio', 'cluster_tolerance', 'min_cluster_size', 'max_cluster_size', 'merge_seen_through', 'merge_through_fraction', 'merge_inset', 'join_occluded', 'join_max_gap', 'join_seen_margin', 'join_max_size', 'visibility_tolerance', 'visibility_resolution', 'visibility_median_window', 'image_stride', 'plane_image_stride', 'workspace')
+    _fields: typing.ClassVar[tuple] = ('voxel_size', 'plane_distance', 'plane_max_iterations', 'seed', 'find_plane', 'plane_candidates', 'plane_min_fraction', 'plane_behind_distance', 'plane_max_behind_fraction', 'plane_margin', 'table_clearance', 'remove_outliers', 'outlier_neighbours', 'outlier_std_ratio', 'cluster_tolerance', 'min_cluster_size', 'max_cluster_size', 'merge_seen_through', 'merge_through_fraction', 'merge_inset', 'join_occluded', 'join_max_gap', 'join_seen_margin', 'join_max_size', 'split_touching', 'split_voxel_resolution', 'split_seed_resolution', 'split_concavity_tolerance', 'split_min_points', 'split_max_size', 'visibility_tolerance', 'visibility_resolution', 'visibility_median_window', 'image_stride', 'plane_image_stride', 'workspace')
     def __copy__(self) -> SegmentationSettings:
         ...
     def __deepcopy__(self, memo: typing.Any) -> SegmentationSettings:
@@ -681,7 +687,7 @@ class SegmentationSettings:
     @typing.overload
     def __init__(self, **kwargs) -> None:
         """
-        Keyword constructor: any of the fields (voxel_size, plane_distance, plane_max_iterations, seed, find_plane, plane_candidates, plane_min_fraction, plane_behind_distance, plane_max_behind_fraction, plane_margin, table_clearance, remove_outliers, outlier_neighbours, outlier_std_ratio, cluster_tolerance, min_cluster_size, max_cluster_size, merge_seen_through, merge_through_fraction, merge_inset, join_occluded, join_max_gap, join_seen_margin, join_max_size, visibility_tolerance, visibility_resolution, visibility_median_window, image_stride, plane_image_stride, workspace); the others keep their defaults.
+        Keyword constructor: any of the fields (voxel_size, plane_distance, plane_max_iterations, seed, find_plane, plane_candidates, plane_min_fraction, plane_behind_distance, plane_max_behind_fraction, plane_margin, table_clearance, remove_outliers, outlier_neighbours, outlier_std_ratio, cluster_tolerance, min_cluster_size, max_cluster_size, merge_seen_through, merge_through_fraction, merge_inset, join_occluded, join_max_gap, join_seen_margin, join_max_size, split_touching, split_voxel_resolution, split_seed_resolution, split_concavity_tolerance, split_min_points, split_max_size, visibility_tolerance, visibility_resolution, visibility_median_window, image_stride, plane_image_stride, workspace); the others keep their defaults.
         """
     def __repr__(self) -> str:
         ...
@@ -880,6 +886,54 @@ class SegmentationSettings:
     def seed(self, arg1: typing.Any) -> None:
         ...
     @property
+    def split_concavity_tolerance(self) -> float:
+        """
+        rad: a crease less concave than this is no cut (LCCP)
+        """
+    @split_concavity_tolerance.setter
+    def split_concavity_tolerance(self, arg0: typing.Any) -> None:
+        ...
+    @property
+    def split_max_size(self) -> float:
+        """
+        m: one object's largest principal-box side; only larger clusters are cut, and pieces re-join within it
+        """
+    @split_max_size.setter
+    def split_max_size(self, arg0: typing.Any) -> None:
+        ...
+    @property
+    def split_min_points(self) -> int:
+        """
+        a split piece with fewer points goes back to the neighbour it touches most
+        """
+    @split_min_points.setter
+    def split_min_points(self, arg0: typing.Any) -> None:
+        ...
+    @property
+    def split_seed_resolution(self) -> float:
+        """
+        m: the split rule's supervoxel seed spacing
+        """
+    @split_seed_resolution.setter
+    def split_seed_resolution(self, arg0: typing.Any) -> None:
+        ...
+    @property
+    def split_touching(self) -> bool:
+        """
+        a cluster is cut along its concave creases into the objects touching in it (the split rule)
+        """
+    @split_touching.setter
+    def split_touching(self, arg0: typing.Any) -> None:
+        ...
+    @property
+    def split_voxel_resolution(self) -> float:
+        """
+        m: the split rule's supervoxel voxel (at least voxel_size)
+        """
+    @split_voxel_resolution.setter
+    def split_voxel_resolution(self, arg0: typing.Any) -> None:
+        ...
+    @property
     def table_clearance(self) -> float:
         """
         m: points at most this far above the support plane (or behind it) are the table
@@ -1055,6 +1109,11 @@ class Segmentation:
     def n_small_clusters(self) -> int:
         """
         points of clusters dropped as noise
+        """
+    @property
+    def n_split(self) -> int:
+        """
+        clusters cut off another by the split rule
         """
     @property
     def objects(self) -> list[SceneObject]:
@@ -4182,6 +4241,12 @@ def segment_depth(depth: typing.Any, camera: PinholeCamera, T_world_camera: typi
       join_max_gap = 0.03: m, join rule 1: clusters farther apart never join
       join_seen_margin = 0.005: m, join rule 2: the gap was seen empty when the views saw more than this beyond it (median)
       join_max_size = 0.15: m, join rule 3: the joined cluster's largest principal-box side
+      split_touching = True: a cluster is cut along its concave creases into the objects touching in it (the split rule)
+      split_voxel_resolution = 0.004: m: the split rule's supervoxel voxel (at least voxel_size)
+      split_seed_resolution = 0.015: m: the split rule's supervoxel seed spacing
+      split_concavity_tolerance = 0.35: rad: a crease less concave than this is no cut (LCCP)
+      split_min_points = 150: a split piece with fewer points goes back to the neighbour it touches most
+      split_max_size = 0.15: m: one object's largest principal-box side; only larger clusters are cut, and pieces re-join within it
       visibility_tolerance = 0.008: m: Segmentation.visibility's surface_tolerance (within this of the observed surface is Surface)
       visibility_resolution = 0.005: rad: the bin of Segmentation.visibility's range images (VisibilitySettings.angular_resolution)
       visibility_median_window = 1: px: segment_depth's visibility model keeps the depth image median-filtered over (2 r + 1)^2 pixels
@@ -4221,6 +4286,12 @@ def segment_organized(points: typing.Any, T_world_camera: typing.Any, plane: typ
       join_max_gap = 0.03: m, join rule 1: clusters farther apart never join
       join_seen_margin = 0.005: m, join rule 2: the gap was seen empty when the views saw more than this beyond it (median)
       join_max_size = 0.15: m, join rule 3: the joined cluster's largest principal-box side
+      split_touching = True: a cluster is cut along its concave creases into the objects touching in it (the split rule)
+      split_voxel_resolution = 0.004: m: the split rule's supervoxel voxel (at least voxel_size)
+      split_seed_resolution = 0.015: m: the split rule's supervoxel seed spacing
+      split_concavity_tolerance = 0.35: rad: a crease less concave than this is no cut (LCCP)
+      split_min_points = 150: a split piece with fewer points goes back to the neighbour it touches most
+      split_max_size = 0.15: m: one object's largest principal-box side; only larger clusters are cut, and pieces re-join within it
       visibility_tolerance = 0.008: m: Segmentation.visibility's surface_tolerance (within this of the observed surface is Surface)
       visibility_resolution = 0.005: rad: the bin of Segmentation.visibility's range images (VisibilitySettings.angular_resolution)
       visibility_median_window = 1: px: segment_depth's visibility model keeps the depth image median-filtered over (2 r + 1)^2 pixels
@@ -4258,6 +4329,12 @@ def segment_scene(points: typing.Any, viewpoints: typing.Any = None, plane: typi
       join_max_gap = 0.03: m, join rule 1: clusters farther apart never join
       join_seen_margin = 0.005: m, join rule 2: the gap was seen empty when the views saw more than this beyond it (median)
       join_max_size = 0.15: m, join rule 3: the joined cluster's largest principal-box side
+      split_touching = True: a cluster is cut along its concave creases into the objects touching in it (the split rule)
+      split_voxel_resolution = 0.004: m: the split rule's supervoxel voxel (at least voxel_size)
+      split_seed_resolution = 0.015: m: the split rule's supervoxel seed spacing
+      split_concavity_tolerance = 0.35: rad: a crease less concave than this is no cut (LCCP)
+      split_min_points = 150: a split piece with fewer points goes back to the neighbour it touches most
+      split_max_size = 0.15: m: one object's largest principal-box side; only larger clusters are cut, and pieces re-join within it
       visibility_tolerance = 0.008: m: Segmentation.visibility's surface_tolerance (within this of the observed surface is Surface)
       visibility_resolution = 0.005: rad: the bin of Segmentation.visibility's range images (VisibilitySettings.angular_resolution)
       visibility_median_window = 1: px: segment_depth's visibility model keeps the depth image median-filtered over (2 r + 1)^2 pixels

@@ -51,6 +51,8 @@ double most_seen(const VisibilityModel& vis, const Eigen::Vector3d& p0, const Ei
   return best;
 }
 
+}  // namespace
+
 double largest_side(const Vec3Array& P, const std::vector<int>& rows) {
   Eigen::Vector3d centroid;
   Eigen::Matrix3d axes;
@@ -63,8 +65,6 @@ double largest_side(const Vec3Array& P, const std::vector<int>& rows) {
   }
   return (hi - lo).maxCoeff();
 }
-
-}  // namespace
 
 double seen_beyond_gap(const Vec3Array& P, const VisibilityModel& vis, const std::vector<int>& a,
                        const std::vector<int>& b, double max_gap, double& gap) {

@@ -15,6 +15,9 @@ struct JoinRule {
   double max_size = 0;     ///< m: the joined cluster's largest principal-box side may not exceed this
 };
 
+/// The largest side (m) of the principal box of `rows` of P (its points' covariance axes).
+double largest_side(const Vec3Array& P, const std::vector<int>& rows);
+
 /// How far the views saw beyond the gap between groups a and b (rows of P): over the facing segments (each
 /// point of one within kFacingBand of the least gap joined to its nearest point of the other, at most
 /// kMaxSegments of them, nearest first), the median of each segment's largest signed distance at its

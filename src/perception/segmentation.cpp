@@ -15,6 +15,7 @@
 #include "cloud_filters.hpp"
 #include "cluster_merge.hpp"
 #include "occlusion_merge.hpp"
+#include "pile_split.hpp"
 #include "segmentation_steps.hpp"
 #include "table_noise.hpp"
 
@@ -372,6 +373,15 @@ void finish_objects(const Vec3Array& P, const Eigen::VectorXi& sources, const Ca
                                          detail::JoinRule{s.join_max_gap, s.join_seen_margin, s.join_max_size});
   }
   lap.add_to(out.times.join);
+  if (s.split_touching) {
+    const Vec3Array one = cams.single.transpose();
+    const Vec3Array& seen_from = cams.per_point.rows() > 0 ? cams.per_point : one;
+    out.n_split = detail::split_touching(
+        P, seen_from, e.groups,
+        detail::SplitRule{std::max(s.split_voxel_resolution, s.voxel_size), s.split_seed_resolution,
+                          s.split_concavity_tolerance, s.split_min_points, s.split_max_size});
+  }
+  lap.add_to(out.times.split);
   finish(P, sources, e, s, out);
   lap.add_to(out.times.objects);
 }

@@ -66,6 +66,14 @@ void detail::check_segmentation_settings(const SegmentationSettings& s) {
   if (!finite_ge(s.join_max_gap, 0)) bad("join_max_gap must be a finite distance >= 0 (m)");
   if (!std::isfinite(s.join_seen_margin)) bad("join_seen_margin must be a finite distance (m)");
   if (!(finite_ge(s.join_max_size, 0) && s.join_max_size > 0)) bad("join_max_size must be a finite size > 0 (m)");
+  if (s.split_touching &&
+      !(finite_ge(s.split_voxel_resolution, 0) && s.split_voxel_resolution > 0 &&
+        finite_ge(s.split_seed_resolution, 0) && s.split_seed_resolution > s.split_voxel_resolution &&
+        finite_ge(s.split_concavity_tolerance, 0) && s.split_concavity_tolerance < M_PI / 2 &&
+        s.split_min_points >= 1 && finite_ge(s.split_max_size, 0) && s.split_max_size > 0)) {
+    bad("split_voxel_resolution must be > 0 (m), split_seed_resolution larger (m), split_concavity_tolerance in "
+        "[0, pi/2) rad, split_min_points >= 1 and split_max_size > 0 (m)");
+  }
   try {
     check_visibility_settings(visibility_settings(s));
   } catch (const std::invalid_argument&) {

@@ -252,6 +252,7 @@ class Scene:
                 "small_clusters": r.n_small_clusters,
                 "merged": r.n_merged,
                 "joined": r.n_joined,
+                "split": r.n_split,
                 "output": r.n_output,
             },
             "timing_s": dict(self.timing),

@@ -326,6 +326,10 @@ TEST(Segmentation, BadInputsNameTheCause) {
   st.join_max_size = 0;
   EXPECT_NE(message(r.points, one(kEye), st).find("join_max_size"), std::string::npos);
   st = {};
+  st.split_touching = true;
+  st.split_seed_resolution = st.split_voxel_resolution;
+  EXPECT_NE(message(r.points, one(kEye), st).find("split_seed_resolution"), std::string::npos);
+  st = {};
   st.join_max_gap = -1;
   EXPECT_NE(message(r.points, one(kEye), st).find("join_max_gap"), std::string::npos);
   st = {};
@@ -336,4 +340,54 @@ TEST(Segmentation, BadInputsNameTheCause) {
   EXPECT_NE(message(table.points, one(kEye), {}, Eigen::Vector4d(0, 0, 1, 0)).find("no object above"),
             std::string::npos);
   EXPECT_NE(message(r.points, one(kEye), {}, Eigen::Vector4d(0, 0, 0, 1)).find("plane"), std::string::npos);
+}
+
+// The split rule (segmentation.hpp) on exact ray casting, one camera with the acquisition's noise: a tall box and a
+// low, deeper one touching side by side are one Euclidean cluster 18 cm long, cut at the concave creases where the
+// low box meets the tall one (not flush: coplanar faces across the contact would join them, as they would join
+// LCCP's patches). Seen from straight in front (kFront) the contact shows as a convex corner and the boxes stay
+// joined: the views below see the crease. One box that long has no concave crease and stays whole. A mug-like shape (a
+// hollow square body 8 cm across, its walls 6 mm thick, a handle of three bars 3 cm out) is within split_max_size and
+// is not tried.
+TEST(Segmentation, TheSplitRuleCutsTwoTouchingBoxesAndNotOneObject) {
+  const SegmentationSettings on;  // the rule is on by default
+  ASSERT_TRUE(on.split_touching);
+  SegmentationSettings off;
+  off.split_touching = false;
+  const std::vector<Box> touching = {box_at(-0.045, 0.0, 0.09, 0.06, 0.10), box_at(0.045, 0.0, 0.09, 0.10, 0.05)};
+  for (const Eigen::Vector3d& eye : {kEye, Eigen::Vector3d(0.3, -0.4, 0.35), Eigen::Vector3d(-0.2, -0.4, 0.4)}) {
+    SCOPED_TRACE("eye " + std::to_string(eye.x()) + " " + std::to_string(eye.y()) + " " + std::to_string(eye.z()));
+    const Render r = render(eye, kTarget, touching, 1.0, 1.0, 0.001, 11, 640, 480);
+    const Segmentation joined = segment_scene(r.points, one(eye), off);
+    ASSERT_EQ(joined.objects.size(), 1u) << "touching boxes are one Euclidean cluster";
+    EXPECT_EQ(joined.n_split, 0u);
+    const Segmentation s = segment_scene(r.points, one(eye), on);
+    EXPECT_EQ(s.n_split, 1u);
+    expect_objects_are_the_boxes(s, touching);
+    EXPECT_GE(s.times.split, 0.0);
+  }
+  const std::vector<Box> long_box = {box_at(0.0, 0.0, 0.18, 0.06, 0.05)};
+  const double w = 0.006, x0 = -0.04, x1 = 0.04;  // the mug: an 8 x 8 x 10 cm body, the handle 3 cm beyond x1
+  const std::vector<Box> mug = {{{x0, -0.04, 0}, {x1, -0.04 + w, 0.10}},
+                                {{x0, 0.04 - w, 0}, {x1, 0.04, 0.10}},
+                                {{x0, -0.04, 0}, {x0 + w, 0.04, 0.10}},
+                                {{x1 - w, -0.04, 0}, {x1, 0.04, 0.10}},
+                                {{x0, -0.04, 0}, {x1, 0.04, w}},
+                                {{x1, -0.006, 0.02}, {x1 + 0.03, 0.006, 0.032}},
+                                {{x1, -0.006, 0.07}, {x1 + 0.03, 0.006, 0.082}},
+                                {{x1 + 0.018, -0.006, 0.02}, {x1 + 0.03, 0.006, 0.082}}};
+  for (const auto& [name, boxes] : {std::pair<std::string, std::vector<Box>>{"long box", long_box}, {"mug", mug}}) {
+    for (const Eigen::Vector3d& eye : {kEye, kFront, Eigen::Vector3d(-0.2, -0.4, 0.4)}) {
+      SCOPED_TRACE(name + ", eye " + std::to_string(eye.x()) + " " + std::to_string(eye.y()) + " " +
+                   std::to_string(eye.z()));
+      const Render r = render(eye, kTarget, boxes, 1.0, 1.0, 0.001, 13, 640, 480);
+      ASSERT_EQ(segment_scene(r.points, one(eye), off).objects.size(), 1u);
+      const Segmentation s = segment_scene(r.points, one(eye), on);
+      EXPECT_EQ(s.n_split, 0u);
+      EXPECT_EQ(s.objects.size(), 1u);
+      if (name == "long box") {
+        EXPECT_GT(s.objects[0].obb_extents.maxCoeff(), on.split_max_size) << "the rule was tried";
+      }
+    }
+  }
 }

@@ -313,6 +313,7 @@ def test_step_seconds_add_up():
         "clusters",
         "merge",
         "join",
+        "split",
         "objects",
     }
     assert all(v >= 0 for v in steps.values()) and sum(steps.values()) <= r.seconds

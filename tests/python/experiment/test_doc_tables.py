@@ -39,6 +39,8 @@ PAGES = {
         "lever-test60",
         "lever-dev",
         "lever-clutter-dev",
+        "split-clutter",
+        "split-heldout",
     },
 }
 SCRIPTS = ("scripts/findings_table.py", "scripts/ablation_table.py", "scripts/clutter_table.py")

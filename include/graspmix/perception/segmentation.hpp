@@ -145,7 +145,8 @@ struct SegmentationSettings {
   double join_max_size = 0.15;
   /// The split rule (above): a cluster larger than one object is cut at its concave creases into the objects
   /// touching in it. On the development piles it halved the merged clusters (15 -> 8; it leaves those no larger
-  /// than one object) and changed no single object's grasp (docs/clutter.md).
+  /// than one object) and changed no single object's grasp (docs/clutter.md). A single object longer than
+  /// split_max_size seen whole (four views) can be cut: SynthesisOptions.paper() turns the rule off.
   bool split_touching = true;
   double split_voxel_resolution = 0.004;  ///< m: rule 1, the supervoxels' voxel (at least voxel_size)
   double split_seed_resolution = 0.015;   ///< m: rule 1, the supervoxels' seed spacing

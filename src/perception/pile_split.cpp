@@ -84,10 +84,10 @@ std::vector<int> lccp_pieces(const PointCloud::Ptr& cloud, const SplitRule& rule
   return piece;
 }
 
-/// Pieces under min_points join, smallest first, the piece most of their points' near neighbours lie on.
-void absorb_small(const PointCloud::Ptr& cloud, std::vector<int>& piece, int min_points, double radius) {
-  pcl::KdTreeFLANN<pcl::PointXYZ> tree;
-  tree.setInputCloud(cloud);
+/// Pieces under min_points join, smallest first, the piece most of their points' near neighbours lie on (`tree`: the
+/// cluster's points, `cloud`).
+void absorb_small(const PointCloud& cloud, const pcl::KdTreeFLANN<pcl::PointXYZ>& tree, std::vector<int>& piece,
+                  int min_points, double radius) {
   for (;;) {
     std::map<int, int> size;
     for (const int p : piece) ++size[p];
@@ -101,7 +101,7 @@ void absorb_small(const PointCloud::Ptr& cloud, std::vector<int>& piece, int min
     std::vector<float> d2;
     for (std::size_t i = 0; i < piece.size(); ++i) {
       if (piece[i] != smallest) continue;
-      tree.radiusSearch((*cloud)[i], radius, nn, d2);
+      tree.radiusSearch(cloud[i], radius, nn, d2);
       for (const auto j : nn)
         if (piece[static_cast<std::size_t>(j)] != smallest) ++touch[piece[static_cast<std::size_t>(j)]];
     }
@@ -118,16 +118,15 @@ void absorb_small(const PointCloud::Ptr& cloud, std::vector<int>& piece, int min
 }
 
 /// Pieces re-joined, the pair that touches most (points of one within `radius` of the other) first, while the
-/// joined piece's largest principal-box side stays within max_size: the fewest objects the cluster can be.
-void rejoin(const Vec3Array& P, const std::vector<int>& g, const PointCloud::Ptr& cloud, std::vector<int>& piece,
-            double radius, double max_size) {
-  pcl::KdTreeFLANN<pcl::PointXYZ> tree;
-  tree.setInputCloud(cloud);
+/// joined piece's largest principal-box side stays within max_size: the fewest objects the cluster can be (`tree`: the
+/// cluster's points, `cloud`, rows g of P).
+void rejoin(const Vec3Array& P, const std::vector<int>& g, const PointCloud& cloud,
+            const pcl::KdTreeFLANN<pcl::PointXYZ>& tree, std::vector<int>& piece, double radius, double max_size) {
   std::map<std::pair<int, int>, int> touch;
   pcl::Indices nn;
   std::vector<float> d2;
   for (std::size_t i = 0; i < piece.size(); ++i) {
-    tree.radiusSearch((*cloud)[i], radius, nn, d2);
+    tree.radiusSearch(cloud[i], radius, nn, d2);
     for (const auto j : nn) {
       const int a = piece[i], b = piece[static_cast<std::size_t>(j)];
       if (a < b) ++touch[{a, b}];
@@ -191,8 +190,10 @@ std::size_t split_touching(const Vec3Array& P, const Vec3Array& seen_from, std::
       cloud->push_back({static_cast<float>(q[0]), static_cast<float>(q[1]), static_cast<float>(q[2])});
     }
     std::vector<int> piece = lccp_pieces(cloud, rule);
-    absorb_small(cloud, piece, rule.min_piece_points, 2.0 * rule.voxel_resolution);
-    rejoin(P, g, cloud, piece, 2.0 * rule.voxel_resolution, rule.max_size);
+    pcl::KdTreeFLANN<pcl::PointXYZ> tree;  // one search structure for both steps: the cluster's points do not move
+    tree.setInputCloud(cloud);
+    absorb_small(*cloud, tree, piece, rule.min_piece_points, 2.0 * rule.voxel_resolution);
+    rejoin(P, g, *cloud, tree, piece, 2.0 * rule.voxel_resolution, rule.max_size);
     std::map<int, std::vector<int>> parts;
     for (std::size_t i = 0; i < g.size(); ++i) parts[piece[i]].push_back(g[i]);
     if (parts.size() < 2) {

@@ -214,14 +214,13 @@ double CollisionExpert::cell_size() const { return index_->grid.cell_size(); }
 
 namespace {
 
-/// The surface model's D_l term of one shape posed at T: the deepest penetrating point (into `deepest`, a
-/// running maximum) and their count (added to `inside`).
+/// The surface model's D_l term of one shape posed at T (its world box: centre, half): the deepest penetrating point
+/// (into `deepest`, a running maximum) and their count (added to `inside`).
 void cloud_term(const CollisionExpert::Index& ix, const CollisionExpert::Shapes::Shape& sh, const Eigen::Isometry3d& T,
-                double r, double tol, double& deepest, int& inside) {
+                const WorldBox& box_w, double r, double tol, double& deepest, int& inside) {
   const Eigen::Matrix3d& R = T.linear();
   const Eigen::Vector3d t = T.translation();
-  const Eigen::Vector3d centre = T * sh.centre;
-  const Eigen::Vector3d half = R.cwiseAbs() * sh.half;
+  const Eigen::Vector3d &centre = box_w.centre, &half = box_w.half;
   // The cells under the shape's world box (grown by r), each column cut to the cells its oriented box meets.
   const Eigen::Vector3d lo = (centre - half).array() - r, hi = (centre + half).array() + r;
   if (!((lo.array() <= ix.hi.array()).all() && (hi.array() >= ix.lo.array()).all())) return;
@@ -294,9 +293,8 @@ void CollisionExpert::evaluate_into(const Eigen::Isometry3d* link_poses, double*
     if (skip && skip[sh.link]) continue;
     const Eigen::Isometry3d T = link_poses[sh.link] * sh.src->T_link_shape;
     // The maps' terms, each when the shape's world box touches a cell it charges (else every sample is free).
-    const Eigen::Vector3d centre = T * sh.centre;
-    const Eigen::Vector3d half = T.linear().cwiseAbs() * sh.half;
-    const Eigen::Vector3d lo = centre - half, hi = centre + half;
+    const WorldBox box_w = world_box(sh, T);
+    const Eigen::Vector3d lo = box_w.centre - box_w.half, hi = box_w.centre + box_w.half;
     if (occupancy_ && settings_.occupied_cells && occupancy_->any_blocked(lo, hi)) {
       cloud_depth[sh.link] +=
           blocked_volume(*occupancy_, sh, T, tol, points_inside[sh.link]) / settings_.reference_area;
@@ -309,9 +307,11 @@ void CollisionExpert::evaluate_into(const Eigen::Isometry3d* link_poses, double*
     if (volume_ && volume_->any_blocked(lo, hi)) {
       cloud_depth[sh.link] += blocked_volume(*volume_, sh, T, tol, points_inside[sh.link]) / settings_.reference_area;
     }
-    if (N > 0) cloud_term(*index_, sh, T, settings_.point_radius, tol, cloud_depth[sh.link], points_inside[sh.link]);
+    if (N > 0) {
+      cloud_term(*index_, sh, T, box_w, settings_.point_radius, tol, cloud_depth[sh.link], points_inside[sh.link]);
+    }
     if (plane_) {
-      const double depth = plane_term(*shapes_, sh, T, *plane_, settings_.plane_margin);
+      const double depth = plane_term(*shapes_, sh, T, box_w, *plane_, settings_.plane_margin);
       if (depth > tol) plane_depth[sh.link] = std::max(plane_depth[sh.link], depth);
     }
   }

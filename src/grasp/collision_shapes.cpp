@@ -173,7 +173,8 @@ void CollisionExpert::Shapes::sample_interiors(double h) {
 }
 
 double plane_term(const CollisionExpert::Shapes& shapes, const CollisionExpert::Shapes::Shape& sh,
-                  const Eigen::Isometry3d& T, const Eigen::Vector4d& plane, double plane_margin) {
+                  const Eigen::Isometry3d& T, const WorldBox& box_w, const Eigen::Vector4d& plane,
+                  double plane_margin) {
   const fcl::Halfspaced& hs = *shapes.halfspace;
   if (sh.src->type == ShapeType::Box) {
     const double depth = box_halfspace_depth(sh.src->size, T, hs.n, hs.d);
@@ -181,9 +182,7 @@ double plane_term(const CollisionExpert::Shapes& shapes, const CollisionExpert::
   }
   const Eigen::Vector3d n = plane.head<3>();
   // Skip FCL when even the shape's bounding box clears the raised plane.
-  const Eigen::Vector3d centre = T * sh.centre;
-  const Eigen::Vector3d half = T.linear().cwiseAbs() * sh.half;
-  const double lowest = n.dot(centre) + plane[3] - half.dot(n.cwiseAbs());
+  const double lowest = n.dot(box_w.centre) + plane[3] - box_w.half.dot(n.cwiseAbs());
   if (!(lowest < plane_margin && sh.fcl_geometry)) return 0.0;
   fcl::CollisionRequestd request(1, true);
   fcl::CollisionResultd result;

@@ -46,10 +46,19 @@ struct CollisionExpert::Shapes {
   std::shared_ptr<fcl::Halfspaced> halfspace;
 };
 
-/// The plane's P_l term of one shape posed at T (0 when clear): boxes by FCL's own formula, other shapes by
-/// FCL when their bounding box reaches below the raised plane.
+/// A shape's local bounding box posed at T, as an axis-aligned world box: its centre and half extents. Computed once
+/// per shape and pose, for every term that culls by it.
+struct WorldBox {
+  Eigen::Vector3d centre, half;
+};
+inline WorldBox world_box(const CollisionExpert::Shapes::Shape& sh, const Eigen::Isometry3d& T) {
+  return {T * sh.centre, T.linear().cwiseAbs() * sh.half};
+}
+
+/// The plane's P_l term of one shape posed at T (its world box: box_w; 0 when clear): boxes by FCL's own formula,
+/// other shapes by FCL when their bounding box reaches below the raised plane.
 double plane_term(const CollisionExpert::Shapes& shapes, const CollisionExpert::Shapes::Shape& sh,
-                  const Eigen::Isometry3d& T, const Eigen::Vector4d& plane, double plane_margin);
+                  const Eigen::Isometry3d& T, const WorldBox& box_w, const Eigen::Vector4d& plane, double plane_margin);
 
 /// The volume (m^3) of the shape posed at T inside blocked cells of the map, over its interior samples
 /// whose cell's centre lies deeper than tol + h/2 inside it; `count` gets the samples charged. A block of

@@ -1,5 +1,6 @@
-// Learns the GMM contact models of one demonstrated grasp and synthesises grasps on a new cloud, with
-// graspmix's C++ API alone (no Python): what a robot stack linking the installed library does.
+// Learns the GMM contact models of one demonstrated grasp and synthesises grasps on a new scene cloud with the
+// library's defaults (graspmix::synthesize_scene: the whole path in one call), with graspmix's C++ API alone (no
+// Python): what a robot stack linking the installed library does.
 //
 //   synthesize_grasps HAND.urdf DEMO_CLOUD.pcd "x,y,z,qx,qy,qz,qw" JOINT=PREGRASP:GRASP QUERY_CLOUD.pcd
 //
@@ -17,7 +18,7 @@
 
 #include "graspmix/core/se3.hpp"
 #include "graspmix/density/pose_mixture.hpp"
-#include "graspmix/grasp/synthesis.hpp"
+#include "graspmix/grasp/scene_synthesis.hpp"
 #include "graspmix/perception/cleanup.hpp"
 #include "graspmix/perception/cloud_io.hpp"
 #include "graspmix/perception/surface.hpp"
@@ -62,27 +63,28 @@ int run(int argc, char** argv) {
         return std::make_shared<graspmix::PoseMixture>(gmm);
       });
   graspmix::ConfigModel config(pregrasp, grasp, hand->joint_limits());
-  graspmix::GraspSynthesizer synthesizer(hand, std::move(models), config);
+  auto synthesizer = std::make_shared<const graspmix::GraspSynthesizer>(hand, std::move(models), config);
 
-  graspmix::CleanupSettings scene;
-  const graspmix::CleanupResult cleaned = graspmix::prepare_cloud(graspmix::load_cloud(argv[5]).points, scene);
-  const graspmix::SurfaceCloud query = graspmix::compute_surface_features(cleaned.points);
-  std::optional<Eigen::Vector4d> plane;
-  if (cleaned.plane_found) plane = cleaned.plane;
-  const graspmix::CollisionExpert collision(hand, query.points, plane);
-  const std::vector<std::shared_ptr<const graspmix::Expert>> experts{
-      std::make_shared<graspmix::KinematicFeasibilityExpert>(hand, plane)};
-  graspmix::SynthesizerSettings settings;
-  settings.seed = 1;
-  const graspmix::SynthesisResult result =
-      synthesizer.synthesize(query.frames, query.curvatures, collision, experts, settings);
+  // The query scene with the library's defaults, in one call: support plane and objects, each object's unseen side
+  // completed, every expert (collision with the unseen space charged, kinematic, clear approach, contact quality),
+  // sampling and annealing, grasps of all objects ranked together. The cloud file's VIEWPOINT is its camera.
+  const graspmix::CloudData query = graspmix::load_cloud(argv[5]);
+  graspmix::CloudInput input{query.points, query.viewpoints};
+  if (input.viewpoints.rows() == 0 && query.has_viewpoint)
+    input.viewpoints = query.viewpoint.head<3>().transpose().eval();
+  graspmix::SceneSynthesisSettings settings;  // the library's defaults
+  settings.synthesizer.seed = 1;
+  const graspmix::SceneSynthesis result =
+      graspmix::synthesize_scene(input, {{synthesizer, "demo", std::nullopt}}, settings);
 
-  std::cout << "contact models: " << synthesizer.contact_models().size() << ", grasps: " << result.grasps.size()
-            << ", evaluations: " << result.evaluations << "\n";
+  std::cout << "contact models: " << synthesizer->contact_models().size()
+            << ", objects: " << result.scene.objects.size() << ", grasps: " << result.grasps.size()
+            << ", evaluations: " << result.evaluations << ", " << result.timing.total * 1e3 << " ms\n";
+  for (const std::string& note : result.completion.notes) std::cout << "note: " << note << "\n";
   for (std::size_t i = 0; i < result.grasps.size() && i < 3; ++i) {
-    const graspmix::Grasp& g = result.grasps[i];
-    std::cout << "grasp " << i + 1 << ": log L " << g.log_likelihood << ", wrist " << g.T_world_wrist.transpose()
-              << ", joints " << g.joints.transpose() << "\n";
+    const graspmix::Grasp& g = result.grasps[i].grasp;
+    std::cout << "grasp " << i + 1 << ": log L " << g.log_likelihood << ", object " << result.grasps[i].object
+              << ", wrist " << g.T_world_wrist.transpose() << ", joints " << g.joints.transpose() << "\n";
   }
   return result.grasps.empty() ? 1 : 0;
 }

@@ -340,24 +340,7 @@ void bind_experts(py::module_& m) {
                  settings_from<KinematicFeasibilitySettings>(settings, kw, "KinematicFeasibilityExpert");
              std::optional<Eigen::Vector4d> pl;
              if (!plane.is_none()) pl = Eigen::Vector4d(to_vector(plane, "plane", 4));
-             KinematicFeasibilityExpert::Reachability fn;
-             if (!reachable.is_none()) {
-               if (!PyCallable_Check(reachable.ptr())) throw py::value_error("reachable: expected a callable or None");
-               py::function f = reachable;
-               fn = [f](const PoseArray& w, const RowMatrixXd& q) {
-                 py::gil_scoped_acquire gil;
-                 const py::object r = f(w, q);
-                 auto raw = py::array::ensure(r);
-                 if (!raw || raw.ndim() != 1 || raw.dtype().kind() != 'b') {
-                   throw py::value_error("reachable must return a 1-D array of booleans (one per grasp)");
-                 }
-                 auto a = py::array_t<bool, py::array::c_style | py::array::forcecast>::ensure(raw);
-                 Eigen::Matrix<bool, Eigen::Dynamic, 1> out(a.shape(0));
-                 for (py::ssize_t i = 0; i < a.shape(0); ++i) out[i] = a.at(i);
-                 return out;
-               };
-             }
-             return std::make_shared<KinematicFeasibilityExpert>(hand, pl, s, fn);
+             return std::make_shared<KinematicFeasibilityExpert>(hand, pl, s, to_reachability(reachable));
            }),
            py::arg("hand"), py::arg("plane") = py::none(), py::arg("reachable") = py::none(), py::kw_only(),
            py::arg("settings") = py::none(), settings_doc<KinematicFeasibilitySettings>().c_str());
@@ -452,6 +435,7 @@ void bind_grasp(py::module_& m) {
   bind_experts(m);
   bind_contact_quality(m);
   bind_synthesis(m);
+  bind_scene_synthesis(m);
 }
 
 }  // namespace graspmix::py_bind

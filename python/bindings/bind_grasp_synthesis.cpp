@@ -10,22 +10,6 @@ namespace graspmix::py_bind {
 
 namespace {
 
-using ExpertList = std::vector<std::shared_ptr<const Expert>>;
-
-ExpertList to_experts(const py::object& obj) {
-  ExpertList out;
-  if (obj.is_none()) return out;
-  for (const py::handle& e : obj) {
-    try {
-      out.push_back(e.cast<std::shared_ptr<Expert>>());
-    } catch (const py::cast_error&) {
-      throw py::value_error("experts: every item must be a graspmix expert (got " +
-                            std::string(py::str(py::type::of(e))) + ")");
-    }
-  }
-  return out;
-}
-
 /// Rows of a per-grasp vector field stacked into an (N, k) array (k from the first grasp; all are equal).
 template <typename Get>
 RowMatrixXd stack_rows(const std::vector<Grasp>& grasps, Get get) {

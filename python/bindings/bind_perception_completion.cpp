@@ -106,6 +106,36 @@ void bind_completion(py::module_& m) {
        "include/graspmix/perception/completion.hpp); ValueError naming the cause for bad input.\n" +
        settings_doc<CompletionSettings>())
           .c_str());
+
+  py::class_<SceneCompletion>(m, "SceneCompletion", "Every object of a scene completed (complete_scene).")
+      .def_readonly("completions", &SceneCompletion::completions, "per object, its Completion or None")
+      .def_readonly("notes", &SceneCompletion::notes, "why objects were not completed, and the warnings")
+      .def_readonly("seconds", &SceneCompletion::seconds, "s, wall time");
+  m.def(
+      "complete_scene",
+      [](const Segmentation& scene, const py::object& settings, const py::kwargs& kw) {
+        const auto s = settings_from<CompletionSettings>(settings, kw, "complete_scene");
+        py::gil_scoped_release release;
+        return complete_scene(scene, s);
+      },
+      py::arg("scene"), py::kw_only(), py::arg("settings") = py::none(),
+      "Each object of a Segmentation completed (complete_object) from its visibility model and plane; without either "
+      "nothing is completed and a note says why; an object complete_object refuses stays as seen, with a note. "
+      "ValueError for settings out of range.");
+
+  m.attr("POINT_TARGET_MAX_DISTANCE") = kPointTargetMaxDistance;
+  m.def(
+      "select_targets",
+      [](const Segmentation& scene, const py::object& viewpoints, const std::string& kind, const py::object& index,
+         const py::object& point, const py::object& camera) {
+        const Vec3Array V =
+            viewpoints.is_none() ? Vec3Array(0, 3) : Vec3Array(to_matrix(viewpoints, "select_targets: viewpoints", 3));
+        return select_targets(scene, V, to_target(kind, index, point, camera));
+      },
+      py::arg("scene"), py::arg("viewpoints"), py::arg("kind"), py::kw_only(), py::arg("index") = py::none(),
+      py::arg("point") = py::none(), py::arg("camera") = py::none(),
+      "The object indices of a target (kind all, index, point, largest, nearest) in a Segmentation whose points were "
+      "seen from viewpoints (M, 3) or None (include/graspmix/perception/targets.hpp).");
 }
 
 }  // namespace graspmix::py_bind

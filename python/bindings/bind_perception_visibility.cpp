@@ -15,10 +15,6 @@ namespace graspmix::py_bind {
 
 namespace {
 
-Eigen::Isometry3d to_camera_pose(const py::object& obj, const char* name) {
-  return camera_pose(to_vector(obj, name, 7), name);
-}
-
 int to_side(const py::object& obj, const char* name) {
   if (!py::isinstance<py::int_>(obj) || py::isinstance<py::bool_>(obj))
     throw py::value_error(std::string(name) + ": expected an integer number of pixels");

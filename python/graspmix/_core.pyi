@@ -8,7 +8,7 @@ import enum
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AnnealingSettings', 'AxisAlignmentExpert', 'AxisAlignmentSettings', 'CleanupResult', 'CleanupSettings', 'ClearApproachExpert', 'ClearApproachSettings', 'CloudData', 'CollisionBatchResult', 'CollisionExpert', 'CollisionFreeExpert', 'CollisionResult', 'CollisionSettings', 'Completion', 'CompletionKind', 'CompletionSettings', 'ConfigModel', 'ConfigModelSettings', 'ContactData', 'ContactModel', 'ContactQualityExpert', 'ContactQualityResult', 'ContactQualitySettings', 'ContactSettings', 'Evaluation', 'Expert', 'FunctionExpert', 'GaussianMixture', 'GmmSettings', 'Grasp', 'GraspSynthesizer', 'Hand', 'HandLoadSettings', 'KdeSettings', 'KinematicFeasibilityExpert', 'KinematicFeasibilitySettings', 'OccupancyMap', 'OccupancySettings', 'PinholeCamera', 'PinholeFit', 'PlaneCandidate', 'PoseDensity', 'PoseKDE', 'PoseMixture', 'QueryDensity', 'QuerySettings', 'SamplingSettings', 'SceneObject', 'SceneSimResult', 'Segmentation', 'SegmentationSettings', 'SettleResult', 'SimObject', 'SimResult', 'SimSettings', 'SpaceState', 'SurfaceCloud', 'SurfaceFeatureSettings', 'SynthesisResult', 'SynthesisTiming', 'SynthesizerSettings', 'URDF_AXES_ELEMENT', 'VisibilityModel', 'VisibilitySettings', 'build_info', 'camera_pose_matrix', 'complete_object', 'compute_surface_features', 'contact_data', 'learn_contact_models', 'load_cloud', 'load_mesh', 'log_vmf_s3_normaliser', 'orient_plane', 'pose_inverse', 'pose_multiply', 'prepare_cloud', 'quat_exp', 'quat_log', 'save_cloud', 'segment_depth', 'segment_organized', 'segment_scene', 'sim_closing_speeds', 'sim_execute', 'sim_execute_scene', 'sim_settle_scene', 'solid_volume']
+__all__: list[str] = ['AnnealingSettings', 'AxisAlignmentExpert', 'AxisAlignmentSettings', 'COMPLETED_VIEW_DISTANCE', 'CleanupResult', 'CleanupSettings', 'ClearApproachExpert', 'ClearApproachSettings', 'CloudData', 'CollisionBatchResult', 'CollisionExpert', 'CollisionFreeExpert', 'CollisionResult', 'CollisionSettings', 'Completion', 'CompletionKind', 'CompletionSettings', 'ConfigModel', 'ConfigModelSettings', 'ContactData', 'ContactModel', 'ContactQualityExpert', 'ContactQualityResult', 'ContactQualitySettings', 'ContactSettings', 'Evaluation', 'Expert', 'FunctionExpert', 'GaussianMixture', 'GmmSettings', 'Grasp', 'GraspSynthesizer', 'Hand', 'HandLoadSettings', 'KdeSettings', 'KinematicFeasibilityExpert', 'KinematicFeasibilitySettings', 'OccupancyMap', 'OccupancySettings', 'POINT_TARGET_MAX_DISTANCE', 'PinholeCamera', 'PinholeFit', 'PlaneCandidate', 'PoseDensity', 'PoseKDE', 'PoseMixture', 'QueryDensity', 'QuerySettings', 'SamplingSettings', 'SceneCompletion', 'SceneObject', 'SceneSimResult', 'SceneSynthesis', 'Segmentation', 'SegmentationSettings', 'SettleResult', 'SimObject', 'SimResult', 'SimSettings', 'SpaceState', 'SurfaceCloud', 'SurfaceFeatureSettings', 'SynthesisResult', 'SynthesisTiming', 'SynthesizerSettings', 'TYPE_REFERENCE_TERM', 'URDF_AXES_ELEMENT', 'VisibilityModel', 'VisibilitySettings', 'build_info', 'camera_pose_matrix', 'complete_object', 'complete_scene', 'compute_surface_features', 'contact_data', 'learn_contact_models', 'load_cloud', 'load_mesh', 'log_vmf_s3_normaliser', 'object_surface', 'orient_plane', 'pose_inverse', 'pose_multiply', 'prepare_cloud', 'quat_exp', 'quat_log', 'query_weights', 'save_cloud', 'segment_depth', 'segment_organized', 'segment_scene', 'select_targets', 'sim_closing_speeds', 'sim_execute', 'sim_execute_scene', 'sim_settle_scene', 'solid_volume', 'synthesize_scene']
 class GmmSettings:
     """
     How a GaussianMixture (or PoseMixture) is fitted by EM.
@@ -1886,6 +1886,25 @@ class Completion:
         """
         why completion was limited, empty if nothing
         """
+class SceneCompletion:
+    """
+    Every object of a scene completed (complete_scene).
+    """
+    @property
+    def completions(self) -> list[Completion | None]:
+        """
+        per object, its Completion or None
+        """
+    @property
+    def notes(self) -> list[str]:
+        """
+        why objects were not completed, and the warnings
+        """
+    @property
+    def seconds(self) -> float:
+        """
+        s, wall time
+        """
 class HandLoadSettings:
     """
     How a URDF's meshes are found and loaded (Hand.from_urdf).
@@ -3752,6 +3771,57 @@ class GraspSynthesizer:
     @property
     def method(self) -> str:
         ...
+class SceneSynthesis:
+    """
+    What synthesize_scene made: the scene, the targets, ranked grasps.
+    """
+    def __len__(self) -> int:
+        ...
+    def columns(self) -> dict:
+        """
+        The ranked grasps as arrays: T_world_wrist (N, 7), joints, pregrasp (N, D), log_likelihood, optimised, object, type (N,), log_terms (a list of N lists, in the order of term_names[type])
+        """
+    @property
+    def completion(self) -> SceneCompletion:
+        """
+        the SceneCompletion of every object
+        """
+    @property
+    def evaluations(self) -> int:
+        ...
+    @property
+    def rejected(self) -> int:
+        ...
+    @property
+    def scene(self) -> Segmentation:
+        """
+        the Segmentation (support plane and objects)
+        """
+    @property
+    def surfaces(self) -> list[SurfaceCloud]:
+        """
+        per target, its SurfaceCloud
+        """
+    @property
+    def targets(self) -> list[int]:
+        """
+        the objects grasps were sampled on
+        """
+    @property
+    def term_names(self) -> list[list[str]]:
+        """
+        per grasp type, the names of a grasp's log_terms
+        """
+    @property
+    def timing(self) -> dict:
+        """
+        seconds: segmentation (with the completion and the targets' choice), occupancy (None: no map), features, query, sampling, optimisation, total
+        """
+    @property
+    def viewpoints(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        """
+        (M, 3) the camera of each scene point; (0, 3) unknown
+        """
 class SimSettings:
     """
     Settings of a grasp execution in Bullet (units: m, s, N, kg).
@@ -4121,6 +4191,10 @@ def complete_object(points: typing.Any, plane: typing.Any, visibility: Visibilit
       rotation_margin = 0.05: the rotation wins unless the best accepted mirror scores more than this above it
       observed_clearance = 0.006: m: no completed point within this of an observed point (the seen surface is not doubled)
     """
+def complete_scene(scene: Segmentation, *, settings: typing.Any = None, **kwargs) -> SceneCompletion:
+    """
+    Each object of a Segmentation completed (complete_object) from its visibility model and plane; without either nothing is completed and a note says why; an object complete_object refuses stays as seen, with a note. ValueError for settings out of range.
+    """
 def compute_surface_features(points: typing.Any, radius: typing.Any = None, normals: typing.Any = None, viewpoints: typing.Any = None, *, settings: typing.Any = None, **kwargs) -> SurfaceCloud:
     """
     O(v, r) of a cloud (N, 3): normals (the smallest eigenvector of each radius neighbourhood's covariance, PCL NormalEstimation's definition, computed in parallel here; or the given (N, 3)), outward by `orientation` (auto: towards viewpoints (3,) / (N, 3) when given, else given normals as they are, else propagated outward over the surface; or 'viewpoint', 'propagate', 'centroid', 'given'), principal curvatures (PCL, radius in m) and frames. Points with fewer than min_neighbours neighbours within radius are dropped (see indices, n_dropped). x is PCL's principal direction where (k1 - k2) / k1 >= min_anisotropy and k1 >= flat_curvature, else world z projected on the tangent plane (world x near +-z). radius=None: the settings' radius.
@@ -4165,6 +4239,10 @@ def log_vmf_s3_normaliser(kappa: typing.Any) -> float:
     """
     log of the hemisphere-restricted antipodal vMF normaliser on S^3 used by PoseKDE.
     """
+def object_surface(scene: Segmentation, viewpoints: typing.Any, completions: collections.abc.Sequence[Completion | None], index: typing.SupportsInt | typing.SupportsIndex, *, settings: typing.Any = None, **kwargs) -> SurfaceCloud:
+    """
+    Object `index`'s surface features as synthesize_scene computes them: a Segmentation, each of its points' camera (M, 3) or None, per object its Completion or None (include/graspmix/grasp/scene_synthesis.hpp).
+    """
 def orient_plane(plane: typing.Any, points: typing.Any, rule: str) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[4, 1]"]:
     """
     The plane [a, b, c, d] or its negation, whichever has the points on its positive side by `rule`
@@ -4205,6 +4283,10 @@ def quat_exp(w: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float
 def quat_log(q: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
     """
     eq:log_map on (N, 4) quaternions [x, y, z, w]: arccos(w) v/|v| after canonicalising w >= 0 -> (N, 3).
+    """
+def query_weights(surface: SurfaceCloud, n_observed: typing.SupportsInt | typing.SupportsIndex, completed_weight: typing.SupportsFloat | typing.SupportsIndex) -> typing.Any:
+    """
+    Each surface point's prior weight in the query densities (1 observed, completed_weight completed: the points from n_observed on); None when nothing is completed.
     """
 def save_cloud(path: typing.Any, points: typing.Any, normals: typing.Any = None, encoding: str = 'binary', viewpoint: typing.Any = None, viewpoints: typing.Any = None, width: typing.Any = 0, height: typing.Any = 0) -> None:
     """
@@ -4343,6 +4425,10 @@ def segment_scene(points: typing.Any, viewpoints: typing.Any = None, plane: typi
       plane_image_stride = 4: px: segment_depth's block side for the support plane's search (at most image_stride: those)
       workspace = []: m: the world-frame box [x_min, y_min, z_min, x_max, y_max, z_max] the input is cropped to first; [] = none
     """
+def select_targets(scene: Segmentation, viewpoints: typing.Any, kind: str, *, index: typing.Any = None, point: typing.Any = None, camera: typing.Any = None) -> list[int]:
+    """
+    The object indices of a target (kind all, index, point, largest, nearest) in a Segmentation whose points were seen from viewpoints (M, 3) or None (include/graspmix/perception/targets.hpp).
+    """
 def sim_closing_speeds(hand: Hand, pregrasp: typing.Any, grasp: typing.Any, settings: typing.Any = None, **kwargs) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
     """
     The speed limit of every URDF joint (hand.joints order; m/s or rad/s, 0 for fixed joints) while the hand closes from pregrasp to grasp (arrays in hand.joint_names order): the fingertips move at close_speed m/s.
@@ -4385,4 +4471,16 @@ def solid_volume(points: typing.Any, plane: typing.Any, *, resolution: typing.Su
     The solid columns of objects (points (N, 3)) standing on plane [a, b, c, d]: an OccupancyMap whose occupied
     cells lie under the points' tops (the rule: include/graspmix/grasp/solid_volume.hpp); resolution, gap in m.
     """
+def synthesize_scene(types: typing.Any, *, depth: typing.Any = None, organized: typing.Any = None, points: typing.Any = None, viewpoints: typing.Any = None, camera: PinholeCamera | None = None, T_world_camera: typing.Any = None, plane: typing.Any = None, target: str = 'all', target_index: typing.Any = None, target_point: typing.Any = None, approach_axis: typing.Any = None, reachable: typing.Any = None, experts: typing.Any = None, segmentation: typing.Any = None, completion: typing.Any = None, features: typing.Any = None, synthesizer: typing.Any = None, collision: typing.Any = None, occupancy: typing.Any = None, kinematic: typing.Any = None, axis_alignment: typing.Any = None, approach: typing.Any = None, contact_quality: typing.Any = None) -> SceneSynthesis:
+    """
+    The whole path from one view or a cloud to ranked grasps (include/graspmix/grasp/scene_synthesis.hpp).
+    types: [(GraspSynthesizer, name, log_reference or None)]; the input: depth (H, W) metres with camera and
+    T_world_camera [x, y, z, qx, qy, qz, qw], or organized (H * W, 3) sensor frame with camera and the pose, or
+    points (N, 3) world frame with viewpoints (None, (3,) or (N, 3)); target: all | index | point | largest |
+    nearest (target_index, target_point); the settings of each part (completion, kinematic, approach and
+    contact_quality None: that step off; the others None: their defaults).
+    """
+COMPLETED_VIEW_DISTANCE: float = 1.0
+POINT_TARGET_MAX_DISTANCE: float = 0.05
+TYPE_REFERENCE_TERM: str = 'type_reference'
 URDF_AXES_ELEMENT: str = 'graspmix'

@@ -325,4 +325,32 @@ Completion complete_object(const Eigen::Ref<const Vec3Array>& points, const Eige
   return out;
 }
 
+SceneCompletion complete_scene(const Segmentation& scene, const CompletionSettings& settings) {
+  const auto t0 = std::chrono::steady_clock::now();
+  SceneCompletion out;
+  out.completions.assign(scene.objects.size(), std::nullopt);
+  if (!scene.visibility) {
+    out.notes.push_back("no viewpoint given: the unseen side of the objects is not completed");
+    return out;
+  }
+  if (!(scene.plane_found || scene.plane_given)) {
+    out.notes.push_back("no support plane: the unseen side of the objects is not completed");
+    return out;
+  }
+  check_completion_settings(settings);  // bad settings are the caller's error, not an object's
+  for (const auto& o : scene.objects) {
+    Vec3Array points(o.rows.size(), 3);
+    for (Eigen::Index r = 0; r < o.rows.size(); ++r) points.row(r) = scene.points.row(o.rows[r]);
+    try {
+      Completion c = complete_object(points, scene.plane, *scene.visibility, settings);
+      if (!c.warning.empty()) out.notes.push_back("object " + std::to_string(o.index) + ": " + c.warning);
+      out.completions[o.index] = std::move(c);
+    } catch (const std::invalid_argument& e) {  // e.g. a camera in the support plane: that object stays as seen
+      out.notes.push_back("object " + std::to_string(o.index) + " is not completed: " + e.what());
+    }
+  }
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
 }  // namespace graspmix

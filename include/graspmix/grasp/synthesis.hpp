@@ -173,6 +173,7 @@ class GraspSynthesizer {
              RowMatrixXd& joints) const;
 
   const Hand& hand() const { return *hand_; }
+  const std::shared_ptr<const Hand>& hand_ptr() const { return hand_; }
   const std::vector<ContactModel>& contact_models() const { return contact_models_; }
   const ConfigModel& config_model() const { return config_; }
   /// "gmm" or "kde": the density type of the contact models.

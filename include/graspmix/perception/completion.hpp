@@ -32,6 +32,7 @@
 // camera saw is not doubled). An object the image border cuts (a pinhole view whose image edge
 // lies within border_margin px of an observed point) is completed all the same, with a warning.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,7 @@
 
 #include "graspmix/core/plane.hpp"
 #include "graspmix/core/types.hpp"
+#include "graspmix/perception/segmentation.hpp"
 #include "graspmix/perception/visibility.hpp"
 
 namespace graspmix {
@@ -123,5 +125,18 @@ Completion complete_object(const Eigen::Ref<const Vec3Array>& points, const Eige
 
 /// Throws std::invalid_argument naming the field unless the settings are in range.
 void check_completion_settings(const CompletionSettings& s);
+
+/// Every object of a segmented scene completed.
+struct SceneCompletion {
+  std::vector<std::optional<Completion>> completions;  ///< per object; unset where nothing was completed
+  std::vector<std::string> notes;  ///< why an object (or every object) was not completed, and the warnings
+  double seconds = 0;              ///< s, wall time
+};
+
+/// Each object of `scene` completed from its visibility model and plane. Without a visibility model (no
+/// viewpoint) or a plane nothing is completed and a note says why; an object complete_object refuses (e.g. seen by
+/// a camera in the support plane) stays as seen, with a note naming it and why. Throws std::invalid_argument for
+/// settings out of range.
+SceneCompletion complete_scene(const Segmentation& scene, const CompletionSettings& settings = {});
 
 }  // namespace graspmix

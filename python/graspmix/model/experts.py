@@ -1,9 +1,10 @@
-"""Experts of the product a grasp is ranked by: user-defined ones from Python functions, and the
-standard set a synthesis builds (collision, kinematic feasibility, approach axis)."""
+"""Experts of the product a grasp is ranked by: user-defined ones from Python functions, and the collision expert
+and occupancy map of a scene as the synthesis makes them (the whole standard set is built in C++ by
+_core.synthesize_scene: include/graspmix/grasp/scene_synthesis.hpp)."""
 
 from __future__ import annotations
 
-from typing import Callable, Iterable
+from typing import Callable
 
 import numpy as np
 
@@ -35,13 +36,6 @@ def expert(name: str, fn: Callable, kind: str = "probability") -> "_core.Expert"
     return _core.FunctionExpert(name, log_value)
 
 
-def oriented_plane(plane, points):
-    """The plane with its sign chosen so the object's points are on its positive side."""
-    if plane is None:
-        return None
-    return _core.orient_plane(plane, points, "mean")  # the collision expert's rule (CollisionSettings.orient_plane)
-
-
 def occupancy_map(points, viewpoints, objects, plane, opts: SynthesisOptions) -> "_core.OccupancyMap":
     """The occupancy of a scene from its whole cloud (table included: its rays clear the space around the
     objects) and each point's camera, over the objects' box grown by the map's margin (opts.occupancy)."""
@@ -51,15 +45,6 @@ def occupancy_map(points, viewpoints, objects, plane, opts: SynthesisOptions) ->
             "--viewpoint)"
         )
     return _core.OccupancyMap(points, viewpoints, objects, plane, settings=opts.occupancy)
-
-
-def unseen_map(scene, opts: SynthesisOptions):
-    """The map whose unknown cells the surface model's soft unseen charge counts (opts.collision.unseen_weight):
-    the scene's visibility model baked over its objects' box grown by opts.occupancy's margin; None when the charge
-    is off, the occupancy model has its own map, or the scene has no view (no viewpoint: nothing is unseen)."""
-    if opts.collision.unseen_weight <= 0 or opts.collision.model != "surface" or scene.visibility is None:
-        return None
-    return _core.OccupancyMap.from_visibility(scene.visibility, scene.points, scene.plane, settings=opts.occupancy)
 
 
 def collision_expert(
@@ -75,54 +60,3 @@ def collision_expert(
     return _core.CollisionExpert(
         hand, points, plane=plane, occupancy=occupancy, unseen=unseen, settings=opts.collision, **extra
     )
-
-
-def approach_collision(hand, points, plane, opts: SynthesisOptions, occupancy=None):
-    """What the clear approach keeps clear of: the scene's points (observed and completed) as balls of
-    opts.approach.clearance, its plane and occupancy; None when the clear approach is off."""
-    if opts.approach is None:
-        return None
-    return collision_expert(hand, points, plane, opts, occupancy, point_radius=opts.approach.clearance)
-
-
-def clear_approach_expert(collision, config, opts: SynthesisOptions):
-    """The hard clear-approach expert of one grasp type (its ConfigModel opens the hand) against `collision`
-    (approach_collision); None when there is none."""
-    if collision is None:
-        return None
-    return _core.ClearApproachExpert(collision, config, settings=opts.approach)
-
-
-def contact_quality_expert(hand, surface, config, opts: SynthesisOptions):
-    """The soft contact-quality expert of one target object (its surface: points and normals) and grasp type (its
-    ConfigModel opens the hand); None when opts.contact_quality is None."""
-    if opts.contact_quality is None:
-        return None
-    return _core.ContactQualityExpert(hand, surface.points, surface.normals, config, settings=opts.contact_quality)
-
-
-def constraint_experts(
-    hand,
-    points,
-    plane,
-    opts: SynthesisOptions,
-    *,
-    approach_axis=None,
-    reachable: Callable | None = None,
-    experts: Iterable = (),
-) -> list:
-    """The kinematic expert (joint limits, support plane, reachability), the approach-axis expert, then
-    the caller's experts, in this order."""
-    out = []
-    if opts.kinematic is not None:
-        out.append(
-            _core.KinematicFeasibilityExpert(
-                hand, plane=oriented_plane(plane, points), reachable=reachable, settings=opts.kinematic
-            )
-        )
-    elif reachable is not None:
-        raise ValueError("reachable needs the kinematic expert (SynthesisOptions.kinematic is None)")
-    if approach_axis is not None:
-        out.append(_core.AxisAlignmentExpert(np.asarray(approach_axis, float), settings=opts.axis_alignment, hand=hand))
-    out.extend(experts)
-    return out

@@ -52,7 +52,7 @@ from .grasp_types import (
 )
 from .grasps import GraspSet
 from .options import SynthesisOptions
-from .scene_synthesis import segment_query, synthesize_targets
+from .scene_synthesis import synthesize_scene
 from .serialization import config_dict, config_settings
 from .settings import FeatureScale, LearnSettings, check_method
 
@@ -260,31 +260,30 @@ class GraspModel:
         opts = checked_options(options)
         chosen = select_types(self.types, types)
         t0 = time.perf_counter()
-        # Phase 1: the scene (support plane, objects) and the targets.
         source, name, notes = scene_input(cloud, depth, intrinsics, depth_scale, camera_pose, viewpoints)
         view = None if depth is None else depth_record(depth, source, depth_scale)
         name = "" if view is not None else name  # the depth image is the view, not a cloud file
-        scene = segment_query(source, checked_plane(plane), opts, self.features)
-        scene.notes[:0] = notes
-        targets = scene.select(target)
-        t_segment = time.perf_counter() - t0
-        # Phases 2-3: features, query densities, sampling, ranking and annealing per target, ranked together.
-        out = synthesize_targets(
+        t_input = time.perf_counter() - t0
+        # The scene (support plane, objects, completion), the targets and every target's synthesis: one C++ call.
+        out = synthesize_scene(
             self,
-            scene,
-            targets,
+            source,
+            checked_plane(plane),
+            target,
             opts,
             self.synthesizer_settings(opts),
             approach_axis=approach_axis,
             reachable=reachable,
             experts=experts,
-            cloud=source,
             types=chosen,
         )
-        timing = _stage_times(out.timing, t_segment, time.perf_counter() - t0)
+        out.scene.notes[:0] = notes
+        timing = dict(out.timing)
+        segmentation = t_input + timing.pop("segmentation")  # reading the input counts as the segmentation's
+        timing = _stage_times(timing, segmentation, time.perf_counter() - t0)
         return GraspSet(
-            out.grasps, self.hand_path, self.method, name, timing, out.surface, scene.plane, out.evaluations,
-            out.rejected, scene=scene, targets=targets, hand=self._hand, view=view,
+            out.grasps, self.hand_path, self.method, name, timing, out.surface, out.scene.plane, out.evaluations,
+            out.rejected, scene=out.scene, targets=out.targets, hand=self._hand, view=view,
         )  # fmt: skip
 
     def synthesizer_settings(self, opts: SynthesisOptions) -> "_core.SynthesizerSettings":

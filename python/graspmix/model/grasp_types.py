@@ -26,7 +26,7 @@ from .experts import collision_expert
 from .options import SynthesisOptions
 from .serialization import config_dict, config_settings, density_from_json, density_to_json
 
-REFERENCE_EXPERT = "type_reference"  # the experts' key of -log L_ref in a model of several types
+REFERENCE_EXPERT = _core.TYPE_REFERENCE_TERM  # the experts' key of -log L_ref in a model of several types
 
 
 @dataclass

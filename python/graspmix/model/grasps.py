@@ -121,17 +121,19 @@ def check_grasp(grasp, what: str = "grasp") -> Grasp:
     return grasp
 
 
-def grasps_from_result(result, hand) -> list[Grasp]:
-    """The Grasps of a C++ synthesis result, best first, with every expert's log value by name (read from
-    result.columns(): one array a field, turned into Python numbers in bulk)."""
-    used = ("T_world_wrist", "joints", "pregrasp", "log_likelihood", "optimised", "log_terms")
-    columns = result.columns()
-    c = {k: columns[k].tolist() for k in used}
+def grasps_from_columns(columns: dict, term_names: list, hand, objects: list, types: list) -> list[Grasp]:
+    """The Grasps of a scene synthesis, best first (_core.SceneSynthesis.columns(): one array a field, turned into
+    Python numbers in bulk), each with every term of its log L by name (term_names[its type]), its object
+    (objects[its object index]: {"index", "centroid"}) and its type's name (types[its type index])."""
+    c = {
+        k: np.asarray(columns[k]).tolist()
+        for k in ("T_world_wrist", "joints", "pregrasp", "log_likelihood", "optimised", "object", "type")
+    }
+    terms = columns["log_terms"]
     names = sorted(enumerate(hand.joint_names), key=lambda j: j[1])  # by name, as Hand.joints_dict orders them
-    terms = result.term_names
     grasps = []
     for i, wrist in enumerate(c["T_world_wrist"]):
-        experts = dict(zip(terms, c["log_terms"][i]))
+        k = c["type"][i]
         grasps.append(
             Grasp(
                 T_world_wrist=wrist,
@@ -140,7 +142,9 @@ def grasps_from_result(result, hand) -> list[Grasp]:
                 rank=i + 1,
                 log_likelihood=c["log_likelihood"][i],
                 optimised=c["optimised"][i],
-                experts=experts,
+                experts=dict(zip(term_names[k], terms[i])),
+                object=objects[c["object"][i]],
+                type=types[k],
             )
         )
     return grasps

@@ -1,6 +1,8 @@
 """Synthesis on a scene: the cloud is segmented into its support plane and objects
 (graspmix.segment_scene), grasps are sampled on the target objects only, and the collision expert sees
-every object and the table, so that a grasp on one object never goes through its neighbour.
+every object and the table, so that a grasp on one object never goes through its neighbour. The whole path runs
+in one C++ call, _core.synthesize_scene (include/graspmix/grasp/scene_synthesis.hpp states it step by step); this
+module gives it its input and settings and turns its result into the Scene and Grasps of the Python API.
 
 Each target object gets a synthesis of its own per grasp type of the model (its own query densities: a
 mixture fitted over several objects would spread its few components between them), with the same
@@ -21,18 +23,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import _core
-from ..perception import CameraView, Scene, segment_scene, segment_view
-from .experts import (
-    approach_collision,
-    clear_approach_expert,
-    collision_expert,
-    constraint_experts,
-    contact_quality_expert,
-    occupancy_map,
-    unseen_map,
-)
-from .grasp_types import REFERENCE_EXPERT
-from .grasps import STAGES, grasps_from_result
+from ..perception import CameraView, Scene, parse_target, segment_scene, segment_view
+from .grasps import STAGES, grasps_from_columns
 from .options import SynthesisOptions
 from .settings import FeatureScale
 
@@ -69,62 +61,43 @@ def segment_query(source, plane, opts: SynthesisOptions, features: FeatureScale)
     return scene if opts.completion is None else scene.complete(opts.completion)
 
 
-def whole_cloud(source, scene: Scene) -> tuple:
-    """(points, viewpoints) of the whole input, table included: a view's points of every return in the world frame
-    and its camera; a cloud as given; the scene's own without a source."""
-    if source is None:
-        return scene.points, scene.viewpoints
-    if isinstance(source, CameraView):
-        return source.world_points(), source.position
-    return source
-
-
-# m: a completed point's normal is oriented towards a virtual viewpoint this far out along its outward normal
-COMPLETED_VIEW_DISTANCE = 1.0
-
-
 def object_surface(scene: Scene, index: int, features: FeatureScale):
-    """The surface features of one segmented object, its normals oriented towards its viewpoints; with its
-    completion (scene.completed(index)), the observed and completed points together, each completed point's
-    normal turned outward as the completion says (towards a viewpoint on its outside)."""
-    rows = scene.objects[index].rows
-    vp = None if scene.viewpoints is None else scene.viewpoints[rows]
-    points, normals = scene.completed(index)
-    if len(points) == 0 or vp is None:
-        return _core.compute_surface_features(scene.points[rows], radius=features.radius, viewpoints=vp)
-    return _core.compute_surface_features(
-        np.vstack([scene.points[rows], points]),
-        radius=features.radius,
-        viewpoints=np.vstack([vp, points + COMPLETED_VIEW_DISTANCE * normals]),
-    )
+    """The surface features of one segmented object as the synthesis computes them (_core.object_surface): its
+    observed points, normals towards their cameras, then its completed points (scene.completed(index)), each
+    completed point's normal turned outward as the completion says."""
+    return _core.object_surface(scene.result, scene.viewpoints, scene.completions, index, radius=features.radius)
 
 
 def query_weights(scene: Scene, index: int, surface, opts: SynthesisOptions):
     """Each surface point's prior weight in the query densities: 1 where observed, opts.query.completed_weight
     where completed (object_surface put the completed points after the observed ones); None without completion."""
-    n_observed = len(scene.objects[index].rows)
-    completed = np.asarray(surface.indices) >= n_observed
-    if not np.any(completed):
-        return None
-    return np.where(completed, opts.query.completed_weight, 1.0)
+    return _core.query_weights(surface, len(scene.objects[index].rows), opts.query.completed_weight)
 
 
-def clear_of_neighbours(model, scene: Scene, target: int, opts: SynthesisOptions, config=None):
-    """The hard expert that keeps a grasp on `target` out of every other object of the scene, at the grasp
-    and at its pre-grasp (where the hand starts, by `config`: a grasp type's ConfigModel, default the
-    model's first); None in a scene of one object."""
-    if len(scene.objects) < 2:
-        return None
-    collision = collision_expert(model.hand, scene.solid_points(without=target), None, opts)
-    config = model.synthesizer.config_model if config is None else config
-    return _core.CollisionFreeExpert(collision, config, name="clear_of_neighbours")
+def source_arguments(source) -> dict:
+    """_core.synthesize_scene's input keywords of segment_query's source: a view's depth image (or its organized
+    cloud) with its camera and pose, or a cloud's points and viewpoints."""
+    if isinstance(source, CameraView):
+        view = {"camera": source.camera, "T_world_camera": source.pose}
+        if source.organized is not None:
+            return {"organized": source.organized.reshape(-1, 3), **view}
+        return {"depth": source.depth, **view}
+    points, viewpoints = source
+    return {"points": points, "viewpoints": viewpoints}
+
+
+def source_viewpoints(source):
+    """The cameras of a source as Scene takes them: a view's position, a cloud's viewpoints."""
+    return source.position if isinstance(source, CameraView) else source[1]
 
 
 @dataclass
 class SceneSynthesis:
-    """What the synthesis on the targets of a scene produced: grasps best first (each with its object),
-    the targets' surfaces, summed stage times, evaluations and rejected samples."""
+    """What the synthesis on the targets of a scene produced: the scene, the targets, grasps best first (each with
+    its object and type), the targets' surfaces, stage times, evaluations and rejected samples."""
 
+    scene: Scene
+    targets: list
     grasps: list
     surface: object
     timing: dict
@@ -132,75 +105,61 @@ class SceneSynthesis:
     rejected: int
 
 
-def synthesize_targets(
+def synthesize_scene(
     model,
-    scene: Scene,
-    targets: list[int],
+    source,
+    plane,
+    target,
     opts: SynthesisOptions,
     settings,
     *,
-    approach_axis,
-    reachable,
-    experts,
-    cloud=None,
+    approach_axis=None,
+    reachable=None,
+    experts=(),
     types=None,
 ) -> SceneSynthesis:
-    """Runs the model's synthesiser on every target object against the whole scene and ranks all grasps.
-    cloud: the scene's source (segment_query's: a CameraView or (points, viewpoints)): with collision="occupancy"
-    the scene's OccupancyMap is built from its whole cloud (whole_cloud) once and shared by every target (its time:
-    timing["occupancy"]); the surface model's unseen charge bakes the scene's visibility model instead (unseen_map,
-    its time likewise).
-    types: the model's grasp types to sample (default all); each samples n_samples grasps of its own and
-    optimises its own best, so a synthesis of T types costs about T times one type's (the stage times are
-    sums over types and targets)."""
-    timing = dict.fromkeys(STAGES, 0.0)
-    occupancy = None
-    if opts.collision.model == "occupancy":
-        points, viewpoints = whole_cloud(cloud, scene)
-        occupancy = occupancy_map(points, viewpoints, scene.points, scene.plane, opts)
-        timing["occupancy"] = occupancy.stats["seconds"]
-    unseen = unseen_map(scene, opts)
-    if unseen is not None:
-        timing["occupancy"] = unseen.stats["seconds"]
-    solid = scene.solid_points()  # observed and completed: the hand stays out of both
-    collision = collision_expert(model.hand, solid, scene.plane, opts, occupancy, unseen=unseen)
-    approach = approach_collision(model.hand, solid, scene.plane, opts, occupancy)
-    # The same for every target; each target adds its own neighbours' expert at the end.
-    shared = constraint_experts(
-        model.hand, scene.points, scene.plane, opts, approach_axis=approach_axis, reachable=reachable, experts=experts
-    )
+    """The whole path in one C++ call (_core.synthesize_scene; include/graspmix/grasp/scene_synthesis.hpp): the
+    scene of `source` (segment_query's: a CameraView or (points, viewpoints)) with `plane` known or searched for,
+    its objects completed (opts.completion), the `target` objects (Scene.select's forms), and on each the model's
+    synthesiser per grasp type against the whole scene, all grasps ranked together. types: the model's grasp types
+    to sample (default all), each sampling n_samples grasps of its own and optimising its own best (the stage times
+    are sums over types and targets); in a model of several types each type's scores are made comparable by its
+    reference score (graspmix.model.grasp_types). timing: the segmentation (the scene, completion and targets),
+    the occupancy map when one was made, the synthesiser's stages."""
     types = model.types if types is None else types
-    grasps, surfaces, evaluations, rejected = [], [], 0, 0
-    for i in targets:
-        surface = object_surface(scene, i, model.features)
-        on = {"index": int(i), "centroid": [float(x) for x in scene.objects[i].centroid]}
-        for t in types:
-            config = t.synthesizer.config_model
-            own = (
-                clear_of_neighbours(model, scene, i, opts, config),
-                clear_approach_expert(approach, config, opts),
-                contact_quality_expert(model.hand, surface, config, opts),
-            )
-            extra = shared + [e for e in own if e is not None]
-            weights = query_weights(scene, i, surface, opts)
-            res = t.synthesizer.synthesize(
-                surface.frames, surface.curvatures, collision, extra, settings, weights=weights
-            )
-            for g in grasps_from_result(res, model.hand):
-                g.object = on
-                g.type = t.name
-                if len(model.types) > 1:  # scores of several types made comparable (model.grasp_types)
-                    g.experts[REFERENCE_EXPERT] = -t.log_reference
-                    g.log_likelihood -= t.log_reference
-                grasps.append(g)
-            for k in STAGES:
-                timing[k] += getattr(res.timing, k)
-            evaluations += res.evaluations
-            rejected += res.rejected
-        surfaces.append(surface)
-    if len(targets) > 1 or len(types) > 1:
-        grasps.sort(key=lambda g: -g.log_likelihood)  # stable: equal scores keep the targets' and types' order
-        for rank, g in enumerate(grasps, start=1):
-            g.rank = rank
+    t = parse_target(target)
+    several = len(model.types) > 1  # scores of several types made comparable (model.grasp_types)
+    res = _core.synthesize_scene(
+        [(ty.synthesizer, ty.name, ty.log_reference if several else None) for ty in types],
+        **source_arguments(source),
+        plane=plane,
+        target=t.kind,
+        target_index=t.index,
+        target_point=t.point,
+        approach_axis=None if approach_axis is None else np.asarray(approach_axis, float),
+        reachable=reachable,
+        experts=list(experts),
+        segmentation=opts.segmentation_for(model.features.voxel_size),
+        completion=opts.completion,
+        features=_core.SurfaceFeatureSettings(radius=model.features.radius),
+        synthesizer=settings,
+        collision=opts.collision,
+        occupancy=opts.occupancy,
+        kinematic=opts.kinematic,
+        axis_alignment=opts.axis_alignment,
+        approach=opts.approach,
+        contact_quality=opts.contact_quality,
+    )
+    scene = Scene(res.scene, source_viewpoints(source))
+    if opts.completion is not None:
+        scene.take_completion(res.completion)
+    times = res.timing
+    objects = [{"index": o.index, "centroid": [float(x) for x in o.centroid]} for o in scene.objects]
+    grasps = grasps_from_columns(res.columns(), res.term_names, model.hand, objects, [ty.name for ty in types])
+    timing = {k: times[k] for k in STAGES}
+    if times["occupancy"] is not None:
+        timing["occupancy"] = times["occupancy"]
+    timing["segmentation"] = times["segmentation"]
+    surfaces = list(res.surfaces)
     surface = surfaces[0] if len(surfaces) == 1 else SurfaceUnion.of(surfaces)
-    return SceneSynthesis(grasps, surface, timing, evaluations, rejected)
+    return SceneSynthesis(scene, list(res.targets), grasps, surface, timing, res.evaluations, res.rejected)

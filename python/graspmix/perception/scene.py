@@ -4,7 +4,6 @@ a JSON form; camera_to_world for clouds given in a camera's frame."""
 from __future__ import annotations
 
 import math
-import time
 from dataclasses import dataclass
 
 import numpy as np
@@ -14,7 +13,7 @@ from ..io import as_points, quote
 
 # m: a "point:x,y,z" target farther than this from every object's points names no object (a click or a
 # typed point lands on the surface the camera saw, within a few voxels of it).
-POINT_TARGET_MAX_DISTANCE = 0.05
+POINT_TARGET_MAX_DISTANCE = _core.POINT_TARGET_MAX_DISTANCE  # m (include/graspmix/perception/targets.hpp)
 TARGET_KINDS = ("all", "largest", "nearest")
 
 
@@ -138,27 +137,15 @@ class Scene:
         saw; completions[i] holds object i's. Without viewpoints or a support plane nothing is completed, and an
         object complete_object refuses (e.g. seen by a camera in the support plane) stays as seen: `notes` says
         why. Bad settings are a ValueError. Returns the scene."""
-        why = None
-        if self.visibility is None:
-            why = "no viewpoint given: the unseen side of the objects is not completed"
-        elif self.plane is None:
-            why = "no support plane: the unseen side of the objects is not completed"
-        if why is not None:
-            self.notes.append(why)
-            return self
-        t0 = time.perf_counter()
-        for o in self.objects:
-            try:
-                c = _core.complete_object(o.points, self.plane, self.visibility, settings=settings)
-            except ValueError as e:  # e.g. a camera in the support plane: that object stays as seen
-                if "CompletionSettings" in str(e):  # bad settings: the caller's error
-                    raise
-                self.notes.append(f"object {o.index} is not completed: {e}")
-                continue
-            self.completions[o.index] = c
-            if c.warning:
-                self.notes.append(f"object {o.index}: {c.warning}")
-        self.timing["completion"] = time.perf_counter() - t0
+        return self.take_completion(_core.complete_scene(self.result, settings=settings))
+
+    def take_completion(self, done) -> "Scene":
+        """Keeps a _core.SceneCompletion of this scene (complete_scene's, or synthesize_scene's): completions[i]
+        object i's, its notes, its time (when anything could be completed). Returns the scene."""
+        self.completions = list(done.completions)
+        self.notes.extend(done.notes)
+        if self.visibility is not None and self.plane is not None:
+            self.timing["completion"] = float(done.seconds)
         return self
 
     def completed(self, index: int) -> tuple[np.ndarray, np.ndarray]:
@@ -187,37 +174,13 @@ class Scene:
         the point nearest to a camera: `camera` (3,) if given, else the camera that saw each point (the
         viewpoints given), else the origin."""
         t = parse_target(target)
-        if t.kind == "all":
-            return [o.index for o in self.objects]
-        if t.kind == "index":
-            if t.index >= len(self.objects):
-                raise ValueError(
-                    f"target: no object {t.index} (the scene has {len(self.objects)}: 0..{len(self.objects) - 1})"
-                )
-            return [t.index]
-        if t.kind == "largest":
-            return [max(self.objects, key=lambda o: (o.n_points, -o.index)).index]
-        if t.kind == "point":
-            p = np.asarray(t.point)
-            d = np.array([np.min(np.linalg.norm(o.points - p, axis=1)) for o in self.objects])
-            best = int(np.argmin(d))
-            if d[best] > POINT_TARGET_MAX_DISTANCE:
-                raise ValueError(
-                    f"target: the point {t} is {d[best]:.3f} m from the nearest object (more than "
-                    f"{POINT_TARGET_MAX_DISTANCE} m): it names no object"
-                )
-            return [self.objects[best].index]
-        d = self._camera_distance(camera)
-        return [self.objects[int(np.argmin([d[o.rows].min() for o in self.objects]))].index]
-
-    def _camera_distance(self, camera) -> np.ndarray:
-        """(M,) per kept point, its distance to `camera`, else to the camera that saw it, else to the origin."""
         if camera is not None:
-            c = np.asarray(camera, dtype=float)
-            if c.shape != (3,) or not np.all(np.isfinite(c)):
-                raise ValueError(f"camera: expected a finite (3,) position, got shape {c.shape}")
-            return np.linalg.norm(self.points - c, axis=1)
-        return np.linalg.norm(self.points - (0.0 if self.viewpoints is None else self.viewpoints), axis=1)
+            camera = np.asarray(camera, dtype=float)
+            if camera.shape != (3,):
+                raise ValueError(f"camera: expected a finite (3,) position, got shape {camera.shape}")
+        return list(
+            _core.select_targets(self.result, self.viewpoints, t.kind, index=t.index, point=t.point, camera=camera)
+        )
 
     def to_dict(self) -> dict:
         """A JSON-ready summary: the plane (with the rule's figures), the objects, the counts, the time."""

@@ -7,64 +7,21 @@
 
 #include <gtest/gtest.h>
 
+#include "grasp/synthetic_box.hpp"
 #include "graspmix/core/se3.hpp"
 #include "graspmix/density/pose_mixture.hpp"
 #include "graspmix/grasp/synthesis.hpp"
 
 using namespace graspmix;
+using graspmix::test::Box;
+using graspmix::test::make_box;
+using graspmix::test::top_grasp_synthesizer;
+using graspmix::test::wsg50;
 namespace fs = std::filesystem;
 
 namespace {
 
 const fs::path kRepo = GRASPMIX_SOURCE_DIR;  // set by CMakeLists.txt for the tests
-
-/// Points every 3 mm on the top and side faces of a 60 x 100 x 140 mm box standing on z = 0, with
-/// frames (z = outward normal) and features [k1, k2] = [0.02, 0] within 6 mm of an edge, else 0.
-struct Box {
-  PoseArray frames;
-  RowMatrixXd features;
-  Vec3Array points;
-};
-
-Box make_box() {
-  const Eigen::Vector3d half(0.03, 0.05, 0.07), centre(0, 0, 0.07);
-  std::vector<Eigen::Matrix<double, 7, 1>> fr;
-  std::vector<Eigen::Vector2d> ft;
-  for (int axis = 0; axis < 3; ++axis) {
-    for (int sign : {-1, 1}) {
-      if (axis == 2 && sign < 0) continue;  // the bottom rests on the table
-      const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-      for (double a = -half[u]; a <= half[u] + 1e-9; a += 0.003) {
-        for (double b = -half[v]; b <= half[v] + 1e-9; b += 0.003) {
-          Eigen::Vector3d p = Eigen::Vector3d::Zero(), n = Eigen::Vector3d::Zero();
-          p[axis] = sign * half[axis];
-          p[u] = a;
-          p[v] = b;
-          n[axis] = sign;
-          Eigen::Vector3d x = Eigen::Vector3d::Zero();
-          x[u] = 1.0;
-          Eigen::Matrix3d R;
-          R << x, n.cross(x), n;
-          const Eigen::Quaterniond q = canonical(Eigen::Quaterniond(R));
-          Eigen::Matrix<double, 7, 1> f;
-          f << p + centre, q.x(), q.y(), q.z(), q.w();
-          fr.push_back(f);
-          const bool edge = half[u] - std::abs(a) < 0.006 || half[v] - std::abs(b) < 0.006;
-          ft.emplace_back(edge ? 0.02 : 0.0, 0.0);
-        }
-      }
-    }
-  }
-  Box box;
-  box.frames.resize(fr.size(), 7);
-  box.features.resize(ft.size(), 2);
-  for (size_t i = 0; i < fr.size(); ++i) {
-    box.frames.row(i) = fr[i].transpose();
-    box.features.row(i) = ft[i].transpose();
-  }
-  box.points = box.frames.leftCols<3>();
-  return box;
-}
 
 struct Fixture {
   std::shared_ptr<const Hand> hand;
@@ -75,20 +32,9 @@ struct Fixture {
 
 Fixture make_fixture() {
   Fixture f;
-  f.hand = std::make_shared<Hand>(Hand::from_urdf((kRepo / "data" / "hands" / "wsg50.urdf").string()));
+  f.hand = wsg50(kRepo.string());
   f.box = make_box();
-  Eigen::Matrix<double, 7, 1> w;
-  w << 0, 0, 0.2185, 1, 0, 0, 0;  // top grasp, palm z down
-  Eigen::VectorXd grasp(1), pre(1);
-  grasp << 0.0305;
-  pre << 0.05;
-  auto models = learn_contact_models(*f.hand, pose_from_vector(w), grasp, f.box.frames, f.box.features, [] {
-    GmmSettings s;
-    s.n_components = 2;
-    return std::make_shared<PoseMixture>(s);
-  });
-  f.synth =
-      std::make_unique<GraspSynthesizer>(f.hand, std::move(models), ConfigModel(pre, grasp, f.hand->joint_limits()));
+  f.synth = top_grasp_synthesizer(f.hand, f.box);
   CollisionSettings collision;
   collision.beta = 1000.0;  // the value these tests were written with (the default is now 2000)
   f.collision = std::make_unique<CollisionExpert>(f.hand, f.box.points, Eigen::Vector4d(0, 0, 1, 0), collision);

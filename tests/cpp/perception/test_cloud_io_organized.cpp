@@ -17,10 +17,12 @@
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
+#include "core/error_message.hpp"
 #include "graspmix/perception/cloud_io.hpp"
 #include "temp_dir.hpp"
 
 using namespace graspmix;
+using graspmix::test::error_message;
 
 namespace {
 
@@ -64,15 +66,6 @@ void expect_same_grid(const Vec3Array& a, const Vec3Array& b, const std::string&
         ASSERT_EQ(a(i, j), b(i, j)) << what << " row " << i;
       }
     }
-}
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return "no error";
 }
 
 }  // namespace
@@ -183,7 +176,7 @@ TEST(CloudIoOrganized, BadOrganisedInputsNameTheProblem) {
   Vec3Array P = grid_points(7, 5, 3, holes);
   const auto save = [&](const std::string& name, const Vec3Array& points, std::uint32_t w, std::uint32_t h,
                         const Vec3Array& normals = {}) {
-    return error_of(
+    return error_message(
         [&] { save_cloud(tmp / name, points, normals, "binary", Eigen::Matrix<double, 7, 1>::Unit(6), {}, w, h); });
   };
   std::string e = save("o.ply", P, 7, 5);
@@ -210,7 +203,7 @@ TEST(CloudIoOrganized, BadOrganisedInputsNameTheProblem) {
   save_cloud(tmp / "row.pcd", row, {}, "ascii", Eigen::Matrix<double, 7, 1>::Unit(6), {}, 3, 1);
   const CloudData c = load_cloud(tmp / "row.pcd");
   EXPECT_EQ(c.pixels.size(), 0);
-  e = error_of([&] { organized_grid(c); });
+  e = error_message([&] { organized_grid(c); });
   EXPECT_NE(e.find(tmp / "row.pcd"), std::string::npos) << e;
   EXPECT_NE(e.find("not an organized cloud (height 1)"), std::string::npos) << e;
 }

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "core/error_message.hpp"
 #include "graspmix/perception/depth_scene.hpp"
 #include "raycast.hpp"
 
@@ -55,17 +56,6 @@ std::vector<std::vector<double>> sorted_rows(const Vec3Array& P) {
   for (Eigen::Index r = 0; r < P.rows(); ++r) rows.push_back({P(r, 0), P(r, 1), P(r, 2)});
   std::sort(rows.begin(), rows.end());
   return rows;
-}
-
-/// The message of the std::invalid_argument f throws ("no error" when it throws none).
-template <class F>
-std::string message(F&& f) {
-  try {
-    f();
-  } catch (const std::invalid_argument& e) {
-    return std::string(e.what());
-  }
-  return std::string("no error");
 }
 
 }  // namespace
@@ -234,13 +224,15 @@ TEST(DepthScene, TheWorkspaceCropsTheInputFirst) {
 
   SegmentationSettings away;
   away.workspace = {1.0, 1.0, 1.0, 2.0, 2.0, 2.0};
-  EXPECT_NE(message([&] { segment_depth(image(), kCam, kPose, away); }).find("nothing inside the workspace"),
+  EXPECT_NE(error_message([&] { segment_depth(image(), kCam, kPose, away); }).find("nothing inside the workspace"),
             std::string::npos);
-  EXPECT_NE(message([&] { segment_scene(P, camera, away); }).find("nothing inside the workspace"), std::string::npos);
+  EXPECT_NE(error_message([&] { segment_scene(P, camera, away); }).find("nothing inside the workspace"),
+            std::string::npos);
   away.workspace = {0.0, 0.0, 0.0, 0.0, 1.0, 1.0};
-  EXPECT_NE(message([&] { segment_depth(image(), kCam, kPose, away); }).find("below its maximum"), std::string::npos);
+  EXPECT_NE(error_message([&] { segment_depth(image(), kCam, kPose, away); }).find("below its maximum"),
+            std::string::npos);
   away.workspace = {0.0, 0.0, 1.0};
-  EXPECT_NE(message([&] { segment_depth(image(), kCam, kPose, away); }).find("6 numbers"), std::string::npos);
+  EXPECT_NE(error_message([&] { segment_depth(image(), kCam, kPose, away); }).find("6 numbers"), std::string::npos);
 }
 
 TEST(DepthScene, TheMedianWindowKeepsLoneOutlinePixelsFromSeeingThroughAnObject) {
@@ -299,34 +291,35 @@ TEST(DepthScene, TheMedianWindowKeepsLoneOutlinePixelsFromSeeingThroughAnObject)
   EXPECT_GT(static_cast<double>(same) / n, 0.97);
   SegmentationSettings bad;
   bad.visibility_median_window = 6;
-  EXPECT_NE(message([&] { segment_depth(image(), kCam, kPose, bad); }).find("visibility_median_window"),
+  EXPECT_NE(error_message([&] { segment_depth(image(), kCam, kPose, bad); }).find("visibility_median_window"),
             std::string::npos);
 }
 
 TEST(DepthScene, BadInputNamesWhatIsWrong) {
   DepthImage small(10, 10);
   small.setConstant(0.5);
-  EXPECT_NE(message([&] { segment_depth(small, kCam, kPose); }).find("depth"), std::string::npos);
+  EXPECT_NE(error_message([&] { segment_depth(small, kCam, kPose); }).find("depth"), std::string::npos);
   DepthImage negative = image();
   negative(5, 5) = -0.1;
-  EXPECT_NE(message([&] { segment_depth(negative, kCam, kPose); }).find("negative"), std::string::npos);
+  EXPECT_NE(error_message([&] { segment_depth(negative, kCam, kPose); }).find("negative"), std::string::npos);
   const DepthImage none = DepthImage::Constant(kCam.height(), kCam.width(), kNaN);
-  EXPECT_NE(message([&] { segment_depth(none, kCam, kPose); }).find("no pixel has a return"), std::string::npos);
+  EXPECT_NE(error_message([&] { segment_depth(none, kCam, kPose); }).find("no pixel has a return"), std::string::npos);
   Eigen::Isometry3d skewed = kPose;
   skewed.linear() *= 1.1;
-  EXPECT_NE(message([&] { segment_depth(image(), kCam, skewed); }).find("T_world_camera"), std::string::npos);
+  EXPECT_NE(error_message([&] { segment_depth(image(), kCam, skewed); }).find("T_world_camera"), std::string::npos);
   SegmentationSettings bad;
   bad.image_stride = -1;
-  EXPECT_NE(message([&] { segment_depth(image(), kCam, kPose, bad); }).find("image_stride"), std::string::npos);
+  EXPECT_NE(error_message([&] { segment_depth(image(), kCam, kPose, bad); }).find("image_stride"), std::string::npos);
   bad.image_stride = 0;
   bad.plane_image_stride = 0;
-  EXPECT_NE(message([&] { segment_depth(image(), kCam, kPose, bad); }).find("plane_image_stride"), std::string::npos);
+  EXPECT_NE(error_message([&] { segment_depth(image(), kCam, kPose, bad); }).find("plane_image_stride"),
+            std::string::npos);
   const Vec3Array S = kCam.back_project(image());
-  EXPECT_NE(message([&] { segment_organized(S, kCam.height() - 1, kCam.width(), kPose); }).find("rows"),
+  EXPECT_NE(error_message([&] { segment_organized(S, kCam.height() - 1, kCam.width(), kPose); }).find("rows"),
             std::string::npos);
   Vec3Array world = S;  // the same points in the world frame: not a pinhole image in the sensor frame
   for (Eigen::Index r = 0; r < world.rows(); ++r)
     if (world.row(r).allFinite()) world.row(r) = (kPose * S.row(r).transpose()).transpose();
-  EXPECT_NE(message([&] { segment_organized(world, kCam.height(), kCam.width(), kPose); }).find("sensor frame"),
+  EXPECT_NE(error_message([&] { segment_organized(world, kCam.height(), kCam.width(), kPose); }).find("sensor frame"),
             std::string::npos);
 }

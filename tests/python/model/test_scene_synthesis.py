@@ -103,3 +103,60 @@ def test_nothing_above_the_given_plane(packed):
     _, acq, model = packed
     with pytest.raises(ValueError, match="no object above the support plane"):
         model.synthesize(acq.points, viewpoints=acq.viewpoints, plane=[0, 0, 1, -0.2])
+
+
+# ---- the path as one C++ call (graspmix._core.synthesize_scene) --------------------------------------------------
+
+
+def test_one_call_returns_every_target_and_terms_that_sum_to_log_l(packed):
+    """The arrays synthesize_scene returns: one row a grasp, each grasp's terms as many as its type's names and
+    summing to its log L (where finite), its object one of the targets, ranked best first."""
+    from graspmix import _core
+
+    _, acq, model = packed
+    opts = SynthesisOptions(sampling=_core.SamplingSettings(n_samples=30, n_optimise=2))
+    res = _core.synthesize_scene(
+        [(model.types[0].synthesizer, model.types[0].name, None)],
+        points=acq.points,
+        viewpoints=acq.viewpoints,
+        target="all",
+        segmentation=opts.segmentation_for(model.features.voxel_size),
+        synthesizer=model.synthesizer_settings(opts),
+        completion=opts.completion,
+        kinematic=opts.kinematic,
+        approach=opts.approach,
+        contact_quality=opts.contact_quality,
+    )
+    c = res.columns()
+    n = len(res)
+    assert n == 30 * len(res.targets) and len(res.targets) == len(res.scene.objects) == 3
+    assert c["T_world_wrist"].shape == (n, 7) and c["joints"].shape == c["pregrasp"].shape == (n, 1)
+    assert set(c["object"].tolist()) <= set(res.targets) and set(c["type"].tolist()) == {0}
+    ll = c["log_likelihood"]
+    assert np.all(ll[:-1] >= ll[1:])  # best first (-inf: rejected by a hard expert, last)
+    names = res.term_names[0]
+    assert "clear_of_neighbours" in names and names[0] == "collision"
+    for score, terms in zip(ll, c["log_terms"]):
+        assert len(terms) == len(names)
+        if np.isfinite(score):
+            assert sum(terms) == pytest.approx(score, abs=1e-9)
+    assert len(res.surfaces) == 3 and res.timing["total"] >= res.timing["segmentation"]
+
+
+def test_one_call_names_bad_input(packed):
+    from graspmix import _core
+
+    _, acq, model = packed
+    t = [(model.types[0].synthesizer, "x", None)]
+    with pytest.raises(ValueError, match="give one of depth=, organized= or points="):
+        _core.synthesize_scene(t, points=acq.points, depth=np.ones((4, 4)))
+    with pytest.raises(ValueError, match="needs its camera"):
+        _core.synthesize_scene(t, depth=np.ones((4, 4)), T_world_camera=[0, 0, 0, 0, 0, 0, 1])
+    with pytest.raises(ValueError, match="no grasp type"):
+        _core.synthesize_scene([], points=acq.points, viewpoints=acq.viewpoints)
+    with pytest.raises(ValueError, match="triples"):
+        _core.synthesize_scene([(model.types[0].synthesizer, "x")], points=acq.points)
+    with pytest.raises(ValueError, match="target: expected all, index, point, largest or nearest"):
+        _core.synthesize_scene(t, points=acq.points, viewpoints=acq.viewpoints, target="biggest")
+    with pytest.raises(ValueError, match="no object 9"):
+        _core.synthesize_scene(t, points=acq.points, viewpoints=acq.viewpoints, target="index", target_index=9)

@@ -1,0 +1,264 @@
+#include "graspmix/grasp/scene_synthesis.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "graspmix/core/plane.hpp"
+#include "graspmix/perception/depth_scene.hpp"
+
+namespace graspmix {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using ExpertPtr = std::shared_ptr<const Expert>;
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+/// The scene's plane, or none.
+std::optional<Eigen::Vector4d> plane_of(const Segmentation& s) {
+  if (s.plane_found || s.plane_given) return s.plane;
+  return std::nullopt;
+}
+
+/// The rows of `a` named by `rows`.
+Vec3Array rows_of(const Vec3Array& a, const Eigen::VectorXi& rows) {
+  Vec3Array out(rows.size(), 3);
+  for (Eigen::Index i = 0; i < rows.size(); ++i) out.row(i) = a.row(rows[i]);
+  return out;
+}
+
+Vec3Array stacked(const Vec3Array& a, const Vec3Array& b) {
+  Vec3Array out(a.rows() + b.rows(), 3);
+  out << a, b;
+  return out;
+}
+
+/// Each kept point's camera: the view's position, or the cloud's viewpoint(s) carried to the points kept.
+Vec3Array point_viewpoints(const Segmentation& scene, const Vec3Array& viewpoints) {
+  const Eigen::Index n = scene.points.rows();
+  if (viewpoints.rows() == 0) return Vec3Array(0, 3);
+  if (viewpoints.rows() == 1) return viewpoints.replicate(n, 1);
+  return rows_of(viewpoints, scene.sources);
+}
+
+/// The scene of the input, and the cameras of its points as given (0, 1 or N rows).
+std::pair<Segmentation, Vec3Array> segment_input(const SceneInput& input, const SegmentationSettings& s,
+                                                 const std::optional<Eigen::Vector4d>& plane) {
+  if (const auto* d = std::get_if<DepthView>(&input))
+    return {segment_depth(d->depth, d->camera, d->T_world_camera, s, plane),
+            d->T_world_camera.translation().transpose()};
+  if (const auto* o = std::get_if<OrganizedView>(&input))
+    return {segment_organized(o->points, o->camera, o->T_world_camera, s, plane),
+            o->T_world_camera.translation().transpose()};
+  const auto& c = std::get<CloudInput>(input);
+  return {segment_scene(c.points, c.viewpoints, s, plane), c.viewpoints};
+}
+
+/// (points, viewpoints) of the whole input, table included, in the world frame: what OctoMap's rays are cast from.
+std::pair<Vec3Array, Vec3Array> whole_cloud(const SceneInput& input) {
+  const auto world = [](const PinholeCamera& camera, const Vec3Array& sensor, const Eigen::Isometry3d& T) {
+    Vec3Array out(sensor.rows(), 3);
+    Eigen::Index n = 0;
+    for (Eigen::Index i = 0; i < sensor.rows(); ++i)
+      if (sensor.row(i).allFinite()) out.row(n++) = (T * Eigen::Vector3d(sensor.row(i).transpose())).transpose();
+    out.conservativeResize(n, 3);
+    (void)camera;
+    return std::make_pair(out, Vec3Array(T.translation().transpose()));
+  };
+  if (const auto* d = std::get_if<DepthView>(&input))
+    return world(d->camera, d->camera.back_project(d->depth), d->T_world_camera);
+  if (const auto* o = std::get_if<OrganizedView>(&input)) return world(o->camera, o->points, o->T_world_camera);
+  const auto& c = std::get<CloudInput>(input);
+  return {c.points, c.viewpoints};
+}
+
+/// Object i's completed points and their outward normals (0 rows when none).
+std::pair<Vec3Array, Vec3Array> completed(const std::vector<std::optional<Completion>>& completions, int i) {
+  const auto& c = completions[i];
+  if (!c || c->points.rows() == 0) return {Vec3Array(0, 3), Vec3Array(0, 3)};
+  return {c->points, c->normals};
+}
+
+/// The objects' observed points and every completed point, but object `without`'s (-1: none left out).
+Vec3Array solid_points(const SceneSynthesis& s, int without = -1) {
+  Eigen::Index n = 0;
+  for (Eigen::Index i = 0; i < s.scene.points.rows(); ++i) n += s.scene.labels[i] != without;
+  for (std::size_t k = 0; k < s.scene.objects.size(); ++k)
+    if (static_cast<int>(k) != without) n += completed(s.completion.completions, static_cast<int>(k)).first.rows();
+  Vec3Array out(n, 3);
+  Eigen::Index r = 0;
+  for (Eigen::Index i = 0; i < s.scene.points.rows(); ++i)
+    if (s.scene.labels[i] != without) out.row(r++) = s.scene.points.row(i);
+  for (std::size_t k = 0; k < s.scene.objects.size(); ++k) {
+    if (static_cast<int>(k) == without) continue;
+    const Vec3Array c = completed(s.completion.completions, static_cast<int>(k)).first;
+    out.middleRows(r, c.rows()) = c;
+    r += c.rows();
+  }
+  return out;
+}
+
+/// W against `points` and the plane: the occupancy model on `occupancy` when given, else the surface model
+/// (charging `unseen`'s unknown cells when given).
+std::shared_ptr<CollisionExpert> collision_on(const std::shared_ptr<const Hand>& hand, const Vec3Array& points,
+                                              const std::optional<Eigen::Vector4d>& plane, CollisionSettings s,
+                                              const std::shared_ptr<OccupancyMap>& occupancy,
+                                              const std::shared_ptr<OccupancyMap>& unseen = nullptr) {
+  if (occupancy) return std::make_shared<CollisionExpert>(hand, occupancy, points, plane, s);
+  s.model = CollisionModel::Surface;
+  return std::make_shared<CollisionExpert>(hand, points, plane, s, unseen);
+}
+
+/// The standard experts every target shares, then the caller's: kinematic, approach axis, the request's.
+std::vector<ExpertPtr> shared_experts(const std::shared_ptr<const Hand>& hand, const SceneSynthesis& s,
+                                      const SceneSynthesisSettings& settings, const SceneRequest& request) {
+  std::vector<ExpertPtr> out;
+  const auto plane = plane_of(s.scene);
+  if (settings.kinematic) {
+    std::optional<Eigen::Vector4d> oriented;
+    if (plane) oriented = orient_plane(*plane, s.scene.points, PlaneSide::Mean);
+    out.push_back(std::make_shared<KinematicFeasibilityExpert>(hand, oriented, *settings.kinematic, request.reachable));
+  } else if (request.reachable) {
+    throw std::invalid_argument("reachable needs the kinematic expert (the kinematic settings are off)");
+  }
+  if (request.approach_axis)
+    out.push_back(std::make_shared<AxisAlignmentExpert>(*request.approach_axis, settings.axis_alignment, hand.get()));
+  out.insert(out.end(), request.experts.begin(), request.experts.end());
+  return out;
+}
+
+void check_types(const std::vector<SceneGraspType>& types) {
+  if (types.empty()) throw std::invalid_argument("synthesize_scene: no grasp type to sample");
+  for (const auto& t : types) {
+    if (!t.synthesizer) throw std::invalid_argument("synthesize_scene: grasp type '" + t.name + "' has no synthesiser");
+    if (&t.synthesizer->hand() != &types.front().synthesizer->hand())
+      throw std::invalid_argument("synthesize_scene: grasp type '" + t.name + "' has another hand than the first");
+  }
+}
+
+}  // namespace
+
+SurfaceCloud object_surface(const Segmentation& scene, const Vec3Array& viewpoints,
+                            const std::vector<std::optional<Completion>>& completions, int index,
+                            const SurfaceFeatureSettings& settings) {
+  if (index < 0 || index >= static_cast<int>(scene.objects.size()))
+    throw std::invalid_argument("object_surface: no object " + std::to_string(index));
+  if (completions.size() != scene.objects.size() || (viewpoints.rows() && viewpoints.rows() != scene.points.rows()))
+    throw std::invalid_argument("object_surface: completions and viewpoints must match the scene's objects and points");
+  const Eigen::VectorXi& rows = scene.objects[index].rows;
+  const Vec3Array observed = rows_of(scene.points, rows);
+  if (viewpoints.rows() == 0) return compute_surface_features(observed, settings);
+  const Vec3Array vp = rows_of(viewpoints, rows);
+  const auto [points, normals] = completed(completions, index);
+  if (points.rows() == 0) return compute_surface_features(observed, settings, {}, vp);
+  const Vec3Array views = points + kCompletedViewDistance * normals;
+  return compute_surface_features(stacked(observed, points), settings, {}, stacked(vp, views));
+}
+
+Eigen::VectorXd query_weights(const SurfaceCloud& surface, Eigen::Index n_observed, double completed_weight) {
+  if ((surface.indices.array() < n_observed).all()) return {};
+  return (surface.indices.array() >= n_observed)
+      .select(Eigen::VectorXd::Constant(surface.indices.size(), completed_weight), 1.0);
+}
+
+SceneSynthesis synthesize_scene(const SceneInput& input, const std::vector<SceneGraspType>& types,
+                                const SceneSynthesisSettings& settings, const SceneRequest& request) {
+  check_types(types);
+  const auto t0 = Clock::now();
+  SceneSynthesis out;
+  // 1. The scene, its completion and the targets.
+  Vec3Array given_viewpoints;
+  std::tie(out.scene, given_viewpoints) = segment_input(input, settings.segmentation, request.plane);
+  out.viewpoints = point_viewpoints(out.scene, given_viewpoints);
+  if (settings.completion)
+    out.completion = complete_scene(out.scene, *settings.completion);
+  else
+    out.completion.completions.assign(out.scene.objects.size(), std::nullopt);
+  out.targets = select_targets(out.scene, out.viewpoints, request.target);
+  out.timing.segmentation = seconds_since(t0);
+
+  // 2. What every target shares.
+  const auto t1 = Clock::now();
+  const std::shared_ptr<const Hand> hand = types.front().synthesizer->hand_ptr();
+  const auto plane = plane_of(out.scene);
+  std::shared_ptr<OccupancyMap> occupancy, unseen;
+  if (settings.collision.model == CollisionModel::Occupancy) {
+    const auto [points, viewpoints] = whole_cloud(input);
+    if (viewpoints.rows() == 0)
+      throw std::invalid_argument(
+          "the occupancy collision model needs the cameras' positions: viewpoints= (or the PCD's VIEWPOINT, "
+          "--viewpoint)");
+    occupancy = std::make_shared<OccupancyMap>(points, viewpoints, out.scene.points, plane, settings.occupancy);
+    out.timing.occupancy = occupancy->stats().seconds;
+  } else if (settings.collision.unseen_weight > 0 && out.scene.visibility) {
+    unseen = std::make_shared<OccupancyMap>(*out.scene.visibility, out.scene.points, plane, settings.occupancy);
+    out.timing.occupancy = unseen->stats().seconds;
+  }
+  const Vec3Array solid = solid_points(out);  // observed and completed: the hand stays out of both
+  const auto collision = collision_on(hand, solid, plane, settings.collision, occupancy, unseen);
+  std::shared_ptr<CollisionExpert> approach;
+  if (settings.approach) {
+    CollisionSettings s = settings.collision;
+    s.point_radius = settings.approach->clearance;
+    approach = collision_on(hand, solid, plane, s, occupancy);
+  }
+  const std::vector<ExpertPtr> shared = shared_experts(hand, out, settings, request);
+  out.timing.features += seconds_since(t1);
+
+  // 3. Per target and grasp type.
+  out.term_names.assign(types.size(), {});
+  for (const int i : out.targets) {
+    const auto tf = Clock::now();
+    SurfaceCloud surface = object_surface(out.scene, out.viewpoints, out.completion.completions, i, settings.features);
+    const Eigen::VectorXd weights =
+        query_weights(surface, out.scene.objects[i].rows.size(), settings.synthesizer.query.completed_weight);
+    std::shared_ptr<CollisionExpert> neighbours;
+    if (out.scene.objects.size() > 1)
+      neighbours = collision_on(hand, solid_points(out, i), std::nullopt, settings.collision, nullptr);
+    out.timing.features += seconds_since(tf);
+    for (std::size_t k = 0; k < types.size(); ++k) {
+      const auto te = Clock::now();
+      const ConfigModel& config = types[k].synthesizer->config_model();
+      std::vector<ExpertPtr> experts = shared;
+      if (neighbours)
+        experts.push_back(std::make_shared<CollisionFreeExpert>(neighbours, config, "clear_of_neighbours"));
+      if (approach) experts.push_back(std::make_shared<ClearApproachExpert>(approach, config, *settings.approach));
+      if (settings.contact_quality)
+        experts.push_back(std::make_shared<ContactQualityExpert>(hand, surface.points, surface.normals, config,
+                                                                 *settings.contact_quality));
+      out.timing.features += seconds_since(te);
+      SynthesisResult res = types[k].synthesizer->synthesize(surface.frames, surface.curvatures, *collision, experts,
+                                                             settings.synthesizer, weights);
+      out.term_names[k] = res.term_names();
+      if (types[k].log_reference) out.term_names[k].push_back(kTypeReferenceTerm);
+      for (auto& g : res.grasps) {
+        if (types[k].log_reference) {
+          g.log_experts.conservativeResize(g.log_experts.size() + 1);
+          g.log_experts[g.log_experts.size() - 1] = -*types[k].log_reference;
+          g.log_likelihood -= *types[k].log_reference;
+        }
+        out.grasps.push_back({std::move(g), i, static_cast<int>(k)});
+      }
+      out.timing.query += res.timing.query;
+      out.timing.sampling += res.timing.sampling;
+      out.timing.optimisation += res.timing.optimisation;
+      out.evaluations += res.evaluations;
+      out.rejected += res.rejected;
+    }
+    out.surfaces.push_back(std::move(surface));
+  }
+  // 4. All grasps ranked together.
+  if (out.targets.size() > 1 || types.size() > 1)
+    std::stable_sort(out.grasps.begin(), out.grasps.end(), [](const SceneGrasp& a, const SceneGrasp& b) {
+      return a.grasp.log_likelihood > b.grasp.log_likelihood;
+    });
+  out.timing.total = seconds_since(t0);
+  return out;
+}
+
+}  // namespace graspmix

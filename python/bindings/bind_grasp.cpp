@@ -3,6 +3,7 @@
 #include <pybind11/functional.h>
 
 #include "common.hpp"
+#include "grasp_convert.hpp"
 #include "graspmix/grasp/approach.hpp"
 #include "graspmix/grasp/collision.hpp"
 #include "graspmix/grasp/config_model.hpp"
@@ -418,9 +419,9 @@ void bind_experts(py::module_& m) {
   py::class_<FunctionExpert, Expert, std::shared_ptr<FunctionExpert>>(
       m, "FunctionExpert", "A user expert: fn(wrists (N,7), joints (N,D)) -> log E (N,), called once per batch.")
       .def(py::init([](std::string name, const py::function& fn) {
-             FunctionExpert::Function f = [fn, name](const PoseArray& w, const RowMatrixXd& q) {
+             FunctionExpert::Function f = [held = held_function(fn), name](const PoseArray& w, const RowMatrixXd& q) {
                py::gil_scoped_acquire gil;
-               return to_vector(fn(w, q), ("expert '" + name + "'").c_str());
+               return to_vector((*held)(w, q), ("expert '" + name + "'").c_str());
              };
              return std::make_shared<FunctionExpert>(name, f);
            }),

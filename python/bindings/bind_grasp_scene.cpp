@@ -3,6 +3,7 @@
 #include <pybind11/functional.h>
 
 #include "common.hpp"
+#include "grasp_convert.hpp"
 #include "graspmix/grasp/scene_synthesis.hpp"
 #include "settings.hpp"
 
@@ -18,6 +19,8 @@ SceneInput to_input(const py::object& depth, const py::object& organized, const 
   if (given != 1) throw py::value_error("synthesize_scene: give one of depth=, organized= or points=");
   if (points.is_none()) {
     if (!camera) throw py::value_error("synthesize_scene: a view needs its camera (a PinholeCamera)");
+    if (!viewpoints.is_none())
+      throw py::value_error("synthesize_scene: a view's viewpoint is its camera's pose; give no viewpoints");
     const Eigen::Isometry3d T = to_camera_pose(pose, "T_world_camera");
     if (!depth.is_none()) return DepthView{DepthImage(to_matrix(depth, "synthesize_scene: depth")), *camera, T};
     const Vec3Array P(to_matrix(organized, "synthesize_scene: organized", 3));
@@ -26,6 +29,8 @@ SceneInput to_input(const py::object& depth, const py::object& organized, const 
                             std::to_string(camera->width()) + " x " + std::to_string(camera->height()));
     return OrganizedView{P, *camera, T};
   }
+  if (camera || !pose.is_none())
+    throw py::value_error("synthesize_scene: points are in the world frame with their viewpoints; no camera or pose");
   return CloudInput{Vec3Array(to_matrix(points, "synthesize_scene: points", 3)),
                     to_points3(viewpoints, "synthesize_scene: viewpoints")};
 }

@@ -3,6 +3,7 @@
 #include <pybind11/functional.h>
 
 #include "common.hpp"
+#include "grasp_convert.hpp"
 #include "graspmix/grasp/synthesis.hpp"
 #include "settings.hpp"
 

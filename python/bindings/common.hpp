@@ -15,7 +15,6 @@
 #include <pybind11/stl.h>
 
 #include "graspmix/core/types.hpp"
-#include "graspmix/grasp/experts.hpp"
 #include "graspmix/perception/targets.hpp"
 #include "graspmix/robot/hand.hpp"
 
@@ -67,12 +66,6 @@ RowMatrixXd to_configurations(const Hand& hand, const py::handle& obj, const cha
 Eigen::Isometry3d to_pose(const py::handle& obj, const char* name);
 /// A camera's pose T_world_camera from [x, y, z, qx, qy, qz, qw] (graspmix::camera_pose's checks, naming `name`).
 Eigen::Isometry3d to_camera_pose(const py::object& obj, const char* name);
-using ExpertList = std::vector<std::shared_ptr<const Expert>>;
-/// The graspmix experts of an iterable (None: none); ValueError naming an item that is not one.
-ExpertList to_experts(const py::object& obj);
-/// A reachability test from a Python callable fn(wrists (N, 7), joints (N, D)) -> (N,) booleans, called with the
-/// GIL taken; None: no test.
-KinematicFeasibilityExpert::Reachability to_reachability(const py::object& fn);
 /// A Target of kind "all", "index" (index), "point" (point (3,)), "largest" or "nearest" (camera (3,) or None).
 Target to_target(const std::string& kind, const py::object& index, const py::object& point, const py::object& camera);
 

@@ -218,38 +218,6 @@ Eigen::Isometry3d to_camera_pose(const py::object& obj, const char* name) {
   return camera_pose(to_vector(obj, name, 7), name);
 }
 
-std::vector<std::shared_ptr<const Expert>> to_experts(const py::object& obj) {
-  std::vector<std::shared_ptr<const Expert>> out;
-  if (obj.is_none()) return out;
-  for (const py::handle& e : obj) {
-    try {
-      out.push_back(e.cast<std::shared_ptr<Expert>>());
-    } catch (const py::cast_error&) {
-      throw py::value_error("experts: every item must be a graspmix expert (got " +
-                            std::string(py::str(py::type::of(e))) + ")");
-    }
-  }
-  return out;
-}
-
-KinematicFeasibilityExpert::Reachability to_reachability(const py::object& fn) {
-  if (fn.is_none()) return nullptr;
-  if (!PyCallable_Check(fn.ptr())) throw py::value_error("reachable: expected a callable or None");
-  py::function f = fn;
-  return [f](const PoseArray& w, const RowMatrixXd& q) {
-    py::gil_scoped_acquire gil;
-    const py::object r = f(w, q);
-    auto raw = py::array::ensure(r);
-    if (!raw || raw.ndim() != 1 || raw.dtype().kind() != 'b') {
-      throw py::value_error("reachable must return a 1-D array of booleans (one per grasp)");
-    }
-    auto a = py::array_t<bool, py::array::c_style | py::array::forcecast>::ensure(raw);
-    Eigen::Matrix<bool, Eigen::Dynamic, 1> out(a.shape(0));
-    for (py::ssize_t i = 0; i < a.shape(0); ++i) out[i] = a.at(i);
-    return out;
-  };
-}
-
 Target to_target(const std::string& kind, const py::object& index, const py::object& point, const py::object& camera) {
   static const std::map<std::string, Target::Kind> kinds = {{"all", Target::Kind::All},
                                                             {"index", Target::Kind::Index},

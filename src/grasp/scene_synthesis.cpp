@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
-#include <limits>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -61,44 +59,43 @@ std::pair<Segmentation, Vec3Array> segment_input(const SceneInput& input, const 
 
 /// (points, viewpoints) of the whole input, table included, in the world frame: what OctoMap's rays are cast from.
 std::pair<Vec3Array, Vec3Array> whole_cloud(const SceneInput& input) {
-  const auto world = [](const PinholeCamera& camera, const Vec3Array& sensor, const Eigen::Isometry3d& T) {
+  const auto world = [](const Vec3Array& sensor, const Eigen::Isometry3d& T) {
     Vec3Array out(sensor.rows(), 3);
     Eigen::Index n = 0;
     for (Eigen::Index i = 0; i < sensor.rows(); ++i)
       if (sensor.row(i).allFinite()) out.row(n++) = (T * Eigen::Vector3d(sensor.row(i).transpose())).transpose();
     out.conservativeResize(n, 3);
-    (void)camera;
     return std::make_pair(out, Vec3Array(T.translation().transpose()));
   };
-  if (const auto* d = std::get_if<DepthView>(&input))
-    return world(d->camera, d->camera.back_project(d->depth), d->T_world_camera);
-  if (const auto* o = std::get_if<OrganizedView>(&input)) return world(o->camera, o->points, o->T_world_camera);
+  if (const auto* d = std::get_if<DepthView>(&input)) return world(d->camera.back_project(d->depth), d->T_world_camera);
+  if (const auto* o = std::get_if<OrganizedView>(&input)) return world(o->points, o->T_world_camera);
   const auto& c = std::get<CloudInput>(input);
   return {c.points, c.viewpoints};
 }
 
-/// Object i's completed points and their outward normals (0 rows when none).
-std::pair<Vec3Array, Vec3Array> completed(const std::vector<std::optional<Completion>>& completions, int i) {
-  const auto& c = completions[i];
-  if (!c || c->points.rows() == 0) return {Vec3Array(0, 3), Vec3Array(0, 3)};
-  return {c->points, c->normals};
+/// Object i's completion when it added points, else null.
+const Completion* completed(const std::vector<std::optional<Completion>>& completions, int i) {
+  const auto& c = completions[static_cast<std::size_t>(i)];
+  return c && c->points.rows() > 0 ? &*c : nullptr;
 }
 
 /// The objects' observed points and every completed point, but object `without`'s (-1: none left out).
-Vec3Array solid_points(const SceneSynthesis& s, int without = -1) {
-  Eigen::Index n = 0;
-  for (Eigen::Index i = 0; i < s.scene.points.rows(); ++i) n += s.scene.labels[i] != without;
-  for (std::size_t k = 0; k < s.scene.objects.size(); ++k)
-    if (static_cast<int>(k) != without) n += completed(s.completion.completions, static_cast<int>(k)).first.rows();
+Vec3Array solid_points(const Segmentation& scene, const std::vector<std::optional<Completion>>& completions,
+                       int without = -1) {
+  std::vector<const Completion*> added;
+  Eigen::Index n = (scene.labels.array() != without).count();
+  for (std::size_t k = 0; k < scene.objects.size(); ++k)
+    if (const Completion* c = completed(completions, static_cast<int>(k)); c && static_cast<int>(k) != without) {
+      added.push_back(c);
+      n += c->points.rows();
+    }
   Vec3Array out(n, 3);
   Eigen::Index r = 0;
-  for (Eigen::Index i = 0; i < s.scene.points.rows(); ++i)
-    if (s.scene.labels[i] != without) out.row(r++) = s.scene.points.row(i);
-  for (std::size_t k = 0; k < s.scene.objects.size(); ++k) {
-    if (static_cast<int>(k) == without) continue;
-    const Vec3Array c = completed(s.completion.completions, static_cast<int>(k)).first;
-    out.middleRows(r, c.rows()) = c;
-    r += c.rows();
+  for (Eigen::Index i = 0; i < scene.points.rows(); ++i)
+    if (scene.labels[i] != without) out.row(r++) = scene.points.row(i);
+  for (const Completion* c : added) {
+    out.middleRows(r, c->points.rows()) = c->points;
+    r += c->points.rows();
   }
   return out;
 }
@@ -124,7 +121,8 @@ std::vector<ExpertPtr> shared_experts(const std::shared_ptr<const Hand>& hand, c
     if (plane) oriented = orient_plane(*plane, s.scene.points, PlaneSide::Mean);
     out.push_back(std::make_shared<KinematicFeasibilityExpert>(hand, oriented, *settings.kinematic, request.reachable));
   } else if (request.reachable) {
-    throw std::invalid_argument("reachable needs the kinematic expert (the kinematic settings are off)");
+    throw std::invalid_argument(
+        "reachable needs the kinematic expert (its settings are off: SynthesisOptions.kinematic is None)");
   }
   if (request.approach_axis)
     out.push_back(std::make_shared<AxisAlignmentExpert>(*request.approach_axis, settings.axis_alignment, hand.get()));
@@ -136,9 +134,96 @@ void check_types(const std::vector<SceneGraspType>& types) {
   if (types.empty()) throw std::invalid_argument("synthesize_scene: no grasp type to sample");
   for (const auto& t : types) {
     if (!t.synthesizer) throw std::invalid_argument("synthesize_scene: grasp type '" + t.name + "' has no synthesiser");
-    if (&t.synthesizer->hand() != &types.front().synthesizer->hand())
+    const Hand& h = t.synthesizer->hand();
+    const Hand& first = types.front().synthesizer->hand();
+    if (h.joint_names() != first.joint_names() || h.link_names() != first.link_names())
       throw std::invalid_argument("synthesize_scene: grasp type '" + t.name + "' has another hand than the first");
   }
+}
+
+/// What every target of a scene shares: the hand, the collision expert W, the clear approach's collision test and
+/// the experts before each target's own.
+struct Shared {
+  std::shared_ptr<const Hand> hand;
+  std::shared_ptr<CollisionExpert> collision, approach;
+  std::vector<ExpertPtr> experts;
+};
+
+Shared shared_part(const SceneInput& input, std::shared_ptr<const Hand> hand, const SceneSynthesisSettings& settings,
+                   const SceneRequest& request, SceneSynthesis& out) {
+  const auto t0 = Clock::now();
+  Shared shared;
+  shared.hand = std::move(hand);
+  const auto plane = plane_of(out.scene);
+  std::shared_ptr<OccupancyMap> occupancy, unseen;
+  if (settings.collision.model == CollisionModel::Occupancy) {
+    const auto [points, viewpoints] = whole_cloud(input);
+    if (viewpoints.rows() == 0)
+      throw std::invalid_argument(
+          "the occupancy collision model needs the cameras' positions: viewpoints= (or the PCD's VIEWPOINT, "
+          "--viewpoint)");
+    occupancy = std::make_shared<OccupancyMap>(points, viewpoints, out.scene.points, plane, settings.occupancy);
+    out.timing.occupancy = occupancy->stats().seconds;
+  } else if (settings.collision.unseen_weight > 0 && out.scene.visibility) {
+    unseen = std::make_shared<OccupancyMap>(*out.scene.visibility, out.scene.points, plane, settings.occupancy);
+    out.timing.occupancy = unseen->stats().seconds;
+  }
+  // observed and completed: the hand stays out of both
+  const Vec3Array solid = solid_points(out.scene, out.completion.completions);
+  shared.collision = collision_on(shared.hand, solid, plane, settings.collision, occupancy, unseen);
+  if (settings.approach) {
+    CollisionSettings s = settings.collision;
+    s.point_radius = settings.approach->clearance;
+    shared.approach = collision_on(shared.hand, solid, plane, s, occupancy);
+  }
+  shared.experts = shared_experts(shared.hand, out, settings, request);
+  out.timing.features += seconds_since(t0);
+  return shared;
+}
+
+/// Object i's surface and, per grasp type, its own experts and the synthesiser's grasps, added to `out`.
+void synthesize_target(int i, const std::vector<SceneGraspType>& types, const SceneSynthesisSettings& settings,
+                       const Shared& shared, SceneSynthesis& out) {
+  const auto t0 = Clock::now();
+  SurfaceCloud surface = object_surface(out.scene, out.viewpoints, out.completion.completions, i, settings.features);
+  const Eigen::VectorXd weights = query_weights(surface, out.scene.objects[static_cast<std::size_t>(i)].rows.size(),
+                                                settings.synthesizer.query.completed_weight);
+  std::shared_ptr<CollisionExpert> neighbours;
+  if (out.scene.objects.size() > 1)
+    neighbours = collision_on(shared.hand, solid_points(out.scene, out.completion.completions, i), std::nullopt,
+                              settings.collision, nullptr);
+  out.timing.features += seconds_since(t0);
+  for (std::size_t k = 0; k < types.size(); ++k) {
+    const auto te = Clock::now();
+    const ConfigModel& config = types[k].synthesizer->config_model();
+    std::vector<ExpertPtr> experts = shared.experts;
+    if (neighbours) experts.push_back(std::make_shared<CollisionFreeExpert>(neighbours, config, "clear_of_neighbours"));
+    if (shared.approach)
+      experts.push_back(std::make_shared<ClearApproachExpert>(shared.approach, config, *settings.approach));
+    if (settings.contact_quality)
+      experts.push_back(std::make_shared<ContactQualityExpert>(shared.hand, surface.points, surface.normals, config,
+                                                               *settings.contact_quality));
+    out.timing.features += seconds_since(te);
+    SynthesisResult res = types[k].synthesizer->synthesize(surface.frames, surface.curvatures, *shared.collision,
+                                                           experts, settings.synthesizer, weights);
+    out.term_names[k] = res.term_names();
+    const std::optional<double> reference = types[k].log_reference;
+    if (reference) out.term_names[k].push_back(kTypeReferenceTerm);
+    for (auto& g : res.grasps) {
+      if (reference) {
+        g.log_experts.conservativeResize(g.log_experts.size() + 1);
+        g.log_experts[g.log_experts.size() - 1] = -*reference;
+        g.log_likelihood -= *reference;
+      }
+      out.grasps.push_back({std::move(g), i, static_cast<int>(k)});
+    }
+    out.timing.query += res.timing.query;
+    out.timing.sampling += res.timing.sampling;
+    out.timing.optimisation += res.timing.optimisation;
+    out.evaluations += res.evaluations;
+    out.rejected += res.rejected;
+  }
+  out.surfaces.push_back(std::move(surface));
 }
 
 }  // namespace
@@ -154,10 +239,10 @@ SurfaceCloud object_surface(const Segmentation& scene, const Vec3Array& viewpoin
   const Vec3Array observed = rows_of(scene.points, rows);
   if (viewpoints.rows() == 0) return compute_surface_features(observed, settings);
   const Vec3Array vp = rows_of(viewpoints, rows);
-  const auto [points, normals] = completed(completions, index);
-  if (points.rows() == 0) return compute_surface_features(observed, settings, {}, vp);
-  const Vec3Array views = points + kCompletedViewDistance * normals;
-  return compute_surface_features(stacked(observed, points), settings, {}, stacked(vp, views));
+  const Completion* c = completed(completions, index);
+  if (c == nullptr) return compute_surface_features(observed, settings, {}, vp);
+  const Vec3Array views = c->points + kCompletedViewDistance * c->normals;
+  return compute_surface_features(stacked(observed, c->points), settings, {}, stacked(vp, views));
 }
 
 Eigen::VectorXd query_weights(const SurfaceCloud& surface, Eigen::Index n_observed, double completed_weight) {
@@ -181,77 +266,11 @@ SceneSynthesis synthesize_scene(const SceneInput& input, const std::vector<Scene
     out.completion.completions.assign(out.scene.objects.size(), std::nullopt);
   out.targets = select_targets(out.scene, out.viewpoints, request.target);
   out.timing.segmentation = seconds_since(t0);
-
   // 2. What every target shares.
-  const auto t1 = Clock::now();
-  const std::shared_ptr<const Hand> hand = types.front().synthesizer->hand_ptr();
-  const auto plane = plane_of(out.scene);
-  std::shared_ptr<OccupancyMap> occupancy, unseen;
-  if (settings.collision.model == CollisionModel::Occupancy) {
-    const auto [points, viewpoints] = whole_cloud(input);
-    if (viewpoints.rows() == 0)
-      throw std::invalid_argument(
-          "the occupancy collision model needs the cameras' positions: viewpoints= (or the PCD's VIEWPOINT, "
-          "--viewpoint)");
-    occupancy = std::make_shared<OccupancyMap>(points, viewpoints, out.scene.points, plane, settings.occupancy);
-    out.timing.occupancy = occupancy->stats().seconds;
-  } else if (settings.collision.unseen_weight > 0 && out.scene.visibility) {
-    unseen = std::make_shared<OccupancyMap>(*out.scene.visibility, out.scene.points, plane, settings.occupancy);
-    out.timing.occupancy = unseen->stats().seconds;
-  }
-  const Vec3Array solid = solid_points(out);  // observed and completed: the hand stays out of both
-  const auto collision = collision_on(hand, solid, plane, settings.collision, occupancy, unseen);
-  std::shared_ptr<CollisionExpert> approach;
-  if (settings.approach) {
-    CollisionSettings s = settings.collision;
-    s.point_radius = settings.approach->clearance;
-    approach = collision_on(hand, solid, plane, s, occupancy);
-  }
-  const std::vector<ExpertPtr> shared = shared_experts(hand, out, settings, request);
-  out.timing.features += seconds_since(t1);
-
+  const Shared shared = shared_part(input, types.front().synthesizer->hand_ptr(), settings, request, out);
   // 3. Per target and grasp type.
   out.term_names.assign(types.size(), {});
-  for (const int i : out.targets) {
-    const auto tf = Clock::now();
-    SurfaceCloud surface = object_surface(out.scene, out.viewpoints, out.completion.completions, i, settings.features);
-    const Eigen::VectorXd weights =
-        query_weights(surface, out.scene.objects[i].rows.size(), settings.synthesizer.query.completed_weight);
-    std::shared_ptr<CollisionExpert> neighbours;
-    if (out.scene.objects.size() > 1)
-      neighbours = collision_on(hand, solid_points(out, i), std::nullopt, settings.collision, nullptr);
-    out.timing.features += seconds_since(tf);
-    for (std::size_t k = 0; k < types.size(); ++k) {
-      const auto te = Clock::now();
-      const ConfigModel& config = types[k].synthesizer->config_model();
-      std::vector<ExpertPtr> experts = shared;
-      if (neighbours)
-        experts.push_back(std::make_shared<CollisionFreeExpert>(neighbours, config, "clear_of_neighbours"));
-      if (approach) experts.push_back(std::make_shared<ClearApproachExpert>(approach, config, *settings.approach));
-      if (settings.contact_quality)
-        experts.push_back(std::make_shared<ContactQualityExpert>(hand, surface.points, surface.normals, config,
-                                                                 *settings.contact_quality));
-      out.timing.features += seconds_since(te);
-      SynthesisResult res = types[k].synthesizer->synthesize(surface.frames, surface.curvatures, *collision, experts,
-                                                             settings.synthesizer, weights);
-      out.term_names[k] = res.term_names();
-      if (types[k].log_reference) out.term_names[k].push_back(kTypeReferenceTerm);
-      for (auto& g : res.grasps) {
-        if (types[k].log_reference) {
-          g.log_experts.conservativeResize(g.log_experts.size() + 1);
-          g.log_experts[g.log_experts.size() - 1] = -*types[k].log_reference;
-          g.log_likelihood -= *types[k].log_reference;
-        }
-        out.grasps.push_back({std::move(g), i, static_cast<int>(k)});
-      }
-      out.timing.query += res.timing.query;
-      out.timing.sampling += res.timing.sampling;
-      out.timing.optimisation += res.timing.optimisation;
-      out.evaluations += res.evaluations;
-      out.rejected += res.rejected;
-    }
-    out.surfaces.push_back(std::move(surface));
-  }
+  for (const int i : out.targets) synthesize_target(i, types, settings, shared, out);
   // 4. All grasps ranked together.
   if (out.targets.size() > 1 || types.size() > 1)
     std::stable_sort(out.grasps.begin(), out.grasps.end(), [](const SceneGrasp& a, const SceneGrasp& b) {

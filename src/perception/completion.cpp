@@ -329,6 +329,7 @@ SceneCompletion complete_scene(const Segmentation& scene, const CompletionSettin
   const auto t0 = std::chrono::steady_clock::now();
   SceneCompletion out;
   out.completions.assign(scene.objects.size(), std::nullopt);
+  check_completion_settings(settings);  // bad settings are the caller's error, even where nothing is completed
   if (!scene.visibility) {
     out.notes.push_back("no viewpoint given: the unseen side of the objects is not completed");
     return out;
@@ -337,7 +338,6 @@ SceneCompletion complete_scene(const Segmentation& scene, const CompletionSettin
     out.notes.push_back("no support plane: the unseen side of the objects is not completed");
     return out;
   }
-  check_completion_settings(settings);  // bad settings are the caller's error, not an object's
   for (const auto& o : scene.objects) {
     Vec3Array points(o.rows.size(), 3);
     for (Eigen::Index r = 0; r < o.rows.size(); ++r) points.row(r) = scene.points.row(o.rows[r]);

@@ -11,9 +11,11 @@ namespace graspmix {
 std::vector<int> select_targets(const Segmentation& scene, const Vec3Array& viewpoints, const Target& target) {
   const auto& objects = scene.objects;
   const int n = static_cast<int>(objects.size());
-  if (viewpoints.rows() != 0 && viewpoints.rows() != scene.points.rows())
+  if (viewpoints.rows() > 1 && viewpoints.rows() != scene.points.rows())
     throw std::invalid_argument("target: " + std::to_string(viewpoints.rows()) + " viewpoints for " +
-                                std::to_string(scene.points.rows()) + " points (one per point, or none)");
+                                std::to_string(scene.points.rows()) + " points (one per point, one, or none)");
+  if (objects.empty() && target.kind != Target::Kind::All)
+    throw std::invalid_argument("target: the scene has no object");
   if (target.camera && !target.camera->allFinite())
     throw std::invalid_argument("camera: expected a finite (3,) position");
   switch (target.kind) {
@@ -59,9 +61,10 @@ std::vector<int> select_targets(const Segmentation& scene, const Vec3Array& view
         double d = std::numeric_limits<double>::infinity();
         for (Eigen::Index r = 0; r < o.rows.size(); ++r) {
           const Eigen::Index i = o.rows[r];
-          const Eigen::Vector3d from = target.camera           ? *target.camera
-                                       : viewpoints.rows() > 0 ? Eigen::Vector3d(viewpoints.row(i).transpose())
-                                                               : Eigen::Vector3d::Zero();
+          const Eigen::Vector3d from = target.camera            ? *target.camera
+                                       : viewpoints.rows() == 1 ? Eigen::Vector3d(viewpoints.row(0).transpose())
+                                       : viewpoints.rows() > 0  ? Eigen::Vector3d(viewpoints.row(i).transpose())
+                                                                : Eigen::Vector3d::Zero();
           d = std::min(d, (scene.points.row(i).transpose() - from).norm());
         }
         if (d < best) best = d, which = o.index;

@@ -132,7 +132,9 @@ struct SceneGrasp {
 struct SceneSynthesisTiming {
   double segmentation = 0;          ///< the scene, the completion and the choice of targets
   std::optional<double> occupancy;  ///< the occupancy map or the map of unseen space; unset: no map made
-  double features = 0;              ///< the targets' surface features and the experts built on them
+  /// the targets' surface features and the experts built on them (GraspModel.synthesize reports as "features"
+  /// what its total leaves of the other stages: Python's share too)
+  double features = 0;
   double query = 0, sampling = 0, optimisation = 0;  ///< the synthesiser's stages, summed over targets and types
   double total = 0;
 };

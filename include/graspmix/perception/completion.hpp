@@ -136,7 +136,7 @@ struct SceneCompletion {
 /// Each object of `scene` completed from its visibility model and plane. Without a visibility model (no
 /// viewpoint) or a plane nothing is completed and a note says why; an object complete_object refuses (e.g. seen by
 /// a camera in the support plane) stays as seen, with a note naming it and why. Throws std::invalid_argument for
-/// settings out of range.
+/// settings out of range (whether or not anything could be completed).
 SceneCompletion complete_scene(const Segmentation& scene, const CompletionSettings& settings = {});
 
 }  // namespace graspmix

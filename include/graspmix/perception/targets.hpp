@@ -24,9 +24,11 @@ struct Target {
 };
 
 /// The object indices of `target` in a segmented scene whose kept points were seen from `viewpoints` (one row
-/// per point of scene.points, or 0 rows): All every object, Index that one, Largest the one with the most points
-/// (ties: the lower index), Point the one with a point nearest to it (within kPointTargetMaxDistance), Nearest as
-/// Target says. Throws std::invalid_argument for an index out of range or a point that names no object.
+/// per point of scene.points, one row for all, or 0 rows): All every object, Index that one, Largest the one with
+/// the most points (ties: the lower index), Point the one with a point nearest to it (within
+/// kPointTargetMaxDistance), Nearest as Target says (ties: the lower index). Throws std::invalid_argument for an
+/// index out of range, a point that names no object, a scene without objects (but for All), viewpoints of another
+/// count and a camera that is not finite.
 std::vector<int> select_targets(const Segmentation& scene, const Vec3Array& viewpoints, const Target& target);
 
 }  // namespace graspmix

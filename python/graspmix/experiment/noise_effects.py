@@ -4,8 +4,8 @@ spread of the query densities Q_i, and the frame jitter the weighted points carr
 
 Every cloud is acquired as the experiment acquires it (Protocol.acquisition_seed, crop_above_plane) with the
 noise model on, off, or one of its two terms alone; the features, M_i(r) and Q_i are those the synthesis
-computes (segment_query, object_surface, GraspSynthesizer.query_densities with the synthesis' settings and
-seed). A unit is one (object, trial, setting); the summary takes medians and quartiles over units.
+computes (segment_query, the same segmentation and completion; object_surface, the synthesis' own
+_core.object_surface; GraspSynthesizer.query_densities with the synthesis' settings and seed). A unit is one (object, trial, setting); the summary takes medians and quartiles over units.
 
     from graspmix.experiment import noise_effects as ne
     p = Protocol(objects=test_objects(), trials=2)
@@ -155,13 +155,13 @@ class QuerySurface:
 
 
 def query_surface(model: GraspModel, acq, opts: SynthesisOptions) -> QuerySurface:
-    """segment_query + object_surface as GraspModel.synthesize runs them; of several targets, the largest."""
+    """The scene and the surface features of its largest object as GraspModel.synthesize computes them (segment_query,
+    object_surface)."""
     scene = segment_query((acq.points, acq.viewpoints), np.asarray(SUPPORT_PLANE), opts, model.features)
-    targets = scene.select("all")
-    if not targets:
+    if not scene.objects:
         raise ValueError("the segmentation found no object")
-    largest = max(targets, key=lambda i: (scene.objects[i].n_points, -i))
-    return QuerySurface(object_surface(scene, largest, model.features), len(targets), len(acq.points))
+    largest = scene.select("largest")[0]
+    return QuerySurface(object_surface(scene, largest, model.features), len(scene.objects), len(acq.points))
 
 
 # ---- the measures of one model on one surface ---------------------------------------------------------------

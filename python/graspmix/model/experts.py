@@ -53,7 +53,7 @@ def collision_expert(
     """W on the query cloud and the support plane (and, with an OccupancyMap, on the space the cameras did not
     see free: the occupancy model), by opts.collision; point_radius (m) overrides its points' radius. Without a map
     it is the surface model whatever opts.collision.model says (a scene's neighbours' expert: their points only),
-    charging the unknown cells of `unseen` (unseen_map) softly."""
+    charging the unknown cells of `unseen` (OccupancyMap.from_visibility) softly."""
     extra = {} if point_radius is None else {"point_radius": point_radius}
     if occupancy is None:
         extra["model"] = "surface"

@@ -240,11 +240,12 @@ class GraspModel:
         millimetres or a .npy) with its `intrinsics` (K (3, 3), (fx, fy, cx, cy) or a PinholeCamera) and
         `depth_scale` (metres per unit; None: 0.001 for integers, 1 for floats), each with the camera's pose
         camera_pose = T_world_camera [x, y, z, qx, qy, qz, qw] (None: the world is the camera's frame); such a view
-        is segmented in image space (perception.segment_view), and so is an organized PCD (its VIEWPOINT the
+        is segmented in image space (as perception.segment_view does), and so is an organized PCD (its VIEWPOINT the
         camera's pose, perception.organized_file_view). Or any cloud: a path (PCD/PLY/npy) or an (N, 3) array of
-        points (with camera_pose: in that camera's frame). Grasps come back in the world frame.
+        points (with camera_pose: in that camera's frame). Grasps come back in the world frame. Everything after
+        reading the input is one C++ call (graspmix._core.synthesize_scene: include/graspmix/grasp/scene_synthesis.hpp).
 
-        The cloud is segmented (graspmix.segment_scene) into its support plane and the objects on it;
+        The cloud is segmented (as graspmix.segment_scene does) into its support plane and the objects on it;
         grasps are sampled on the target objects and checked for collision against all of them and the
         plane. target: "all" (every object, best grasps first), an object index, "point:x,y,z" (the object
         nearest the point), "largest", "nearest" (to the camera); every grasp records its object.

@@ -201,6 +201,14 @@ TEST(SceneSynthesis, TargetsChosenByTheExactGeometry) {
   EXPECT_EQ(select_targets(scene, none, t), std::vector<int>{b});
   t.camera = Eigen::Vector3d(-0.4, 0.0, 0.05);  // beside box A
   EXPECT_EQ(select_targets(scene, none, t), std::vector<int>{a});
+  const Vec3Array one = Vec3Array(Eigen::RowVector3d(0.4, 0.0, 0.05));  // one viewpoint for every point
+  t.camera.reset();
+  EXPECT_EQ(select_targets(scene, one, t), std::vector<int>{b});
+  EXPECT_NE(error_message([&] { select_targets(scene, Vec3Array::Zero(2, 3), t); }).find("2 viewpoints"),
+            std::string::npos);
+  Segmentation empty;
+  EXPECT_EQ(select_targets(empty, none, Target{}), std::vector<int>{});
+  EXPECT_NE(error_message([&] { select_targets(empty, none, t); }).find("no object"), std::string::npos);
   t.kind = Target::Kind::Largest;
   const int largest = scene.objects[0].n_points >= scene.objects[1].n_points ? 0 : 1;
   EXPECT_EQ(select_targets(scene, none, t), std::vector<int>{largest});

@@ -4,6 +4,7 @@
 // and in between for soft constraints. Working in log space keeps a product of experts free of
 // underflow and NaN.
 #include <functional>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -41,6 +42,9 @@ class Expert {
   virtual std::string name() const = 0;
   /// log E_k for every grasp of the batch (N).
   virtual Eigen::VectorXd log_value(const GraspBatch& batch) const = 0;
+  /// A bound log E_k never exceeds (+inf: none known). Annealing skips the last expert of a product on a proposal
+  /// that this bound already shows will be refused (GraspSynthesizer::anneal): the result is the same, sooner.
+  virtual double max_log_value() const { return std::numeric_limits<double>::infinity(); }
 };
 
 struct KinematicFeasibilitySettings {

@@ -12,6 +12,7 @@
 //   4. simulated annealing of the best candidates with the paper's schedule (temperature falling
 //      linearly from its initial value over the iterations).
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <random>
 #include <string>
@@ -180,6 +181,13 @@ class GraspSynthesizer {
   std::string method() const;
 
  private:
+  /// Whether grasp i's proposal is refused whatever its last expert says, given `bound`, an upper bound of its
+  /// log L (the other terms and the last expert's max_log_value).
+  using Settled = std::function<bool(Eigen::Index i, double bound)>;
+  /// evaluate(); with `settled`, the last expert, when it has a finite max_log_value, is scored after the other
+  /// terms and only on the grasps `settled` leaves open (the others get total -inf and that term NaN).
+  Evaluation evaluate_bounded(const Scoring& scoring, const Eigen::Ref<const PoseArray>& wrists,
+                              const Eigen::Ref<const RowMatrixXd>& joints, const Settled& settled) const;
   /// Grasps with their evaluation, rows aligned.
   struct Candidates {
     PoseArray wrists;

@@ -100,7 +100,7 @@ RowMatrixXd PoseMixture::to_coordinates(const Eigen::Ref<const PoseArray>& poses
   if (log_jacobian) log_jacobian->resize(poses.rows());
   const Eigen::Quaterniond ref_inv = reference_.conjugate();
   for (Eigen::Index i = 0; i < poses.rows(); ++i) {
-    Eigen::Quaterniond q(poses(i, 6), poses(i, 3), poses(i, 4), poses(i, 5));
+    Eigen::Quaterniond q = row_quaternion(poses, i);
     const double n = q.norm();
     if (!(n > 1e-12)) throw std::invalid_argument("PoseMixture: pose " + str(i) + " has a zero quaternion");
     q.coeffs() /= n;

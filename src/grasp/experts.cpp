@@ -182,7 +182,7 @@ AxisAlignmentExpert::AxisAlignmentExpert(const Eigen::Vector3d& world_axis, cons
 Eigen::VectorXd AxisAlignmentExpert::log_value(const GraspBatch& b) const {
   Eigen::VectorXd out(b.wrists.rows());
   for (Eigen::Index i = 0; i < b.wrists.rows(); ++i) {
-    const Eigen::Quaterniond q(b.wrists(i, 6), b.wrists(i, 3), b.wrists(i, 4), b.wrists(i, 5));
+    const Eigen::Quaterniond q = row_quaternion(b.wrists, i);
     const double c = (q.normalized() * hand_axis_).dot(world_axis_);
     out[i] = concentration_ * (c - 1.0);
   }

@@ -20,6 +20,10 @@ Eigen::Vector3d quat_log(const Eigen::Quaterniond& q);
 /// eq:exp_map: exp(w) = [sin|w| w/|w|, cos|w|]; exp(0) = identity.
 Eigen::Quaterniond quat_exp(const Eigen::Vector3d& w);
 
+/// The quaternion [qx, qy, qz, qw] of row i of poses (N, 7), as it is (not normalised).
+inline Eigen::Quaterniond row_quaternion(const Eigen::Ref<const PoseArray>& poses, Eigen::Index i) {
+  return Eigen::Quaterniond(poses(i, 6), poses(i, 3), poses(i, 4), poses(i, 5));
+}
 /// A 7-vector pose to an isometry; throws std::invalid_argument if the quaternion is not finite or is zero.
 Eigen::Isometry3d pose_from_vector(const Eigen::Ref<const Eigen::Matrix<double, 7, 1>>& pose);
 /// An isometry to a 7-vector with the quaternion canonicalised to w >= 0.

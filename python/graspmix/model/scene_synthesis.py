@@ -86,11 +86,6 @@ def source_arguments(source) -> dict:
     return {"points": points, "viewpoints": viewpoints}
 
 
-def source_viewpoints(source):
-    """The cameras of a source as Scene takes them: a view's position, a cloud's viewpoints."""
-    return source.position if isinstance(source, CameraView) else source[1]
-
-
 @dataclass
 class SceneSynthesis:
     """What the synthesis on the targets of a scene produced: the scene, the targets, grasps best first (each with
@@ -150,7 +145,7 @@ def synthesize_scene(
         approach=opts.approach,
         contact_quality=opts.contact_quality,
     )
-    scene = Scene(res.scene, source_viewpoints(source))
+    scene = Scene(res.scene, None, point_viewpoints=res.viewpoints)
     if opts.completion is not None:
         scene.take_completion(res.completion)
     times = res.timing

@@ -91,7 +91,10 @@ def _finite_or_none(v: float):
 class Scene:
     """The support plane and the objects of a scene cloud (made by segment_scene)."""
 
-    def __init__(self, result, viewpoints: np.ndarray | None):
+    def __init__(self, result, viewpoints: np.ndarray | None, *, point_viewpoints: np.ndarray | None = None):
+        """result: the C++ Segmentation; viewpoints: the cameras as given to the segmentation (None, (3,) or one per
+        input point); point_viewpoints: instead, the camera of each kept point already worked out ((M, 3), or (0, 3)
+        for none: _core.SceneSynthesis.viewpoints)."""
         self.result = result  # the C++ Segmentation, for its every count
         self.plane = None if result.plane is None else np.asarray(result.plane, dtype=float)
         self.plane_found = bool(result.plane_found)
@@ -100,7 +103,9 @@ class Scene:
         self.labels = np.asarray(result.labels)
         self.sources = np.asarray(result.sources)
         self.viewpoints = None  # (M, 3) the camera that saw each kept point, or None without viewpoints
-        if viewpoints is not None:
+        if point_viewpoints is not None:
+            self.viewpoints = np.asarray(point_viewpoints, dtype=float) if len(point_viewpoints) else None
+        elif viewpoints is not None:
             vp = np.asarray(viewpoints, dtype=float)
             per_point = vp.ndim == 2 and len(vp) > 1
             self.viewpoints = vp[self.sources] if per_point else np.tile(vp.reshape(3), (len(self.points), 1))

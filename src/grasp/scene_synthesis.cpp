@@ -24,11 +24,7 @@ std::optional<Eigen::Vector4d> plane_of(const Segmentation& s) {
 }
 
 /// The rows of `a` named by `rows`.
-Vec3Array rows_of(const Vec3Array& a, const Eigen::VectorXi& rows) {
-  Vec3Array out(rows.size(), 3);
-  for (Eigen::Index i = 0; i < rows.size(); ++i) out.row(i) = a.row(rows[i]);
-  return out;
-}
+Vec3Array rows_of(const Vec3Array& a, const Eigen::VectorXi& rows) { return a(rows, Eigen::all); }
 
 Vec3Array stacked(const Vec3Array& a, const Vec3Array& b) {
   Vec3Array out(a.rows() + b.rows(), 3);

@@ -2,12 +2,15 @@
 // annealing that climbs it; the sampling and the whole synthesis are in synthesis.cpp.
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <random>
 #include <stdexcept>
 #include <string>
 #include <tuple>
 #include <vector>
+
+#include <omp.h>
 
 #include "graspmix/core/se3.hpp"
 #include "graspmix/grasp/synthesis.hpp"
@@ -111,13 +114,41 @@ Evaluation GraspSynthesizer::evaluate_bounded(const Scoring& scoring, const Eige
   return e;
 }
 
-int GraspSynthesizer::anneal(const Scoring& scoring, const AnnealingSettings& s, std::mt19937_64& rng,
-                             PoseArray& wrists, RowMatrixXd& joints) const {
-  const Eigen::Index n = wrists.rows();
-  if (n == 0 || s.iterations <= 0) return 0;
-  if (!(s.initial_temperature > 0.0)) throw std::invalid_argument("annealing: initial_temperature must be > 0");
-  std::normal_distribution<double> normal;
-  std::uniform_real_distribution<double> uni(0.0, 1.0);
+/// The random numbers of an annealing run, drawn before any chain moves, in the order the chains have always
+/// drawn them: per iteration, each chain's proposal (3 position, 3 rotation, then one per joint normal deviates),
+/// then each chain's acceptance number. None depends on a score, so chains drawn this way can run apart.
+struct GraspSynthesizer::AnnealingNoise {
+  std::vector<RowMatrixXd> steps;      ///< per iteration (n, 6 + D)
+  std::vector<Eigen::VectorXd> draws;  ///< per iteration (n), uniform in [0, 1)
+
+  AnnealingNoise(std::mt19937_64& rng, Eigen::Index n, Eigen::Index dofs, int iterations) {
+    std::normal_distribution<double> normal;
+    std::uniform_real_distribution<double> uni(0.0, 1.0);
+    steps.reserve(static_cast<size_t>(iterations));
+    draws.reserve(static_cast<size_t>(iterations));
+    for (int t = 0; t < iterations; ++t) {
+      RowMatrixXd step(n, 6 + dofs);
+      for (Eigen::Index i = 0; i < n; ++i)
+        for (Eigen::Index j = 0; j < step.cols(); ++j) step(i, j) = normal(rng);
+      Eigen::VectorXd u(n);
+      for (Eigen::Index i = 0; i < n; ++i) u[i] = uni(rng);
+      steps.push_back(std::move(step));
+      draws.push_back(std::move(u));
+    }
+  }
+};
+
+namespace {
+
+/// Chains per thread below which annealing stays on one thread: a chain's iteration costs tens of microseconds,
+/// a team's wake-up about as much.
+constexpr Eigen::Index kChainsPerThread = 4;
+
+}  // namespace
+
+void GraspSynthesizer::anneal_chains(const Scoring& scoring, const AnnealingSettings& s, const AnnealingNoise& noise,
+                                     Eigen::Index first, PoseArray& wrists, RowMatrixXd& joints) const {
+  const Eigen::Index n = wrists.rows(), D = joints.cols();
   const RowMatrixXd& limits = config_.limits();
   const double joint_std = s.joint_step * config_.sigma();
   Eigen::VectorXd current = evaluate(scoring, wrists, joints).total;
@@ -125,26 +156,27 @@ int GraspSynthesizer::anneal(const Scoring& scoring, const AnnealingSettings& s,
   RowMatrixXd best_q = joints;
   Eigen::VectorXd best = current;
   PoseArray prop_w(n, 7);
-  RowMatrixXd prop_q(n, joints.cols());
-  Eigen::VectorXd draws(n);
+  RowMatrixXd prop_q(n, D);
   for (int t = 0; t < s.iterations; ++t) {
     // The paper's schedule: linear decay from the initial temperature.
     const double T = s.initial_temperature * (1.0 - static_cast<double>(t) / s.iterations);
+    const auto step = noise.steps[static_cast<size_t>(t)].middleRows(first, n);
+    const auto draws = noise.draws[static_cast<size_t>(t)].segment(first, n);
     for (Eigen::Index i = 0; i < n; ++i) {
-      const Eigen::Vector3d dp(normal(rng), normal(rng), normal(rng));
-      const Eigen::Vector3d dr(normal(rng), normal(rng), normal(rng));
+      // Each triple's deviates taken last first: the order GCC evaluated the arguments of the Vector3d(normal(rng),
+      // ...) this code replaced, so the grasps of every run recorded in docs stay what they were.
+      const Eigen::Vector3d dp = step.row(i).head<3>().reverse().transpose();
+      const Eigen::Vector3d dr = step.row(i).segment<3>(3).reverse().transpose();
       const Eigen::Quaterniond q =
           canonical((row_quaternion(wrists, i).normalized() * quat_exp(0.5 * s.rotation_step * T * dr)).normalized());
       prop_w.row(i).head<3>() = wrists.row(i).head<3>() + s.position_step * T * dp.transpose();
       prop_w.row(i).tail<4>() << q.x(), q.y(), q.z(), q.w();
-      for (Eigen::Index j = 0; j < joints.cols(); ++j) {
-        prop_q(i, j) = std::clamp(joints(i, j) + joint_std * T * normal(rng), limits(j, 0), limits(j, 1));
+      for (Eigen::Index j = 0; j < D; ++j) {
+        prop_q(i, j) = std::clamp(joints(i, j) + joint_std * T * step(i, 6 + j), limits(j, 0), limits(j, 1));
       }
     }
-    // The acceptance draws, one per chain, as they have always been drawn (after the proposals): a proposal whose
-    // log L cannot exceed `bound` is refused when bound < c and u >= exp((bound - c) / T) (with a margin over the
-    // rounding of exp), so its last expert (contact quality) need not be scored.
-    for (Eigen::Index i = 0; i < n; ++i) draws[i] = uni(rng);
+    // A proposal whose log L cannot exceed `bound` is refused when bound < c and u >= exp((bound - c) / T) (with a
+    // margin over the rounding of exp), so its last expert (contact quality) need not be scored.
     const auto refused = [&](Eigen::Index i, double bound) {
       const double c = current[i];
       return std::isfinite(c) && bound < c && !(draws[i] < std::exp((bound - c) / T) * (1.0 + 1e-12));
@@ -174,6 +206,41 @@ int GraspSynthesizer::anneal(const Scoring& scoring, const AnnealingSettings& s,
   }
   wrists = best_w;
   joints = best_q;
+}
+
+int GraspSynthesizer::anneal(const Scoring& scoring, const AnnealingSettings& s, std::mt19937_64& rng,
+                             PoseArray& wrists, RowMatrixXd& joints) const {
+  const Eigen::Index n = wrists.rows();
+  if (n == 0 || s.iterations <= 0) return 0;
+  if (!(s.initial_temperature > 0.0)) throw std::invalid_argument("annealing: initial_temperature must be > 0");
+  const AnnealingNoise noise(rng, n, joints.cols(), s.iterations);
+  // Chains share nothing but their noise: blocks of them anneal on threads of their own, each grasp scored as in
+  // one batch (the experts allowing it), so the result is the same whatever the threads.
+  const bool in_parts =
+      std::all_of(scoring.experts.begin(), scoring.experts.end(), [](const auto& e) { return e->scores_in_parts(); });
+  const int threads =
+      in_parts ? static_cast<int>(std::min<Eigen::Index>(omp_get_max_threads(), n / kChainsPerThread)) : 1;
+  if (threads <= 1) {
+    anneal_chains(scoring, s, noise, 0, wrists, joints);
+    return static_cast<int>(n) * (s.iterations + 1);
+  }
+  std::vector<std::exception_ptr> errors(static_cast<size_t>(threads));
+#pragma omp parallel num_threads(threads)
+  {
+    const int k = omp_get_thread_num(), team = omp_get_num_threads();
+    const Eigen::Index first = n * k / team, count = n * (k + 1) / team - first;
+    try {
+      PoseArray w = wrists.middleRows(first, count);
+      RowMatrixXd q = joints.middleRows(first, count);
+      anneal_chains(scoring, s, noise, first, w, q);
+      wrists.middleRows(first, count) = w;
+      joints.middleRows(first, count) = q;
+    } catch (...) {
+      errors[static_cast<size_t>(k)] = std::current_exception();
+    }
+  }
+  for (const std::exception_ptr& e : errors)
+    if (e) std::rethrow_exception(e);
   return static_cast<int>(n) * (s.iterations + 1);
 }
 

@@ -45,6 +45,11 @@ class Expert {
   /// A bound log E_k never exceeds (+inf: none known). Annealing skips the last expert of a product on a proposal
   /// that this bound already shows will be refused (GraspSynthesizer::anneal): the result is the same, sooner.
   virtual double max_log_value() const { return std::numeric_limits<double>::infinity(); }
+  /// Whether log_value may score a batch in parts, from several threads at once: each grasp's value depends on
+  /// that grasp alone, and scoring changes no state. Annealing runs its chains in parallel only when every expert
+  /// allows it (GraspSynthesizer::anneal). A caller's function (FunctionExpert, a reachability test) does not:
+  /// it is called with the whole batch on the calling thread, as it always was.
+  virtual bool scores_in_parts() const { return true; }
 };
 
 struct KinematicFeasibilitySettings {
@@ -71,6 +76,7 @@ class KinematicFeasibilityExpert : public Expert {
                              double limit_tolerance = KinematicFeasibilitySettings{}.limit_tolerance);
   std::string name() const override { return "kinematic"; }
   Eigen::VectorXd log_value(const GraspBatch& batch) const override;
+  bool scores_in_parts() const override { return !reachable_; }
 
  private:
   std::shared_ptr<const Hand> hand_;
@@ -149,6 +155,7 @@ class FunctionExpert : public Expert {
   FunctionExpert(std::string name, Function fn);
   std::string name() const override { return name_; }
   Eigen::VectorXd log_value(const GraspBatch& batch) const override;
+  bool scores_in_parts() const override { return false; }
 
  private:
   std::string name_;

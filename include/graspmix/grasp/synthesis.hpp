@@ -169,7 +169,9 @@ class GraspSynthesizer {
                      RowMatrixXd& joints) const;
   Evaluation evaluate(const Scoring& scoring, const Eigen::Ref<const PoseArray>& wrists,
                       const Eigen::Ref<const RowMatrixXd>& joints) const;
-  /// Anneals every row of (wrists, joints) in place; returns the evaluations spent.
+  /// Anneals every row of (wrists, joints) in place; returns the evaluations spent. Its random numbers are drawn
+  /// from rng first; blocks of chains then run on OpenMP threads when every expert scores in parts
+  /// (Expert::scores_in_parts), with the same result as on one thread.
   int anneal(const Scoring& scoring, const AnnealingSettings& settings, std::mt19937_64& rng, PoseArray& wrists,
              RowMatrixXd& joints) const;
 
@@ -188,6 +190,11 @@ class GraspSynthesizer {
   /// terms and only on the grasps `settled` leaves open (the others get total -inf and that term NaN).
   Evaluation evaluate_bounded(const Scoring& scoring, const Eigen::Ref<const PoseArray>& wrists,
                               const Eigen::Ref<const RowMatrixXd>& joints, const Settled& settled) const;
+  /// anneal()'s random numbers (scoring.cpp)
+  struct AnnealingNoise;
+  /// anneal()'s chains `first`.. (the rows of wrists and joints) with their numbers of `noise`.
+  void anneal_chains(const Scoring& scoring, const AnnealingSettings& s, const AnnealingNoise& noise,
+                     Eigen::Index first, PoseArray& wrists, RowMatrixXd& joints) const;
   /// Grasps with their evaluation, rows aligned.
   struct Candidates {
     PoseArray wrists;

@@ -39,15 +39,22 @@ void bind_perception(py::module_& m) {
                     "width x height grid (row v, column u); empty for an unorganised one.")
       .def(
           "organized",
-          [](const CloudData& c) {
-            const Vec3Array grid = organized_grid(c);
+          [](const CloudData& c, const py::object& camera_pose) {
             py::array_t<double> out(
                 {static_cast<py::ssize_t>(c.height), static_cast<py::ssize_t>(c.width), static_cast<py::ssize_t>(3)});
-            std::copy(grid.data(), grid.data() + grid.size(), out.mutable_data());
+            if (camera_pose.is_none()) {
+              const Vec3Array grid = organized_grid(c);
+              std::copy(grid.data(), grid.data() + grid.size(), out.mutable_data());
+            } else {
+              organized_grid_into(c, to_camera_pose(camera_pose, "camera_pose"), out.mutable_data());
+            }
             return out;
           },
-          "The points on their image grid: (height, width, 3) float64, NaN where the file had no finite point.\n"
-          "ValueError, naming the file, for an unorganised cloud (height 1).")
+          py::arg("camera_pose") = py::none(),
+          "The points on their image grid: (height, width, 3) float64, NaN where the file had no finite point;\n"
+          "with camera_pose [x, y, z, qx, qy, qz, qw] (a camera's pose in the file's frame, e.g. its VIEWPOINT),\n"
+          "each point in that camera's frame. ValueError, naming the file, for an unorganised cloud (height 1),\n"
+          "and for a camera_pose that is not a finite pose with a unit quaternion.")
       .def_readonly("n_invalid", &CloudData::n_invalid, "Points dropped for a NaN or infinite coordinate.")
       .def_readonly("format", &CloudData::format)
       .def_readonly("path", &CloudData::path)

@@ -366,10 +366,12 @@ class CloudData:
         ...
     def __repr__(self) -> str:
         ...
-    def organized(self) -> numpy.typing.NDArray[numpy.float64]:
+    def organized(self, camera_pose: typing.Any = None) -> numpy.typing.NDArray[numpy.float64]:
         """
-        The points on their image grid: (height, width, 3) float64, NaN where the file had no finite point.
-        ValueError, naming the file, for an unorganised cloud (height 1).
+        The points on their image grid: (height, width, 3) float64, NaN where the file had no finite point;
+        with camera_pose [x, y, z, qx, qy, qz, qw] (a camera's pose in the file's frame, e.g. its VIEWPOINT),
+        each point in that camera's frame. ValueError, naming the file, for an unorganised cloud (height 1),
+        and for a camera_pose that is not a finite pose with a unit quaternion.
         """
     @property
     def fields(self) -> list[str]:

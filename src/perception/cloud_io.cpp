@@ -266,26 +266,50 @@ CloudData load_cloud(const std::string& path) {
   fail(path, "unknown cloud format '" + ext + "' (expected .pcd, .ply or .npy)");
 }
 
-Vec3Array organized_grid(const CloudData& cloud) {
+namespace {
+
+/// The checks of an organised grid: a cloud with HEIGHT > 1 and pixels of every point; its size (cells).
+std::int64_t checked_grid(const CloudData& cloud) {
   if (cloud.height <= 1) {
     fail(cloud.path, "not an organized cloud (height " + std::to_string(cloud.height) +
                          "): only a file with HEIGHT > 1 has an image grid");
   }
-  const std::int64_t size = static_cast<std::int64_t>(cloud.width) * cloud.height;
   if (cloud.pixels.size() != cloud.points.rows()) {
     fail(cloud.path, "pixels has " + std::to_string(cloud.pixels.size()) + " entries for " +
                          std::to_string(cloud.points.rows()) + " points");
   }
-  Vec3Array grid = Vec3Array::Constant(size, 3, std::numeric_limits<double>::quiet_NaN());
+  return static_cast<std::int64_t>(cloud.width) * cloud.height;
+}
+
+/// Writes f(point k) into row pixels[k] of the (size, 3) row-major `out`, NaN in every other row.
+template <class Map>
+void scatter_grid(const CloudData& cloud, std::int64_t size, double* out, Map f) {
+  std::fill(out, out + 3 * size, std::numeric_limits<double>::quiet_NaN());
   for (Eigen::Index k = 0; k < cloud.pixels.size(); ++k) {
     const std::int64_t p = cloud.pixels[k];
     if (p < 0 || p >= size) {
       fail(cloud.path, "pixel " + std::to_string(p) + " of point " + std::to_string(k) + " is outside the " +
                            std::to_string(cloud.width) + " x " + std::to_string(cloud.height) + " grid");
     }
-    grid.row(p) = cloud.points.row(k);
+    Eigen::Map<Eigen::RowVector3d>(out + 3 * p) = f(cloud.points.row(k));
   }
+}
+
+}  // namespace
+
+Vec3Array organized_grid(const CloudData& cloud) {
+  const std::int64_t size = checked_grid(cloud);
+  Vec3Array grid(size, 3);
+  scatter_grid(cloud, size, grid.data(), [](const auto& p) { return p; });
   return grid;
+}
+
+void organized_grid_into(const CloudData& cloud, const Eigen::Isometry3d& T_file_camera, double* out) {
+  const std::int64_t size = checked_grid(cloud);
+  // p_camera = R^T (p - t), as a row: (p - t) R
+  const Eigen::Matrix3d R = T_file_camera.linear();
+  const Eigen::RowVector3d t = T_file_camera.translation().transpose();
+  scatter_grid(cloud, size, out, [&](const auto& p) { return Eigen::RowVector3d((p - t) * R); });
 }
 
 namespace {

@@ -155,7 +155,6 @@ def organized_file_view(loaded, camera_pose=None) -> CameraView | None:
     frame (e.g. a world-frame grid without its camera): it is then taken as points."""
     if loaded.height <= 1:
         return None
-    grid = np.asarray(loaded.organized())
     pose = camera_pose
     if camera_pose is not None and loaded.has_viewpoint:
         raise ValueError(
@@ -163,8 +162,9 @@ def organized_file_view(loaded, camera_pose=None) -> CameraView | None:
         )
     if camera_pose is None and loaded.has_viewpoint:
         pose = np.asarray(loaded.viewpoint, dtype=float)
-        T = np.asarray(_core.camera_pose_matrix(pose))
-        grid = (grid - T[:3, 3]) @ T[:3, :3]  # into the camera's frame (NaN holes stay NaN)
+        grid = loaded.organized(camera_pose=pose)  # into the camera's frame (NaN holes stay NaN)
+    else:
+        grid = loaded.organized()
     try:
         return organized_view(grid, pose)
     except ValueError as e:

@@ -1,5 +1,6 @@
 """Organised clouds (width x height, NaN holes) through save_cloud / load_cloud: CloudData.pixels and
-CloudData.organized() against the grid that was written, by graspmix in every PCD encoding and by numpy."""
+CloudData.organized() against the grid that was written, by graspmix in every PCD encoding and by numpy, and in a
+camera's frame against scipy's rotation."""
 
 import graspmix
 import numpy as np
@@ -49,6 +50,29 @@ def test_an_organised_file_written_by_numpy(tmp_path):
     np.testing.assert_array_equal(c.pixels, rows * W + cols)
     np.testing.assert_array_equal(c.points, grid[rows, cols])
     np.testing.assert_array_equal(c.organized(), grid)
+
+
+def test_the_grid_in_a_cameras_frame(tmp_path):
+    # organized(camera_pose=T) is the grid mapped by T^-1, as scipy's rotation maps it; NaN holes stay NaN.
+    from scipy.spatial.transform import Rotation
+
+    grid = _grid(5)
+    graspmix.save_cloud(tmp_path / "w.pcd", grid.reshape(-1, 3), encoding="binary", width=W, height=H)
+    c = graspmix.load_cloud(tmp_path / "w.pcd")
+    world = c.organized()
+    q = Rotation.from_euler("xyz", [0.7, -0.2, 1.9]).as_quat()  # x, y, z, w
+    t = np.array([0.3, -0.55, 0.6])
+    expected = Rotation.from_quat(q).inv().apply(world.reshape(-1, 3) - t).reshape(H, W, 3)
+    got = c.organized(camera_pose=[*t, *q])
+    assert got.shape == (H, W, 3)
+    np.testing.assert_array_equal(np.isnan(got), np.isnan(world))
+    hit = np.isfinite(world).all(axis=-1)
+    np.testing.assert_allclose(got[hit], expected[hit], atol=1e-12)
+    np.testing.assert_array_equal(c.organized(camera_pose=[0, 0, 0, 0, 0, 0, 1]), world)  # the identity
+    with pytest.raises(ValueError, match="camera_pose"):
+        c.organized(camera_pose=[0, 0, 0, 0, 0, 0, 2])  # not a unit quaternion
+    with pytest.raises(ValueError, match="camera_pose"):
+        c.organized(camera_pose=[0, 0, 0, 1])
 
 
 def test_unorganised_clouds_have_no_grid(tmp_path):

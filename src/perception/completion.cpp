@@ -220,27 +220,60 @@ bool near_observed(const Eigen::Vector3d& p, const std::unordered_multimap<std::
   return false;
 }
 
-/// The winner's points where the views say Unseen or Surface, min_height above the plane, one per spacing cell,
-/// none within observed_clearance of an observed point.
-void keep_completed(const Shape& shape, const Eigen::Ref<const Vec3Array>& P, const TableFrame& f,
-                    const VisibilityModel& vis, const CompletionSettings& s, Completion& out) {
+/// The rows of a winner's points `Q` kept: where the views say Unseen or Surface, min_height above the plane, one per
+/// spacing cell, none within observed_clearance of an observed point (P).
+std::vector<Eigen::Index> completed_rows(const Vec3Array& Q, const Eigen::Ref<const Vec3Array>& P, const TableFrame& f,
+                                         const VisibilityModel& vis, const CompletionSettings& s) {
   std::unordered_multimap<std::uint64_t, Eigen::Index> observed;
   for (Eigen::Index i = 0; i < P.rows(); ++i) observed.emplace(cell_key(P.row(i).transpose(), s.observed_clearance), i);
   std::unordered_set<std::uint64_t> taken;
-  const Eigen::VectorXd d = vis.signed_distances(shape.points);
+  const Eigen::VectorXd d = vis.signed_distances(Q);
   const double tol = vis.settings().surface_tolerance;
   std::vector<Eigen::Index> keep;
-  for (Eigen::Index i = 0; i < shape.points.rows(); ++i) {
-    const Eigen::Vector3d p = shape.points.row(i).transpose();
+  for (Eigen::Index i = 0; i < Q.rows(); ++i) {
+    const Eigen::Vector3d p = Q.row(i).transpose();
     if (!(std::isfinite(d[i]) && d[i] <= tol) || f.n.dot(p) + f.d < s.min_height) continue;
     if (near_observed(p, observed, P, s.observed_clearance) || !taken.insert(cell_key(p, s.spacing)).second) continue;
     keep.push_back(i);
   }
+  return keep;
+}
+
+/// out's points: Q's rows `keep`; its normals those rows of `normal(row)`, normalised.
+template <class Normal>
+void take_rows(const Vec3Array& Q, const std::vector<Eigen::Index>& keep, Normal normal, Completion& out) {
   out.points.resize(static_cast<Eigen::Index>(keep.size()), 3);
   out.normals.resize(out.points.rows(), 3);
   for (Eigen::Index j = 0; j < out.points.rows(); ++j) {
-    out.points.row(j) = shape.points.row(keep[static_cast<std::size_t>(j)]);
-    out.normals.row(j) = shape.normals.row(keep[static_cast<std::size_t>(j)]).normalized();
+    const Eigen::Index i = keep[static_cast<std::size_t>(j)];
+    out.points.row(j) = Q.row(i);
+    out.normals.row(j) = Eigen::RowVector3d(normal(i)).normalized();
+  }
+}
+
+/// The winner's completed points with their normals (completed_rows). A mirror's normals are its observed points'
+/// mirrored, worked out only for the points kept (a mirror keeps a fraction of them: most of an object's normals
+/// would be made for nothing).
+void keep_completed(const CompletionHypothesis& win, const Shape& walls, const detail::Circle& circle,
+                    const Eigen::Ref<const Vec3Array>& P, const Eigen::Vector3d& viewpoint, const TableFrame& f,
+                    const VisibilityModel& vis, const CompletionSettings& s, Completion& out) {
+  if (win.kind == CompletionKind::Extrusion) {
+    take_rows(
+        walls.points, completed_rows(walls.points, P, f, vis, s), [&](Eigen::Index i) { return walls.normals.row(i); },
+        out);
+  } else if (win.kind == CompletionKind::Rotation) {
+    const Shape rev =
+        detail::revolution_shape(f, circle, detail::observed_normals(P, viewpoint, s.normal_radius), s.spacing);
+    take_rows(
+        rev.points, completed_rows(rev.points, P, f, vis, s), [&](Eigen::Index i) { return rev.normals.row(i); }, out);
+  } else {
+    const Eigen::Vector3d m = win.plane_or_axis.head<3>();
+    const Vec3Array Q = detail::mirror_shape(P, Vec3Array(), m, -win.plane_or_axis[3]).points;
+    const std::vector<Eigen::Index> keep = completed_rows(Q, P, f, vis, s);
+    const Vec3Array N = detail::observed_normals(P, viewpoint, s.normal_radius, &keep);
+    take_rows(
+        Q, keep, [&](Eigen::Index i) { return Eigen::RowVector3d(N.row(i) - 2 * N.row(i).dot(m) * m.transpose()); },
+        out);
   }
 }
 
@@ -308,16 +341,7 @@ Completion complete_object(const Eigen::Ref<const Vec3Array>& points, const Eige
                         [](const CompletionHypothesis& h) { return h.accepted; });
   const CompletionHypothesis& win = out.hypotheses.front();
   if (win.accepted) {
-    Shape shape;
-    if (win.kind == CompletionKind::Extrusion) {
-      shape = walls;
-    } else {
-      const Vec3Array N = detail::observed_normals(points, viewpoint, settings.normal_radius);
-      shape = win.kind == CompletionKind::Rotation
-                  ? detail::revolution_shape(f, circle, N, settings.spacing)
-                  : detail::mirror_shape(points, N, win.plane_or_axis.head<3>(), -win.plane_or_axis[3]);
-    }
-    keep_completed(shape, points, f, visibility, settings, out);
+    keep_completed(win, walls, circle, points, viewpoint, f, visibility, settings, out);
     out.kind = win.kind;
     out.score = win.score;
   }

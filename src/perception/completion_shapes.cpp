@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numeric>
 #include <utility>
+#include <vector>
 
 #include <Eigen/Eigenvalues>
 
@@ -68,7 +70,8 @@ Footprint::Footprint(const TableFrame& f, double cell_size) : cell(cell_size) {
   }
 }
 
-Vec3Array observed_normals(const Eigen::Ref<const Vec3Array>& P, const Eigen::Vector3d& viewpoint, double radius) {
+Vec3Array observed_normals(const Eigen::Ref<const Vec3Array>& P, const Eigen::Vector3d& viewpoint, double radius,
+                           const std::vector<Eigen::Index>* rows) {
   const Eigen::Vector3d lo = P.colwise().minCoeff().transpose(), hi = P.colwise().maxCoeff().transpose();
   UniformGrid::Cell dims{};
   double cells = 1;
@@ -77,14 +80,26 @@ Vec3Array observed_normals(const Eigen::Ref<const Vec3Array>& P, const Eigen::Ve
     cells *= static_cast<double>(dims[k]);
   }
   const UniformGrid grid(P, lo, radius, dims, cells < 1e6 ? UniformGrid::Layout::Dense : UniformGrid::Layout::Sparse);
-  Vec3Array N(P.rows(), 3);
+  // The grid positions of the points asked for: all, or those of `rows`.
+  std::vector<int> asked;
+  if (rows) {
+    std::vector<int> position(static_cast<std::size_t>(P.rows()));
+    for (int i = 0; i < grid.size(); ++i) position[static_cast<std::size_t>(grid.row(i))] = i;
+    for (const Eigen::Index r : *rows) asked.push_back(position[static_cast<std::size_t>(r)]);
+  } else {
+    asked.resize(static_cast<std::size_t>(grid.size()));
+    std::iota(asked.begin(), asked.end(), 0);
+  }
+  Vec3Array N = Vec3Array::Zero(P.rows(), 3);
+  const int n = static_cast<int>(asked.size());
   // Each point's normal on its own: the points in parallel, each thread with its own neighbour lists.
 #pragma omp parallel
   {
     std::vector<int> nn;
     std::vector<double> d2;
 #pragma omp for schedule(static)
-    for (int i = 0; i < grid.size(); ++i) {
+    for (int a = 0; a < n; ++a) {
+      const int i = asked[static_cast<std::size_t>(a)];
       grid.neighbours(i, radius * radius, nn, d2);
       Eigen::Vector3d normal = (viewpoint - grid.point(i)).normalized();  // too few neighbours: face the camera
       if (nn.size() >= 3) {

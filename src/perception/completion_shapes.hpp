@@ -50,8 +50,10 @@ struct Shape {
 };
 
 /// Unit outward normals of the observed points: the least-variance direction of the points within radius,
-/// turned towards the viewpoint (a visible surface faces its camera).
-Vec3Array observed_normals(const Eigen::Ref<const Vec3Array>& P, const Eigen::Vector3d& viewpoint, double radius);
+/// turned towards the viewpoint (a visible surface faces its camera). With `rows`, only those rows' normals are
+/// worked out (the others are 0): each the same as among all.
+Vec3Array observed_normals(const Eigen::Ref<const Vec3Array>& P, const Eigen::Vector3d& viewpoint, double radius,
+                           const std::vector<Eigen::Index>* rows = nullptr);
 
 /// The observed points and normals mirrored through the plane m.p = o (m unit).
 Shape mirror_shape(const Eigen::Ref<const Vec3Array>& P, const Vec3Array& N, const Eigen::Vector3d& m, double o);

@@ -1,7 +1,6 @@
 #include "graspmix/perception/depth_scene.hpp"
 
 #include <algorithm>
-#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -134,24 +133,27 @@ DepthImage nearest_pool(const Eigen::Ref<const DepthImage>& depth, const Pinhole
   return out;
 }
 
+/// The median of a window of returns, general: any radius, returns missing.
+double window_median(const Eigen::Ref<const DepthImage>& depth, Eigen::Index v, Eigen::Index u, int r,
+                     std::vector<double>& window) {
+  const Eigen::Index H = depth.rows(), W = depth.cols();
+  window.clear();
+  for (Eigen::Index y = std::max<Eigen::Index>(0, v - r); y <= std::min(H - 1, v + r); ++y)
+    for (Eigen::Index x = std::max<Eigen::Index>(0, u - r); x <= std::min(W - 1, u + r); ++x)
+      if (has_return(depth(y, x))) window.push_back(depth(y, x));
+  const auto mid = window.begin() + static_cast<std::ptrdiff_t>(window.size() / 2);
+  std::nth_element(window.begin(), mid, window.end());
+  return *mid;
+}
+
+/// The middle of three values.
+double median3(double a, double b, double c) { return std::max(std::min(a, b), std::min(std::max(a, b), c)); }
+
 /// The depth image the scene's visibility model keeps: each pixel with a return the median of the returns within r
 /// pixels of it (a (2r + 1)^2 window; r = 0: the image itself). A depth sensor's silhouettes are ragged (the
 /// simulated cameras' lateral noise, a real one's flying pixels): an object's pixel at its outline that took the
 /// depth of the table behind sees through the object, and its ray would refute every completion there; the median
 /// removes such lone pixels and keeps edges where they are.
-/// The median of nine values by a network of 19 exchanges (each a min and a max).
-double median_of_nine(std::array<double, 9> p) {
-  const auto sort2 = [&p](int a, int b) {
-    const double lo = std::min(p[a], p[b]), hi = std::max(p[a], p[b]);
-    p[a] = lo;
-    p[b] = hi;
-  };
-  sort2(1, 2), sort2(4, 5), sort2(7, 8), sort2(0, 1), sort2(3, 4), sort2(6, 7), sort2(1, 2), sort2(4, 5);
-  sort2(7, 8), sort2(0, 3), sort2(5, 8), sort2(4, 7), sort2(3, 6), sort2(1, 4), sort2(2, 5), sort2(4, 7);
-  sort2(4, 2), sort2(6, 4), sort2(4, 2);
-  return p[4];
-}
-
 DepthImage median_filtered(const Eigen::Ref<const DepthImage>& depth, int r) {
   DepthImage out = depth;
   if (r == 0) return out;
@@ -160,24 +162,32 @@ DepthImage median_filtered(const Eigen::Ref<const DepthImage>& depth, int r) {
   for (Eigen::Index v = 0; v < H; ++v) {
     std::vector<double> window;
     window.reserve(static_cast<std::size_t>((2 * r + 1) * (2 * r + 1)));
+    // The usual case, r = 1 inside the image with nine returns: each column of three sorted once (its least,
+    // middle, greatest), the median of the nine the middle of (the greatest least, the middle middle, the least
+    // greatest) of three neighbouring columns: the same value as any exact median, a few comparisons a pixel.
+    const bool rows_inside = r == 1 && v > 0 && v + 1 < H;
+    std::vector<double> lo, mid, hi;
+    std::vector<char> full;
+    if (rows_inside) {
+      lo.resize(static_cast<std::size_t>(W)), mid.resize(lo.size()), hi.resize(lo.size()), full.resize(lo.size());
+      for (Eigen::Index u = 0; u < W; ++u) {
+        const double a = depth(v - 1, u), b = depth(v, u), c = depth(v + 1, u);
+        const auto k = static_cast<std::size_t>(u);
+        full[k] = has_return(a) && has_return(b) && has_return(c);
+        lo[k] = std::min({a, b, c});
+        hi[k] = std::max({a, b, c});
+        mid[k] = median3(a, b, c);
+      }
+    }
     for (Eigen::Index u = 0; u < W; ++u) {
       if (!has_return(depth(v, u))) continue;
-      if (r == 1 && v > 0 && v + 1 < H && u > 0 && u + 1 < W) {  // the usual case: nine returns, by the network
-        const std::array<double, 9> p{depth(v - 1, u - 1), depth(v - 1, u), depth(v - 1, u + 1),
-                                      depth(v, u - 1),     depth(v, u),     depth(v, u + 1),
-                                      depth(v + 1, u - 1), depth(v + 1, u), depth(v + 1, u + 1)};
-        if (std::all_of(p.begin(), p.end(), [](double d) { return has_return(d); })) {
-          out(v, u) = median_of_nine(p);
-          continue;
-        }
+      const auto k = static_cast<std::size_t>(u);
+      if (rows_inside && u > 0 && u + 1 < W && full[k - 1] && full[k] && full[k + 1]) {
+        out(v, u) = median3(std::max({lo[k - 1], lo[k], lo[k + 1]}), median3(mid[k - 1], mid[k], mid[k + 1]),
+                            std::min({hi[k - 1], hi[k], hi[k + 1]}));
+        continue;
       }
-      window.clear();
-      for (Eigen::Index y = std::max<Eigen::Index>(0, v - r); y <= std::min(H - 1, v + r); ++y)
-        for (Eigen::Index x = std::max<Eigen::Index>(0, u - r); x <= std::min(W - 1, u + r); ++x)
-          if (has_return(depth(y, x))) window.push_back(depth(y, x));
-      const auto mid = window.begin() + static_cast<std::ptrdiff_t>(window.size() / 2);
-      std::nth_element(window.begin(), mid, window.end());
-      out(v, u) = *mid;
+      out(v, u) = window_median(depth, v, u, r, window);
     }
   }
   return out;

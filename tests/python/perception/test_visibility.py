@@ -249,3 +249,33 @@ def test_classify_checks_its_points():
     with pytest.raises(ValueError, match="signed_distance: points"):
         model.signed_distance("nothing")
     assert model.classify(np.zeros((0, 3))).shape == (0,)
+
+
+def test_a_depth_scenes_model_keeps_the_images_3x3_median(rng):
+    # segment_depth's visibility model holds the depth image median-filtered over 3 x 3 windows (the default
+    # visibility_median_window = 1): read back along each pixel's ray (d = z (1 + s / |q|) at depth z), it is scipy's
+    # median where the window is all returns, and the upper middle of the window's returns where some are missing.
+    from scipy.ndimage import maximum_filter, median_filter
+
+    H, W = 120, 160
+    cam = PinholeCamera(200.0, 200.0, 79.5, 59.5, W, H)
+    v, u = np.mgrid[0:H, 0:W].astype(float)
+    depth = 0.6 + 0.0005 * (u - 80) + rng.normal(0.0, 0.001, (H, W))  # a table, tilted, with noise
+    depth[40:80, 60:100] -= 0.08 + rng.normal(0.0, 0.001, (40, 40))  # a box on it
+    holes = rng.random((H, W)) < 0.03
+    depth[holes] = np.nan
+    scene = _core.segment_depth(depth, cam, IDENTITY, None)
+    z = 0.5
+    q = pixel_rays(cam, u.ravel() + 0.25, v.ravel() + 0.25) * z  # a quarter pixel in: no rounding at a pixel's edge
+    s = scene.visibility.signed_distance(q)
+    kept = (z * (1.0 + s / np.linalg.norm(q, axis=1))).reshape(H, W)
+    full = ~maximum_filter(holes, size=3, mode="constant", cval=True)  # windows of nine returns
+    expected = median_filter(np.where(holes, 0.0, depth), size=3)
+    assert full.sum() > 12000
+    np.testing.assert_allclose(kept[full], expected[full], rtol=1e-12)
+    partial = np.argwhere(~full & ~holes)
+    assert len(partial) > 1500
+    for r, c in partial:
+        window = depth[max(r - 1, 0) : r + 2, max(c - 1, 0) : c + 2]
+        values = np.sort(window[np.isfinite(window)])
+        assert kept[r, c] == pytest.approx(values[len(values) // 2], rel=1e-12), (r, c)

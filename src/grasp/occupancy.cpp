@@ -222,27 +222,25 @@ OccupancyMap::OccupancyMap(const VisibilityModel& visibility, const Eigen::Ref<c
     plane_ = orient_plane(normalised_plane(*plane), sensors, PlaneSide::Mean);  // the sensors' side is free
   }
   set_region();
-  // Only the cells above the table's layer are asked about (the others are free).
+  // Only the cells above the table's layer are asked about (the others are free); each cell's centre asked where
+  // it is made (no table of centres: a region holds up to millions of cells).
   cells_.assign(static_cast<std::size_t>(dims_.prod()), static_cast<std::uint8_t>(CellState::Free));
-  std::vector<std::size_t> asked;
-  Vec3Array centres(dims_.prod(), 3);
-  for (std::int64_t k = 0; k < dims_.z(); ++k)
-    for (std::int64_t j = 0; j < dims_.y(); ++j)
-      for (std::int64_t i = 0; i < dims_.x(); ++i) {
-        const Eigen::Vector3d c = origin_ + h_ * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5);
-        if (in_table_layer(plane_, c, h_)) continue;
-        centres.row(static_cast<Eigen::Index>(asked.size())) = c;
-        asked.push_back(static_cast<std::size_t>((k * dims_.y() + j) * dims_.x() + i));
-      }
-  const Eigen::VectorXd d = visibility.signed_distances(centres.topRows(static_cast<Eigen::Index>(asked.size())));
   const double tol = visibility.settings().surface_tolerance;
-  for (std::size_t a = 0; a < asked.size(); ++a) {
-    const double x = d[static_cast<Eigen::Index>(a)];
-    // No view says anything (NaN): free, see the header; else the visibility model's state of the distance.
-    const SpaceState st = std::isnan(x) ? SpaceState::SeenFree : state_of_distance(x, tol);
-    cells_[asked[a]] = static_cast<std::uint8_t>(st == SpaceState::SeenFree  ? CellState::Free
-                                                 : st == SpaceState::Surface ? CellState::Occupied
-                                                                             : CellState::Unknown);
+  const std::int64_t slices = dims_.z() * dims_.y();
+#pragma omp parallel for schedule(static) if (dims_.prod() >= 4096)
+  for (std::int64_t kj = 0; kj < slices; ++kj) {
+    const std::int64_t k = kj / dims_.y(), j = kj % dims_.y();
+    for (std::int64_t i = 0; i < dims_.x(); ++i) {
+      const Eigen::Vector3d c = origin_ + h_ * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5);
+      if (in_table_layer(plane_, c, h_)) continue;
+      const double x = visibility.signed_distance(c);
+      // No view says anything (NaN): free, see the header; else the visibility model's state of the distance.
+      const SpaceState st = std::isnan(x) ? SpaceState::SeenFree : state_of_distance(x, tol);
+      cells_[static_cast<std::size_t>(kj * dims_.x() + i)] =
+          static_cast<std::uint8_t>(st == SpaceState::SeenFree  ? CellState::Free
+                                    : st == SpaceState::Surface ? CellState::Occupied
+                                                                : CellState::Unknown);
+    }
   }
   finish_cells();
   stats_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();

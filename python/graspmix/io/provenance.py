@@ -2,9 +2,10 @@
 
 from __future__ import annotations
 
-import hashlib
-import subprocess
 from pathlib import Path
+
+# hashlib (OpenSSL) and subprocess are imported where they are used: `import graspmix` would pay some 8 ms for them
+# in every command, and only the experiment's reports use them.
 
 
 def package_version() -> str:
@@ -21,6 +22,8 @@ def package_version() -> str:
 
 def git_commit(cwd: str | Path | None = None) -> str | None:
     """The commit of the source tree the run is started from (with "+dirty" if it has changes), if any."""
+    import subprocess
+
     try:
         head = subprocess.run(["git", "rev-parse", "HEAD"], cwd=cwd, capture_output=True, text=True, timeout=10)
         if head.returncode != 0:
@@ -38,4 +41,6 @@ def git_commit(cwd: str | Path | None = None) -> str | None:
 
 
 def sha256_file(path) -> str:
+    import hashlib
+
     return hashlib.sha256(Path(path).read_bytes()).hexdigest()

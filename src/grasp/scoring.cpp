@@ -76,7 +76,11 @@ Evaluation GraspSynthesizer::evaluate_bounded(const Scoring& scoring, const Eige
     e.log_config[i] = config[k];
     e.log_collision[i] = coll[k];
     e.log_pregrasp[i] = pre_w[k];
-    rest[k] = coll[k] + config[k] + pre_w[k] + contact.row(k).sum();
+    // The links' terms added in link order: Eigen's vectorised row sum starts at the first aligned element, so its
+    // order (and last bit) would depend on the grasp's row in the batch, and the batch on the other grasps in it.
+    double links = 0;
+    for (Eigen::Index l = 0; l < contact.cols(); ++l) links += contact(k, l);
+    rest[k] = coll[k] + config[k] + pre_w[k] + links;
   }
   if (!deferred) {
     for (Eigen::Index k = 0; k < m; ++k) e.total[alive[k]] += rest[k];
@@ -213,6 +217,7 @@ int GraspSynthesizer::anneal(const Scoring& scoring, const AnnealingSettings& s,
   const Eigen::Index n = wrists.rows();
   if (n == 0 || s.iterations <= 0) return 0;
   if (!(s.initial_temperature > 0.0)) throw std::invalid_argument("annealing: initial_temperature must be > 0");
+  require_joints_shape(n, joints, hand_->n_dofs(), "anneal");  // before the rows are split into blocks
   const AnnealingNoise noise(rng, n, joints.cols(), s.iterations);
   // Chains share nothing but their noise: blocks of them anneal on threads of their own, each grasp scored as in
   // one batch (the experts allowing it), so the result is the same whatever the threads.

@@ -52,6 +52,7 @@ class ClearApproachExpert : public Expert {
                       ClearApproachSettings settings = {});
   std::string name() const override { return settings_.name; }
   Eigen::VectorXd log_value(const GraspBatch& batch) const override;
+  bool scores_in_parts() const override { return true; }
 
   /// The distances (m) back along the axis at which the open hand is checked: 0, step, 2 step, ..., stand_off.
   const std::vector<double>& offsets() const { return offsets_; }

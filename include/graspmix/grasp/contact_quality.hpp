@@ -86,6 +86,7 @@ class ContactQualityExpert : public Expert {
   std::string name() const override { return settings_.name; }
   /// log E for every grasp (N). Parallel (OpenMP) over grasps.
   Eigen::VectorXd log_value(const GraspBatch& batch) const override;
+  bool scores_in_parts() const override { return true; }
   /// A cost is never negative: log E <= 0.
   double max_log_value() const override { return 0.0; }
   /// The contacts and angles behind log_value: wrists (N, 7), joints (N, D). Parallel (OpenMP).

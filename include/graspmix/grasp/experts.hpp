@@ -47,9 +47,9 @@ class Expert {
   virtual double max_log_value() const { return std::numeric_limits<double>::infinity(); }
   /// Whether log_value may score a batch in parts, from several threads at once: each grasp's value depends on
   /// that grasp alone, and scoring changes no state. Annealing runs its chains in parallel only when every expert
-  /// allows it (GraspSynthesizer::anneal). A caller's function (FunctionExpert, a reachability test) does not:
-  /// it is called with the whole batch on the calling thread, as it always was.
-  virtual bool scores_in_parts() const { return true; }
+  /// allows it (GraspSynthesizer::anneal). Off unless an expert says so (the library's own do); a caller's
+  /// function (FunctionExpert, a reachability test) is called with the whole batch on the calling thread.
+  virtual bool scores_in_parts() const { return false; }
 };
 
 struct KinematicFeasibilitySettings {
@@ -110,6 +110,7 @@ class AxisAlignmentExpert : public Expert {
                       std::string name = AxisAlignmentSettings{}.name);
   std::string name() const override { return name_; }
   Eigen::VectorXd log_value(const GraspBatch& batch) const override;
+  bool scores_in_parts() const override { return true; }
 
  private:
   Eigen::Vector3d world_axis_, hand_axis_;
@@ -127,6 +128,7 @@ class CollisionFreeExpert : public Expert {
                       std::string name = "collision_free");
   std::string name() const override { return name_; }
   Eigen::VectorXd log_value(const GraspBatch& batch) const override;
+  bool scores_in_parts() const override { return true; }
 
  private:
   std::shared_ptr<const CollisionExpert> collision_;
@@ -155,7 +157,6 @@ class FunctionExpert : public Expert {
   FunctionExpert(std::string name, Function fn);
   std::string name() const override { return name_; }
   Eigen::VectorXd log_value(const GraspBatch& batch) const override;
-  bool scores_in_parts() const override { return false; }
 
  private:
   std::string name_;

@@ -147,7 +147,7 @@ class CountingPenalty : public Expert {
     return -40.0 * (b.wrists.col(2).array() - 0.25).abs();
   }
   double max_log_value() const override { return bounded_ ? 0.0 : std::numeric_limits<double>::infinity(); }
-  bool scores_in_parts() const override { return false; }  // it counts: one thread at a time
+  // scores_in_parts: false (Expert's default): it counts, one thread at a time
   mutable Eigen::Index scored = 0;
   mutable Eigen::Index largest_batch = 0;
 
@@ -273,4 +273,9 @@ TEST(Synthesis, AnnealingOnSeveralThreadsGivesTheGraspsOfOne) {
   const auto kept = annealed(2, {counting, kinematic});
   EXPECT_EQ(std::get<0>(kept), std::get<0>(serial));
   EXPECT_EQ(counting->largest_batch, 12);
+  // Joints of another row count than the wrists are refused before any block is cut from them.
+  PoseArray w = w0;
+  RowMatrixXd short_q = q0.topRows(11);
+  std::mt19937_64 r(1);
+  EXPECT_THROW(f.synth->anneal(Scoring{query, *f.collision, {kinematic}}, s, r, w, short_q), std::invalid_argument);
 }

@@ -9,8 +9,10 @@ data/objects/clutter_dev.txt) seen by the ring of four cameras and by the one sc
 scenes (5 objects, one view), and the bundled data/mug.pcd; each one-view scene also as the camera's depth image
 with its intrinsics and pose (synthesize(depth=..., intrinsics=..., camera_pose=...): the image path, issue 26).
 In one process, for each method, GraspModel.synthesize(..., target="largest") is called once to warm up and then --repeats
-times; printed per scene kind: the median and 90th percentile of every stage of GraspSet.timing and of the
-whole call (time.perf_counter around it), and the KDE/GMM ratio of the medians.
+times; printed per scene kind: the median and 90th percentile of every stage of GraspSet.timing (the
+segmentation's own steps under it: seg:voxel, seg:visibility, seg:outliers, seg:clusters, seg:rules for the other
+rules, seg:completion for the completion and the choice of targets) and of the whole call (time.perf_counter around
+it), and the KDE/GMM ratio of the medians.
 
 Then: the CLI's wall time (`graspmix_cli synthesize --cloud data/mug.pcd`, a subprocess, median), the
 wall time of `python -c "import graspmix"` (median) and the load time of graspmix._core (`python -X importtime`, its
@@ -157,9 +159,29 @@ def time_synthesis(model, inputs: dict, repeats: int, seed: int, **changes) -> t
         timing = dict(grasps.timing)
         if "total" in timing:
             timing["outside"] = whole - timing["total"]
+        timing.update(segmentation_steps(grasps, timing))
         for stage, t in {**timing, "whole": whole}.items():
             times.setdefault(stage, []).append(float(t))
     return times, grasps
+
+
+# The segmentation's own steps (Segmentation.step_seconds), printed under it: "seg:completion" is what the
+# segmentation stage spends beyond them (the completion of every object and the choice of targets).
+SEGMENTATION_STEPS = {"voxel": "voxel", "visibility": "visibility", "outliers": "outliers", "clusters": "clusters"}
+
+
+def segmentation_steps(grasps, timing: dict) -> dict:
+    """{"seg:<step>": s} of the GraspSet's scene: its voxel grid, visibility model, outliers and clusters, the
+    other rules summed ("seg:rules": plane candidates, table cut, merge, join, split, objects) and the completion
+    with the targets ("seg:completion"); {} without a scene."""
+    scene = getattr(grasps, "scene", None)
+    if scene is None or "segmentation" not in timing:
+        return {}
+    steps = dict(scene.result.step_seconds)
+    out = {f"seg:{name}": steps.pop(key, 0.0) for key, name in SEGMENTATION_STEPS.items()}
+    out["seg:rules"] = sum(steps.values())
+    out["seg:completion"] = max(0.0, timing["segmentation"] - float(scene.result.seconds))
+    return out
 
 
 def p90(values) -> float:
@@ -167,9 +189,15 @@ def p90(values) -> float:
 
 
 def stage_names(times: dict) -> list[str]:
-    """STAGES in order, any other stage the GraspSet reports after them, then "whole"."""
-    extra = sorted(s for s in times if s not in STAGES and s != "whole")
-    return [s for s in STAGES if s in times] + extra + ["whole"]
+    """STAGES in order (the segmentation's steps under it), any other stage the GraspSet reports after them, then
+    "whole"."""
+    steps = [s for s in times if s.startswith("seg:")]
+    extra = sorted(s for s in times if s not in STAGES and s != "whole" and s not in steps)
+    out = []
+    for s in STAGES:
+        if s in times:
+            out += [s] + (steps if s == "segmentation" else [])
+    return out + extra + ["whole"]
 
 
 def print_kind(kind: str, per_method: dict, counts: list[str]) -> None:

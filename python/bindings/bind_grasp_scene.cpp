@@ -1,5 +1,7 @@
 // synthesize_scene (include/graspmix/grasp/scene_synthesis.hpp): the whole path in one call and its result as
 // arrays; called by bind_grasp after the synthesiser and the experts are bound.
+#include <utility>
+
 #include <pybind11/functional.h>
 
 #include "common.hpp"
@@ -23,11 +25,11 @@ SceneInput to_input(const py::object& depth, const py::object& organized, const 
       throw py::value_error("synthesize_scene: a view's viewpoint is its camera's pose; give no viewpoints");
     const Eigen::Isometry3d T = to_camera_pose(pose, "T_world_camera");
     if (!depth.is_none()) return DepthView{DepthImage(to_matrix(depth, "synthesize_scene: depth")), *camera, T};
-    const Vec3Array P(to_matrix(organized, "synthesize_scene: organized", 3));
+    Vec3Array P(to_matrix(organized, "synthesize_scene: organized", 3));
     if (P.rows() != static_cast<Eigen::Index>(camera->height()) * camera->width())
       throw py::value_error("synthesize_scene: organized has " + std::to_string(P.rows()) + " rows, the camera " +
                             std::to_string(camera->width()) + " x " + std::to_string(camera->height()));
-    return OrganizedView{P, *camera, T};
+    return OrganizedView{std::move(P), *camera, T};  // a camera's image is megabytes: moved, not copied again
   }
   if (camera || !pose.is_none())
     throw py::value_error("synthesize_scene: points are in the world frame with their viewpoints; no camera or pose");

@@ -20,6 +20,13 @@ import os as _os
 # the user chose a policy. libgomp reads it when it loads, with _core below.
 if "OMP_WAIT_POLICY" not in _os.environ and "GOMP_SPINCOUNT" not in _os.environ:
     _os.environ["OMP_WAIT_POLICY"] = "PASSIVE"
+# numpy's OpenBLAS starts a thread per core when numpy loads, and they spin after any product: on 2 cores they took
+# CPU from the C++ core's OpenMP threads (graspmix_cli synthesize on packed4.pcd 308 -> 299 ms, `import numpy`
+# 104 -> 91 ms with one BLAS thread, medians of 6 and 8 alternating runs). graspmix's own products are small, so
+# BLAS keeps to the calling thread unless the user chose otherwise (OPENBLAS_NUM_THREADS, GOTO_NUM_THREADS), and
+# only if numpy was not loaded before graspmix.
+if "OPENBLAS_NUM_THREADS" not in _os.environ and "GOTO_NUM_THREADS" not in _os.environ:
+    _os.environ["OPENBLAS_NUM_THREADS"] = "1"
 
 import numpy as _np  # noqa: E402
 

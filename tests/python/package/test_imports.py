@@ -11,7 +11,17 @@ import graspmix
 import pytest
 from graspmix.io import data_path
 
-HEAVY = ["matplotlib", "pybullet", "scipy", "importlib.metadata", "graspmix.sim", "graspmix.viz", "graspmix.experiment"]
+HEAVY = [
+    "matplotlib",
+    "pybullet",
+    "scipy",
+    "importlib.metadata",
+    "hashlib",
+    "subprocess",
+    "graspmix.sim",
+    "graspmix.viz",
+    "graspmix.experiment",
+]
 
 
 def _loaded_after(code: str) -> dict:
@@ -37,6 +47,34 @@ def test_cli_synthesis_loads_neither_pictures_nor_simulator(tmp_path):
     loaded = _loaded_after(code)
     assert not any(loaded[m] for m in ("matplotlib", "pybullet", "graspmix.viz", "graspmix.experiment")), loaded
     assert json.loads((tmp_path / "g.json").read_text())["grasps"]
+
+
+def _thread_settings(extra_env: dict) -> dict:
+    """numpy's BLAS threads (threadpoolctl, which reads the loaded library) and OMP_WAIT_POLICY after `import
+    graspmix` in a fresh interpreter whose environment has none of the variables but extra_env."""
+    probe = (
+        "import graspmix, os, json\n"
+        "from threadpoolctl import threadpool_info\n"
+        "blas = [i['num_threads'] for i in threadpool_info() if i['internal_api'] == 'openblas']\n"
+        "print(json.dumps({'blas': blas, 'wait': os.environ.get('OMP_WAIT_POLICY')}))"
+    )
+    env = {
+        k: v for k, v in os.environ.items() if k not in ("OPENBLAS_NUM_THREADS", "GOTO_NUM_THREADS", "OMP_WAIT_POLICY")
+    }
+    env.update(extra_env, PYTHONPATH=os.pathsep.join(p for p in sys.path if p), OMP_NUM_THREADS="2")
+    out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, env=env, timeout=300)
+    assert out.returncode == 0, out.stderr
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+def test_import_keeps_blas_on_one_thread_and_openmp_waiting_passively_unless_the_user_chose():
+    # numpy's OpenBLAS threads spin on a core the C++ core's OpenMP threads need (docs/performance.md)
+    chosen = _thread_settings({})
+    assert chosen["blas"] and set(chosen["blas"]) == {1}
+    assert chosen["wait"] == "PASSIVE"
+    user = _thread_settings({"OPENBLAS_NUM_THREADS": "2", "OMP_WAIT_POLICY": "ACTIVE"})
+    assert set(user["blas"]) == {2}
+    assert user["wait"] == "ACTIVE"
 
 
 def test_star_import_loads_neither_simulator_nor_pictures():

@@ -369,7 +369,8 @@ void finish_objects(const Vec3Array& P, const Eigen::VectorXi& sources, const Ca
   }
   lap.add_to(out.times.merge);
   if (s.join_occluded && out.visibility && e.groups.size() > 1) {
-    out.n_joined = detail::join_occluded(P, *out.visibility, e.groups,
+    const auto model = cams.join_model ? cams.join_model() : out.visibility;
+    out.n_joined = detail::join_occluded(P, *model, e.groups,
                                          detail::JoinRule{s.join_max_gap, s.join_seen_margin, s.join_max_size});
   }
   lap.add_to(out.times.join);

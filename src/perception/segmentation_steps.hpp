@@ -1,6 +1,8 @@
 #pragma once
 // segment_scene's steps after its input is made points (segmentation.cpp), shared by the scene of a depth image
 // (depth_scene.cpp), which makes its points in image space instead of by the voxel grid alone.
+#include <functional>
+#include <memory>
 #include <optional>
 
 #include <Eigen/Core>
@@ -17,6 +19,9 @@ struct Cameras {
   Vec3Array per_point;
   Eigen::Vector3d single = Eigen::Vector3d::Zero();
   bool given = false;
+  /// The model the join rule judges gaps on, made when the rule has two pieces to judge (a depth image's pooled
+  /// image); unset: the scene's own visibility model.
+  std::function<std::shared_ptr<const VisibilityModel>()> join_model;
 
   /// Mean height above `plane` of the cameras that saw `rows` (all cameras when rows is empty).
   double height(const Eigen::Vector4d& plane, const std::vector<int>& rows) const {

@@ -16,11 +16,11 @@
 //     voxelised on its own);
 //  3. the visibility model straight from the full-resolution image (VisibilityModel::from_depth): no range image
 //     to bin, and the camera's own resolution, no-return pixels and image border. The join rule alone judges gaps
-//     on the image pooled to visibility_resolution (each pixel the nearest return within that angle, as a bin of
-//     segment_scene's range images holds its nearest point): at the camera's own resolution the sensor's lateral
-//     noise shows slivers of table through the shadow between an object's pieces, and the pieces stayed apart
-//     (one view, development objects, GMM, 300 attempts: 75.3% with the sharp image, 80.3% pooled, 78.0% for
-//     segment_scene on the same views' points; docs/one-view.md).
+//     on the image pooled to visibility_resolution (made only when the rule has two pieces to judge; each pixel
+//     the nearest return within that angle, as a bin of segment_scene's range images holds its nearest point):
+//     at the camera's own resolution the sensor's lateral noise shows slivers of table through the shadow between
+//     an object's pieces, and the pieces stayed apart (one view, development objects, GMM, 300 attempts: 75.3%
+//     with the sharp image, 80.3% pooled, 78.0% for segment_scene on the same views' points; docs/one-view.md).
 // Segmentation::sources are pixel indices (row v * width + u) of the full image: each object point's pixel.
 #include <optional>
 

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
@@ -239,41 +240,38 @@ std::vector<Eigen::Index> completed_rows(const Vec3Array& Q, const Eigen::Ref<co
   return keep;
 }
 
-/// out's points: Q's rows `keep`; its normals those rows of `normal(row)`, normalised.
-template <class Normal>
-void take_rows(const Vec3Array& Q, const std::vector<Eigen::Index>& keep, Normal normal, Completion& out) {
+/// out's points and normals (normalised): the rows `keep` of shape.
+void take_rows(const Shape& shape, const std::vector<Eigen::Index>& keep, Completion& out) {
   out.points.resize(static_cast<Eigen::Index>(keep.size()), 3);
   out.normals.resize(out.points.rows(), 3);
   for (Eigen::Index j = 0; j < out.points.rows(); ++j) {
-    const Eigen::Index i = keep[static_cast<std::size_t>(j)];
-    out.points.row(j) = Q.row(i);
-    out.normals.row(j) = Eigen::RowVector3d(normal(i)).normalized();
+    out.points.row(j) = shape.points.row(keep[static_cast<std::size_t>(j)]);
+    out.normals.row(j) = shape.normals.row(keep[static_cast<std::size_t>(j)]).normalized();
   }
 }
 
-/// The winner's completed points with their normals (completed_rows). A mirror's normals are its observed points'
-/// mirrored, worked out only for the points kept (a mirror keeps a fraction of them: most of an object's normals
-/// would be made for nothing).
+/// The winner's completed points with their normals (completed_rows). A mirror is made twice: first its points
+/// alone, to choose the rows kept, then those rows with their observed points' normals (a mirror keeps a fraction
+/// of its points: most of an object's normals would be made for nothing).
 void keep_completed(const CompletionHypothesis& win, const Shape& walls, const detail::Circle& circle,
                     const Eigen::Ref<const Vec3Array>& P, const Eigen::Vector3d& viewpoint, const TableFrame& f,
                     const VisibilityModel& vis, const CompletionSettings& s, Completion& out) {
   if (win.kind == CompletionKind::Extrusion) {
-    take_rows(
-        walls.points, completed_rows(walls.points, P, f, vis, s), [&](Eigen::Index i) { return walls.normals.row(i); },
-        out);
+    take_rows(walls, completed_rows(walls.points, P, f, vis, s), out);
   } else if (win.kind == CompletionKind::Rotation) {
     const Shape rev =
         detail::revolution_shape(f, circle, detail::observed_normals(P, viewpoint, s.normal_radius), s.spacing);
-    take_rows(
-        rev.points, completed_rows(rev.points, P, f, vis, s), [&](Eigen::Index i) { return rev.normals.row(i); }, out);
+    take_rows(rev, completed_rows(rev.points, P, f, vis, s), out);
   } else {
     const Eigen::Vector3d m = win.plane_or_axis.head<3>();
-    const Vec3Array Q = detail::mirror_shape(P, Vec3Array(), m, -win.plane_or_axis[3]).points;
-    const std::vector<Eigen::Index> keep = completed_rows(Q, P, f, vis, s);
+    const double o = -win.plane_or_axis[3];
+    const std::vector<Eigen::Index> keep =
+        completed_rows(detail::mirror_shape(P, Vec3Array(), m, o).points, P, f, vis, s);
     const Vec3Array N = detail::observed_normals(P, viewpoint, s.normal_radius, &keep);
-    take_rows(
-        Q, keep, [&](Eigen::Index i) { return Eigen::RowVector3d(N.row(i) - 2 * N.row(i).dot(m) * m.transpose()); },
-        out);
+    const Shape kept = detail::mirror_shape(P(keep, Eigen::all), N(keep, Eigen::all), m, o);
+    std::vector<Eigen::Index> all(keep.size());
+    std::iota(all.begin(), all.end(), 0);
+    take_rows(kept, all, out);
   }
 }
 

@@ -42,12 +42,9 @@ void bind_perception(py::module_& m) {
           [](const CloudData& c, const py::object& camera_pose) {
             py::array_t<double> out(
                 {static_cast<py::ssize_t>(c.height), static_cast<py::ssize_t>(c.width), static_cast<py::ssize_t>(3)});
-            if (camera_pose.is_none()) {
-              const Vec3Array grid = organized_grid(c);
-              std::copy(grid.data(), grid.data() + grid.size(), out.mutable_data());
-            } else {
-              organized_grid_into(c, to_camera_pose(camera_pose, "camera_pose"), out.mutable_data());
-            }
+            std::optional<Eigen::Isometry3d> T;
+            if (!camera_pose.is_none()) T = to_camera_pose(camera_pose, "camera_pose");
+            organized_grid_into(c, out.mutable_data(), T);
             return out;
           },
           py::arg("camera_pose") = py::none(),

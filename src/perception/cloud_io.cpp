@@ -7,6 +7,7 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include <Eigen/Geometry>
@@ -266,10 +267,7 @@ CloudData load_cloud(const std::string& path) {
   fail(path, "unknown cloud format '" + ext + "' (expected .pcd, .ply or .npy)");
 }
 
-namespace {
-
-/// The checks of an organised grid: a cloud with HEIGHT > 1 and pixels of every point; its size (cells).
-std::int64_t checked_grid(const CloudData& cloud) {
+void organized_grid_into(const CloudData& cloud, double* out, const std::optional<Eigen::Isometry3d>& T_file_camera) {
   if (cloud.height <= 1) {
     fail(cloud.path, "not an organized cloud (height " + std::to_string(cloud.height) +
                          "): only a file with HEIGHT > 1 has an image grid");
@@ -278,38 +276,32 @@ std::int64_t checked_grid(const CloudData& cloud) {
     fail(cloud.path, "pixels has " + std::to_string(cloud.pixels.size()) + " entries for " +
                          std::to_string(cloud.points.rows()) + " points");
   }
-  return static_cast<std::int64_t>(cloud.width) * cloud.height;
-}
-
-/// Writes f(point k) into row pixels[k] of the (size, 3) row-major `out`, NaN in every other row.
-template <class Map>
-void scatter_grid(const CloudData& cloud, std::int64_t size, double* out, Map f) {
+  const std::int64_t size = static_cast<std::int64_t>(cloud.width) * cloud.height;
   std::fill(out, out + 3 * size, std::numeric_limits<double>::quiet_NaN());
+  // p_camera = R^T (p - t), as a row: (p - t) R
+  const Eigen::Isometry3d T = T_file_camera.value_or(Eigen::Isometry3d::Identity());
+  const Eigen::Matrix3d R = T.linear();
+  const Eigen::RowVector3d t = T.translation().transpose();
   for (Eigen::Index k = 0; k < cloud.pixels.size(); ++k) {
     const std::int64_t p = cloud.pixels[k];
     if (p < 0 || p >= size) {
       fail(cloud.path, "pixel " + std::to_string(p) + " of point " + std::to_string(k) + " is outside the " +
                            std::to_string(cloud.width) + " x " + std::to_string(cloud.height) + " grid");
     }
-    Eigen::Map<Eigen::RowVector3d>(out + 3 * p) = f(cloud.points.row(k));
+    Eigen::Map<Eigen::RowVector3d> row(out + 3 * p);
+    if (T_file_camera) {
+      row = (cloud.points.row(k) - t) * R;
+    } else {
+      row = cloud.points.row(k);
+    }
   }
 }
 
-}  // namespace
-
 Vec3Array organized_grid(const CloudData& cloud) {
-  const std::int64_t size = checked_grid(cloud);
-  Vec3Array grid(size, 3);
-  scatter_grid(cloud, size, grid.data(), [](const auto& p) { return p; });
+  Vec3Array grid(static_cast<Eigen::Index>(cloud.width) * std::max<Eigen::Index>(cloud.height, 1),
+                 3);  // checked as it is filled
+  organized_grid_into(cloud, grid.data());
   return grid;
-}
-
-void organized_grid_into(const CloudData& cloud, const Eigen::Isometry3d& T_file_camera, double* out) {
-  const std::int64_t size = checked_grid(cloud);
-  // p_camera = R^T (p - t), as a row: (p - t) R
-  const Eigen::Matrix3d R = T_file_camera.linear();
-  const Eigen::RowVector3d t = T_file_camera.translation().transpose();
-  scatter_grid(cloud, size, out, [&](const auto& p) { return Eigen::RowVector3d((p - t) * R); });
 }
 
 namespace {

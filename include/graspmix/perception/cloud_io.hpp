@@ -8,6 +8,7 @@
 // vp_x vp_y vp_z).
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -56,11 +57,12 @@ CloudData cloud_from_arrays(const RowMatrixXd& points, const RowMatrixXd& normal
 /// an unorganised cloud (height 1) or pixels that do not fit its grid.
 Vec3Array organized_grid(const CloudData& cloud);
 
-/// organized_grid with each point mapped from the file's frame into the frame of a camera at T_file_camera
-/// (p -> T_file_camera^-1 p; NaN stays NaN), written into `out` ((height * width) * 3 doubles, row-major): one
-/// pass, the grid a camera's driver gives from a file whose VIEWPOINT is that camera's pose. Throws as
+/// organized_grid written into `out` ((height * width) * 3 doubles, row-major), with T_file_camera each point
+/// mapped from the file's frame into the frame of a camera at that pose (p -> T_file_camera^-1 p; NaN stays NaN):
+/// one pass, the grid a camera's driver gives from a file whose VIEWPOINT is that camera's pose. Throws as
 /// organized_grid does.
-void organized_grid_into(const CloudData& cloud, const Eigen::Isometry3d& T_file_camera, double* out);
+void organized_grid_into(const CloudData& cloud, double* out,
+                         const std::optional<Eigen::Isometry3d>& T_file_camera = std::nullopt);
 
 /// Writes float32 x y z (and normal_x normal_y normal_z when normals has rows, then vp_x vp_y vp_z
 /// when viewpoints has rows: one camera position per point, PCL's PointWithViewpoint). .pcd encodings:

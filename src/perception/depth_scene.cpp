@@ -274,13 +274,10 @@ Segmentation segment_image(const Eigen::Ref<const Vec3Array>& S, const Eigen::Re
   out.visibility = std::make_shared<const VisibilityModel>(VisibilityModel::from_depth(
       median_filtered(depth, s.visibility_median_window), camera, T, detail::visibility_settings(s)));
   out.times.visibility = since(t_step);
-  // The join rule's pooled image, made only when it has pieces to judge (its time counted with the visibility's).
+  // The join rule's pooled image, made only when it has pieces to judge (its time is the join step's).
   cams.join_model = [&]() {
-    const auto t_pool = Clock::now();
-    auto pooled = std::make_shared<const VisibilityModel>(VisibilityModel::from_depth(
+    return std::make_shared<const VisibilityModel>(VisibilityModel::from_depth(
         nearest_pool(depth, camera, s.visibility_resolution), camera, T, detail::visibility_settings(s)));
-    out.times.visibility += since(t_pool);
-    return pooled;
   };
   if (two_levels) {
     detail::segment_on_support(down.points, down.pixels, cams, s, out);

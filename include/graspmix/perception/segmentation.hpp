@@ -216,7 +216,7 @@ struct SegmentationTimes {
   double clusters = 0;    ///< Euclidean clusters (and rule 4's footprint)
   double visibility = 0;  ///< the model of what the cameras saw
   double merge = 0;       ///< the merge rule
-  double join = 0;        ///< the join rule
+  double join = 0;        ///< the join rule (a depth image: with the pooled image it judges gaps on)
   double split = 0;       ///< the split rule
   double objects = 0;     ///< the objects described, ordered and written out
 };

@@ -1,6 +1,7 @@
 #include "graspmix/perception/depth_scene.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -9,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "core/sorting_network.hpp"
 #include "graspmix/perception/cleanup.hpp"
 #include "graspmix/perception/visibility.hpp"
 #include "segmentation_steps.hpp"
@@ -39,6 +41,28 @@ struct BlockFilter {
   Eigen::Index seen = 0;
 };
 
+/// The upper middle of z's values (z reordered): a block of 4 x 4 returns, the coarse blocks' usual case, through a
+/// sorting network, the same value as std::nth_element's in a fraction of its time.
+double upper_median(std::vector<double>& z) {
+  if (z.size() == 16) {
+    std::array<double, 16> a;
+    std::copy(z.begin(), z.end(), a.begin());
+    detail::network_sort(a);
+    return a[8];
+  }
+  const auto mid = z.begin() + static_cast<std::ptrdiff_t>(z.size() / 2);
+  std::nth_element(z.begin(), mid, z.end());
+  return *mid;
+}
+
+/// One row of blocks' kept points (world frame, x, y, z in turn) with their pixels, and how many of its blocks were
+/// seen: block_points makes its rows on threads of their own and joins them in order.
+struct BlockRow {
+  std::vector<double> xyz;
+  std::vector<int> pixels;
+  Eigen::Index seen = 0;
+};
+
 Blocks block_points(const Eigen::Ref<const Vec3Array>& S, int height, int width, int stride, double near,
                     const Eigen::Isometry3d& T, BlockFilter& filter) {
   // A block's height above the plane from its sensor-frame point: n . (T p) + d = (R^T n) . p + (n . t + d).
@@ -50,63 +74,69 @@ Blocks block_points(const Eigen::Ref<const Vec3Array>& S, int height, int width,
   }
   const bool crop = !filter.settings.workspace.empty();
   // Whether the block of sensor-frame point p is kept, its world point in `world`: inside the workspace (counted
-  // as seen) and above the plane.
-  const auto keep = [&](const Eigen::Vector3d& p, Eigen::Vector3d& world) {
+  // in `seen`) and above the plane.
+  const auto keep = [&](const Eigen::Vector3d& p, Eigen::Vector3d& world, Eigen::Index& seen) {
     if (crop && !detail::in_workspace(filter.settings, world = T * p)) return false;
-    ++filter.seen;
+    ++seen;
     if (!(n_sensor.dot(p) + d_sensor > 0)) return false;
     if (!crop) world = T * p;
     return true;
   };
-  Eigen::Vector3d world;
-  if (stride == 1) {  // each return its own block
-    Blocks b{Vec3Array(S.rows(), 3), Eigen::VectorXi(S.rows())};
-    Eigen::Index n = 0;
-    for (Eigen::Index r = 0; r < S.rows(); ++r) {
-      if (!S.row(r).allFinite()) continue;
-      if (!keep(S.row(r).transpose(), world)) continue;
-      b.points.row(n) = world.transpose();
-      b.pixels[n++] = static_cast<int>(r);
-    }
-    b.points.conservativeResize(n, 3);
-    b.pixels.conservativeResize(n);
-    return b;
-  }
   const int rows = (height + stride - 1) / stride, cols = (width + stride - 1) / stride;
-  Blocks b;
-  b.points.resize(static_cast<Eigen::Index>(rows) * cols, 3);
-  b.pixels.resize(static_cast<Eigen::Index>(rows) * cols);
-  std::vector<Eigen::Index> returns;
-  std::vector<double> z;
-  Eigen::Index n = 0;
-  for (int bv = 0; bv < rows; ++bv)
-    for (int bu = 0; bu < cols; ++bu) {
-      returns.clear();
-      z.clear();
-      for (int v = bv * stride; v < std::min(height, (bv + 1) * stride); ++v)
-        for (int u = bu * stride; u < std::min(width, (bu + 1) * stride); ++u) {
-          const Eigen::Index r = static_cast<Eigen::Index>(v) * width + u;
-          if (!S.row(r).allFinite()) continue;
-          returns.push_back(r);
-          z.push_back(S(r, 2));
+  std::vector<BlockRow> made(static_cast<std::size_t>(rows));
+#pragma omp parallel
+  {
+    std::vector<Eigen::Index> returns;
+    std::vector<double> z;
+    Eigen::Vector3d world;
+#pragma omp for schedule(static)
+    for (int bv = 0; bv < rows; ++bv) {
+      BlockRow& row = made[static_cast<std::size_t>(bv)];
+      const auto add = [&row, &world](Eigen::Index pixel) {
+        row.xyz.insert(row.xyz.end(), world.data(), world.data() + 3);
+        row.pixels.push_back(static_cast<int>(pixel));
+      };
+      for (int bu = 0; bu < cols; ++bu) {
+        if (stride == 1) {  // each return its own block
+          const Eigen::Index r = static_cast<Eigen::Index>(bv) * width + bu;
+          if (S.row(r).allFinite() && keep(S.row(r).transpose(), world, row.seen)) add(r);
+          continue;
         }
-      if (returns.empty()) continue;
-      const auto mid = z.begin() + static_cast<std::ptrdiff_t>(z.size() / 2);
-      std::nth_element(z.begin(), mid, z.end());
-      const double median = *mid;
-      Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-      int count = 0;
-      for (const Eigen::Index r : returns) {
-        if (std::abs(S(r, 2) - median) > near) continue;
-        sum += S.row(r).transpose();
-        if (count++ == 0) b.pixels[n] = static_cast<int>(r);
+        returns.clear();
+        z.clear();
+        for (int v = bv * stride; v < std::min(height, (bv + 1) * stride); ++v)
+          for (int u = bu * stride; u < std::min(width, (bu + 1) * stride); ++u) {
+            const Eigen::Index r = static_cast<Eigen::Index>(v) * width + u;
+            if (!S.row(r).allFinite()) continue;
+            returns.push_back(r);
+            z.push_back(S(r, 2));
+          }
+        if (returns.empty()) continue;
+        const double median = upper_median(z);
+        Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+        int count = 0;
+        Eigen::Index first = -1;
+        for (const Eigen::Index r : returns) {
+          if (std::abs(S(r, 2) - median) > near) continue;
+          sum += S.row(r).transpose();
+          if (count++ == 0) first = r;
+        }
+        // the median's own return is always counted
+        if (keep(sum / count, world, row.seen)) add(first);
       }
-      // the median's own return is always counted
-      if (!keep(sum / count, world)) continue;
-      b.points.row(n++) = world.transpose();
     }
-  b.points.conservativeResize(n, 3);
-  b.pixels.conservativeResize(n);
+  }
+  Eigen::Index n = 0;
+  for (const BlockRow& row : made) n += static_cast<Eigen::Index>(row.pixels.size());
+  Blocks b{Vec3Array(n, 3), Eigen::VectorXi(n)};
+  n = 0;
+  for (const BlockRow& row : made) {
+    for (std::size_t i = 0; i < row.pixels.size(); ++i, ++n) {
+      b.points.row(n) << row.xyz[3 * i], row.xyz[3 * i + 1], row.xyz[3 * i + 2];
+      b.pixels[n] = row.pixels[i];
+    }
+    filter.seen += row.seen;
+  }
   return b;
 }
 

@@ -70,23 +70,17 @@ Eigen::Matrix3d PinholeCamera::matrix() const {
 }
 
 std::int64_t count_returns(const Eigen::Ref<const DepthImage>& depth, const char* what) {
-  // One pass with no branch on the pixels (it vectorises); the negative pixel, if any, is looked for after it.
   std::int64_t n = 0;
-  bool negative = false;
   for (Eigen::Index r = 0; r < depth.rows(); ++r)
     for (Eigen::Index c = 0; c < depth.cols(); ++c) {
       const double d = depth(r, c);
-      negative |= d < 0;
-      n += has_return(d) ? 1 : 0;
-    }
-  if (!negative) return n;
-  for (Eigen::Index r = 0; r < depth.rows(); ++r)
-    for (Eigen::Index c = 0; c < depth.cols(); ++c)
-      if (depth(r, c) < 0) {
+      if (d < 0) {
         throw std::invalid_argument(std::string(what) + ": pixel (row " + std::to_string(r) + ", column " +
-                                    std::to_string(c) + ") has a negative depth (" + number(depth(r, c)) +
+                                    std::to_string(c) + ") has a negative depth (" + number(d) +
                                     " m); no return is NaN, 0 or +inf");
       }
+      n += has_return(d) ? 1 : 0;
+    }
   return n;
 }
 

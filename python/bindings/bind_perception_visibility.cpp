@@ -207,11 +207,11 @@ void bind_visibility(py::module_& m) {
           "from_depth",
           [](const py::object& depth, const PinholeCamera& camera, const py::object& pose, const py::object& settings,
              const py::kwargs& kw) {
-            const DepthImage D(to_matrix(depth, "depth"));
+            DepthImage D(to_matrix(depth, "depth"));
             const Eigen::Isometry3d T = to_camera_pose(pose, "T_world_camera");
             const auto s = settings_from<VisibilitySettings>(settings, kw, "VisibilityModel.from_depth");
             py::gil_scoped_release release;
-            return std::make_shared<VisibilityModel>(VisibilityModel::from_depth(D, camera, T, s));
+            return std::make_shared<VisibilityModel>(VisibilityModel::from_depth(std::move(D), camera, T, s));
           },
           py::arg("depth"), py::arg("camera"), py::arg("T_world_camera"), py::kw_only(),
           py::arg("settings") = py::none(),

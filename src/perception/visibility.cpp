@@ -51,18 +51,29 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-/// A pinhole view of a checked depth image; fit_rms_px and the start time go into its ViewInfo.
-std::shared_ptr<const detail::VisibilityView> make_pinhole_view(const Eigen::Ref<const DepthImage>& depth,
-                                                                const PinholeCamera& camera,
+/// A pinhole view of a depth image, checked and taken over (no return made NaN in place); fit_rms_px and the start
+/// time go into its ViewInfo.
+std::shared_ptr<const detail::VisibilityView> make_pinhole_view(DepthImage image, const PinholeCamera& camera,
                                                                 const Eigen::Isometry3d& T_world_camera,
                                                                 const VisibilitySettings& settings, double fit_rms_px,
                                                                 std::chrono::steady_clock::time_point t0) {
   check_rigid(T_world_camera, "T_world_camera");
+  if (image.rows() != camera.height() || image.cols() != camera.width()) camera.check_image(image, "depth");  // throws
   ViewInfo info;
-  info.n_returns = camera.check_image(depth, "depth");
+  // One pass: the returns counted and every other pixel made NaN, but for a negative depth, check_image's error.
+  bool negative = false;
+  for (Eigen::Index i = 0; i < image.size(); ++i) {
+    double& d = image.data()[i];
+    negative |= d < 0;
+    if (has_return(d))
+      ++info.n_returns;
+    else if (!(d < 0))
+      d = kNaN;
+  }
+  if (negative) camera.check_image(image, "depth");  // throws, naming the first negative pixel
   if (info.n_returns == 0) throw std::invalid_argument("depth: no pixel has a return (every depth is NaN, 0 or inf)");
-  if (static_cast<double>(depth.size()) > static_cast<double>(settings.max_pixels)) {
-    throw std::invalid_argument("depth: " + std::to_string(depth.size()) +
+  if (static_cast<double>(image.size()) > static_cast<double>(settings.max_pixels)) {
+    throw std::invalid_argument("depth: " + std::to_string(image.size()) +
                                 " pixels, more than max_pixels = " + std::to_string(settings.max_pixels));
   }
   info.kind = ViewKind::Pinhole;
@@ -71,7 +82,6 @@ std::shared_ptr<const detail::VisibilityView> make_pinhole_view(const Eigen::Ref
   info.width = camera.width();
   info.height = camera.height();
   info.fit_rms_px = fit_rms_px;
-  DepthImage image = depth.unaryExpr([](double d) { return has_return(d) ? d : kNaN; });
   info.seconds = seconds_since(t0);
   return std::make_shared<PinholeView>(info, std::move(image), camera, T_world_camera);
 }
@@ -100,12 +110,12 @@ VisibilityModel::VisibilityModel(const VisibilitySettings& settings) : settings_
   check_visibility_settings(settings_);
 }
 
-VisibilityModel VisibilityModel::from_depth(const Eigen::Ref<const DepthImage>& depth, const PinholeCamera& camera,
+VisibilityModel VisibilityModel::from_depth(DepthImage depth, const PinholeCamera& camera,
                                             const Eigen::Isometry3d& T_world_camera,
                                             const VisibilitySettings& settings) {
   const auto t0 = std::chrono::steady_clock::now();
   VisibilityModel model(settings);
-  model.views_.push_back(make_pinhole_view(depth, camera, T_world_camera, settings, 0.0, t0));
+  model.views_.push_back(make_pinhole_view(std::move(depth), camera, T_world_camera, settings, 0.0, t0));
   return model;
 }
 

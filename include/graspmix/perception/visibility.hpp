@@ -80,8 +80,9 @@ class VisibilityModel {
   explicit VisibilityModel(const VisibilitySettings& settings = {});
   /// One view: a depth image (camera.height() x camera.width(), metres along z; NaN, 0, +inf = no return)
   /// from a camera at T_world_camera. Throws std::invalid_argument for an image of another size, a negative
-  /// depth, an image with no return at all, a pose that is not rigid, or bad settings.
-  static VisibilityModel from_depth(const Eigen::Ref<const DepthImage>& depth, const PinholeCamera& camera,
+  /// depth, an image with no return at all, a pose that is not rigid, or bad settings. The model keeps the image:
+  /// a temporary or a std::move'd image is taken over, anything else copied once.
+  static VisibilityModel from_depth(DepthImage depth, const PinholeCamera& camera,
                                     const Eigen::Isometry3d& T_world_camera, const VisibilitySettings& settings = {});
   /// One view: an organized cloud (height * width, 3) in the sensor frame (row v * width + u, NaN rows = no
   /// return); its intrinsics are fitted (fit_pinhole, max_fit_rms) and its depths are the points' z.

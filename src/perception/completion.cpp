@@ -2,8 +2,10 @@
 #include "graspmix/perception/completion.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numeric>
 #include <stdexcept>
@@ -200,21 +202,26 @@ Shape clipped_extrusion(const TableFrame& f, const detail::Footprint& fp, const 
   return out;
 }
 
-/// Cell key of p at cell size `spacing`.
-std::uint64_t cell_key(const Eigen::Vector3d& p, double spacing, int dx = 0, int dy = 0, int dz = 0) {
-  const auto c = [spacing](double x, int o) {
-    return static_cast<std::uint64_t>(std::llround(x / spacing) + o + (1 << 20));
-  };
-  return (c(p.x(), dx) << 42) ^ (c(p.y(), dy) << 21) ^ c(p.z(), dz);
+/// The cell of p at cell size `spacing`: its indices along x, y and z, offset to stay positive.
+std::array<std::int64_t, 3> cell_of(const Eigen::Vector3d& p, double spacing) {
+  const auto c = [spacing](double x) { return std::llround(x / spacing) + (std::int64_t{1} << 20); };
+  return {c(p.x()), c(p.y()), c(p.z())};
+}
+
+/// The key of the cell `c` moved by (dx, dy, dz) cells.
+std::uint64_t cell_key(const std::array<std::int64_t, 3>& c, int dx = 0, int dy = 0, int dz = 0) {
+  return (static_cast<std::uint64_t>(c[0] + dx) << 42) ^ (static_cast<std::uint64_t>(c[1] + dy) << 21) ^
+         static_cast<std::uint64_t>(c[2] + dz);
 }
 
 /// Whether an observed point (indexed by cells of size `radius`) lies within `radius` of p.
 bool near_observed(const Eigen::Vector3d& p, const std::unordered_multimap<std::uint64_t, Eigen::Index>& cells,
                    const Eigen::Ref<const Vec3Array>& P, double radius) {
+  const std::array<std::int64_t, 3> c = cell_of(p, radius);  // once: its 27 neighbours are offsets of it
   for (int dx = -1; dx <= 1; ++dx)
     for (int dy = -1; dy <= 1; ++dy)
       for (int dz = -1; dz <= 1; ++dz) {
-        const auto range = cells.equal_range(cell_key(p, radius, dx, dy, dz));
+        const auto range = cells.equal_range(cell_key(c, dx, dy, dz));
         for (auto it = range.first; it != range.second; ++it)
           if ((P.row(it->second).transpose() - p).squaredNorm() < radius * radius) return true;
       }
@@ -226,7 +233,8 @@ bool near_observed(const Eigen::Vector3d& p, const std::unordered_multimap<std::
 std::vector<Eigen::Index> completed_rows(const Vec3Array& Q, const Eigen::Ref<const Vec3Array>& P, const TableFrame& f,
                                          const VisibilityModel& vis, const CompletionSettings& s) {
   std::unordered_multimap<std::uint64_t, Eigen::Index> observed;
-  for (Eigen::Index i = 0; i < P.rows(); ++i) observed.emplace(cell_key(P.row(i).transpose(), s.observed_clearance), i);
+  for (Eigen::Index i = 0; i < P.rows(); ++i)
+    observed.emplace(cell_key(cell_of(P.row(i).transpose(), s.observed_clearance)), i);
   std::unordered_set<std::uint64_t> taken;
   const Eigen::VectorXd d = vis.signed_distances(Q);
   const double tol = vis.settings().surface_tolerance;
@@ -234,7 +242,8 @@ std::vector<Eigen::Index> completed_rows(const Vec3Array& Q, const Eigen::Ref<co
   for (Eigen::Index i = 0; i < Q.rows(); ++i) {
     const Eigen::Vector3d p = Q.row(i).transpose();
     if (!(std::isfinite(d[i]) && d[i] <= tol) || f.n.dot(p) + f.d < s.min_height) continue;
-    if (near_observed(p, observed, P, s.observed_clearance) || !taken.insert(cell_key(p, s.spacing)).second) continue;
+    if (near_observed(p, observed, P, s.observed_clearance) || !taken.insert(cell_key(cell_of(p, s.spacing))).second)
+      continue;
     keep.push_back(i);
   }
   return keep;

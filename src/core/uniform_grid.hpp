@@ -47,20 +47,30 @@ class UniformGrid {
     }
     const Eigen::Index N = P.rows();
     std::vector<Cell> cell(static_cast<std::size_t>(N));
-    for (Eigen::Index i = 0; i < N; ++i) cell[static_cast<std::size_t>(i)] = cell_of(P.row(i).transpose());
-    order_.resize(static_cast<std::size_t>(N));
-    for (Eigen::Index i = 0; i < N; ++i) order_[static_cast<std::size_t>(i)] = i;
-    std::sort(order_.begin(), order_.end(), [&](Eigen::Index a, Eigen::Index b) {
-      const Cell& ca = cell[static_cast<std::size_t>(a)];
-      const Cell& cb = cell[static_cast<std::size_t>(b)];
-      if (ca != cb) return ca < cb;
-      return std::make_tuple(P(a, 0), P(a, 1), P(a, 2), a) < std::make_tuple(P(b, 0), P(b, 1), P(b, 2), b);
+    // The canonical order sorted on copies: the cell as its linear index (x, then y, then z: the same order, as
+    // every index lies inside dims; at most 63 bits), then the coordinates, then the row, all in one record.
+    struct Entry {
+      std::int64_t cell;
+      double x, y, z;
+      Eigen::Index row;
+    };
+    std::vector<Entry> entries(static_cast<std::size_t>(N));
+    for (Eigen::Index i = 0; i < N; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      cell[k] = cell_of(P.row(i).transpose());
+      entries[k] = {linear(cell[k]), P(i, 0), P(i, 1), P(i, 2), i};
+    }
+    std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
+      if (a.cell != b.cell) return a.cell < b.cell;
+      return std::make_tuple(a.x, a.y, a.z, a.row) < std::make_tuple(b.x, b.y, b.z, b.row);
     });
+    order_.resize(static_cast<std::size_t>(N));
     p_.resize(static_cast<std::size_t>(N));
     cells_.resize(static_cast<std::size_t>(N));
-    for (std::size_t s = 0; s < order_.size(); ++s) {
-      p_[s] = P.row(order_[s]).transpose();
-      cells_[s] = cell[static_cast<std::size_t>(order_[s])];
+    for (std::size_t s = 0; s < entries.size(); ++s) {
+      order_[s] = entries[s].row;
+      p_[s] = Eigen::Vector3d(entries[s].x, entries[s].y, entries[s].z);
+      cells_[s] = cell[static_cast<std::size_t>(entries[s].row)];
     }
     if (layout == Layout::Dense) {
       start_.assign(static_cast<std::size_t>(dims[0] * dims[1] * dims[2] + 1), 0);

@@ -157,7 +157,6 @@ bool kasa(const std::vector<Eigen::Vector2d>& q, Eigen::Vector2d& centre, double
 
 Circle fit_outline_circle(const TableFrame& f, const Footprint& fp, const CompletionSettings& s) {
   Circle c;
-  const Eigen::Vector2d mid = f.u.colwise().mean().transpose();
   // Each outline cell's points' mean (the outermost point of a cell would carry the noise's extreme outwards).
   std::vector<Eigen::Vector2d> sum(fp.state.size(), Eigen::Vector2d::Zero());
   std::vector<int> count(fp.state.size(), 0);

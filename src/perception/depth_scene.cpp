@@ -4,6 +4,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <memory>
 #include <stdexcept>
@@ -65,6 +66,7 @@ struct BlockRow {
   std::vector<double> xyz;
   std::vector<int> pixels;
   Eigen::Index seen = 0;
+  std::exception_ptr error;  ///< what making the row threw (no exception may leave an OpenMP region)
 };
 
 Blocks block_points(const Eigen::Ref<const Vec3Array>& S, int height, int width, int stride, double near,
@@ -87,51 +89,62 @@ Blocks block_points(const Eigen::Ref<const Vec3Array>& S, int height, int width,
     return true;
   };
   const int rows = (height + stride - 1) / stride, cols = (width + stride - 1) / stride;
+  // Row bv of blocks into `row`; returns and z: a thread's buffers for a block's returns and their depths.
+  const auto make_row = [&](int bv, BlockRow& row, std::vector<Eigen::Index>& returns, std::vector<double>& z) {
+    Eigen::Vector3d world;
+    const auto add = [&row, &world](Eigen::Index pixel) {
+      row.xyz.insert(row.xyz.end(), world.data(), world.data() + 3);
+      row.pixels.push_back(static_cast<int>(pixel));
+    };
+    for (int bu = 0; bu < cols; ++bu) {
+      if (stride == 1) {  // each return its own block
+        const Eigen::Index r = static_cast<Eigen::Index>(bv) * width + bu;
+        if (S.row(r).allFinite() && keep(S.row(r).transpose(), world, row.seen)) add(r);
+        continue;
+      }
+      returns.clear();
+      z.clear();
+      for (int v = bv * stride; v < std::min(height, (bv + 1) * stride); ++v)
+        for (int u = bu * stride; u < std::min(width, (bu + 1) * stride); ++u) {
+          const Eigen::Index r = static_cast<Eigen::Index>(v) * width + u;
+          if (!S.row(r).allFinite()) continue;
+          returns.push_back(r);
+          z.push_back(S(r, 2));
+        }
+      if (returns.empty()) continue;
+      const double median = upper_median(z);
+      Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+      int count = 0;
+      Eigen::Index first = -1;
+      for (const Eigen::Index r : returns) {
+        if (std::abs(S(r, 2) - median) > near) continue;
+        sum += S.row(r).transpose();
+        if (count++ == 0) first = r;
+      }
+      // the median's own return is always counted
+      if (keep(sum / count, world, row.seen)) add(first);
+    }
+  };
   std::vector<BlockRow> made(static_cast<std::size_t>(rows));
 #pragma omp parallel
   {
     std::vector<Eigen::Index> returns;
     std::vector<double> z;
-    Eigen::Vector3d world;
 #pragma omp for schedule(static)
     for (int bv = 0; bv < rows; ++bv) {
       BlockRow& row = made[static_cast<std::size_t>(bv)];
-      const auto add = [&row, &world](Eigen::Index pixel) {
-        row.xyz.insert(row.xyz.end(), world.data(), world.data() + 3);
-        row.pixels.push_back(static_cast<int>(pixel));
-      };
-      for (int bu = 0; bu < cols; ++bu) {
-        if (stride == 1) {  // each return its own block
-          const Eigen::Index r = static_cast<Eigen::Index>(bv) * width + bu;
-          if (S.row(r).allFinite() && keep(S.row(r).transpose(), world, row.seen)) add(r);
-          continue;
-        }
-        returns.clear();
-        z.clear();
-        for (int v = bv * stride; v < std::min(height, (bv + 1) * stride); ++v)
-          for (int u = bu * stride; u < std::min(width, (bu + 1) * stride); ++u) {
-            const Eigen::Index r = static_cast<Eigen::Index>(v) * width + u;
-            if (!S.row(r).allFinite()) continue;
-            returns.push_back(r);
-            z.push_back(S(r, 2));
-          }
-        if (returns.empty()) continue;
-        const double median = upper_median(z);
-        Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-        int count = 0;
-        Eigen::Index first = -1;
-        for (const Eigen::Index r : returns) {
-          if (std::abs(S(r, 2) - median) > near) continue;
-          sum += S.row(r).transpose();
-          if (count++ == 0) first = r;
-        }
-        // the median's own return is always counted
-        if (keep(sum / count, world, row.seen)) add(first);
+      try {
+        make_row(bv, row, returns, z);
+      } catch (...) {
+        row.error = std::current_exception();
       }
     }
   }
   Eigen::Index n = 0;
-  for (const BlockRow& row : made) n += static_cast<Eigen::Index>(row.pixels.size());
+  for (const BlockRow& row : made) {
+    if (row.error) std::rethrow_exception(row.error);  // the first row's that failed
+    n += static_cast<Eigen::Index>(row.pixels.size());
+  }
   Blocks b{Vec3Array(n, 3), Eigen::VectorXi(n)};
   n = 0;
   for (const BlockRow& row : made) {
@@ -245,28 +258,37 @@ DepthImage median_filtered(const Eigen::Ref<const DepthImage>& depth, int r) {
   DepthImage out = depth;
   if (r == 0) return out;
   const Eigen::Index H = depth.rows(), W = depth.cols();
+  std::vector<std::exception_ptr> errors(static_cast<std::size_t>(H));  // no exception may leave the region
 #pragma omp parallel
   {
-    std::vector<double> window, lo(static_cast<std::size_t>(W)), mid(lo.size()), hi(lo.size()), med(lo.size());
-    std::vector<char> full(lo.size());
-    window.reserve(static_cast<std::size_t>((2 * r + 1) * (2 * r + 1)));
+    std::vector<double> window, lo, mid, hi, med;  // made at a thread's first row
+    std::vector<char> full;
 #pragma omp for schedule(static)
-    for (Eigen::Index v = 0; v < H; ++v) {
-      // The usual case, r = 1 inside the image with nine returns, row by row (row_medians_of_nine); the others
-      // one window at a time.
-      const bool rows_inside = r == 1 && v > 0 && v + 1 < H;
-      if (rows_inside) row_medians_of_nine(depth, v, lo, mid, hi, full, med);
-      for (Eigen::Index u = 0; u < W; ++u) {
-        if (!has_return(depth(v, u))) continue;
-        const auto k = static_cast<std::size_t>(u);
-        if (rows_inside && u > 0 && u + 1 < W && full[k - 1] && full[k] && full[k + 1]) {
-          out(v, u) = med[k];
-          continue;
+    for (Eigen::Index v = 0; v < H; ++v) try {
+        if (lo.empty()) {
+          lo.resize(static_cast<std::size_t>(W)), mid.resize(lo.size()), hi.resize(lo.size()), med.resize(lo.size());
+          full.resize(lo.size());
+          window.reserve(static_cast<std::size_t>((2 * r + 1) * (2 * r + 1)));
         }
-        out(v, u) = window_median(depth, v, u, r, window);
+        // The usual case, r = 1 inside the image with nine returns, row by row (row_medians_of_nine); the others
+        // one window at a time.
+        const bool rows_inside = r == 1 && v > 0 && v + 1 < H;
+        if (rows_inside) row_medians_of_nine(depth, v, lo, mid, hi, full, med);
+        for (Eigen::Index u = 0; u < W; ++u) {
+          if (!has_return(depth(v, u))) continue;
+          const auto k = static_cast<std::size_t>(u);
+          if (rows_inside && u > 0 && u + 1 < W && full[k - 1] && full[k] && full[k + 1]) {
+            out(v, u) = med[k];
+            continue;
+          }
+          out(v, u) = window_median(depth, v, u, r, window);
+        }
+      } catch (...) {
+        errors[static_cast<std::size_t>(v)] = std::current_exception();
       }
-    }
   }
+  for (const std::exception_ptr& e : errors)
+    if (e) std::rethrow_exception(e);  // the first row's that failed
   return out;
 }
 

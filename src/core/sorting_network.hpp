@@ -11,36 +11,37 @@
 
 namespace graspmix::detail {
 
-/// The comparators of Batcher's odd-even merge sort on N inputs (N a power of two), in the order they apply:
-/// applying each (i, j), i < j, as "the lesser to i, the greater to j" sorts any N values ascending. The network
-/// is fixed by N, so the compiler unrolls it into min and max instructions with no branch on the data, where
-/// std::nth_element on a handful of values is mostly mispredicted branches.
 /// A comparator of a network: after it, the lesser of the two values is at `lo`, the greater at `hi`.
 struct Comparator {
   std::size_t lo = 0, hi = 0;
 };
 
-template <std::size_t N>
-constexpr std::size_t odd_even_merge_comparators() {
-  std::size_t count = 0;
+/// Calls f(lo, hi) for each comparator of Batcher's odd-even merge sort on N inputs (N a power of two), in the order
+/// they apply: applying each as "the lesser to lo, the greater to hi" sorts any N values ascending.
+template <std::size_t N, class F>
+constexpr void for_each_odd_even_merge_comparator(F&& f) {
   for (std::size_t p = 1; p < N; p <<= 1)
     for (std::size_t k = p; k >= 1; k >>= 1)
       for (std::size_t j = k % p; j + k < N; j += 2 * k)
         for (std::size_t i = 0; i < k && i + j + k < N; ++i)
-          if ((i + j) / (2 * p) == (i + j + k) / (2 * p)) ++count;
+          if ((i + j) / (2 * p) == (i + j + k) / (2 * p)) f(i + j, i + j + k);
+}
+
+template <std::size_t N>
+constexpr std::size_t odd_even_merge_comparators() {
+  std::size_t count = 0;
+  for_each_odd_even_merge_comparator<N>([&count](std::size_t, std::size_t) { ++count; });
   return count;
 }
 
+/// The network as an array. It is fixed by N, so the compiler unrolls it into min and max instructions with no
+/// branch on the data, where std::nth_element on a handful of values is mostly mispredicted branches.
 template <std::size_t N>
 constexpr std::array<Comparator, odd_even_merge_comparators<N>()> odd_even_merge_network() {
   static_assert(N >= 2 && (N & (N - 1)) == 0, "odd_even_merge_network: N must be a power of two");
   std::array<Comparator, odd_even_merge_comparators<N>()> net{};
   std::size_t n = 0;
-  for (std::size_t p = 1; p < N; p <<= 1)
-    for (std::size_t k = p; k >= 1; k >>= 1)
-      for (std::size_t j = k % p; j + k < N; j += 2 * k)
-        for (std::size_t i = 0; i < k && i + j + k < N; ++i)
-          if ((i + j) / (2 * p) == (i + j + k) / (2 * p)) net[n++] = Comparator{i + j, i + j + k};
+  for_each_odd_even_merge_comparator<N>([&](std::size_t lo, std::size_t hi) { net[n++] = Comparator{lo, hi}; });
   return net;
 }
 

@@ -4,7 +4,6 @@
 #include <array>
 #include <chrono>
 #include <cmath>
-#include <exception>
 #include <limits>
 #include <memory>
 #include <stdexcept>
@@ -15,6 +14,7 @@
 #include <emmintrin.h>
 #endif
 
+#include "core/parallel_rows.hpp"
 #include "core/sorting_network.hpp"
 #include "graspmix/perception/cleanup.hpp"
 #include "graspmix/perception/visibility.hpp"
@@ -66,7 +66,12 @@ struct BlockRow {
   std::vector<double> xyz;
   std::vector<int> pixels;
   Eigen::Index seen = 0;
-  std::exception_ptr error;  ///< what making the row threw (no exception may leave an OpenMP region)
+};
+
+/// A thread's buffers for a block's returns and their depths.
+struct BlockBuffers {
+  std::vector<Eigen::Index> returns;
+  std::vector<double> z;
 };
 
 Blocks block_points(const Eigen::Ref<const Vec3Array>& S, int height, int width, int stride, double near,
@@ -89,8 +94,12 @@ Blocks block_points(const Eigen::Ref<const Vec3Array>& S, int height, int width,
     return true;
   };
   const int rows = (height + stride - 1) / stride, cols = (width + stride - 1) / stride;
-  // Row bv of blocks into `row`; returns and z: a thread's buffers for a block's returns and their depths.
-  const auto make_row = [&](int bv, BlockRow& row, std::vector<Eigen::Index>& returns, std::vector<double>& z) {
+  std::vector<BlockRow> made(static_cast<std::size_t>(rows));
+  detail::parallel_rows<BlockBuffers>(rows, [&](BlockBuffers& buffers, std::int64_t i) {
+    const int bv = static_cast<int>(i);  // row bv of blocks into made[bv]
+    BlockRow& row = made[static_cast<std::size_t>(bv)];
+    std::vector<Eigen::Index>& returns = buffers.returns;
+    std::vector<double>& z = buffers.z;
     Eigen::Vector3d world;
     const auto add = [&row, &world](Eigen::Index pixel) {
       row.xyz.insert(row.xyz.end(), world.data(), world.data() + 3);
@@ -124,27 +133,9 @@ Blocks block_points(const Eigen::Ref<const Vec3Array>& S, int height, int width,
       // the median's own return is always counted
       if (keep(sum / count, world, row.seen)) add(first);
     }
-  };
-  std::vector<BlockRow> made(static_cast<std::size_t>(rows));
-#pragma omp parallel
-  {
-    std::vector<Eigen::Index> returns;
-    std::vector<double> z;
-#pragma omp for schedule(static)
-    for (int bv = 0; bv < rows; ++bv) {
-      BlockRow& row = made[static_cast<std::size_t>(bv)];
-      try {
-        make_row(bv, row, returns, z);
-      } catch (...) {
-        row.error = std::current_exception();
-      }
-    }
-  }
+  });
   Eigen::Index n = 0;
-  for (const BlockRow& row : made) {
-    if (row.error) std::rethrow_exception(row.error);  // the first row's that failed
-    n += static_cast<Eigen::Index>(row.pixels.size());
-  }
+  for (const BlockRow& row : made) n += static_cast<Eigen::Index>(row.pixels.size());
   Blocks b{Vec3Array(n, 3), Eigen::VectorXi(n)};
   n = 0;
   for (const BlockRow& row : made) {
@@ -188,9 +179,7 @@ double window_median(const Eigen::Ref<const DepthImage>& depth, Eigen::Index v, 
   for (Eigen::Index y = std::max<Eigen::Index>(0, v - r); y <= std::min(H - 1, v + r); ++y)
     for (Eigen::Index x = std::max<Eigen::Index>(0, u - r); x <= std::min(W - 1, u + r); ++x)
       if (has_return(depth(y, x))) window.push_back(depth(y, x));
-  const auto mid = window.begin() + static_cast<std::ptrdiff_t>(window.size() / 2);
-  std::nth_element(window.begin(), mid, window.end());
-  return *mid;
+  return upper_median(window);
 }
 
 /// The middle of three values.
@@ -210,14 +199,17 @@ void row_medians_of_nine(const Eigen::Ref<const DepthImage>& depth, Eigen::Index
   const double* c = &depth.coeffRef(v + 1, 0);
   Eigen::Index u = 0;
 #ifdef __SSE2__
+  // median3 two lanes at a time
+  const auto middle_of = [](__m128d x, __m128d y, __m128d z) {
+    return _mm_max_pd(_mm_min_pd(x, y), _mm_min_pd(_mm_max_pd(x, y), z));
+  };
   const __m128d zero = _mm_setzero_pd(), inf = _mm_set1_pd(std::numeric_limits<double>::infinity());
   const auto returns = [&](__m128d x) { return _mm_and_pd(_mm_cmpgt_pd(x, zero), _mm_cmplt_pd(x, inf)); };
   for (; u + 2 <= W; u += 2) {
     const __m128d x = _mm_loadu_pd(a + u), y = _mm_loadu_pd(b + u), z = _mm_loadu_pd(c + u);
-    const __m128d l = _mm_min_pd(x, y), g = _mm_max_pd(x, y);
-    _mm_storeu_pd(&lo[static_cast<std::size_t>(u)], _mm_min_pd(l, z));
-    _mm_storeu_pd(&hi[static_cast<std::size_t>(u)], _mm_max_pd(g, z));
-    _mm_storeu_pd(&mid[static_cast<std::size_t>(u)], _mm_max_pd(l, _mm_min_pd(g, z)));
+    _mm_storeu_pd(&lo[static_cast<std::size_t>(u)], _mm_min_pd(_mm_min_pd(x, y), z));
+    _mm_storeu_pd(&hi[static_cast<std::size_t>(u)], _mm_max_pd(_mm_max_pd(x, y), z));
+    _mm_storeu_pd(&mid[static_cast<std::size_t>(u)], middle_of(x, y, z));
     const int m = _mm_movemask_pd(_mm_and_pd(_mm_and_pd(returns(x), returns(y)), returns(z)));
     column_full[static_cast<std::size_t>(u)] = static_cast<char>(m & 1);
     column_full[static_cast<std::size_t>(u) + 1] = static_cast<char>(m >> 1);
@@ -237,10 +229,8 @@ void row_medians_of_nine(const Eigen::Ref<const DepthImage>& depth, Eigen::Index
     const auto at = [](const std::vector<double>& x, std::size_t i) { return _mm_loadu_pd(&x[i]); };
     const __m128d greatest_least = _mm_max_pd(_mm_max_pd(at(lo, k - 1), at(lo, k)), at(lo, k + 1));
     const __m128d least_greatest = _mm_min_pd(_mm_min_pd(at(hi, k - 1), at(hi, k)), at(hi, k + 1));
-    const __m128d p = at(mid, k - 1), q = at(mid, k), t = at(mid, k + 1);
-    const __m128d middle = _mm_max_pd(_mm_min_pd(p, q), _mm_min_pd(_mm_max_pd(p, q), t));
-    const __m128d x = greatest_least, y = middle, z = least_greatest;
-    _mm_storeu_pd(&med[k], _mm_max_pd(_mm_min_pd(x, y), _mm_min_pd(_mm_max_pd(x, y), z)));
+    const __m128d middle = middle_of(at(mid, k - 1), at(mid, k), at(mid, k + 1));
+    _mm_storeu_pd(&med[k], middle_of(greatest_least, middle, least_greatest));
   }
 #endif
   for (; k < end; ++k) {
@@ -258,37 +248,30 @@ DepthImage median_filtered(const Eigen::Ref<const DepthImage>& depth, int r) {
   DepthImage out = depth;
   if (r == 0) return out;
   const Eigen::Index H = depth.rows(), W = depth.cols();
-  std::vector<std::exception_ptr> errors(static_cast<std::size_t>(H));  // no exception may leave the region
-#pragma omp parallel
-  {
-    std::vector<double> window, lo, mid, hi, med;  // made at a thread's first row
+  struct Buffers {  // a thread's, made at its first row
+    std::vector<double> window, lo, mid, hi, med;
     std::vector<char> full;
-#pragma omp for schedule(static)
-    for (Eigen::Index v = 0; v < H; ++v) try {
-        if (lo.empty()) {
-          lo.resize(static_cast<std::size_t>(W)), mid.resize(lo.size()), hi.resize(lo.size()), med.resize(lo.size());
-          full.resize(lo.size());
-          window.reserve(static_cast<std::size_t>((2 * r + 1) * (2 * r + 1)));
-        }
-        // The usual case, r = 1 inside the image with nine returns, row by row (row_medians_of_nine); the others
-        // one window at a time.
-        const bool rows_inside = r == 1 && v > 0 && v + 1 < H;
-        if (rows_inside) row_medians_of_nine(depth, v, lo, mid, hi, full, med);
-        for (Eigen::Index u = 0; u < W; ++u) {
-          if (!has_return(depth(v, u))) continue;
-          const auto k = static_cast<std::size_t>(u);
-          if (rows_inside && u > 0 && u + 1 < W && full[k - 1] && full[k] && full[k + 1]) {
-            out(v, u) = med[k];
-            continue;
-          }
-          out(v, u) = window_median(depth, v, u, r, window);
-        }
-      } catch (...) {
-        errors[static_cast<std::size_t>(v)] = std::current_exception();
+  };
+  detail::parallel_rows<Buffers>(H, [&](Buffers& b, Eigen::Index v) {
+    if (b.lo.empty()) {
+      for (std::vector<double>* x : {&b.lo, &b.mid, &b.hi, &b.med}) x->resize(static_cast<std::size_t>(W));
+      b.full.resize(static_cast<std::size_t>(W));
+      b.window.reserve(static_cast<std::size_t>((2 * r + 1) * (2 * r + 1)));
+    }
+    // The usual case, r = 1 inside the image with nine returns, row by row (row_medians_of_nine); the others one
+    // window at a time.
+    const bool rows_inside = r == 1 && v > 0 && v + 1 < H;
+    if (rows_inside) row_medians_of_nine(depth, v, b.lo, b.mid, b.hi, b.full, b.med);
+    for (Eigen::Index u = 0; u < W; ++u) {
+      if (!has_return(depth(v, u))) continue;
+      const auto k = static_cast<std::size_t>(u);
+      if (rows_inside && u > 0 && u + 1 < W && b.full[k - 1] && b.full[k] && b.full[k + 1]) {
+        out(v, u) = b.med[k];
+        continue;
       }
-  }
-  for (const std::exception_ptr& e : errors)
-    if (e) std::rethrow_exception(e);  // the first row's that failed
+      out(v, u) = window_median(depth, v, u, r, b.window);
+    }
+  });
   return out;
 }
 

@@ -14,6 +14,7 @@
 #include <boost/sort/spreadsort/integer_sort.hpp>
 
 #include "core/uniform_grid.hpp"
+#include "knn_distances.hpp"
 
 namespace graspmix::detail {
 
@@ -258,29 +259,12 @@ pcl::Indices select_within_plane(const Cloud::ConstPtr& cloud, const Eigen::Vect
 }
 
 pcl::Indices statistical_inliers(const Cloud::ConstPtr& cloud, int k, double std_ratio) {
-  // pcl::StatisticalOutlierRemoval's two passes on the same kd-tree (unsorted results, as PCL builds it), its
-  // searches in parallel: each point's mean distance to its k nearest is its own; the statistic and the cut are
+  // pcl::StatisticalOutlierRemoval's statistic (knn_distances.hpp: the same numbers, found faster), then its cut in
   // PCL's arithmetic, so the same points are kept.
+  const KnnDistances knn = knn_mean_distances(cloud, k);
+  const std::vector<float>& distances = knn.mean;
+  const int valid = knn.valid;
   const auto n = static_cast<int>(cloud->size());
-  pcl::search::KdTree<pcl::PointXYZ> tree(false);
-  tree.setInputCloud(cloud);
-  std::vector<float> distances(static_cast<std::size_t>(n), 0.0f);
-  int valid = 0;
-#pragma omp parallel reduction(+ : valid)
-  {
-    pcl::Indices nn(static_cast<std::size_t>(k) + 1);
-    std::vector<float> d2(static_cast<std::size_t>(k) + 1);
-#pragma omp for schedule(static)
-    for (int i = 0; i < n; ++i) {
-      const auto& p = (*cloud)[static_cast<std::size_t>(i)];
-      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) continue;
-      if (tree.nearestKSearch(i, k + 1, nn, d2) == 0) continue;
-      double sum = 0.0;
-      for (int j = 1; j < k + 1; ++j) sum += std::sqrt(d2[static_cast<std::size_t>(j)]);  // j = 0: the point
-      distances[static_cast<std::size_t>(i)] = static_cast<float>(sum / k);
-      ++valid;
-    }
-  }
   double sum = 0, sq_sum = 0;  // in PCL's order and precision: sums in double, each square in float
   for (const float d : distances) {
     sum += d;

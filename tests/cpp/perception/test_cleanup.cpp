@@ -17,6 +17,7 @@
 
 #include "graspmix/perception/cleanup.hpp"
 #include "perception/cloud_filters.hpp"
+#include "perception/knn_distances.hpp"
 
 using namespace graspmix;
 
@@ -246,6 +247,23 @@ detail::Cloud::Ptr blobs(std::uint64_t seed, int n_blobs, int per_blob, int n_no
   return cloud;
 }
 
+/// Every stride-th point of scene seed's points as a PCL cloud: a table's and a box's surfaces.
+detail::Cloud::Ptr surface_cloud(std::uint64_t seed, int stride) {
+  const Scene scene = make_scene(seed);
+  detail::Cloud::Ptr out(new detail::Cloud);
+  for (Eigen::Index r = 0; r < scene.points.rows(); r += stride)
+    out->push_back(pcl::PointXYZ(static_cast<float>(scene.points(r, 0)), static_cast<float>(scene.points(r, 1)),
+                                 static_cast<float>(scene.points(r, 2))));
+  return out;
+}
+
+/// Blobs in scattered noise (seed) with 200 of their points repeated.
+detail::Cloud::Ptr with_duplicates(std::uint64_t seed) {
+  detail::Cloud::Ptr out = blobs(seed, 4, 300, 400);
+  for (std::size_t i = 0; i < 200; ++i) out->push_back((*out)[i * 3]);
+  return out;
+}
+
 }  // namespace
 
 // The grid's Euclidean clusters against pcl::EuclideanClusterExtraction with a kd-tree: the same clusters.
@@ -289,14 +307,8 @@ TEST(EuclideanClusters, FarStrayPointFallsBackToPcl) {
 // The parallel outlier filter against pcl::StatisticalOutlierRemoval itself: the same points kept, on a scene's
 // surfaces, on blobs in scattered noise and with duplicated points.
 TEST(StatisticalInliers, MatchPclOutlierRemoval) {
-  const Scene scene = make_scene(5);
-  detail::Cloud::Ptr surfaces(new detail::Cloud);
-  for (Eigen::Index r = 0; r < scene.points.rows(); r += 4)
-    surfaces->push_back(pcl::PointXYZ(static_cast<float>(scene.points(r, 0)), static_cast<float>(scene.points(r, 1)),
-                                      static_cast<float>(scene.points(r, 2))));
-  detail::Cloud::Ptr doubled = blobs(6, 4, 300, 400);
-  for (std::size_t i = 0; i < 200; ++i) doubled->push_back((*doubled)[i * 3]);
-  for (const auto& cloud : {surfaces, blobs(7, 12, 400, 3000), doubled}) {
+  const detail::Cloud::Ptr surfaces = surface_cloud(5, 4);
+  for (const auto& cloud : {surfaces, blobs(7, 12, 400, 3000), with_duplicates(6)}) {
     for (const int k : {1, 8, 20}) {
       for (const double ratio : {0.5, 2.0}) {
         pcl::StatisticalOutlierRemoval<pcl::PointXYZ> sor;
@@ -311,6 +323,43 @@ TEST(StatisticalInliers, MatchPclOutlierRemoval) {
       }
     }
   }
+}
+
+// The outlier statistic against brute force in FLANN's and PCL's arithmetic (every float squared distance, the
+// k + 1 least in increasing order, the square roots of all but the first summed in double): the same number for
+// every point, bit for bit, whether the grid vouched for it or the kd-tree searched it (both happen here), on a
+// scene's surfaces, on blobs in scattered noise and with duplicated points.
+TEST(KnnMeanDistances, MatchBruteForceBitForBit) {
+  const detail::Cloud::Ptr surfaces = surface_cloud(8, 8);
+  int from_grid = 0, from_tree = 0;
+  for (const auto& cloud : {surfaces, blobs(10, 8, 300, 1500), with_duplicates(9)}) {
+    const std::size_t n = cloud->size();
+    std::vector<float> d2(n);
+    for (const int k : {1, 8, 20}) {
+      const detail::KnnDistances got = detail::knn_mean_distances(cloud, k);
+      ASSERT_EQ(got.mean.size(), n);
+      EXPECT_EQ(got.valid, static_cast<int>(n));
+      from_grid += static_cast<int>(n) - got.from_tree;
+      from_tree += got.from_tree;
+      for (std::size_t i = 0; i < n; ++i) {
+        const auto& p = (*cloud)[i];
+        for (std::size_t j = 0; j < n; ++j) {
+          const auto& q = (*cloud)[j];
+          float s = 0, d = 0;
+          d = p.x - q.x, s += d * d;
+          d = p.y - q.y, s += d * d;
+          d = p.z - q.z, s += d * d;
+          d2[j] = s;
+        }
+        std::partial_sort(d2.begin(), d2.begin() + k + 1, d2.end());
+        double sum = 0;
+        for (int j = 1; j <= k; ++j) sum += std::sqrt(d2[static_cast<std::size_t>(j)]);
+        ASSERT_EQ(got.mean[i], static_cast<float>(sum / k)) << n << " points, k " << k << ", point " << i;
+      }
+    }
+  }
+  EXPECT_GT(from_grid, 0);
+  EXPECT_GT(from_tree, 0);
 }
 
 // fit_plane's cheaper point test: the same plane and inliers as PCL's own RANSAC and plane model, on a tilted

@@ -17,6 +17,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "core/parallel_rows.hpp"
 #include "perception/completion_shapes.hpp"
 
 namespace graspmix {
@@ -369,17 +370,28 @@ SceneCompletion complete_scene(const Segmentation& scene, const CompletionSettin
     out.notes.push_back("no support plane: the unseen side of the objects is not completed");
     return out;
   }
-  for (const auto& o : scene.objects) {
-    Vec3Array points(o.rows.size(), 3);
-    for (Eigen::Index r = 0; r < o.rows.size(); ++r) points.row(r) = scene.points.row(o.rows[r]);
-    try {
-      Completion c = complete_object(points, scene.plane, *scene.visibility, settings);
-      if (!c.warning.empty()) out.notes.push_back("object " + std::to_string(o.index) + ": " + c.warning);
-      out.completions[o.index] = std::move(c);
-    } catch (const std::invalid_argument& e) {  // e.g. a camera in the support plane: that object stays as seen
-      out.notes.push_back("object " + std::to_string(o.index) + " is not completed: " + e.what());
-    }
-  }
+  // The objects on threads of their own, largest first (the scene's order) as threads come free; each object's note
+  // kept in its own slot, so the notes come in the objects' order.
+  const auto n = static_cast<std::int64_t>(scene.objects.size());
+  std::vector<std::string> notes(scene.objects.size());
+  detail::parallel_rows<detail::NoState>(
+      n,
+      [&](detail::NoState&, std::int64_t i) {
+        const SceneObject& o = scene.objects[static_cast<std::size_t>(i)];
+        Vec3Array points(o.rows.size(), 3);
+        for (Eigen::Index r = 0; r < o.rows.size(); ++r) points.row(r) = scene.points.row(o.rows[r]);
+        std::string& note = notes[static_cast<std::size_t>(i)];
+        try {
+          Completion c = complete_object(points, scene.plane, *scene.visibility, settings);
+          if (!c.warning.empty()) note = "object " + std::to_string(o.index) + ": " + c.warning;
+          out.completions[static_cast<std::size_t>(o.index)] = std::move(c);
+        } catch (const std::invalid_argument& e) {  // e.g. a camera in the support plane: that object stays as seen
+          note = "object " + std::to_string(o.index) + " is not completed: " + e.what();
+        }
+      },
+      detail::RowOrder::AsThreadsFree);
+  for (std::string& note : notes)
+    if (!note.empty()) out.notes.push_back(std::move(note));
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
 }

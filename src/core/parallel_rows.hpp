@@ -28,15 +28,20 @@ void parallel_rows(std::int64_t n, Work&& work, RowOrder order = RowOrder::Block
       errors[static_cast<std::size_t>(i)] = std::current_exception();
     }
   };
-#pragma omp parallel if (n > 1)
-  {
+  if (n == 1) {  // one row runs here: its own parallel loops, if any, keep the threads
     State state{};
-    if (order == RowOrder::Blocks) {
+    row(state, 0);
+  } else {
+#pragma omp parallel
+    {
+      State state{};
+      if (order == RowOrder::Blocks) {
 #pragma omp for schedule(static)
-      for (std::int64_t i = 0; i < n; ++i) row(state, i);
-    } else {
+        for (std::int64_t i = 0; i < n; ++i) row(state, i);
+      } else {
 #pragma omp for schedule(dynamic, 1)
-      for (std::int64_t i = 0; i < n; ++i) row(state, i);
+        for (std::int64_t i = 0; i < n; ++i) row(state, i);
+      }
     }
   }
   for (const std::exception_ptr& e : errors)

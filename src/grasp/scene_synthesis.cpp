@@ -6,6 +6,7 @@
 #include <string>
 #include <utility>
 
+#include "core/parallel_rows.hpp"
 #include "graspmix/core/plane.hpp"
 #include "graspmix/perception/depth_scene.hpp"
 
@@ -166,12 +167,20 @@ Shared shared_part(const SceneInput& input, std::shared_ptr<const Hand> hand, co
   const auto t_experts = Clock::now();  // the map has its own stage: features counts the experts from here
   // observed and completed: the hand stays out of both
   const Vec3Array solid = solid_points(out.scene, out.completion.completions);
-  shared.collision = collision_on(shared.hand, solid, plane, settings.collision, occupancy, unseen);
-  if (settings.approach) {
-    CollisionSettings s = settings.collision;
-    s.point_radius = settings.approach->clearance;
-    shared.approach = collision_on(shared.hand, solid, plane, s, occupancy);
-  }
+  // W's expert and the clear approach's, each on a thread of its own: each is milliseconds of serial work (the
+  // solid volume, the grid of the points) on a scene of several objects.
+  detail::parallel_rows<detail::NoState>(
+      settings.approach ? 2 : 1,
+      [&](detail::NoState&, std::int64_t i) {
+        if (i == 0) {
+          shared.collision = collision_on(shared.hand, solid, plane, settings.collision, occupancy, unseen);
+          return;
+        }
+        CollisionSettings s = settings.collision;
+        s.point_radius = settings.approach->clearance;
+        shared.approach = collision_on(shared.hand, solid, plane, s, occupancy);
+      },
+      detail::RowOrder::AsThreadsFree);
   shared.experts = shared_experts(shared.hand, out, settings, request);
   out.timing.features += seconds_since(t_experts);
   return shared;

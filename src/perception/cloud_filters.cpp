@@ -5,8 +5,11 @@
 #include <cstdint>
 #include <limits>
 #include <numeric>
+#include <optional>
 #include <stdexcept>
+#include <utility>
 
+#include <pcl/kdtree/kdtree_flann.h>
 #include <pcl/sample_consensus/ransac.h>
 #include <pcl/sample_consensus/sac_model_plane.h>
 #include <pcl/search/kdtree.h>
@@ -115,24 +118,99 @@ std::vector<std::vector<int>> pcl_clusters(const Cloud::ConstPtr& cloud, double 
 
 }  // namespace
 
-std::vector<std::vector<int>> euclidean_clusters(const Cloud::ConstPtr& cloud, double tolerance) {
-  const auto n = static_cast<Eigen::Index>(cloud->size());
-  if (n == 0) return {};
+namespace {
+
+/// FLANN's L2_Simple<float>: the squares summed in float, x then y then z (this file is built without contraction).
+float flann_squared(const pcl::PointXYZ& p, const pcl::PointXYZ& q) {
+  float d2 = 0, d = 0;
+  d = p.x - q.x, d2 += d * d;
+  d = p.y - q.y, d2 += d * d;
+  d = p.z - q.z, d2 += d * d;
+  return d2;
+}
+
+/// A uniform grid over the cloud whose 27 cells around a point's hold every point within `tolerance` of it by
+/// FLANN's float test (cells a little wider than the tolerance); none when the cloud spans too many cells.
+std::optional<UniformGrid> tolerance_grid(const Cloud& cloud, double tolerance) {
+  const auto n = static_cast<Eigen::Index>(cloud.size());
   Vec3Array P(n, 3);
-  for (Eigen::Index i = 0; i < n; ++i) P.row(i) = (*cloud)[static_cast<std::size_t>(i)].getVector3fMap().cast<double>();
-  const double h = tolerance * 1.001;  // a cell a little wider than the float test's reach: 27 cells hold it all
+  for (Eigen::Index i = 0; i < n; ++i) P.row(i) = cloud[static_cast<std::size_t>(i)].getVector3fMap().cast<double>();
+  const double h = tolerance * 1.001;
   const Eigen::Vector3d lo = P.colwise().minCoeff().transpose(), hi = P.colwise().maxCoeff().transpose();
-  detail::UniformGrid::Cell dims;
+  UniformGrid::Cell dims;
   double n_cells = 1;
   for (int k = 0; k < 3; ++k) {
     const double d = std::floor((hi[k] - lo[k]) / h) + 1;
-    if (d > static_cast<double>(UniformGrid::kMaxCells)) return pcl_clusters(cloud, tolerance);
+    if (d > static_cast<double>(UniformGrid::kMaxCells)) return std::nullopt;
     dims[static_cast<std::size_t>(k)] = static_cast<std::int64_t>(d);
     n_cells *= d;
   }
   const auto layout =
       n_cells <= 8.0 * static_cast<double>(n) + 1e4 ? UniformGrid::Layout::Dense : UniformGrid::Layout::Sparse;
-  const UniformGrid grid(P, lo, h, dims, layout);
+  return std::optional<UniformGrid>(std::in_place, P, lo, h, dims, layout);
+}
+
+/// The 27 cells around cell c, clipped to the grid.
+std::pair<UniformGrid::Cell, UniformGrid::Cell> cells_around(const UniformGrid& grid, const UniformGrid::Cell& c) {
+  UniformGrid::Cell c0, c1;
+  for (std::size_t k = 0; k < 3; ++k) {
+    c0[k] = std::max<std::int64_t>(c[k] - 1, 0);
+    c1[k] = std::min<std::int64_t>(c[k] + 1, grid.dims()[k] - 1);
+  }
+  return {c0, c1};
+}
+
+}  // namespace
+
+struct RadiusSearch::Impl {
+  Cloud::ConstPtr cloud;
+  double radius = 0;
+  std::optional<UniformGrid> grid;
+  std::vector<int> slot;  ///< per row its canonical position in the grid
+  pcl::KdTreeFLANN<pcl::PointXYZ> tree;
+};
+
+RadiusSearch::RadiusSearch(const Cloud::ConstPtr& cloud, double radius) : impl_(std::make_unique<Impl>()) {
+  impl_->cloud = cloud;
+  impl_->radius = radius;
+  if (!cloud->empty()) impl_->grid = tolerance_grid(*cloud, radius);
+  if (impl_->grid) {
+    impl_->slot.resize(cloud->size());
+    for (int s = 0; s < impl_->grid->size(); ++s) impl_->slot[static_cast<std::size_t>(impl_->grid->row(s))] = s;
+  } else if (!cloud->empty()) {
+    impl_->tree.setInputCloud(cloud);
+  }
+}
+
+RadiusSearch::~RadiusSearch() = default;
+
+void RadiusSearch::near(int i, std::vector<int>& out) const {
+  out.clear();
+  const Cloud& cloud = *impl_->cloud;
+  const auto& p = cloud[static_cast<std::size_t>(i)];
+  if (!impl_->grid) {
+    pcl::Indices nn;
+    std::vector<float> d2;
+    impl_->tree.radiusSearch(p, impl_->radius, nn, d2);
+    out.assign(nn.begin(), nn.end());
+  } else {
+    const UniformGrid& grid = *impl_->grid;
+    const float r2 = static_cast<float>(impl_->radius * impl_->radius);  // PCL's kd-tree: float(radius^2), strict <
+    const auto [c0, c1] = cells_around(grid, grid.cell(impl_->slot[static_cast<std::size_t>(i)]));
+    grid.for_each_in_cells(c0, c1, [&](int s) {
+      const auto j = static_cast<int>(grid.row(s));
+      if (flann_squared(p, cloud[static_cast<std::size_t>(j)]) < r2) out.push_back(j);
+    });
+  }
+  std::sort(out.begin(), out.end());
+}
+
+std::vector<std::vector<int>> euclidean_clusters(const Cloud::ConstPtr& cloud, double tolerance) {
+  const auto n = static_cast<Eigen::Index>(cloud->size());
+  if (n == 0) return {};
+  const std::optional<UniformGrid> found = tolerance_grid(*cloud, tolerance);
+  if (!found) return pcl_clusters(cloud, tolerance);
+  const UniformGrid& grid = *found;
   const float r2 = static_cast<float>(tolerance * tolerance);  // PCL's kd-tree: float(radius^2), strict <
   std::vector<int> parent(static_cast<std::size_t>(n));
   std::iota(parent.begin(), parent.end(), 0);
@@ -140,18 +218,10 @@ std::vector<std::vector<int>> euclidean_clusters(const Cloud::ConstPtr& cloud, d
     const auto& c = grid.cell(i);
     const auto ri = grid.row(i);
     const auto& p = (*cloud)[static_cast<std::size_t>(ri)];
-    UniformGrid::Cell c0, c1;
-    for (std::size_t k = 0; k < 3; ++k) {
-      c0[k] = std::max<std::int64_t>(c[k] - 1, 0);
-      c1[k] = std::min<std::int64_t>(c[k] + 1, dims[k] - 1);
-    }
+    const auto [c0, c1] = cells_around(grid, c);
     grid.for_each_in_cells(c0, c1, [&](int j) {
       if (j <= i) return;
-      const auto& q = (*cloud)[static_cast<std::size_t>(grid.row(j))];
-      float d2 = 0, d = 0;  // FLANN's L2_Simple: the squares summed in float, x then y then z
-      d = p.x - q.x, d2 += d * d;
-      d = p.y - q.y, d2 += d * d;
-      d = p.z - q.z, d2 += d * d;
+      const float d2 = flann_squared(p, (*cloud)[static_cast<std::size_t>(grid.row(j))]);
       if (!(d2 < r2)) return;
       const int a = find_root(parent, static_cast<int>(ri)), b = find_root(parent, static_cast<int>(grid.row(j)));
       if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);  // the root: the lowest row

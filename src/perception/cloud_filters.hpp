@@ -2,6 +2,7 @@
 // Cloud steps private to perception that prepare_cloud and segment_scene share: the voxel grid, seeded
 // RANSAC plane fitting and statistical outlier removal.
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <pcl/point_cloud.h>
@@ -31,6 +32,21 @@ VoxelCells voxel_grid(const Cloud& cloud, float leaf);
 /// indices in increasing order, the clusters by their lowest index (PCL's seed order). A uniform grid of
 /// cell tolerance and a union-find instead of a tree; PCL's own when the cloud spans too many cells.
 std::vector<std::vector<int>> euclidean_clusters(const Cloud::ConstPtr& cloud, double tolerance);
+
+/// pcl::KdTreeFLANN's radiusSearch among one cloud's own points, by a uniform grid of cells a little wider than
+/// the radius: near(i, out) gives the rows of every point whose float squared distance to point i (FLANN's: x, then
+/// y, then z) is below float(radius^2), i itself included, in increasing order; PCL's tree where the cloud spans too
+/// many cells. Every point must be finite.
+class RadiusSearch {
+ public:
+  RadiusSearch(const Cloud::ConstPtr& cloud, double radius);
+  ~RadiusSearch();
+  void near(int i, std::vector<int>& out) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 /// The plane model's point tests (count, selection) fit_plane uses: Fast, a cheaper form that passes the same
 /// points (bit for bit: cloud_filters.cpp is built without floating-point contraction); Stock, PCL's own

@@ -11,6 +11,7 @@
 #include <pcl/segmentation/lccp_segmentation.h>
 #include <pcl/segmentation/supervoxel_clustering.h>
 
+#include "cloud_filters.hpp"
 #include "occlusion_merge.hpp"
 
 // SupervoxelClustering<PointXYZ>'s voxel data: PCL's header declares how a voxel accumulates its points but leaves
@@ -84,10 +85,9 @@ std::vector<int> lccp_pieces(const PointCloud::Ptr& cloud, const SplitRule& rule
   return piece;
 }
 
-/// Pieces under min_points join, smallest first, the piece most of their points' near neighbours lie on (`tree`: the
-/// cluster's points, `cloud`).
-void absorb_small(const PointCloud& cloud, const pcl::KdTreeFLANN<pcl::PointXYZ>& tree, std::vector<int>& piece,
-                  int min_points, double radius) {
+/// Pieces under min_points join, smallest first, the piece most of their points' near neighbours (`near`: among the
+/// cluster's points) lie on.
+void absorb_small(const RadiusSearch& near, std::vector<int>& piece, int min_points) {
   for (;;) {
     std::map<int, int> size;
     for (const int p : piece) ++size[p];
@@ -97,11 +97,10 @@ void absorb_small(const PointCloud& cloud, const pcl::KdTreeFLANN<pcl::PointXYZ>
       if (n < min_points && (smallest < 0 || n < size[smallest])) smallest = p;
     if (smallest < 0) return;
     std::map<int, int> touch;
-    pcl::Indices nn;
-    std::vector<float> d2;
+    std::vector<int> nn;
     for (std::size_t i = 0; i < piece.size(); ++i) {
       if (piece[i] != smallest) continue;
-      tree.radiusSearch(cloud[i], radius, nn, d2);
+      near.near(static_cast<int>(i), nn);
       for (const auto j : nn)
         if (piece[static_cast<std::size_t>(j)] != smallest) ++touch[piece[static_cast<std::size_t>(j)]];
     }
@@ -117,16 +116,15 @@ void absorb_small(const PointCloud& cloud, const pcl::KdTreeFLANN<pcl::PointXYZ>
   }
 }
 
-/// Pieces re-joined, the pair that touches most (points of one within `radius` of the other) first, while the
-/// joined piece's largest principal-box side stays within max_size: the fewest objects the cluster can be (`tree`: the
-/// cluster's points, `cloud`, rows g of P).
-void rejoin(const Vec3Array& P, const std::vector<int>& g, const PointCloud& cloud,
-            const pcl::KdTreeFLANN<pcl::PointXYZ>& tree, std::vector<int>& piece, double radius, double max_size) {
+/// Pieces re-joined, the pair that touches most (points of one `near` the other: among the cluster's points, rows g
+/// of P) first, while the joined piece's largest principal-box side stays within max_size: the fewest objects the
+/// cluster can be.
+void rejoin(const Vec3Array& P, const std::vector<int>& g, const RadiusSearch& near, std::vector<int>& piece,
+            double max_size) {
   std::map<std::pair<int, int>, int> touch;
-  pcl::Indices nn;
-  std::vector<float> d2;
+  std::vector<int> nn;
   for (std::size_t i = 0; i < piece.size(); ++i) {
-    tree.radiusSearch(cloud[i], radius, nn, d2);
+    near.near(static_cast<int>(i), nn);
     for (const auto j : nn) {
       const int a = piece[i], b = piece[static_cast<std::size_t>(j)];
       if (a < b) ++touch[{a, b}];
@@ -190,10 +188,10 @@ std::size_t split_touching(const Vec3Array& P, const Vec3Array& seen_from, std::
       cloud->push_back({static_cast<float>(q[0]), static_cast<float>(q[1]), static_cast<float>(q[2])});
     }
     std::vector<int> piece = lccp_pieces(cloud, rule);
-    pcl::KdTreeFLANN<pcl::PointXYZ> tree;  // one search structure for both steps: the cluster's points do not move
-    tree.setInputCloud(cloud);
-    absorb_small(*cloud, tree, piece, rule.min_piece_points, 2.0 * rule.voxel_resolution);
-    rejoin(P, g, *cloud, tree, piece, 2.0 * rule.voxel_resolution, rule.max_size);
+    // one search for both steps (two voxels' reach): the cluster's points do not move
+    const RadiusSearch near(cloud, 2.0 * rule.voxel_resolution);
+    absorb_small(near, piece, rule.min_piece_points);
+    rejoin(P, g, near, piece, rule.max_size);
     std::map<int, std::vector<int>> parts;
     for (std::size_t i = 0; i < g.size(); ++i) parts[piece[i]].push_back(g[i]);
     if (parts.size() < 2) {

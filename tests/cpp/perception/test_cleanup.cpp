@@ -11,6 +11,7 @@
 
 #include <pcl/filters/statistical_outlier_removal.h>
 #include <pcl/filters/voxel_grid.h>
+#include <pcl/kdtree/kdtree_flann.h>
 #include <pcl/sample_consensus/sac_model_plane.h>
 #include <pcl/search/kdtree.h>
 #include <pcl/segmentation/extract_clusters.h>
@@ -302,6 +303,34 @@ TEST(EuclideanClusters, FarStrayPointFallsBackToPcl) {
   for (const auto& c : mine) n += c.size();
   EXPECT_EQ(n, cloud->size());
   EXPECT_EQ(mine.back(), std::vector<int>{static_cast<int>(cloud->size()) - 1});
+}
+
+// The grid's radius search against pcl::KdTreeFLANN's radiusSearch on the same cloud: the same neighbours of every
+// point (as sorted rows), on blobs in scattered noise, with duplicated points, and on a cloud with a far stray point
+// (PCL's own tree then).
+TEST(RadiusSearch, MatchesPclKdTree) {
+  detail::Cloud::Ptr stray = blobs(12, 3, 200, 50);
+  stray->push_back(pcl::PointXYZ(1e5f, 0.0f, 0.0f));
+  for (const auto& cloud : {blobs(11, 8, 300, 1500), with_duplicates(13), stray}) {
+    pcl::KdTreeFLANN<pcl::PointXYZ> tree;
+    tree.setInputCloud(cloud);
+    for (const double radius : {0.004, 0.008, 0.03}) {
+      const detail::RadiusSearch near(cloud, radius);
+      std::vector<int> got;
+      pcl::Indices nn;
+      std::vector<float> d2;
+      std::size_t pairs = 0;
+      for (std::size_t i = 0; i < cloud->size(); ++i) {
+        tree.radiusSearch((*cloud)[i], radius, nn, d2);
+        std::vector<int> expected(nn.begin(), nn.end());
+        std::sort(expected.begin(), expected.end());
+        near.near(static_cast<int>(i), got);
+        ASSERT_EQ(got, expected) << cloud->size() << " points, radius " << radius << ", point " << i;
+        pairs += expected.size() - 1;
+      }
+      EXPECT_GT(pairs, cloud->size());  // points have neighbours: the test can tell
+    }
+  }
 }
 
 // The parallel outlier filter against pcl::StatisticalOutlierRemoval itself: the same points kept, on a scene's

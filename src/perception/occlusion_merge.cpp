@@ -2,11 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <iterator>
 #include <limits>
 #include <numeric>
+#include <utility>
+#include <vector>
 
 #include "cluster_merge.hpp"
+#include "core/parallel_rows.hpp"
 
 namespace graspmix::detail {
 
@@ -111,8 +115,16 @@ std::size_t join_occluded(const Vec3Array& P, const VisibilityModel& vis, std::v
     return largest_side(P, both) <= rule.max_size ? gap : inf;
   };
   gaps.assign(groups.size(), std::vector<double>(groups.size(), inf));
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;  // every pair judged once, each on a thread as one comes free
   for (std::size_t i = 0; i < groups.size(); ++i)
-    for (std::size_t j = i + 1; j < groups.size(); ++j) gaps[i][j] = judge(i, j);
+    for (std::size_t j = i + 1; j < groups.size(); ++j) pairs.emplace_back(i, j);
+  parallel_rows<NoState>(
+      static_cast<std::int64_t>(pairs.size()),
+      [&](NoState&, std::int64_t k) {
+        const auto [i, j] = pairs[static_cast<std::size_t>(k)];
+        gaps[i][j] = judge(i, j);
+      },
+      RowOrder::AsThreadsFree);
   std::size_t joins = 0;
   for (;;) {
     std::size_t bi = 0, bj = 0;

@@ -227,19 +227,31 @@ OccupancyMap::OccupancyMap(const VisibilityModel& visibility, const Eigen::Ref<c
   cells_.assign(static_cast<std::size_t>(dims_.prod()), static_cast<std::uint8_t>(CellState::Free));
   const double tol = visibility.settings().surface_tolerance;
   const std::int64_t slices = dims_.z() * dims_.y();
-#pragma omp parallel for schedule(static) if (dims_.prod() >= 4096)
-  for (std::int64_t kj = 0; kj < slices; ++kj) {
-    const std::int64_t k = kj / dims_.y(), j = kj % dims_.y();
-    for (std::int64_t i = 0; i < dims_.x(); ++i) {
-      const Eigen::Vector3d c = origin_ + h_ * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5);
-      if (in_table_layer(plane_, c, h_)) continue;
-      const double x = visibility.signed_distance(c);
-      // No view says anything (NaN): free, see the header; else the visibility model's state of the distance.
-      const SpaceState st = std::isnan(x) ? SpaceState::SeenFree : state_of_distance(x, tol);
-      cells_[static_cast<std::size_t>(kj * dims_.x() + i)] =
-          static_cast<std::uint8_t>(st == SpaceState::SeenFree  ? CellState::Free
-                                    : st == SpaceState::Surface ? CellState::Occupied
-                                                                : CellState::Unknown);
+#pragma omp parallel if (dims_.prod() >= 4096)
+  {
+    // A row of cells along x at a time: the centres above the table's layer, then their distances in one call.
+    Vec3Array centres(dims_.x(), 3);
+    std::vector<std::int64_t> column(static_cast<std::size_t>(dims_.x()));
+    Eigen::VectorXd x(dims_.x());
+#pragma omp for schedule(static)
+    for (std::int64_t kj = 0; kj < slices; ++kj) {
+      const std::int64_t k = kj / dims_.y(), j = kj % dims_.y();
+      Eigen::Index m = 0;
+      for (std::int64_t i = 0; i < dims_.x(); ++i) {
+        const Eigen::Vector3d c = origin_ + h_ * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5);
+        if (in_table_layer(plane_, c, h_)) continue;
+        centres.row(m) = c.transpose();
+        column[static_cast<std::size_t>(m++)] = i;
+      }
+      visibility.signed_distances_into(centres.topRows(m), x.data());
+      for (Eigen::Index r = 0; r < m; ++r) {
+        // No view says anything (NaN): free, see the header; else the visibility model's state of the distance.
+        const SpaceState st = std::isnan(x[r]) ? SpaceState::SeenFree : state_of_distance(x[r], tol);
+        cells_[static_cast<std::size_t>(kj * dims_.x() + column[static_cast<std::size_t>(r)])] =
+            static_cast<std::uint8_t>(st == SpaceState::SeenFree  ? CellState::Free
+                                      : st == SpaceState::Surface ? CellState::Occupied
+                                                                  : CellState::Unknown);
+      }
     }
   }
   finish_cells();

@@ -1,6 +1,7 @@
 // The visibility model: pinhole views (depth images, organized clouds) and the rule that combines views.
 #include "graspmix/perception/visibility.hpp"
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -31,6 +32,14 @@ class PinholeView final : public detail::VisibilityView {
         t_camera_world_(-(R_camera_world_ * T_world_camera.translation())) {}
 
   double signed_distance(const Eigen::Vector3d& p, bool no_return_is_free) const override {
+    return distance(p, no_return_is_free);
+  }
+  void signed_distances(const Eigen::Ref<const Vec3Array>& points, bool no_return_is_free, double* out) const override {
+    for (Eigen::Index i = 0; i < points.rows(); ++i) out[i] = distance(points.row(i).transpose(), no_return_is_free);
+  }
+
+ private:
+  double distance(const Eigen::Vector3d& p, bool no_return_is_free) const {
     const Eigen::Vector3d q = R_camera_world_ * p + t_camera_world_;
     int column = 0, row = 0;
     if (!camera_.pixel(camera_.project(q), column, row)) return kNaN;  // behind the camera or outside the image
@@ -40,7 +49,6 @@ class PinholeView final : public detail::VisibilityView {
     return q.norm() * (d / q.z() - 1.0);
   }
 
- private:
   DepthImage depth_;  ///< metres along z, NaN where no return
   PinholeCamera camera_;
   Eigen::Matrix3d R_camera_world_;
@@ -211,9 +219,23 @@ std::vector<SpaceState> VisibilityModel::classify(const Eigen::Ref<const Vec3Arr
 Eigen::VectorXd VisibilityModel::signed_distances(const Eigen::Ref<const Vec3Array>& points) const {
   Eigen::VectorXd out(points.rows());
   const Eigen::Index n = points.rows();
+  constexpr Eigen::Index kChunk = 1024;  // rows a thread takes at a time
+  const Eigen::Index chunks = (n + kChunk - 1) / kChunk;
 #pragma omp parallel for schedule(static) if (n >= 4096)
-  for (Eigen::Index i = 0; i < n; ++i) out[i] = signed_distance(points.row(i).transpose());
+  for (Eigen::Index c = 0; c < chunks; ++c) {
+    const Eigen::Index b = c * kChunk;
+    signed_distances_into(points.middleRows(b, std::min(kChunk, n - b)), out.data() + b);
+  }
   return out;
+}
+
+void VisibilityModel::signed_distances_into(const Eigen::Ref<const Vec3Array>& points, double* out) const {
+  // One view's distance is the model's (signed_distance's rule picks the only one there is): the view's own loop.
+  if (views_.size() == 1) {
+    views_.front()->signed_distances(points, settings_.no_return_is_free, out);
+    return;
+  }
+  for (Eigen::Index i = 0; i < points.rows(); ++i) out[i] = signed_distance(points.row(i).transpose());
 }
 
 const ViewInfo& VisibilityModel::view(int i) const {

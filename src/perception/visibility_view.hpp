@@ -21,6 +21,12 @@ class VisibilityView {
   /// positive in front; NaN where the view says nothing (outside its image, behind the sensor, a pixel with
   /// no return), +inf on a pixel with no return when no_return_is_free (pinhole views only).
   virtual double signed_distance(const Eigen::Vector3d& p, bool no_return_is_free) const = 0;
+  /// signed_distance of every row of points (N, 3) into out (N): by default one call a point; a view may loop
+  /// itself, the same arithmetic without a call per point.
+  virtual void signed_distances(const Eigen::Ref<const Vec3Array>& points, bool no_return_is_free, double* out) const {
+    for (Eigen::Index i = 0; i < points.rows(); ++i)
+      out[i] = signed_distance(points.row(i).transpose(), no_return_is_free);
+  }
 
   const ViewInfo& info() const { return info_; }
 

@@ -121,6 +121,8 @@ class VisibilityModel {
   double signed_distance(const Eigen::Vector3d& p) const;
   /// signed_distance of every row of points (N, 3), in parallel (OpenMP).
   Eigen::VectorXd signed_distances(const Eigen::Ref<const Vec3Array>& points) const;
+  /// The same on the calling thread into out (N values): for callers that spread their own work over threads.
+  void signed_distances_into(const Eigen::Ref<const Vec3Array>& points, double* out) const;
 
   int n_views() const { return static_cast<int>(views_.size()); }
   /// What view i is (0 <= i < n_views()); throws std::out_of_range otherwise.

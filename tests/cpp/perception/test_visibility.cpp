@@ -292,6 +292,18 @@ TEST(Visibility, BatchAnswersEqualSinglePointAnswers) {
   EXPECT_GT(counts[0], 1000);
   EXPECT_GT(counts[1], 10);
   EXPECT_GT(counts[2], 1000);
+  // The calling thread's batch, on rows that are not a chunk's, and a model of two views (combined point by point).
+  std::vector<double> part(3001);
+  model.signed_distances_into(P.middleRows(5, 3001), part.data());
+  for (Eigen::Index i = 0; i < 3001; ++i)
+    ASSERT_TRUE(part[static_cast<std::size_t>(i)] == d[i + 5] || (std::isnan(d[i + 5]) && std::isnan(part[i])));
+  VisibilityModel two = model;
+  two.add_view(VisibilityModel::from_points(P.topRows(2000), Eigen::Vector3d(0.0, 0.0, 1.0)));
+  const Eigen::VectorXd d2 = two.signed_distances(P);
+  for (Eigen::Index i = 0; i < P.rows(); ++i) {
+    const double di = two.signed_distance(P.row(i).transpose());
+    ASSERT_TRUE(di == d2[i] || (std::isnan(di) && std::isnan(d2[i])));
+  }
 }
 
 TEST(Visibility, BadInputNamesWhatWasWrong) {

@@ -1,6 +1,7 @@
 #pragma once
 // Rows of work on OpenMP threads, private to the library: the depth path's image blocks and median filter
-// (perception/depth_scene.cpp), a scene's objects completed (perception/completion.cpp).
+// (perception/depth_scene.cpp), a scene's objects completed (perception/completion.cpp), the join rule's pairs
+// (perception/occlusion_merge.cpp), the collision experts of a scene (grasp/scene_synthesis.cpp).
 #include <cstddef>
 #include <cstdint>
 #include <exception>

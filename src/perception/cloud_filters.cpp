@@ -17,6 +17,7 @@
 #include <boost/sort/spreadsort/integer_sort.hpp>
 
 #include "core/uniform_grid.hpp"
+#include "flann_distance.hpp"
 #include "knn_distances.hpp"
 
 namespace graspmix::detail {
@@ -120,19 +121,13 @@ std::vector<std::vector<int>> pcl_clusters(const Cloud::ConstPtr& cloud, double 
 
 namespace {
 
-/// FLANN's L2_Simple<float>: the squares summed in float, x then y then z (this file is built without contraction).
-float flann_squared(const pcl::PointXYZ& p, const pcl::PointXYZ& q) {
-  float d2 = 0, d = 0;
-  d = p.x - q.x, d2 += d * d;
-  d = p.y - q.y, d2 += d * d;
-  d = p.z - q.z, d2 += d * d;
-  return d2;
-}
-
 /// A uniform grid over the cloud whose 27 cells around a point's hold every point within `tolerance` of it by
-/// FLANN's float test (cells a little wider than the tolerance); none when the cloud spans too many cells.
+/// FLANN's float test (cells a little wider than the tolerance); none when the cloud spans too many cells or has a
+/// non-finite point.
 std::optional<UniformGrid> tolerance_grid(const Cloud& cloud, double tolerance) {
   const auto n = static_cast<Eigen::Index>(cloud.size());
+  for (const auto& p : cloud)
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return std::nullopt;
   Vec3Array P(n, 3);
   for (Eigen::Index i = 0; i < n; ++i) P.row(i) = cloud[static_cast<std::size_t>(i)].getVector3fMap().cast<double>();
   const double h = tolerance * 1.001;

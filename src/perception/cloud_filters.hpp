@@ -36,7 +36,7 @@ std::vector<std::vector<int>> euclidean_clusters(const Cloud::ConstPtr& cloud, d
 /// pcl::KdTreeFLANN's radiusSearch among one cloud's own points, by a uniform grid of cells a little wider than
 /// the radius: near(i, out) gives the rows of every point whose float squared distance to point i (FLANN's: x, then
 /// y, then z) is below float(radius^2), i itself included, in increasing order; PCL's tree where the cloud spans too
-/// many cells. Every point must be finite.
+/// many cells or holds a non-finite point.
 class RadiusSearch {
  public:
   RadiusSearch(const Cloud::ConstPtr& cloud, double radius);

@@ -8,21 +8,13 @@
 
 #include <pcl/search/kdtree.h>
 
+#include "flann_distance.hpp"
+
 namespace graspmix::detail {
 
 namespace {
 
 using Cloud = pcl::PointCloud<pcl::PointXYZ>;
-
-/// FLANN's L2_Simple<float>: the squares summed in float, x then y then z (this file is built without
-/// floating-point contraction, so each product is rounded as FLANN's are).
-inline float squared_distance(const pcl::PointXYZ& a, float bx, float by, float bz) {
-  float d2 = 0, d = 0;
-  d = a.x - bx, d2 += d * d;
-  d = a.y - by, d2 += d * d;
-  d = a.z - bz, d2 += d * d;
-  return d2;
-}
 
 /// PCL's mean of the k nearest others from the k + 1 nearest squared distances in increasing order (the point
 /// itself first): their square roots (in float) summed in double.
@@ -31,6 +23,9 @@ float mean_of_nearest(const float* ascending, int k) {
   for (int j = 1; j < k + 1; ++j) sum += std::sqrt(ascending[j]);
   return static_cast<float>(sum / k);
 }
+
+/// A query looks at most this many candidates per neighbour it wants (else the kd-tree answers it).
+constexpr std::size_t kMaxCandidatesPerNeighbour = 32;
 
 /// The distance from a few points spread through the cloud to their (k1)-th nearest (themselves included), by
 /// brute force; the median of them. What a grid cell should be about the size of.
@@ -41,7 +36,7 @@ double typical_reach(const Cloud& c, int k1) {
   std::array<float, kSamples> reach{};
   for (std::size_t s = 0; s < kSamples; ++s) {
     const auto& p = c[s * n / kSamples];
-    for (std::size_t j = 0; j < n; ++j) d2[j] = squared_distance(p, c[j].x, c[j].y, c[j].z);
+    for (std::size_t j = 0; j < n; ++j) d2[j] = flann_squared(p, c[j].x, c[j].y, c[j].z);
     std::nth_element(d2.begin(), d2.begin() + (k1 - 1), d2.end());
     reach[s] = d2[static_cast<std::size_t>(k1 - 1)];
   }
@@ -92,17 +87,20 @@ bool make_grid(const Cloud& c, double h, double max_cells, CellGrid& g) {
     ++g.start[static_cast<std::size_t>(cell) + 1];
   }
   for (std::size_t i = 1; i < g.start.size(); ++i) g.start[i] += g.start[i - 1];
-  std::vector<int> next(g.start.begin(), g.start.end() - 1);
   g.row.resize(static_cast<std::size_t>(n));
   g.x.resize(static_cast<std::size_t>(n)), g.y.resize(static_cast<std::size_t>(n)),
       g.z.resize(static_cast<std::size_t>(n));
+  // Each point at its cell's next free slot, the cell's start as the cursor (it ends at the next cell's start:
+  // the table is shifted back after).
   for (std::int64_t r = 0; r < n; ++r) {
     const auto s =
-        static_cast<std::size_t>(next[static_cast<std::size_t>(g.cell_of_row[static_cast<std::size_t>(r)])]++);
+        static_cast<std::size_t>(g.start[static_cast<std::size_t>(g.cell_of_row[static_cast<std::size_t>(r)])]++);
     const auto& p = c[static_cast<std::size_t>(r)];
     g.row[s] = static_cast<int>(r);
     g.x[s] = p.x, g.y[s] = p.y, g.z[s] = p.z;
   }
+  for (std::size_t i = g.start.size() - 1; i > 0; --i) g.start[i] = g.start[i - 1];
+  g.start[0] = 0;
   return true;
 }
 
@@ -125,9 +123,17 @@ bool nearest_in_grid(const Cloud& c, const CellGrid& g, std::int64_t r, int k1, 
   const double bound = 0.98 * reach * reach;
   const std::int64_t x0 = std::max<std::int64_t>(ix[0] - 1, 0), x1 = std::min(ix[0] + 1, g.dims[0] - 1);
   const std::int64_t j0 = std::max<std::int64_t>(ix[1] - 1, 0), j1 = std::min(ix[1] + 1, g.dims[1] - 1);
-  const std::int64_t k0 = std::max<std::int64_t>(ix[2] - 1, 0), k1_ = std::min(ix[2] + 1, g.dims[2] - 1);
+  const std::int64_t z0 = std::max<std::int64_t>(ix[2] - 1, 0), z1 = std::min(ix[2] + 1, g.dims[2] - 1);
+  // A block crowded far beyond k1 (a dense spot in cells sized for the cloud's typical reach) goes to the kd-tree:
+  // every query there would measure against all of it.
+  std::size_t total = 0;
+  for (std::int64_t k = z0; k <= z1; ++k)
+    for (std::int64_t j = j0; j <= j1; ++j)
+      total += static_cast<std::size_t>(g.start[static_cast<std::size_t>(g.linear(x1, j, k)) + 1] -
+                                        g.start[static_cast<std::size_t>(g.linear(x0, j, k))]);
+  if (total > kMaxCandidatesPerNeighbour * static_cast<std::size_t>(k1)) return false;
   std::size_t n = 0;  // every candidate's distance first (a loop the compiler vectorises), then the near ones kept
-  for (std::int64_t k = k0; k <= k1_; ++k) {
+  for (std::int64_t k = z0; k <= z1; ++k) {
     for (std::int64_t j = j0; j <= j1; ++j) {
       // cells x0..x1 of row (j, k) are contiguous slots
       const auto a = static_cast<std::size_t>(g.start[static_cast<std::size_t>(g.linear(x0, j, k))]);
@@ -135,7 +141,7 @@ bool nearest_in_grid(const Cloud& c, const CellGrid& g, std::int64_t r, int k1, 
       if (buf.size() < n + (b - a)) buf.resize(2 * (n + (b - a)));
       float* out = buf.data() + n;
       const float *xs = g.x.data(), *ys = g.y.data(), *zs = g.z.data();
-      for (std::size_t s = a; s < b; ++s) out[s - a] = squared_distance(p, xs[s], ys[s], zs[s]);
+      for (std::size_t s = a; s < b; ++s) out[s - a] = flann_squared(p, xs[s], ys[s], zs[s]);
       n += b - a;
     }
   }
@@ -188,8 +194,15 @@ KnnDistances knn_mean_distances(const Cloud::ConstPtr& cloud, int k) {
   });
   CellGrid grid;
   const double reach = finite && n > k1 ? typical_reach(*cloud, k1) : 0.0;
-  // cells of one and a half reaches: most points' k1 nearest lie inside their 27; at most 8 cells a point
-  if (reach > 0 && make_grid(*cloud, 1.5 * reach, 32.0 * static_cast<double>(n) + 1e5, grid)) {
+  // Cells of one and a half reaches (most points' k1 nearest lie inside their 27), or wider where the cloud's box
+  // would need more than 16 cells a point (a far stray point): at most 64 bytes of table a point.
+  const double max_cells = 16.0 * static_cast<double>(n) + 1e5;
+  bool gridded = false;
+  if (reach > 0) {
+    double h = 1.5 * reach;
+    for (int tries = 0; tries < 8 && !gridded; ++tries, h *= 2.0) gridded = make_grid(*cloud, h, max_cells, grid);
+  }
+  if (gridded) {
     std::vector<char> found(static_cast<std::size_t>(n), 0);
 #pragma omp parallel
     {

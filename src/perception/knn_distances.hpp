@@ -18,10 +18,12 @@ struct KnnDistances {
 
 /// PCL's statistic bit for bit: a point's k + 1 nearest (itself first) by FLANN's float squared distances
 /// (x, then y, then z), their square roots summed in double from the nearest, divided by k. The neighbours are
-/// searched in a uniform grid (cells about one and a half times the typical reach of k + 1 neighbours, the 27
-/// cells around a point): a point's result is taken from the grid only when its (k + 1)-th nearest there is
-/// nearer than anything outside those cells can be; the other points, a cloud with a non-finite point, one of
-/// k + 1 points or fewer, or one that would need too many cells, are searched in PCL's kd-tree. Parallel (OpenMP).
+/// searched in a uniform grid (cells about one and a half times the typical reach of k + 1 neighbours, wider where
+/// the cloud's box would need over 16 cells a point; the 27 cells around a point): a point's result is taken from
+/// the grid only when its (k + 1)-th nearest there is nearer than anything outside those cells can be. PCL's
+/// kd-tree searches the other points, those whose 27 cells hold over 32 (k + 1) points (a dense spot: no query
+/// scans a crowd), and every point of a cloud with a non-finite point, of k + 1 points or fewer, or too wide for
+/// the grid. Parallel (OpenMP).
 KnnDistances knn_mean_distances(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& cloud, int k);
 
 }  // namespace graspmix::detail

@@ -355,14 +355,24 @@ TEST(StatisticalInliers, MatchPclOutlierRemoval) {
 }
 
 // The outlier statistic against brute force in FLANN's and PCL's arithmetic (every float squared distance, the
-// k + 1 least in increasing order, the square roots of all but the first summed in double): the same number for
-// every point, bit for bit, whether the grid vouched for it or the kd-tree searched it (both happen here), on a
-// scene's surfaces, on blobs in scattered noise and with duplicated points.
-TEST(KnnMeanDistances, MatchBruteForceBitForBit) {
-  const detail::Cloud::Ptr surfaces = surface_cloud(8, 8);
+// k + 1 least in increasing order, the square roots of all but the first summed in double) and against PCL's own
+// kd-tree's k + 1 nearest summed the same way: the same number for every point, bit for bit, whether the grid
+// vouched for it or the kd-tree searched it (both happen here), on a scene's surfaces, on blobs in scattered noise,
+// with duplicated points, on a dense blob beside a sparse sheet (crowded cells go to the tree) and with a far stray
+// point (wider cells).
+TEST(KnnMeanDistances, MatchBruteForceAndPclBitForBit) {
+  std::mt19937_64 rng(14);
+  std::uniform_real_distribution<float> u(-0.5f, 0.5f);
+  detail::Cloud::Ptr uneven(new detail::Cloud);
+  for (int i = 0; i < 1500; ++i) uneven->push_back(pcl::PointXYZ(0.005f * u(rng), 0.005f * u(rng), 0.005f * u(rng)));
+  for (int i = 0; i < 1500; ++i) uneven->push_back(pcl::PointXYZ(u(rng), u(rng), 0.1f));
+  detail::Cloud::Ptr stray = blobs(15, 4, 300, 300);
+  stray->push_back(pcl::PointXYZ(400.0f, 0.0f, 0.0f));
   int from_grid = 0, from_tree = 0;
-  for (const auto& cloud : {surfaces, blobs(10, 8, 300, 1500), with_duplicates(9)}) {
+  for (const auto& cloud : {surface_cloud(8, 8), blobs(10, 8, 300, 1500), with_duplicates(9), uneven, stray}) {
     const std::size_t n = cloud->size();
+    pcl::KdTreeFLANN<pcl::PointXYZ> tree;
+    tree.setInputCloud(cloud);
     std::vector<float> d2(n);
     for (const int k : {1, 8, 20}) {
       const detail::KnnDistances got = detail::knn_mean_distances(cloud, k);
@@ -370,6 +380,8 @@ TEST(KnnMeanDistances, MatchBruteForceBitForBit) {
       EXPECT_EQ(got.valid, static_cast<int>(n));
       from_grid += static_cast<int>(n) - got.from_tree;
       from_tree += got.from_tree;
+      pcl::Indices nn;
+      std::vector<float> pcl_d2;
       for (std::size_t i = 0; i < n; ++i) {
         const auto& p = (*cloud)[i];
         for (std::size_t j = 0; j < n; ++j) {
@@ -381,9 +393,14 @@ TEST(KnnMeanDistances, MatchBruteForceBitForBit) {
           d2[j] = s;
         }
         std::partial_sort(d2.begin(), d2.begin() + k + 1, d2.end());
-        double sum = 0;
-        for (int j = 1; j <= k; ++j) sum += std::sqrt(d2[static_cast<std::size_t>(j)]);
+        ASSERT_EQ(tree.nearestKSearch(p, k + 1, nn, pcl_d2), k + 1);
+        double sum = 0, pcl_sum = 0;
+        for (int j = 1; j <= k; ++j) {
+          sum += std::sqrt(d2[static_cast<std::size_t>(j)]);
+          pcl_sum += std::sqrt(pcl_d2[static_cast<std::size_t>(j)]);
+        }
         ASSERT_EQ(got.mean[i], static_cast<float>(sum / k)) << n << " points, k " << k << ", point " << i;
+        ASSERT_EQ(got.mean[i], static_cast<float>(pcl_sum / k)) << n << " points, k " << k << ", point " << i;
       }
     }
   }

@@ -209,10 +209,10 @@ SpaceState VisibilityModel::state(const Eigen::Vector3d& p) const {
 }
 
 std::vector<SpaceState> VisibilityModel::classify(const Eigen::Ref<const Vec3Array>& points) const {
+  const Eigen::VectorXd d = signed_distances(points);  // state(p) is the state of p's distance
   std::vector<SpaceState> out(static_cast<std::size_t>(points.rows()));
-  const Eigen::Index n = points.rows();
-#pragma omp parallel for schedule(static) if (n >= 4096)
-  for (Eigen::Index i = 0; i < n; ++i) out[static_cast<std::size_t>(i)] = state(points.row(i).transpose());
+  for (Eigen::Index i = 0; i < d.size(); ++i)
+    out[static_cast<std::size_t>(i)] = state_of_distance(d[i], settings_.surface_tolerance);
   return out;
 }
 

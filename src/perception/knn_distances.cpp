@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <utility>
 
 #include <pcl/search/kdtree.h>
 
@@ -124,26 +125,28 @@ bool nearest_in_grid(const Cloud& c, const CellGrid& g, std::int64_t r, int k1, 
   const std::int64_t x0 = std::max<std::int64_t>(ix[0] - 1, 0), x1 = std::min(ix[0] + 1, g.dims[0] - 1);
   const std::int64_t j0 = std::max<std::int64_t>(ix[1] - 1, 0), j1 = std::min(ix[1] + 1, g.dims[1] - 1);
   const std::int64_t z0 = std::max<std::int64_t>(ix[2] - 1, 0), z1 = std::min(ix[2] + 1, g.dims[2] - 1);
-  // A block crowded far beyond k1 (a dense spot in cells sized for the cloud's typical reach) goes to the kd-tree:
-  // every query there would measure against all of it.
-  std::size_t total = 0;
+  // The block's slots: the cells x0..x1 of each row (j, k) are contiguous.
+  std::array<std::pair<std::size_t, std::size_t>, 9> runs{};
+  std::size_t n_runs = 0, total = 0;
   for (std::int64_t k = z0; k <= z1; ++k)
-    for (std::int64_t j = j0; j <= j1; ++j)
-      total += static_cast<std::size_t>(g.start[static_cast<std::size_t>(g.linear(x1, j, k)) + 1] -
-                                        g.start[static_cast<std::size_t>(g.linear(x0, j, k))]);
-  if (total > kMaxCandidatesPerNeighbour * static_cast<std::size_t>(k1)) return false;
-  std::size_t n = 0;  // every candidate's distance first (a loop the compiler vectorises), then the near ones kept
-  for (std::int64_t k = z0; k <= z1; ++k) {
     for (std::int64_t j = j0; j <= j1; ++j) {
-      // cells x0..x1 of row (j, k) are contiguous slots
       const auto a = static_cast<std::size_t>(g.start[static_cast<std::size_t>(g.linear(x0, j, k))]);
       const auto b = static_cast<std::size_t>(g.start[static_cast<std::size_t>(g.linear(x1, j, k)) + 1]);
-      if (buf.size() < n + (b - a)) buf.resize(2 * (n + (b - a)));
-      float* out = buf.data() + n;
-      const float *xs = g.x.data(), *ys = g.y.data(), *zs = g.z.data();
-      for (std::size_t s = a; s < b; ++s) out[s - a] = flann_squared(p, xs[s], ys[s], zs[s]);
-      n += b - a;
+      runs[n_runs++] = {a, b};
+      total += b - a;
     }
+  // A block crowded far beyond k1 (a dense spot in cells sized for the cloud's typical reach) goes to the kd-tree:
+  // every query there would measure against all of it.
+  if (total > kMaxCandidatesPerNeighbour * static_cast<std::size_t>(k1)) return false;
+  if (buf.size() < total) buf.resize(2 * total);
+  // every candidate's distance first (a loop the compiler vectorises), then the near ones kept
+  const float *xs = g.x.data(), *ys = g.y.data(), *zs = g.z.data();
+  std::size_t n = 0;
+  for (std::size_t t = 0; t < n_runs; ++t) {
+    const auto [a, b] = runs[t];
+    float* out = buf.data() + n;
+    for (std::size_t s = a; s < b; ++s) out[s - a] = flann_squared(p, xs[s], ys[s], zs[s]);
+    n += b - a;
   }
   const auto limit = static_cast<float>(bound);  // float(bound) <= bound * (1 + 2^-24): still inside the margin
   std::size_t m = 0;

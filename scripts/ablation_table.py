@@ -43,6 +43,8 @@ def load(run: Path, trials: int | None) -> dict:
 
 def mcnemar(base: dict, other: dict, method: str) -> str:
     keys = [k for k in other if k in base and k[3] == method]
+    if not keys:
+        return "n/a (no such attempts in the base run)"
     up = sum(other[k][0] > base[k][0] for k in keys)
     down = sum(other[k][0] < base[k][0] for k in keys)
     return f"+{up} / -{down}, p = {mcnemar_exact(up, down):.2g}"

@@ -30,6 +30,10 @@ void bind_contact_quality(py::module_& m) {
       .field("concentration", &ContactQualitySettings::concentration,
              "nats per radian beyond the friction cone, per contact")
       .field("air_penalty", &ContactQualitySettings::air_penalty, "nats per finger that closes on nothing")
+      .field("patch_points", &ContactQualitySettings::patch_points,
+             "a finger's contact patch of fewer cloud points than this is charged (0: off)")
+      .field("patch_penalty", &ContactQualitySettings::patch_penalty,
+             "nats: a patch of n < patch_points points costs patch_penalty * (1 - n / patch_points)")
       .field("contact_tolerance", &ContactQualitySettings::contact_tolerance,
              "m: points within this of a link's surface are in contact")
       .field("closing_steps", &ContactQualitySettings::closing_steps,
@@ -64,8 +68,10 @@ void bind_contact_quality(py::module_& m) {
   py::class_<ContactQualityExpert, Expert, std::shared_ptr<ContactQualityExpert>>(
       m, "ContactQualityExpert",
       "Soft: close the hand from each grasp's pre-grasp until each finger meets the cloud, then\n"
-      "log E = -concentration * sum_i max(0, theta_i - atan(friction)) - air_penalty * (fingers on nothing),\n"
-      "theta_i the angle between contact i's normal axis and the line between the contacts\n"
+      "log E = -concentration * sum_i max(0, theta_i - atan(friction)) - air_penalty * (fingers on nothing)\n"
+      "        - patch_penalty * sum_f max(0, 1 - patch_f / patch_points) (fingers that touch),\n"
+      "theta_i the angle between contact i's normal axis and the line between the contacts, patch_f the points\n"
+      "in finger f's contact patch\n"
       "(include/graspmix/grasp/contact_quality.hpp).")
       .def(py::init([](HandPtr hand, const py::object& points, const py::object& normals, const ConfigModel& config,
                        const py::object& settings, const py::kwargs& kw) {

@@ -3075,12 +3075,14 @@ class ContactQualitySettings:
       friction = 0.5: Coulomb coefficient mu (> 0): the friction cone's half-angle is atan(mu)
       concentration = 10.0: nats per radian beyond the friction cone, per contact
       air_penalty = 40.0: nats per finger that closes on nothing
+      patch_points = 30.0: a finger's contact patch of fewer cloud points than this is charged (0: off)
+      patch_penalty = 20.0: nats: a patch of n < patch_points points costs patch_penalty * (1 - n / patch_points)
       contact_tolerance = 0.001: m: points within this of a link's surface are in contact
       closing_steps = 16: steps of the closing motion before bisection (links that do not translate)
       name = 'contact_quality': the key of its term in a grasp's experts table
     """
     __hash__: typing.ClassVar[None] = None
-    _fields: typing.ClassVar[tuple] = ('friction', 'concentration', 'air_penalty', 'contact_tolerance', 'closing_steps', 'name')
+    _fields: typing.ClassVar[tuple] = ('friction', 'concentration', 'air_penalty', 'patch_points', 'patch_penalty', 'contact_tolerance', 'closing_steps', 'name')
     def __copy__(self) -> ContactQualitySettings:
         ...
     def __deepcopy__(self, memo: typing.Any) -> ContactQualitySettings:
@@ -3097,7 +3099,7 @@ class ContactQualitySettings:
     @typing.overload
     def __init__(self, **kwargs) -> None:
         """
-        Keyword constructor: any of the fields (friction, concentration, air_penalty, contact_tolerance, closing_steps, name); the others keep their defaults.
+        Keyword constructor: any of the fields (friction, concentration, air_penalty, patch_points, patch_penalty, contact_tolerance, closing_steps, name); the others keep their defaults.
         """
     def __repr__(self) -> str:
         ...
@@ -3151,6 +3153,22 @@ class ContactQualitySettings:
     @name.setter
     def name(self, arg0: typing.Any) -> None:
         ...
+    @property
+    def patch_penalty(self) -> float:
+        """
+        nats: a patch of n < patch_points points costs patch_penalty * (1 - n / patch_points)
+        """
+    @patch_penalty.setter
+    def patch_penalty(self, arg0: typing.Any) -> None:
+        ...
+    @property
+    def patch_points(self) -> float:
+        """
+        a finger's contact patch of fewer cloud points than this is charged (0: off)
+        """
+    @patch_points.setter
+    def patch_points(self, arg0: typing.Any) -> None:
+        ...
 class ContactQualityResult:
     """
     The contacts of N grasps, F finger links each (expert.finger_links order).
@@ -3198,8 +3216,10 @@ class ContactQualityResult:
 class ContactQualityExpert(Expert):
     """
     Soft: close the hand from each grasp's pre-grasp until each finger meets the cloud, then
-    log E = -concentration * sum_i max(0, theta_i - atan(friction)) - air_penalty * (fingers on nothing),
-    theta_i the angle between contact i's normal axis and the line between the contacts
+    log E = -concentration * sum_i max(0, theta_i - atan(friction)) - air_penalty * (fingers on nothing)
+            - patch_penalty * sum_f max(0, 1 - patch_f / patch_points) (fingers that touch),
+    theta_i the angle between contact i's normal axis and the line between the contacts, patch_f the points
+    in finger f's contact patch
     (include/graspmix/grasp/contact_quality.hpp).
     """
     def __init__(self, hand: Hand, points: typing.Any, normals: typing.Any, pregrasp_config: ConfigModel, *, settings: typing.Any = None, **kwargs) -> None:
@@ -3211,6 +3231,8 @@ class ContactQualityExpert(Expert):
           friction = 0.5: Coulomb coefficient mu (> 0): the friction cone's half-angle is atan(mu)
           concentration = 10.0: nats per radian beyond the friction cone, per contact
           air_penalty = 40.0: nats per finger that closes on nothing
+          patch_points = 30.0: a finger's contact patch of fewer cloud points than this is charged (0: off)
+          patch_penalty = 20.0: nats: a patch of n < patch_points points costs patch_penalty * (1 - n / patch_points)
           contact_tolerance = 0.001: m: points within this of a link's surface are in contact
           closing_steps = 16: steps of the closing motion before bisection (links that do not translate)
           name = 'contact_quality': the key of its term in a grasp's experts table

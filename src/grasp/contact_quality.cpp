@@ -30,6 +30,12 @@ void check_settings(const ContactQualitySettings& s) {
   if (!(s.air_penalty >= 0.0) || !std::isfinite(s.air_penalty)) {
     throw std::invalid_argument(w + "air_penalty must be finite and >= 0");
   }
+  if (!(s.patch_points >= 0.0) || !std::isfinite(s.patch_points)) {
+    throw std::invalid_argument(w + "patch_points must be finite and >= 0");
+  }
+  if (!(s.patch_penalty >= 0.0) || !std::isfinite(s.patch_penalty)) {
+    throw std::invalid_argument(w + "patch_penalty must be finite and >= 0");
+  }
   if (!(s.contact_tolerance >= 0.0) || !std::isfinite(s.contact_tolerance)) {
     throw std::invalid_argument(w + "contact_tolerance must be finite and >= 0");
   }
@@ -57,9 +63,15 @@ double score(const std::vector<Contact>& contacts, const ContactQualitySettings&
   const double cone = std::atan(s.friction);
   const int F = static_cast<int>(contacts.size());
   int air = 0;
+  double small = 0.0;  // the small patches' charge
   for (int f = 0; f < F; ++f) {
     angles[f] = kNaN;
-    if (contacts[static_cast<size_t>(f)].patch == 0) ++air;
+    const int patch = contacts[static_cast<size_t>(f)].patch;
+    if (patch == 0) {
+      ++air;
+    } else if (s.patch_points > 0.0) {
+      small += s.patch_penalty * std::max(0.0, 1.0 - patch / s.patch_points);
+    }
   }
   double best = kInf;
   int ba = -1, bb = -1;
@@ -87,7 +99,7 @@ double score(const std::vector<Contact>& contacts, const ContactQualitySettings&
       }
     }
   }
-  double cost = s.air_penalty * air;
+  double cost = s.air_penalty * air + small;
   if (ba >= 0) {
     angles[ba] = best_th[0];
     angles[bb] = best_th[1];

@@ -1,6 +1,7 @@
 // The contact-quality expert against analytic contacts: the WSG 50 (palm z the approach, fingers closing
 // along x, inner faces at x = -+q, 80.5-153.5 mm above the flange) closing on sampled boxes, spheres and
 // cylinders with exact normals.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -126,7 +127,11 @@ TEST(ContactQuality, BoxAcrossParallelFacesHoldsAndContactsWhereTheGapIsItsWidth
 TEST(ContactQuality, SphereThroughItsCentreHoldsAndShallowGraspsFailPastTheCone) {
   const double R = 0.03;
   const Cloud c = sphere(kCentre, R, 4000);
-  const ContactQualityExpert e(wsg50(), c.p, c.n, opening());
+  // The cone term alone: the fingertips' edges below press on a few points each, which the patch term charges
+  // (SmallPatchesAreChargedByTheirShortfall).
+  ContactQualitySettings cone_only;
+  cone_only.patch_points = 0.0;
+  const ContactQualityExpert e(wsg50(), c.p, c.n, opening(), cone_only);
   EXPECT_NEAR(e.log_value({wrist(Eigen::Vector3d::Zero()), joint(0.02)})[0], 0.0, 1e-12);
   // Centre h above the fingertips (153.5 mm): their edges touch the sphere where its normal is tilted by
   // asin((h - tol) / R) from the closing axis.
@@ -152,6 +157,7 @@ TEST(ContactQuality, FrictionWidensTheCone) {
   for (const double mu : {0.3, 0.5, 0.7, 1.0}) {
     ContactQualitySettings s;
     s.friction = mu;
+    s.patch_points = 0.0;  // the cone term alone (the fingertips' edges touch few points)
     const double v = ContactQualityExpert(wsg50(), c.p, c.n, opening(), s).log_value({w, joint(0.02)})[0];
     EXPECT_GE(v, last) << mu;
     if (mu <= 0.5) {
@@ -203,6 +209,43 @@ TEST(ContactQuality, NothingBetweenTheFingersCostsTwoAirPenalties) {
   EXPECT_EQ(one.log_value({wrist(Eigen::Vector3d(0.0, 0.0, 0.0)), joint(0.02)})[0], -3.5);
 }
 
+TEST(ContactQuality, SmallPatchesAreChargedByTheirShortfall) {
+  // A box across two parallel faces: each finger presses a face of about 17 x 19 points (the face's 2 mm grid
+  // under the 30 mm wide finger, the 2 tol band around it), far more than the default patch_points: no charge.
+  const Cloud flat = box(kCentre, Eigen::Vector3d(0.02, 0.02, 0.02), 0.002);
+  const ContactQualityExpert on_faces(wsg50(), flat.p, flat.n, opening());
+  const ContactQualityResult faces = on_faces.evaluate(wrist(Eigen::Vector3d::Zero()), joint(0.015));
+  ASSERT_GT(faces.patch_size.minCoeff(), ContactQualitySettings{}.patch_points);
+  EXPECT_EQ(faces.log_value[0], 0.0);
+  // A sphere through its centre: antipodal contacts (angle 0), each on a small cap. With the patch term off the
+  // grasp scores 0; with it on, exactly patch_penalty * (1 - n_f / patch_points) a finger, n_f its cap's points.
+  const Cloud ball = sphere(kCentre, 0.03, 4000);
+  ContactQualitySettings s;
+  s.patch_points = 0.0;
+  const ContactQualityResult off =
+      ContactQualityExpert(wsg50(), ball.p, ball.n, opening(), s).evaluate(wrist(Eigen::Vector3d::Zero()), joint(0.02));
+  EXPECT_EQ(off.log_value[0], 0.0);
+  s.patch_points = 1000.0;
+  s.patch_penalty = 3.0;
+  const ContactQualityResult on =
+      ContactQualityExpert(wsg50(), ball.p, ball.n, opening(), s).evaluate(wrist(Eigen::Vector3d::Zero()), joint(0.02));
+  ASSERT_EQ(on.patch_size, off.patch_size);
+  double expected = 0.0;
+  for (int f = 0; f < 2; ++f) {
+    ASSERT_GT(on.patch_size(0, f), 0);
+    ASSERT_LT(on.patch_size(0, f), 1000);
+    expected -= 3.0 * (1.0 - on.patch_size(0, f) / 1000.0);
+  }
+  EXPECT_NEAR(on.log_value[0], expected, 1e-12);
+  // A finger on nothing pays the air penalty only (no patch term for it): the one-finger box of the air test.
+  const Cloud side = box(Eigen::Vector3d(-0.02, 0.0, 0.12), Eigen::Vector3d(0.01, 0.02, 0.02), 0.002);
+  s.air_penalty = 3.5;
+  const ContactQualityResult one =
+      ContactQualityExpert(wsg50(), side.p, side.n, opening(), s).evaluate(wrist(Eigen::Vector3d::Zero()), joint(0.02));
+  ASSERT_EQ(one.patch_size(0, 1), 0);
+  EXPECT_NEAR(one.log_value[0], -3.5 - 3.0 * std::max(0.0, 1.0 - one.patch_size(0, 0) / 1000.0), 1e-12);
+}
+
 TEST(ContactQuality, SteppedClosingAgreesWithTheExactOne) {
   // The finger's box replaced by a sphere of radius 10 mm: not all boxes, so closing steps and bisects.
   std::ifstream in((kRepo / "data" / "hands" / "wsg50.urdf").string());
@@ -243,6 +286,14 @@ TEST(ContactQuality, BadInputThrows) {
   s = {};
   s.closing_steps = 0;
   EXPECT_THROW(make(s), std::invalid_argument);
+  for (const double bad : {-1.0, std::nan(""), std::numeric_limits<double>::infinity()}) {
+    s = {};
+    s.patch_points = bad;
+    EXPECT_THROW(make(s), std::invalid_argument) << bad;
+    s = {};
+    s.patch_penalty = bad;
+    EXPECT_THROW(make(s), std::invalid_argument) << bad;
+  }
   EXPECT_THROW(ContactQualityExpert(wsg50(), c.p, c.n.topRows(3), opening()), std::invalid_argument);
   Vec3Array zero = c.n;
   zero.row(2).setZero();

@@ -73,8 +73,11 @@ def test_box_across_faces_scores_zero_and_meets_it_where_the_gap_is_its_width(ha
 def test_sphere_through_its_centre_scores_zero_and_off_centre_worse_with_the_offset(hand, opening):
     R = 0.03
     P, N = sphere(CENTRE, R)
-    e = graspmix.ContactQualityExpert(hand, P, N, opening)
+    e = graspmix.ContactQualityExpert(hand, P, N, opening, patch_points=0.0)  # the cone term alone
+    with_patches = graspmix.ContactQualityExpert(hand, P, N, opening)  # the defaults: small patches charged too
+    defaults = graspmix.ContactQualitySettings()
     assert e.log_value(wrist(), [[0.02]])[0] == 0.0
+    assert with_patches.log_value(wrist(), [[0.02]])[0] == 0.0  # through the centre each finger presses a wide cap
     # The centre h beyond the fingertips: their edges touch where the normal is asin((h - tol) / R) off the
     # closing axis.
     values = []
@@ -85,6 +88,12 @@ def test_sphere_through_its_centre_scores_zero_and_off_centre_worse_with_the_off
         np.testing.assert_allclose(r.angles[0], alpha, atol=0.05)
         np.testing.assert_allclose(r.log_value[0], -20 * (alpha - CONE), atol=1.5)
         values.append(r.log_value[0])
+        # An edge presses on few points: each finger's shortfall below patch_points charged on top.
+        both = with_patches.evaluate(wrist([0, 0, CENTRE[2] - TIP - h]), [[0.02]])
+        np.testing.assert_array_equal(both.patch_size, r.patch_size)
+        short = np.clip(1 - r.patch_size[0] / defaults.patch_points, 0, None)
+        assert short.min() > 0
+        np.testing.assert_allclose(both.log_value[0], r.log_value[0] - defaults.patch_penalty * short.sum(), atol=1e-12)
     assert 0 > values[0] > values[1] > values[2]
 
 
@@ -122,7 +131,7 @@ def test_more_friction_accepts_what_less_rejects(hand, opening):
     P, N = sphere(CENTRE, 0.03)
     w = wrist([0, 0, CENTRE[2] - TIP - 0.03 * np.sin(np.radians(35)) - 1e-3])  # contacts 35 degrees off
     values = [
-        graspmix.ContactQualityExpert(hand, P, N, opening, friction=mu).log_value(w, [[0.02]])[0]
+        graspmix.ContactQualityExpert(hand, P, N, opening, friction=mu, patch_points=0.0).log_value(w, [[0.02]])[0]
         for mu in (0.3, 0.5, 0.7, 1.0)
     ]
     assert values == sorted(values) and values[1] < -0.5 and values[3] == 0.0

@@ -87,8 +87,9 @@ def pads_on_the_box(model, acq, grasp) -> bool:
 def test_the_best_grasps_on_a_box_seen_from_one_side_hold_it_from_both_sides(box_urdf, seen_box):
     """Five views of the box (turned, noisy): of the best five grasps of each, those whose pads both end on the true
     box (the finger on the unseen side went where the box really is) are at least 20 of 25 with completion and
-    more than without it (15 of 25 when this test was written). The completion's geometry alone: the solid volume
-    and the soft charge of unseen space are off in both. The charge keeps the back finger out of the unseen side,
+    more than without it (15 of 25 when this test was written). The completion's geometry alone: the solid volume,
+    the soft charge of unseen space and contact quality's charge of small patches are off in both (with the last on,
+    17 of 25 against 12: it prefers the box's faces seen whole, not where the completion put the back). The charge keeps the back finger out of the unseen side,
     often more than the 1.5 cm this test allows (10 of 25 with the defaults when they took it; the closing covers
     the travel), which is not what is tested here."""
     _, model = seen_box
@@ -99,7 +100,9 @@ def test_the_best_grasps_on_a_box_seen_from_one_side_hold_it_from_both_sides(box
             cameras=[Camera(eye=EYE)], keep="scene", object_orientation=(0.0, 0.0, np.sin(yaw / 2), np.cos(yaw / 2))
         )
         acq = acquire(urdf, noise=True, seed=seed, settings=settings)
-        no_charge = SynthesisOptions().updated({"collision.volume": False, "collision.unseen_weight": 0.0})
+        no_charge = SynthesisOptions().updated(
+            {"collision.volume": False, "collision.unseen_weight": 0.0, "contact_quality.patch_points": 0.0}
+        )
         for key, opts in (("on", no_charge), ("off", no_charge.updated({"completion": None}))):
             grasps = model.synthesize(acq.points, opts, viewpoints=acq.viewpoints)
             counts[key] += sum(pads_on_the_box(model, acq, g) for g in grasps.grasps[:5])

@@ -41,6 +41,15 @@ PAGES = {
         "lever-clutter-dev",
         "split-clutter",
         "split-heldout",
+        "patch-test60",
+        "patch-test60-kde",
+        "patch-dev",
+        "patch-dev-four-views",
+        "patch-clutter-dev",
+        "patch-heldout",
+        "patch-heldout-kde",
+        "patch-four-views",
+        "patch-clutter",
     },
 }
 SCRIPTS = ("scripts/findings_table.py", "scripts/ablation_table.py", "scripts/clutter_table.py")

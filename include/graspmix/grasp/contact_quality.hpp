@@ -60,8 +60,9 @@ struct ContactQualitySettings {
   /// patch_points points costs patch_penalty * (1 - its points / patch_points) nats: a pad that touches an edge, a
   /// corner or a strongly curved spot resists the object's turning about the grasp line far less than one pressed
   /// flat on a face, and such grasps were the commonest "not held". 30 points are 2.7 cm2 at the segmentation's
-  /// 3 mm spacing (a ninth of the WSG 50's pad). Chosen on the development sets (docs/one-view.md, "A finger on a
-  /// small patch"): one view, GMM, test60 83.5 -> 88.2% (+44 / -16), clutter_dev 89.7 -> 90.7%; 0 points: off.
+  /// 3 mm spacing (an eighth of the WSG 50's 30 x 73 mm pad). Chosen on the development sets (docs/one-view.md,
+  /// "A finger on a small patch"): one view, GMM, test60 83.5 -> 88.2% (+44 / -16), clutter_dev 89.7 -> 90.7%;
+  /// 0 points: off.
   double patch_points = 30.0;
   double patch_penalty = 20.0;
   double contact_tolerance = 1e-3;       ///< m: points within this of a link's surface are in contact (>= 0)

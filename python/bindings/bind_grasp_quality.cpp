@@ -69,9 +69,10 @@ void bind_contact_quality(py::module_& m) {
       m, "ContactQualityExpert",
       "Soft: close the hand from each grasp's pre-grasp until each finger meets the cloud, then\n"
       "log E = -concentration * sum_i max(0, theta_i - atan(friction)) - air_penalty * (fingers on nothing)\n"
-      "        - patch_penalty * sum_f max(0, 1 - patch_f / patch_points) (fingers that touch),\n"
+      "        - patch_penalty * sum_f max(0, 1 - patch_f / reference_f) (fingers that touch),\n"
       "theta_i the angle between contact i's normal axis and the line between the contacts, patch_f the points\n"
-      "in finger f's contact patch\n"
+      "in finger f's contact patch, reference_f = min(patch_points, what finger f meets of a flat face:\n"
+      "patch_reference)\n"
       "(include/graspmix/grasp/contact_quality.hpp).")
       .def(py::init([](HandPtr hand, const py::object& points, const py::object& normals, const ConfigModel& config,
                        const py::object& settings, const py::kwargs& kw) {
@@ -110,6 +111,9 @@ void bind_contact_quality(py::module_& m) {
           },
           "Names of the finger links.")
       .def_property_readonly("n_points", &ContactQualityExpert::n_points)
+      .def_property_readonly("patch_reference", &ContactQualityExpert::patch_reference,
+                             "Per finger, the patch size below which it is charged: min(patch_points, the patch it "
+                             "makes closing face-on onto a flat wall of the cloud's spacing).")
       .def_property_readonly(
           "settings", [](const ContactQualityExpert& e) { return ContactQualitySettings(e.settings()); },
           "The ContactQualitySettings it was built with (a copy).");

@@ -3217,9 +3217,10 @@ class ContactQualityExpert(Expert):
     """
     Soft: close the hand from each grasp's pre-grasp until each finger meets the cloud, then
     log E = -concentration * sum_i max(0, theta_i - atan(friction)) - air_penalty * (fingers on nothing)
-            - patch_penalty * sum_f max(0, 1 - patch_f / patch_points) (fingers that touch),
+            - patch_penalty * sum_f max(0, 1 - patch_f / reference_f) (fingers that touch),
     theta_i the angle between contact i's normal axis and the line between the contacts, patch_f the points
-    in finger f's contact patch
+    in finger f's contact patch, reference_f = min(patch_points, what finger f meets of a flat face:
+    patch_reference)
     (include/graspmix/grasp/contact_quality.hpp).
     """
     def __init__(self, hand: Hand, points: typing.Any, normals: typing.Any, pregrasp_config: ConfigModel, *, settings: typing.Any = None, **kwargs) -> None:
@@ -3254,6 +3255,11 @@ class ContactQualityExpert(Expert):
     @property
     def n_points(self) -> int:
         ...
+    @property
+    def patch_reference(self) -> list[float]:
+        """
+        Per finger, the patch size below which it is charged: min(patch_points, the patch it makes closing face-on onto a flat wall of the cloud's spacing).
+        """
     @property
     def settings(self) -> ContactQualitySettings:
         """

@@ -59,7 +59,8 @@ Eigen::VectorXd closed_configuration(const Eigen::VectorXd& p, const Eigen::Vect
 }
 
 /// log E of the contacts; the angles of the scored pair into `angles` (NaN elsewhere).
-double score(const std::vector<Contact>& contacts, const ContactQualitySettings& s, double* angles) {
+double score(const std::vector<Contact>& contacts, const ContactQualitySettings& s,
+             const std::vector<double>& reference, double* angles) {
   const double cone = std::atan(s.friction);
   const int F = static_cast<int>(contacts.size());
   int air = 0;
@@ -69,8 +70,8 @@ double score(const std::vector<Contact>& contacts, const ContactQualitySettings&
     const int patch = contacts[static_cast<size_t>(f)].patch;
     if (patch == 0) {
       ++air;
-    } else if (s.patch_points > 0.0) {
-      small += s.patch_penalty * std::max(0.0, 1.0 - patch / s.patch_points);
+    } else if (reference[static_cast<size_t>(f)] > 0.0) {
+      small += s.patch_penalty * std::max(0.0, 1.0 - patch / reference[static_cast<size_t>(f)]);
     }
   }
   double best = kInf;
@@ -108,7 +109,125 @@ double score(const std::vector<Contact>& contacts, const ContactQualitySettings&
   return cost > 0.0 ? -cost : 0.0;  // never -0
 }
 
+/// The cloud's spacing: the median distance from a point to its nearest neighbour, over up to 65 points spread
+/// through the grid's order (0: no point has a neighbour within a cell).
+double cloud_spacing(const detail::UniformGrid& grid) {
+  const int n = grid.size();
+  std::vector<double> nearest;
+  std::vector<int> nn;
+  std::vector<double> d2;
+  const double r2 = grid.cell_size() * grid.cell_size();
+  for (int i = 0; i < n; i += std::max(1, n / 64)) {
+    grid.neighbours(i, r2, nn, d2);
+    double best = kInf;
+    for (size_t k = 0; k < nn.size(); ++k)
+      if (nn[k] != i && d2[k] > 0.0) best = std::min(best, d2[k]);
+    if (std::isfinite(best)) nearest.push_back(std::sqrt(best));
+  }
+  if (nearest.empty()) return 0.0;
+  std::nth_element(nearest.begin(), nearest.begin() + static_cast<long>(nearest.size() / 2), nearest.end());
+  return nearest[nearest.size() / 2];
+}
+
+/// m: the side of the flat wall a finger is closed onto (ContactQualityExpert::patch_reference).
+constexpr double kWallSide = 0.2;
+
+/// A square of points `spacing` apart, kWallSide across, centred on `centre` and facing `normal` (unit): the
+/// points and their normals.
+std::pair<Vec3Array, Vec3Array> square_wall(const Eigen::Vector3d& centre, const Eigen::Vector3d& normal,
+                                            double spacing) {
+  const int side = static_cast<int>(std::floor(kWallSide / spacing)) + 1;
+  const Eigen::Vector3d u = normal.unitOrthogonal(), v = normal.cross(u);
+  const Eigen::Vector3d corner = centre - 0.5 * (side - 1) * spacing * (u + v);
+  Vec3Array wall(static_cast<Eigen::Index>(side) * side, 3), normals(wall.rows(), 3);
+  for (int i = 0; i < side; ++i) {
+    for (int j = 0; j < side; ++j) {
+      wall.row(static_cast<Eigen::Index>(i) * side + j) = (corner + spacing * (i * u + j * v)).transpose();
+      normals.row(static_cast<Eigen::Index>(i) * side + j) = normal.transpose();
+    }
+  }
+  return {std::move(wall), std::move(normals)};
+}
+
+/// The points that bound a link's collision shapes, in the link frame: a box's corners, a mesh's hull vertices, a
+/// cylinder's rims (16 points each), a sphere's 6 poles.
+std::vector<Eigen::Vector3d> shape_corners(const std::vector<CollisionShape>& shapes) {
+  std::vector<Eigen::Vector3d> out;
+  for (const CollisionShape& sh : shapes) {
+    const Eigen::Vector3d h = 0.5 * sh.size;
+    switch (sh.type) {
+      case ShapeType::Box:
+        for (int k = 0; k < 8; ++k)
+          out.push_back(sh.T_link_shape *
+                        Eigen::Vector3d(k & 1 ? h.x() : -h.x(), k & 2 ? h.y() : -h.y(), k & 4 ? h.z() : -h.z()));
+        break;
+      case ShapeType::Cylinder:
+        for (int k = 0; k < 32; ++k) {
+          const double a = 2.0 * M_PI * (k % 16) / 16.0;
+          out.push_back(sh.T_link_shape *
+                        Eigen::Vector3d(sh.size.x() * std::cos(a), sh.size.x() * std::sin(a), k < 16 ? -h.y() : h.y()));
+        }
+        break;
+      case ShapeType::Sphere:
+        for (int k = 0; k < 6; ++k)
+          out.push_back(sh.T_link_shape * (sh.size.x() * (k % 2 ? 1.0 : -1.0) * Eigen::Vector3d::Unit(k / 2)));
+        break;
+      case ShapeType::Mesh:
+        if (sh.hull)
+          for (Eigen::Index i = 0; i < sh.hull->vertices.rows(); ++i)
+            out.push_back(sh.T_link_shape * Eigen::Vector3d(sh.hull->vertices.row(i).transpose()));
+        break;
+    }
+  }
+  return out;
+}
+
 }  // namespace
+
+std::vector<double> ContactQualityExpert::flat_patches(double spacing) const {
+  const int F = static_cast<int>(fingers_.size());
+  std::vector<double> best(static_cast<size_t>(F), 0.0);
+  if (!(spacing > 0.0)) return best;
+  const Eigen::VectorXd q = config_.grasp(), p = config_.pregrasp_for(q);
+  const Eigen::VectorXd c = closed_configuration(p, q, config_.grasp() - config_.pregrasp(), hand_->joint_limits());
+  const Eigen::VectorXd q_on = q + 1e-3 * (c - p);  // a hair further along the closing
+  std::vector<Eigen::Isometry3d> at(static_cast<size_t>(hand_->n_links())), on(at.size());
+  hand_->fk_into(Eigen::Isometry3d::Identity(), q.data(), at.data());
+  hand_->fk_into(Eigen::Isometry3d::Identity(), q_on.data(), on.data());
+  ContactQualitySettings wall_settings = settings_;
+  wall_settings.patch_points = 0.0;  // (the wall's own expert needs no reference)
+  // Each finger's middle at the grasp (its shapes' bounds' mean: a link's origin may sit on its joint's axis).
+  std::vector<std::vector<Eigen::Vector3d>> corners(static_cast<size_t>(F));
+  std::vector<Eigen::Vector3d> middle(static_cast<size_t>(F), Eigen::Vector3d::Zero());
+  Eigen::Vector3d centre_of_fingers = Eigen::Vector3d::Zero();
+  for (int f = 0; f < F; ++f) {
+    const size_t l = static_cast<size_t>(fingers_[static_cast<size_t>(f)]);
+    for (const Eigen::Vector3d& x : shape_corners(hand_->links()[l].collisions)) corners[f].push_back(at[l] * x);
+    for (const Eigen::Vector3d& x : corners[f]) middle[f] += x / static_cast<double>(corners[f].size());
+    centre_of_fingers += middle[f] / F;
+  }
+  for (int f = 0; f < F; ++f) {
+    const size_t l = static_cast<size_t>(fingers_[static_cast<size_t>(f)]);
+    if (corners[f].empty()) continue;
+    // The finger presses towards the other fingers (the demonstration's box faces stand across that line); one
+    // finger alone, along its own motion.
+    const Eigen::Vector3d local_middle = at[l].inverse() * middle[f];
+    const Eigen::Vector3d motion =
+        F > 1 ? Eigen::Vector3d(centre_of_fingers - middle[f]) : Eigen::Vector3d(on[l] * local_middle - middle[f]);
+    if (!(motion.norm() > 1e-9)) continue;
+    const Eigen::Vector3d n = motion.normalized();
+    // The wall: a square facing that motion, touching the finger's foremost point at the grasp.
+    double front = -kInf;
+    for (const Eigen::Vector3d& x : corners[f]) front = std::max(front, n.dot(x));
+    const Eigen::Vector3d centre = middle[f] + (front - n.dot(middle[f])) * n;
+    const auto [wall, normals] = square_wall(centre, n, spacing);
+    const ContactQualityExpert on_wall(hand_, wall, normals, config_, wall_settings);
+    PoseArray wrist(1, 7);
+    wrist.row(0) = pose_to_vector(Eigen::Isometry3d::Identity()).transpose();
+    best[static_cast<size_t>(f)] = on_wall.evaluate(wrist, q.transpose()).patch_size(0, f);
+  }
+  return best;
+}
 
 ContactQualityExpert::ContactQualityExpert(std::shared_ptr<const Hand> hand, const Eigen::Ref<const Vec3Array>& points,
                                            const Eigen::Ref<const Vec3Array>& normals, ConfigModel config,
@@ -153,6 +272,12 @@ ContactQualityExpert::ContactQualityExpert(std::shared_ptr<const Hand> hand, con
   }
   if (fingers_.empty()) throw std::invalid_argument("ContactQualityExpert: the hand has no fingertip links");
   index_ = std::make_unique<const Index>(points, normals);
+  patch_reference_.assign(fingers_.size(), settings_.patch_points);
+  if (settings_.patch_points > 0.0) {
+    const std::vector<double> flat = flat_patches(cloud_spacing(index_->grid));
+    for (size_t f = 0; f < flat.size(); ++f)
+      if (flat[f] > 0.0) patch_reference_[f] = std::min(settings_.patch_points, flat[f]);
+  }
 }
 
 ContactQualityExpert::~ContactQualityExpert() = default;
@@ -219,7 +344,7 @@ ContactQualityResult ContactQualityExpert::evaluate(const Eigen::Ref<const PoseA
         r.normals.block<1, 3>(i, 3 * f) = ct.normal.transpose();
         r.patch_size(i, f) = ct.patch;
       }
-      r.log_value[i] = score(contacts, settings_, angles.data());
+      r.log_value[i] = score(contacts, settings_, patch_reference_, angles.data());
       r.angles.row(i) = angles.transpose();
     }
   }

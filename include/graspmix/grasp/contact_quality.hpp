@@ -27,8 +27,10 @@
 // The measure, "antipodal friction-cone deviation". For two contacts c1, c2 with normal axes n1, n2:
 //   d = unit(c2 - c1),  theta_i = acos(|n_i . d|)  (0 when the line of the grasp is along the normal),
 //   log E = -concentration * sum_i max(0, theta_i - atan(friction)) - air_penalty * (fingers without contact)
-//           - patch_penalty * sum_f max(0, 1 - |patch_f| / patch_points)  (fingers with contact),
-// the last term charging a finger that presses on few points (an edge, a corner, a sharply curved spot).
+//           - patch_penalty * sum_f max(0, 1 - |patch_f| / reference_f)  (fingers with contact),
+// the last term charging a finger that presses on few points (an edge, a corner, a sharply curved spot);
+// reference_f = min(patch_points, the patch finger f makes closing face-on onto a flat wall of the cloud's spacing),
+// so a fingertip smaller than patch_points' area is not charged on a flat face (patch_reference()).
 // With more than two contacts every pair is scored and the best pair counts (a pair inside its cones is
 // enough to hold); the Ferrari-Canny epsilon is not implemented. With fewer than two contacts only the air
 // and patch terms are charged. log E is finite and <= 0: a soft expert.
@@ -62,7 +64,8 @@ struct ContactQualitySettings {
   /// flat on a face, and such grasps were the commonest "not held". 30 points are 2.7 cm2 at the segmentation's
   /// 3 mm spacing (an eighth of the WSG 50's 30 x 73 mm pad). Chosen on the development sets (docs/one-view.md,
   /// "A finger on a small patch"): one view, GMM, test60 83.5 -> 88.2% (+44 / -16), clutter_dev 89.7 -> 90.7%;
-  /// 0 points: off.
+  /// 0 points: off. A finger whose pad cannot press on patch_points points of a flat face is measured against what
+  /// it can (ContactQualityExpert::patch_reference).
   double patch_points = 30.0;
   double patch_penalty = 20.0;
   double contact_tolerance = 1e-3;       ///< m: points within this of a link's surface are in contact (>= 0)
@@ -109,6 +112,11 @@ class ContactQualityExpert : public Expert {
   const ContactQualitySettings& settings() const { return settings_; }
   const ConfigModel& config() const { return config_; }
   Eigen::Index n_points() const;
+  /// Per finger, the patch below which it is charged: patch_points, or fewer for a finger whose pad cannot press on
+  /// that many: min(patch_points, flat_patches at the cloud's spacing, the median distance to a point's nearest
+  /// neighbour). At 3 mm the WSG 50's pads meet 286 points of a wall, the Panda's 60, the xArm's 159, the PR2
+  /// gripper's tips 7 (15 of the demonstration's box): only the PR2's reference is below 30.
+  const std::vector<double>& patch_reference() const { return patch_reference_; }
 
   struct Index;  ///< the cloud's grid and normals (defined in src/)
 
@@ -119,6 +127,12 @@ class ContactQualityExpert : public Expert {
   std::vector<int> fingers_;
   std::vector<bool> translating_;  ///< per finger: moved by prismatic joints only, box or mesh shapes only
   std::unique_ptr<const Index> index_;
+  std::vector<double> patch_reference_;
+  /// Per finger, the points of its patch on a flat wall of points `spacing` apart, set up as the demonstration's
+  /// box faces stand: the hand at the demonstrated grasp, the wall facing the line from the finger's middle to the
+  /// fingers' centre (one finger: its motion) and touching its foremost point, the hand closed from the pre-grasp
+  /// onto it; 0 for a finger without geometry or motion.
+  std::vector<double> flat_patches(double spacing) const;
 };
 
 }  // namespace graspmix

@@ -218,7 +218,8 @@ TEST(ContactQuality, SmallPatchesAreChargedByTheirShortfall) {
   ASSERT_GT(faces.patch_size.minCoeff(), ContactQualitySettings{}.patch_points);
   EXPECT_EQ(faces.log_value[0], 0.0);
   // A sphere through its centre: antipodal contacts (angle 0), each on a small cap. With the patch term off the
-  // grasp scores 0; with it on, exactly patch_penalty * (1 - n_f / patch_points) a finger, n_f its cap's points.
+  // grasp scores 0; with it on, exactly patch_penalty * (1 - n_f / reference_f) a finger, n_f its cap's points and
+  // reference_f = min(patch_points, what the pad meets of a flat face at the cloud's spacing; PatchReference...).
   const Cloud ball = sphere(kCentre, 0.03, 4000);
   ContactQualitySettings s;
   s.patch_points = 0.0;
@@ -227,14 +228,16 @@ TEST(ContactQuality, SmallPatchesAreChargedByTheirShortfall) {
   EXPECT_EQ(off.log_value[0], 0.0);
   s.patch_points = 1000.0;
   s.patch_penalty = 3.0;
-  const ContactQualityResult on =
-      ContactQualityExpert(wsg50(), ball.p, ball.n, opening(), s).evaluate(wrist(Eigen::Vector3d::Zero()), joint(0.02));
+  const ContactQualityExpert on_ball(wsg50(), ball.p, ball.n, opening(), s);
+  const ContactQualityResult on = on_ball.evaluate(wrist(Eigen::Vector3d::Zero()), joint(0.02));
   ASSERT_EQ(on.patch_size, off.patch_size);
   double expected = 0.0;
   for (int f = 0; f < 2; ++f) {
+    const double reference = on_ball.patch_reference()[static_cast<size_t>(f)];
     ASSERT_GT(on.patch_size(0, f), 0);
-    ASSERT_LT(on.patch_size(0, f), 1000);
-    expected -= 3.0 * (1.0 - on.patch_size(0, f) / 1000.0);
+    ASSERT_LT(on.patch_size(0, f), reference);
+    ASSERT_LE(reference, 1000.0);
+    expected -= 3.0 * (1.0 - on.patch_size(0, f) / reference);
   }
   EXPECT_NEAR(on.log_value[0], expected, 1e-12);
   // A finger on nothing pays the air penalty only (no patch term for it): the one-finger box of the air test.
@@ -243,7 +246,57 @@ TEST(ContactQuality, SmallPatchesAreChargedByTheirShortfall) {
   const ContactQualityResult one =
       ContactQualityExpert(wsg50(), side.p, side.n, opening(), s).evaluate(wrist(Eigen::Vector3d::Zero()), joint(0.02));
   ASSERT_EQ(one.patch_size(0, 1), 0);
-  EXPECT_NEAR(one.log_value[0], -3.5 - 3.0 * std::max(0.0, 1.0 - one.patch_size(0, 0) / 1000.0), 1e-12);
+  const ContactQualityExpert on_side(wsg50(), side.p, side.n, opening(), s);
+  const double reference = on_side.patch_reference()[0];
+  EXPECT_NEAR(one.log_value[0], -3.5 - 3.0 * std::max(0.0, 1.0 - one.patch_size(0, 0) / reference), 1e-12);
+}
+
+namespace {
+/// The WSG 50 with its fingers' 23 x 30 x 73 mm boxes cut to `pad` (x, y, z sizes, m), same origin.
+std::shared_ptr<const Hand> wsg50_with_pads(const std::string& pad) {
+  std::ifstream in((kRepo / "data" / "hands" / "wsg50.urdf").string());
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string xml = text.str();
+  const std::string from = "<box size=\"0.023 0.03 0.073\"/>", to = "<box size=\"" + pad + "\"/>";
+  int replaced = 0;
+  for (size_t at = xml.find(from); at != std::string::npos; at = xml.find(from, at), ++replaced)
+    xml.replace(at, from.size(), to);
+  EXPECT_EQ(replaced, 4);  // each finger's visual and collision
+  return std::make_shared<Hand>(Hand::from_urdf_string(xml, (kRepo / "data" / "hands").string()));
+}
+}  // namespace
+
+TEST(ContactQuality, PatchReferenceIsWhatThePadMeetsOfAFlatFace) {
+  // A 3 x 10 x 10 cm slab on a 3 mm grid, wider than the 30 x 73 mm pads: each finger's patch on its face is the
+  // pad's face grown by the patch band (2 tol = 2 mm) each side, (34 x 77 mm) / (3 mm)^2 = 291 points give or take
+  // the grid's phase. The reference, a flat wall at the cloud's spacing (3 mm, measured) facing the other finger,
+  // must find the same, and with the default patch_points (30, less) the reference is patch_points: the WSG 50's
+  // charge is what it was.
+  const Cloud slab = box(kCentre, Eigen::Vector3d(0.015, 0.05, 0.05), 0.003);
+  ContactQualitySettings s;
+  s.patch_points = 1000.0;
+  const ContactQualityExpert big(wsg50(), slab.p, slab.n, opening(), s);
+  const ContactQualityResult r = big.evaluate(wrist(Eigen::Vector3d::Zero()), joint(0.01));
+  for (int f = 0; f < 2; ++f) {
+    const double reference = big.patch_reference()[static_cast<size_t>(f)];
+    EXPECT_NEAR(reference, 34.0 * 77.0 / 9.0, 0.1 * 291.0) << f;
+    EXPECT_NEAR(reference, r.patch_size(0, f), 0.1 * r.patch_size(0, f)) << f;  // a row of 26 points either way
+  }
+  const ContactQualityExpert defaults(wsg50(), slab.p, slab.n, opening());
+  EXPECT_EQ(defaults.patch_reference(), std::vector<double>(2, ContactQualitySettings{}.patch_points));
+  // Pads of 6 x 6 mm: (10 mm)^2 / (3 mm)^2 = 11 points, fewer than patch_points. Pressed flat on the slab's faces
+  // they meet all they can and are not charged; on the sphere's small caps they are, by their shortfall from
+  // that reference (with it at 30 they would pay on the flat faces too).
+  const auto small = wsg50_with_pads("0.023 0.006 0.006");
+  const ContactQualityExpert small_on_slab(small, slab.p, slab.n, opening());
+  for (const double reference : small_on_slab.patch_reference()) EXPECT_NEAR(reference, 100.0 / 9.0, 4.0);
+  const ContactQualityResult flat = small_on_slab.evaluate(wrist(Eigen::Vector3d(0, 0, -0.04)), joint(0.01));
+  ASSERT_GT(flat.patch_size.minCoeff(), 0);
+  EXPECT_EQ(flat.log_value[0], 0.0);
+  ContactQualitySettings at_30;
+  at_30.patch_points = 30.0;
+  EXPECT_LT(ContactQualityExpert(small, slab.p, slab.n, opening(), at_30).patch_reference()[0], 30.0);
 }
 
 TEST(ContactQuality, SteppedClosingAgreesWithTheExactOne) {

@@ -95,6 +95,8 @@ def test_sphere_through_its_centre_scores_zero_and_off_centre_worse_with_the_off
         assert short.min() > 0
         np.testing.assert_allclose(both.log_value[0], r.log_value[0] - defaults.patch_penalty * short.sum(), atol=1e-12)
     assert 0 > values[0] > values[1] > values[2]
+    # The WSG 50's 30 x 73 mm pads meet far more of a flat face than patch_points: each finger's reference is it.
+    assert with_patches.patch_reference == [defaults.patch_points] * 2
 
 
 def test_cylinder_across_its_axis_scores_zero(hand, opening):

@@ -50,6 +50,9 @@ PAGES = {
         "patch-heldout-kde",
         "patch-four-views",
         "patch-clutter",
+        "lift-test60",
+        "lift-dev",
+        "lift-clutter-dev",
     },
 }
 SCRIPTS = ("scripts/findings_table.py", "scripts/ablation_table.py", "scripts/clutter_table.py")

@@ -129,14 +129,16 @@ double cloud_spacing(const detail::UniformGrid& grid) {
   return nearest[nearest.size() / 2];
 }
 
-/// m: the side of the flat wall a finger is closed onto (ContactQualityExpert::patch_reference).
-constexpr double kWallSide = 0.2;
+/// m: the finest spacing a finger's flat wall is built at (ContactQualityExpert::patch_reference); a denser cloud's
+/// count is this one's scaled by the squared ratio of the spacings (a patch's points are its area over the spacing
+/// squared), so a dense cloud does not make the wall slow.
+constexpr double kWallMinSpacing = 0.003;
 
-/// A square of points `spacing` apart, kWallSide across, centred on `centre` and facing `normal` (unit): the
-/// points and their normals.
-std::pair<Vec3Array, Vec3Array> square_wall(const Eigen::Vector3d& centre, const Eigen::Vector3d& normal,
+/// A square of points `spacing` apart, `across` wide, centred on `centre` and facing `normal` (unit): the points and
+/// their normals.
+std::pair<Vec3Array, Vec3Array> square_wall(const Eigen::Vector3d& centre, const Eigen::Vector3d& normal, double across,
                                             double spacing) {
-  const int side = static_cast<int>(std::floor(kWallSide / spacing)) + 1;
+  const int side = static_cast<int>(std::floor(across / spacing)) + 1;
   const Eigen::Vector3d u = normal.unitOrthogonal(), v = normal.cross(u);
   const Eigen::Vector3d corner = centre - 0.5 * (side - 1) * spacing * (u + v);
   Vec3Array wall(static_cast<Eigen::Index>(side) * side, 3), normals(wall.rows(), 3);
@@ -220,11 +222,19 @@ std::vector<double> ContactQualityExpert::flat_patches(double spacing) const {
     double front = -kInf;
     for (const Eigen::Vector3d& x : corners[f]) front = std::max(front, n.dot(x));
     const Eigen::Vector3d centre = middle[f] + (front - n.dot(middle[f])) * n;
-    const auto [wall, normals] = square_wall(centre, n, spacing);
+    // Wide enough for the finger's whole outline, two wall spacings to spare on each side.
+    double reach = 0.0;
+    for (const Eigen::Vector3d& x : corners[f]) {
+      const Eigen::Vector3d d = x - middle[f];
+      reach = std::max(reach, (d - n.dot(d) * n).norm());
+    }
+    const double wall_spacing = std::max(spacing, kWallMinSpacing);
+    const auto [wall, normals] = square_wall(centre, n, 2.0 * reach + 4.0 * wall_spacing, wall_spacing);
     const ContactQualityExpert on_wall(hand_, wall, normals, config_, wall_settings);
     PoseArray wrist(1, 7);
     wrist.row(0) = pose_to_vector(Eigen::Isometry3d::Identity()).transpose();
-    best[static_cast<size_t>(f)] = on_wall.evaluate(wrist, q.transpose()).patch_size(0, f);
+    const double scale = (wall_spacing / spacing) * (wall_spacing / spacing);
+    best[static_cast<size_t>(f)] = scale * on_wall.evaluate(wrist, q.transpose()).patch_size(0, f);
   }
   return best;
 }

@@ -114,8 +114,9 @@ class ContactQualityExpert : public Expert {
   Eigen::Index n_points() const;
   /// Per finger, the patch below which it is charged: patch_points, or fewer for a finger whose pad cannot press on
   /// that many: min(patch_points, flat_patches at the cloud's spacing, the median distance to a point's nearest
-  /// neighbour). At 3 mm the WSG 50's pads meet 286 points of a wall, the Panda's 60, the xArm's 159, the PR2
-  /// gripper's tips 7 (15 of the demonstration's box): only the PR2's reference is below 30.
+  /// neighbour; a denser cloud's counted on a 3 mm wall and scaled by the squared ratio of the spacings). At 3 mm the
+  /// WSG 50's pads meet 286 points of a wall, the Panda's 60, the xArm's 159, the PR2 gripper's tips 7 (15 of the
+  /// demonstration's box): only the PR2's reference is below 30.
   const std::vector<double>& patch_reference() const { return patch_reference_; }
 
   struct Index;  ///< the cloud's grid and normals (defined in src/)
@@ -128,7 +129,8 @@ class ContactQualityExpert : public Expert {
   std::vector<bool> translating_;  ///< per finger: moved by prismatic joints only, box or mesh shapes only
   std::unique_ptr<const Index> index_;
   std::vector<double> patch_reference_;
-  /// Per finger, the points of its patch on a flat wall of points `spacing` apart, set up as the demonstration's
+  /// Per finger, the points of its patch on a flat wall of points `spacing` apart (at least 3 mm; finer counts
+  /// scaled from it), as wide as the finger's outline, set up as the demonstration's
   /// box faces stand: the hand at the demonstrated grasp, the wall facing the line from the finger's middle to the
   /// fingers' centre (one finger: its motion) and touching its foremost point, the hand closed from the pre-grasp
   /// onto it; 0 for a finger without geometry or motion.

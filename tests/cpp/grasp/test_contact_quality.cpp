@@ -273,16 +273,27 @@ TEST(ContactQuality, PatchReferenceIsWhatThePadMeetsOfAFlatFace) {
   // the grid's phase. The reference, a flat wall at the cloud's spacing (3 mm, measured) facing the other finger,
   // must find the same, and with the default patch_points (30, less) the reference is patch_points: the WSG 50's
   // charge is what it was.
+  // The slab at `step`, patch_points raised above any pad: each finger's reference against its patch on the slab's
+  // face in the top grasp (within a row of points either way) and against `expected`.
+  const auto reference_on_slab = [](double step, double expected) {
+    const Cloud slab = box(kCentre, Eigen::Vector3d(0.015, 0.05, 0.05), step);
+    ContactQualitySettings s;
+    s.patch_points = 5000.0;
+    const ContactQualityExpert e(wsg50(), slab.p, slab.n, opening(), s);
+    const ContactQualityResult r = e.evaluate(wrist(Eigen::Vector3d::Zero()), joint(0.01));
+    for (int f = 0; f < 2; ++f) {
+      const double reference = e.patch_reference()[static_cast<size_t>(f)];
+      EXPECT_NEAR(reference, r.patch_size(0, f), 0.1 * r.patch_size(0, f)) << step << " " << f;
+      EXPECT_NEAR(reference, expected, 0.1 * expected) << step << " " << f;
+    }
+    return e.patch_reference();
+  };
+  const std::vector<double> at_3mm = reference_on_slab(0.003, 34.0 * 77.0 / 9.0);
+  // A cloud twice as dense: four times the points under a pad (the wall stays at 3 mm and is counted up by the
+  // squared ratio of the spacings, so a dense cloud costs no more).
+  const std::vector<double> at_1_5mm = reference_on_slab(0.0015, 4.0 * at_3mm[0]);
+  EXPECT_NEAR(at_1_5mm[1], 4.0 * at_3mm[1], 0.05 * at_1_5mm[1]);
   const Cloud slab = box(kCentre, Eigen::Vector3d(0.015, 0.05, 0.05), 0.003);
-  ContactQualitySettings s;
-  s.patch_points = 1000.0;
-  const ContactQualityExpert big(wsg50(), slab.p, slab.n, opening(), s);
-  const ContactQualityResult r = big.evaluate(wrist(Eigen::Vector3d::Zero()), joint(0.01));
-  for (int f = 0; f < 2; ++f) {
-    const double reference = big.patch_reference()[static_cast<size_t>(f)];
-    EXPECT_NEAR(reference, 34.0 * 77.0 / 9.0, 0.1 * 291.0) << f;
-    EXPECT_NEAR(reference, r.patch_size(0, f), 0.1 * r.patch_size(0, f)) << f;  // a row of 26 points either way
-  }
   const ContactQualityExpert defaults(wsg50(), slab.p, slab.n, opening());
   EXPECT_EQ(defaults.patch_reference(), std::vector<double>(2, ContactQualitySettings{}.patch_points));
   // Pads of 6 x 6 mm: (10 mm)^2 / (3 mm)^2 = 11 points, fewer than patch_points. Pressed flat on the slab's faces

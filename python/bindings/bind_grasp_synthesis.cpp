@@ -83,6 +83,8 @@ void bind_synthesis(py::module_& m) {
              "an extra collision expert on the pre-grasp configuration (log W of the opened hand)")
       .field("max_sampling_rounds", &SamplingSettings::max_sampling_rounds,
              "batches of n_samples drawn at most until n_samples grasps pass every hard expert")
+      .field("topdown_seeds", &SamplingSettings::topdown_seeds,
+             "scene synthesis adds each object's top-down seeds (grasp/topdown_seeds.hpp) to the drawn grasps")
       .done();
 
   SettingsClass<SynthesizerSettings>(m, "SynthesizerSettings",

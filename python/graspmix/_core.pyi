@@ -3455,9 +3455,10 @@ class SamplingSettings:
       optimise = True: anneal the best n_optimise
       clear_pregrasp = True: an extra collision expert on the pre-grasp configuration (log W of the opened hand)
       max_sampling_rounds = 10: batches of n_samples drawn at most until n_samples grasps pass every hard expert
+      topdown_seeds = True: scene synthesis adds each object's top-down seeds (grasp/topdown_seeds.hpp) to the drawn grasps
     """
     __hash__: typing.ClassVar[None] = None
-    _fields: typing.ClassVar[tuple] = ('n_samples', 'n_optimise', 'optimise', 'clear_pregrasp', 'max_sampling_rounds')
+    _fields: typing.ClassVar[tuple] = ('n_samples', 'n_optimise', 'optimise', 'clear_pregrasp', 'max_sampling_rounds', 'topdown_seeds')
     def __copy__(self) -> SamplingSettings:
         ...
     def __deepcopy__(self, memo: typing.Any) -> SamplingSettings:
@@ -3474,7 +3475,7 @@ class SamplingSettings:
     @typing.overload
     def __init__(self, **kwargs) -> None:
         """
-        Keyword constructor: any of the fields (n_samples, n_optimise, optimise, clear_pregrasp, max_sampling_rounds); the others keep their defaults.
+        Keyword constructor: any of the fields (n_samples, n_optimise, optimise, clear_pregrasp, max_sampling_rounds, topdown_seeds); the others keep their defaults.
         """
     def __repr__(self) -> str:
         ...
@@ -3520,13 +3521,21 @@ class SamplingSettings:
     @optimise.setter
     def optimise(self, arg0: typing.Any) -> None:
         ...
+    @property
+    def topdown_seeds(self) -> bool:
+        """
+        scene synthesis adds each object's top-down seeds (grasp/topdown_seeds.hpp) to the drawn grasps
+        """
+    @topdown_seeds.setter
+    def topdown_seeds(self, arg0: typing.Any) -> None:
+        ...
 class SynthesizerSettings:
     """
     What GraspSynthesizer.synthesize needs besides the object and the experts (scene synthesis builds it from graspmix.SynthesisOptions).
     
     Settings: settings= a SynthesizerSettings (None: its defaults), and/or its fields as keywords,
     which override it (an unknown keyword is a ValueError):
-      sampling = SamplingSettings(n_samples=200, n_optimise=10, optimise=True, clear_pregrasp=True, max_sampling_rounds=10): SamplingSettings
+      sampling = SamplingSettings(n_samples=200, n_optimise=10, optimise=True, clear_pregrasp=True, max_sampling_rounds=10, topdown_seeds=True): SamplingSettings
       query = QuerySettings(n_samples=500, n_components=5, max_iter=100, reg_covar=1e-06, kde=KdeSettings(position_bandwidth=0.005, orientation_bandwidth=0.15, feature_bandwidth=array([0.005])), frame_jitter=True, jitter_sharpness=100.0, completed_weight=1.0): QuerySettings
       annealing = AnnealingSettings(iterations=100, initial_temperature=1.0, position_step=0.005, rotation_step=0.1, joint_step=0.5): AnnealingSettings
       seed = 0: seeds everything random in synthesis (None: 0)
@@ -3787,7 +3796,7 @@ class GraspSynthesizer:
         weights (N,): each point's prior weight in the query densities (None: all 1).
         Settings: settings= a SynthesizerSettings (None: its defaults), and/or its fields as keywords,
         which override it (an unknown keyword is a ValueError):
-          sampling = SamplingSettings(n_samples=200, n_optimise=10, optimise=True, clear_pregrasp=True, max_sampling_rounds=10): SamplingSettings
+          sampling = SamplingSettings(n_samples=200, n_optimise=10, optimise=True, clear_pregrasp=True, max_sampling_rounds=10, topdown_seeds=True): SamplingSettings
           query = QuerySettings(n_samples=500, n_components=5, max_iter=100, reg_covar=1e-06, kde=KdeSettings(position_bandwidth=0.005, orientation_bandwidth=0.15, feature_bandwidth=array([0.005])), frame_jitter=True, jitter_sharpness=100.0, completed_weight=1.0): QuerySettings
           annealing = AnnealingSettings(iterations=100, initial_temperature=1.0, position_step=0.005, rotation_step=0.1, joint_step=0.5): AnnealingSettings
           seed = 0: seeds everything random in synthesis (None: 0)

@@ -209,8 +209,14 @@ void synthesize_target(int i, const std::vector<SceneGraspType>& types, const Sc
       experts.push_back(std::make_shared<ContactQualityExpert>(shared.hand, surface.points, surface.normals, config,
                                                                *settings.contact_quality));
     out.timing.features += seconds_since(te);
+    const auto plane = plane_of(out.scene);
+    SeedGrasps seeds;
+    if (settings.synthesizer.sampling.topdown_seeds && plane) {
+      seeds =
+          topdown_seeds(*shared.hand, config, surface.points, orient_plane(*plane, out.scene.points, PlaneSide::Mean));
+    }
     SynthesisResult res = types[k].synthesizer->synthesize(surface.frames, surface.curvatures, *shared.collision,
-                                                           experts, settings.synthesizer, weights);
+                                                           experts, settings.synthesizer, weights, &seeds);
     out.term_names[k] = res.term_names();
     const std::optional<double> reference = types[k].log_reference;
     if (reference) out.term_names[k].push_back(kTypeReferenceTerm);

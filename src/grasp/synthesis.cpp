@@ -286,6 +286,26 @@ GraspSynthesizer::Candidates GraspSynthesizer::sample_passing(const Scoring& sco
   return c;
 }
 
+void GraspSynthesizer::add_seeds(const Scoring& scoring, const SeedGrasps& seeds, Candidates& c,
+                                 SynthesisResult& res) const {
+  require_joints_shape(seeds.wrists.rows(), seeds.joints, hand_->n_dofs(), "synthesize: seeds");
+  const Evaluation e = evaluate(scoring, seeds.wrists, seeds.joints);
+  res.evaluations += static_cast<int>(seeds.wrists.rows());
+  const Eigen::Index n = c.wrists.rows(), m = seeds.wrists.rows();
+  c.wrists.conservativeResize(n + m, Eigen::NoChange);
+  c.joints.conservativeResize(n + m, Eigen::NoChange);
+  c.wrists.bottomRows(m) = seeds.wrists;
+  c.joints.bottomRows(m) = seeds.joints;
+  Evaluation all = empty_evaluation(n + m, c.eval.log_contact.cols(), c.eval.log_experts.cols());
+  std::vector<Eigen::Index> old(static_cast<size_t>(n)), added(static_cast<size_t>(m)), at(static_cast<size_t>(m));
+  std::iota(old.begin(), old.end(), 0);
+  std::iota(added.begin(), added.end(), 0);
+  std::iota(at.begin(), at.end(), n);
+  copy_rows(c.eval, old, all, old);
+  copy_rows(e, added, all, at);
+  c.eval = std::move(all);
+}
+
 std::vector<bool> GraspSynthesizer::optimise_best(const Scoring& scoring, const SynthesizerSettings& s,
                                                   const std::vector<int>& order, std::mt19937_64& rng, Candidates& c,
                                                   SynthesisResult& res) const {
@@ -313,12 +333,10 @@ std::vector<bool> GraspSynthesizer::optimise_best(const Scoring& scoring, const 
   return optimised;
 }
 
-SynthesisResult GraspSynthesizer::synthesize(const Eigen::Ref<const PoseArray>& frames,
-                                             const Eigen::Ref<const RowMatrixXd>& features,
-                                             const CollisionExpert& collision,
-                                             const std::vector<std::shared_ptr<const Expert>>& experts,
-                                             const SynthesizerSettings& s,
-                                             const Eigen::Ref<const Eigen::VectorXd>& weights) const {
+SynthesisResult GraspSynthesizer::synthesize(
+    const Eigen::Ref<const PoseArray>& frames, const Eigen::Ref<const RowMatrixXd>& features,
+    const CollisionExpert& collision, const std::vector<std::shared_ptr<const Expert>>& experts,
+    const SynthesizerSettings& s, const Eigen::Ref<const Eigen::VectorXd>& weights, const SeedGrasps* seeds) const {
   if (s.sampling.n_samples < 1) throw std::invalid_argument("synthesize: n_samples must be >= 1");
   if (s.sampling.n_optimise < 0) throw std::invalid_argument("synthesize: n_optimise must be >= 0");
   if (s.sampling.max_sampling_rounds < 1) throw std::invalid_argument("synthesize: max_sampling_rounds must be >= 1");
@@ -336,6 +354,7 @@ SynthesisResult GraspSynthesizer::synthesize(const Eigen::Ref<const PoseArray>& 
   const auto t1 = std::chrono::steady_clock::now();
   const Scoring scoring{query, collision, experts, s.sampling.clear_pregrasp};
   Candidates c = sample_passing(scoring, s, rng, res);
+  if (seeds && seeds->wrists.rows() > 0) add_seeds(scoring, *seeds, c, res);
   std::vector<int> order = rank_best_first(c.eval.total);
   res.timing.sampling = seconds_since(t1);
 
@@ -346,6 +365,8 @@ SynthesisResult GraspSynthesizer::synthesize(const Eigen::Ref<const PoseArray>& 
 
   for (const QueryDensity& q : query) res.contact_links.push_back(q.link_name);
   for (const auto& e : experts) res.expert_names.push_back(e->name());
+  // The best n_samples: seeds take the places of the worst drawn grasps.
+  if (order.size() > static_cast<size_t>(s.sampling.n_samples)) order.resize(static_cast<size_t>(s.sampling.n_samples));
   res.grasps.reserve(order.size());
   for (int i : order) {
     Grasp g;

@@ -121,6 +121,13 @@ def test_each_part_reaches_the_synthesis(gmm):
     assert len(gmm.synthesize(cloud, base.updated({"sampling.n_samples": 12}))) == 12
     one_round = gmm.synthesize(cloud, base.updated({"sampling.max_sampling_rounds": 1}))
     assert one_round.rejected <= 30 < ref.rejected
+    # the top-down seeds (on by default, off in the paper's preset): scored with the drawn grasps, so more
+    # evaluations, a grasp straight down among those returned, and the count still n_samples.
+    assert not SynthesisOptions.paper().sampling.topdown_seeds and base.sampling.topdown_seeds
+    unseeded = gmm.synthesize(cloud, base.updated({"sampling.topdown_seeds": False}))
+    assert len(unseeded) == 30 and unseeded.evaluations < ref.evaluations
+    down = [np.asarray(g.approach) @ [0, 0, -1] for g in ref]
+    assert max(down) > 1 - 1e-9 and max(np.asarray(g.approach) @ [0, 0, -1] for g in unseeded) < 1 - 1e-6
     # experts off: their terms leave the table.
     bare = gmm.synthesize(cloud, base.updated({"approach": None, "contact_quality": None, "kinematic": None}))
     assert not set(bare.best().experts) & {"clear_approach", "contact_quality", "kinematic"}

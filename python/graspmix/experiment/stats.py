@@ -138,7 +138,9 @@ def wilson_ci(successes: float, n: float, confidence: float = 0.95) -> tuple[flo
     p, z2 = successes / n, z * z
     centre = (p + z2 / (2 * n)) / (1 + z2 / n)
     half = z / (1 + z2 / n) * math.sqrt(p * (1 - p) / n + z2 / (4 * n * n))
-    return max(0.0, centre - half), min(1.0, centre + half)
+    # It holds p; rounding must not put an end on the wrong side of it (at p = 1, centre + half came to
+    # 0.9999999999999999, a negative error bar for the clutter report's plot).
+    return max(0.0, min(p, centre - half)), min(1.0, max(p, centre + half))
 
 
 def clustered_rate(successes, trials, confidence: float = 0.95) -> RateCI:

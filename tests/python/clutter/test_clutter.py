@@ -191,6 +191,13 @@ def test_wilson_closed_forms():
     assert (lo, hi) == pytest.approx((0.2366, 0.7634), abs=1e-4)
     with pytest.raises(ValueError):
         wilson_ci(3, 2)
+    # The interval holds the rate exactly at its ends, whatever the rounding: all of an effective (non-integer)
+    # count, as the clutter report's design effect gives (it came to 0.9999999999999999, a negative error bar).
+    for n in (84 / 1.7, 13.37, 1e6 / 3):
+        assert wilson_ci(n, n)[1] == 1.0 and wilson_ci(0, n)[0] == 0.0
+    for k, n in ((1, 3), (7, 9.5), (2, 2.000001)):
+        lo, hi = wilson_ci(k, n)
+        assert lo <= k / n <= hi
 
 
 def test_mcnemar_exact_closed_forms():

@@ -136,9 +136,12 @@ TEST(SceneSynthesis, EqualsItsStepsComposedByHand) {
       std::make_shared<CollisionFreeExpert>(neighbours, config, "clear_of_neighbours"),
       std::make_shared<ClearApproachExpert>(approach, config, *s.approach),
       std::make_shared<ContactQualityExpert>(hand, surface.points, surface.normals, config, *s.contact_quality)};
+  const SeedGrasps seeds =
+      topdown_seeds(*hand, config, surface.points, orient_plane(scene.plane, scene.points, PlaneSide::Mean));
+  ASSERT_GT(seeds.wrists.rows(), 0);
   const SynthesisResult by_hand = synthesizer()->synthesize(
       surface.frames, surface.curvatures, collision, experts, s.synthesizer,
-      query_weights(surface, scene.objects[1].rows.size(), s.synthesizer.query.completed_weight));
+      query_weights(surface, scene.objects[1].rows.size(), s.synthesizer.query.completed_weight), &seeds);
 
   EXPECT_EQ(out.targets, std::vector<int>{1});
   EXPECT_EQ(out.term_names.at(0), by_hand.term_names());

@@ -53,6 +53,12 @@ PAGES = {
         "lift-test60",
         "lift-dev",
         "lift-clutter-dev",
+        "seeds-test60",
+        "seeds-dev",
+        "seeds-clutter-dev",
+        "seeds-heldout",
+        "seeds-four-views",
+        "seeds-clutter",
     },
 }
 SCRIPTS = ("scripts/findings_table.py", "scripts/ablation_table.py", "scripts/clutter_table.py")

@@ -160,40 +160,31 @@ std::vector<double> ContactQualityExpert::flat_patches(double spacing) const {
   if (!(spacing > 0.0)) return best;
   const Eigen::VectorXd q = config_.grasp(), p = config_.pregrasp_for(q);
   const Eigen::VectorXd c = closed_configuration(p, q, config_.grasp() - config_.pregrasp(), hand_->joint_limits());
-  const Eigen::VectorXd q_on = q + 1e-3 * (c - p);  // a hair further along the closing
-  std::vector<Eigen::Isometry3d> at(static_cast<size_t>(hand_->n_links())), on(at.size());
-  hand_->fk_into(Eigen::Isometry3d::Identity(), q.data(), at.data());
-  hand_->fk_into(Eigen::Isometry3d::Identity(), q_on.data(), on.data());
   ContactQualitySettings wall_settings = settings_;
   wall_settings.patch_points = 0.0;  // (the wall's own expert needs no reference)
-  // Each finger's middle at the grasp (its shapes' bounds' mean: a link's origin may sit on its joint's axis).
-  std::vector<std::vector<Eigen::Vector3d>> corners(static_cast<size_t>(F));
-  std::vector<Eigen::Vector3d> middle(static_cast<size_t>(F), Eigen::Vector3d::Zero());
+  // Each finger at the grasp and a hair further along the closing.
+  const std::vector<LinkBounds> at = link_bounds(*hand_, fingers_, q);
+  const std::vector<LinkBounds> on = link_bounds(*hand_, fingers_, q + 1e-3 * (c - p));
   Eigen::Vector3d centre_of_fingers = Eigen::Vector3d::Zero();
+  for (const LinkBounds& b : at) centre_of_fingers += b.middle / F;
   for (int f = 0; f < F; ++f) {
-    const size_t l = static_cast<size_t>(fingers_[static_cast<size_t>(f)]);
-    for (const Eigen::Vector3d& x : shape_corners(hand_->links()[l].collisions)) corners[f].push_back(at[l] * x);
-    for (const Eigen::Vector3d& x : corners[f]) middle[f] += x / static_cast<double>(corners[f].size());
-    centre_of_fingers += middle[f] / F;
-  }
-  for (int f = 0; f < F; ++f) {
-    const size_t l = static_cast<size_t>(fingers_[static_cast<size_t>(f)]);
-    if (corners[f].empty()) continue;
+    const std::vector<Eigen::Vector3d>& corners = at[static_cast<size_t>(f)].corners;
+    const Eigen::Vector3d& middle = at[static_cast<size_t>(f)].middle;
+    if (corners.empty()) continue;
     // The finger presses towards the other fingers (the demonstration's box faces stand across that line); one
     // finger alone, along its own motion.
-    const Eigen::Vector3d local_middle = at[l].inverse() * middle[f];
-    const Eigen::Vector3d motion =
-        F > 1 ? Eigen::Vector3d(centre_of_fingers - middle[f]) : Eigen::Vector3d(on[l] * local_middle - middle[f]);
+    const Eigen::Vector3d motion = F > 1 ? Eigen::Vector3d(centre_of_fingers - middle)
+                                         : Eigen::Vector3d(on[static_cast<size_t>(f)].middle - middle);
     if (!(motion.norm() > 1e-9)) continue;
     const Eigen::Vector3d n = motion.normalized();
     // The wall: a square facing that motion, touching the finger's foremost point at the grasp.
     double front = -kInf;
-    for (const Eigen::Vector3d& x : corners[f]) front = std::max(front, n.dot(x));
-    const Eigen::Vector3d centre = middle[f] + (front - n.dot(middle[f])) * n;
+    for (const Eigen::Vector3d& x : corners) front = std::max(front, n.dot(x));
+    const Eigen::Vector3d centre = middle + (front - n.dot(middle)) * n;
     // Wide enough for the finger's whole outline, two wall spacings to spare on each side.
     double reach = 0.0;
-    for (const Eigen::Vector3d& x : corners[f]) {
-      const Eigen::Vector3d d = x - middle[f];
+    for (const Eigen::Vector3d& x : corners) {
+      const Eigen::Vector3d d = x - middle;
       reach = std::max(reach, (d - n.dot(d) * n).norm());
     }
     const double wall_spacing = std::max(spacing, kWallMinSpacing);

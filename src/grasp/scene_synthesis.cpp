@@ -8,6 +8,7 @@
 
 #include "core/parallel_rows.hpp"
 #include "graspmix/core/plane.hpp"
+#include "graspmix/grasp/topdown_seeds.hpp"
 #include "graspmix/perception/depth_scene.hpp"
 
 namespace graspmix {
@@ -108,15 +109,14 @@ std::shared_ptr<CollisionExpert> collision_on(const std::shared_ptr<const Hand>&
   return std::make_shared<CollisionExpert>(hand, points, plane, s, unseen);
 }
 
-/// The standard experts every target shares, then the caller's: kinematic, approach axis, the request's.
-std::vector<ExpertPtr> shared_experts(const std::shared_ptr<const Hand>& hand, const SceneSynthesis& s,
+/// The standard experts every target shares, then the caller's: kinematic (on `table`, the scene's plane oriented so
+/// the objects stand above it), approach axis, the request's.
+std::vector<ExpertPtr> shared_experts(const std::shared_ptr<const Hand>& hand,
+                                      const std::optional<Eigen::Vector4d>& table,
                                       const SceneSynthesisSettings& settings, const SceneRequest& request) {
   std::vector<ExpertPtr> out;
-  const auto plane = plane_of(s.scene);
   if (settings.kinematic) {
-    std::optional<Eigen::Vector4d> oriented;
-    if (plane) oriented = orient_plane(*plane, s.scene.points, PlaneSide::Mean);
-    out.push_back(std::make_shared<KinematicFeasibilityExpert>(hand, oriented, *settings.kinematic, request.reachable));
+    out.push_back(std::make_shared<KinematicFeasibilityExpert>(hand, table, *settings.kinematic, request.reachable));
   } else if (request.reachable) {
     throw std::invalid_argument(
         "reachable needs the kinematic expert (its settings are off: SynthesisOptions.kinematic is None)");
@@ -142,6 +142,7 @@ void check_types(const std::vector<SceneGraspType>& types) {
 /// the experts before each target's own.
 struct Shared {
   std::shared_ptr<const Hand> hand;
+  std::optional<Eigen::Vector4d> table;  ///< the scene's plane oriented so the objects stand above it (none: no plane)
   std::shared_ptr<CollisionExpert> collision, approach;
   std::vector<ExpertPtr> experts;
 };
@@ -151,6 +152,7 @@ Shared shared_part(const SceneInput& input, std::shared_ptr<const Hand> hand, co
   Shared shared;
   shared.hand = std::move(hand);
   const auto plane = plane_of(out.scene);
+  if (plane) shared.table = orient_plane(*plane, out.scene.points, PlaneSide::Mean);
   std::shared_ptr<OccupancyMap> occupancy, unseen;
   if (settings.collision.model == CollisionModel::Occupancy) {
     const auto [points, viewpoints] = whole_cloud(input);
@@ -181,7 +183,7 @@ Shared shared_part(const SceneInput& input, std::shared_ptr<const Hand> hand, co
         shared.approach = collision_on(shared.hand, solid, plane, s, occupancy);
       },
       detail::RowOrder::AsThreadsFree);
-  shared.experts = shared_experts(shared.hand, out, settings, request);
+  shared.experts = shared_experts(shared.hand, shared.table, settings, request);
   out.timing.features += seconds_since(t_experts);
   return shared;
 }
@@ -209,12 +211,9 @@ void synthesize_target(int i, const std::vector<SceneGraspType>& types, const Sc
       experts.push_back(std::make_shared<ContactQualityExpert>(shared.hand, surface.points, surface.normals, config,
                                                                *settings.contact_quality));
     out.timing.features += seconds_since(te);
-    const auto plane = plane_of(out.scene);
     SeedGrasps seeds;
-    if (settings.synthesizer.sampling.topdown_seeds && plane) {
-      seeds =
-          topdown_seeds(*shared.hand, config, surface.points, orient_plane(*plane, out.scene.points, PlaneSide::Mean));
-    }
+    if (settings.synthesizer.sampling.topdown_seeds && shared.table)
+      seeds = topdown_seeds(*shared.hand, config, surface.points, *shared.table);
     SynthesisResult res = types[k].synthesizer->synthesize(surface.frames, surface.curvatures, *shared.collision,
                                                            experts, settings.synthesizer, weights, &seeds);
     out.term_names[k] = res.term_names();

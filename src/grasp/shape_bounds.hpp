@@ -1,6 +1,7 @@
 #pragma once
 // The points that bound a link's collision shapes, private to the library (grasp/contact_quality.cpp's flat wall,
 // grasp/topdown_seeds.cpp's fingertip extents).
+#include <Eigen/Core>
 #include <cmath>
 #include <vector>
 
@@ -39,6 +40,26 @@ inline std::vector<Eigen::Vector3d> shape_corners(const std::vector<CollisionSha
             out.push_back(sh.T_link_shape * Eigen::Vector3d(sh.hull->vertices.row(i).transpose()));
         break;
     }
+  }
+  return out;
+}
+
+/// A link's shape bounds in the wrist frame at a configuration: their points (shape_corners) and their mean, its
+/// middle (zero for a link without shapes); a link's origin may sit on its joint's axis, its middle does not.
+struct LinkBounds {
+  std::vector<Eigen::Vector3d> corners;
+  Eigen::Vector3d middle = Eigen::Vector3d::Zero();
+};
+
+/// The bounds of `links` (indices of hand's links) with the wrist at the origin and the joints at q.
+inline std::vector<LinkBounds> link_bounds(const Hand& hand, const std::vector<int>& links, const Eigen::VectorXd& q) {
+  std::vector<Eigen::Isometry3d> poses(static_cast<size_t>(hand.n_links()));
+  hand.fk_into(Eigen::Isometry3d::Identity(), q.data(), poses.data());
+  std::vector<LinkBounds> out(links.size());
+  for (size_t f = 0; f < links.size(); ++f) {
+    const size_t l = static_cast<size_t>(links[f]);
+    for (const Eigen::Vector3d& x : shape_corners(hand.links()[l].collisions)) out[f].corners.push_back(poses[l] * x);
+    for (const Eigen::Vector3d& x : out[f].corners) out[f].middle += x / static_cast<double>(out[f].corners.size());
   }
   return out;
 }

@@ -23,6 +23,14 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+/// `rows` appended below `m` (the same number of columns).
+template <typename M, typename R>
+void append_rows(M& m, const R& rows) {
+  const Eigen::Index n = m.rows();
+  m.conservativeResize(n + rows.rows(), Eigen::NoChange);
+  m.bottomRows(rows.rows()) = rows;
+}
+
 /// Index of a draw from unnormalised log weights (all -inf: uniform).
 std::discrete_distribution<int> distribution_from_logs(const Eigen::VectorXd& logw) {
   const double m = logw.maxCoeff();
@@ -291,19 +299,14 @@ void GraspSynthesizer::add_seeds(const Scoring& scoring, const SeedGrasps& seeds
   require_joints_shape(seeds.wrists.rows(), seeds.joints, hand_->n_dofs(), "synthesize: seeds");
   const Evaluation e = evaluate(scoring, seeds.wrists, seeds.joints);
   res.evaluations += static_cast<int>(seeds.wrists.rows());
-  const Eigen::Index n = c.wrists.rows(), m = seeds.wrists.rows();
-  c.wrists.conservativeResize(n + m, Eigen::NoChange);
-  c.joints.conservativeResize(n + m, Eigen::NoChange);
-  c.wrists.bottomRows(m) = seeds.wrists;
-  c.joints.bottomRows(m) = seeds.joints;
-  Evaluation all = empty_evaluation(n + m, c.eval.log_contact.cols(), c.eval.log_experts.cols());
-  std::vector<Eigen::Index> old(static_cast<size_t>(n)), added(static_cast<size_t>(m)), at(static_cast<size_t>(m));
-  std::iota(old.begin(), old.end(), 0);
-  std::iota(added.begin(), added.end(), 0);
-  std::iota(at.begin(), at.end(), n);
-  copy_rows(c.eval, old, all, old);
-  copy_rows(e, added, all, at);
-  c.eval = std::move(all);
+  append_rows(c.wrists, seeds.wrists);
+  append_rows(c.joints, seeds.joints);
+  append_rows(c.eval.total, e.total);
+  append_rows(c.eval.log_collision, e.log_collision);
+  append_rows(c.eval.log_config, e.log_config);
+  append_rows(c.eval.log_pregrasp, e.log_pregrasp);
+  append_rows(c.eval.log_contact, e.log_contact);
+  append_rows(c.eval.log_experts, e.log_experts);
 }
 
 std::vector<bool> GraspSynthesizer::optimise_best(const Scoring& scoring, const SynthesizerSettings& s,

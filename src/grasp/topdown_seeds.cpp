@@ -55,21 +55,13 @@ SeedGrasps topdown_seeds(const Hand& hand, const ConfigModel& config, const Vec3
   const Eigen::Vector3d centre = 0.5 * (lo + hi) * n + (points * across).mean() * across - offset * up;
   // The hand at the demonstrated grasp, wrist at the origin: its fingertips' middles, their far end along the
   // approach axis, the closing line.
-  std::vector<Eigen::Isometry3d> links(static_cast<size_t>(hand.n_links()));
-  hand.fk_into(Eigen::Isometry3d::Identity(), config.grasp().data(), links.data());
   const Eigen::Vector3d a = hand.approach_axis().normalized();
   std::vector<Eigen::Vector3d> middles;
   double reach = -std::numeric_limits<double>::infinity();
-  for (const int l : tips) {
-    const std::vector<Eigen::Vector3d> corners = shape_corners(hand.links()[static_cast<size_t>(l)].collisions);
-    if (corners.empty()) continue;
-    Eigen::Vector3d m = Eigen::Vector3d::Zero();
-    for (const Eigen::Vector3d& x : corners) {
-      const Eigen::Vector3d w = links[static_cast<size_t>(l)] * x;
-      m += w / static_cast<double>(corners.size());
-      reach = std::max(reach, a.dot(w));
-    }
-    middles.push_back(m);
+  for (const LinkBounds& b : link_bounds(hand, tips, config.grasp())) {
+    if (b.corners.empty()) continue;
+    for (const Eigen::Vector3d& w : b.corners) reach = std::max(reach, a.dot(w));
+    middles.push_back(b.middle);
   }
   if (middles.empty()) return out;
   Eigen::Vector3d mean = Eigen::Vector3d::Zero(), others = Eigen::Vector3d::Zero();

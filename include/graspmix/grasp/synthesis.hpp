@@ -28,7 +28,6 @@
 #include "graspmix/grasp/config_model.hpp"
 #include "graspmix/grasp/contact_model.hpp"
 #include "graspmix/grasp/experts.hpp"
-#include "graspmix/grasp/topdown_seeds.hpp"
 #include "graspmix/robot/hand.hpp"
 
 namespace graspmix {
@@ -75,6 +74,13 @@ struct SamplingSettings {
   /// test60 88.2 -> 91.2% (+23 / -5), clutter_dev 90.7 -> 92.7% (+8 / -2) (docs/one-view.md, "Top-down seeds"). Off in
   /// the paper's preset.
   bool topdown_seeds = true;
+};
+
+/// Grasps a caller proposes to the synthesiser besides the drawn ones (GraspSynthesizer::synthesize's `seeds`; e.g.
+/// grasp/topdown_seeds.hpp): wrist poses (N, 7) and configurations (N, D).
+struct SeedGrasps {
+  PoseArray wrists;
+  RowMatrixXd joints;
 };
 
 /// Everything GraspSynthesizer::synthesize needs besides the object and the experts.

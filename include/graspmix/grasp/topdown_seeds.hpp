@@ -17,6 +17,7 @@
 
 #include "graspmix/core/types.hpp"
 #include "graspmix/grasp/config_model.hpp"
+#include "graspmix/grasp/synthesis.hpp"
 #include "graspmix/robot/hand.hpp"
 
 namespace graspmix {
@@ -25,12 +26,6 @@ namespace graspmix {
 inline const std::vector<double> kTopdownSeedDepths = {0.01, 0.025, 0.04, 0.06};
 /// m: ... but never lower than this above the table (the segmentation's 5 mm clearance and 5 mm more).
 constexpr double kTopdownSeedMinHeight = 0.01;
-
-/// Grasps proposed to the synthesiser: wrist poses (N, 7) and configurations (N, D).
-struct SeedGrasps {
-  PoseArray wrists;
-  RowMatrixXd joints;
-};
 
 /// The top-down seeds of the object whose points (observed and completed, world frame) are given, on the table
 /// `plane` [n, d] (n . x + d >= 0 above it; normalised here). None for fewer than 3 points or a hand without

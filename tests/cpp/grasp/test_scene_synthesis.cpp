@@ -22,6 +22,7 @@
 #include "graspmix/core/se3.hpp"
 #include "graspmix/density/pose_mixture.hpp"
 #include "graspmix/grasp/scene_synthesis.hpp"
+#include "graspmix/grasp/topdown_seeds.hpp"
 #include "graspmix/perception/depth_scene.hpp"
 #include "perception/raycast.hpp"
 

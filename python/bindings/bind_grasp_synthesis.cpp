@@ -1,5 +1,7 @@
 // The grasp layer's synthesis: query densities, sampling, ranking, annealing (GraspSynthesizer) and their
 // settings and results; called by bind_grasp after the experts it takes are bound.
+#include <cmath>
+
 #include <pybind11/functional.h>
 
 #include "common.hpp"
@@ -62,6 +64,28 @@ void bind_synthesis(py::module_& m) {
       .field("jitter_sharpness", &QuerySettings::jitter_sharpness, "s of Kopicki's rule above")
       .field("completed_weight", &QuerySettings::completed_weight,
              "prior weight of a completed (unseen) point in the query densities, an observed one's being 1")
+      .property(
+          "link_floor",
+          [](const QuerySettings& s) { return s.link_floor ? py::cast(*s.link_floor) : py::object(py::none()); },
+          [](QuerySettings& s, const py::object& v) {
+            if (v.is_none()) {
+              s.link_floor.reset();
+              return;
+            }
+            if (is_kind_of<double>(v)) {
+              try {
+                const double f = v.cast<double>();
+                if (std::isfinite(f)) {
+                  s.link_floor = f;
+                  return;
+                }
+              } catch (const py::cast_error&) {
+              }
+            }
+            throw py::value_error("setting 'link_floor': " + std::string(py::repr(v)).substr(0, 80) +
+                                  " is not valid: expected a finite number or None");
+          },
+          "nats or None: each link's contact term is log(Q_i + exp(link_floor)); None: log Q_i (the paper's)")
       .done();
 
   SettingsClass<AnnealingSettings>(m, "AnnealingSettings", "Simulated annealing of the best candidates.")

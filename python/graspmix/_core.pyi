@@ -3279,9 +3279,10 @@ class QuerySettings:
       frame_jitter = True: rotate each sampled surface frame about its normal by up to pi exp(-jitter_sharpness ((k1 - k2) / k1)^2)
       jitter_sharpness = 100.0: s of Kopicki's rule above
       completed_weight = 1.0: prior weight of a completed (unseen) point in the query densities, an observed one's being 1
+      link_floor = -20.0: nats or None: each link's contact term is log(Q_i + exp(link_floor)); None: log Q_i (the paper's)
     """
     __hash__: typing.ClassVar[None] = None
-    _fields: typing.ClassVar[tuple] = ('n_samples', 'n_components', 'max_iter', 'reg_covar', 'kde', 'frame_jitter', 'jitter_sharpness', 'completed_weight')
+    _fields: typing.ClassVar[tuple] = ('n_samples', 'n_components', 'max_iter', 'reg_covar', 'kde', 'frame_jitter', 'jitter_sharpness', 'completed_weight', 'link_floor')
     def __copy__(self) -> QuerySettings:
         ...
     def __deepcopy__(self, memo: typing.Any) -> QuerySettings:
@@ -3298,7 +3299,7 @@ class QuerySettings:
     @typing.overload
     def __init__(self, **kwargs) -> None:
         """
-        Keyword constructor: any of the fields (n_samples, n_components, max_iter, reg_covar, kde, frame_jitter, jitter_sharpness, completed_weight); the others keep their defaults.
+        Keyword constructor: any of the fields (n_samples, n_components, max_iter, reg_covar, kde, frame_jitter, jitter_sharpness, completed_weight, link_floor); the others keep their defaults.
         """
     def __repr__(self) -> str:
         ...
@@ -3335,6 +3336,14 @@ class QuerySettings:
         """
     @kde.setter
     def kde(self, arg0: typing.Any) -> None:
+        ...
+    @property
+    def link_floor(self) -> typing.Any:
+        """
+        nats or None: each link's contact term is log(Q_i + exp(link_floor)); None: log Q_i (the paper's)
+        """
+    @link_floor.setter
+    def link_floor(self, arg1: typing.Any) -> None:
         ...
     @property
     def max_iter(self) -> int:
@@ -3536,7 +3545,7 @@ class SynthesizerSettings:
     Settings: settings= a SynthesizerSettings (None: its defaults), and/or its fields as keywords,
     which override it (an unknown keyword is a ValueError):
       sampling = SamplingSettings(n_samples=200, n_optimise=10, optimise=True, clear_pregrasp=True, max_sampling_rounds=10, topdown_seeds=True): SamplingSettings
-      query = QuerySettings(n_samples=500, n_components=5, max_iter=100, reg_covar=1e-06, kde=KdeSettings(position_bandwidth=0.005, orientation_bandwidth=0.15, feature_bandwidth=array([0.005])), frame_jitter=True, jitter_sharpness=100.0, completed_weight=1.0): QuerySettings
+      query = QuerySettings(n_samples=500, n_components=5, max_iter=100, reg_covar=1e-06, kde=KdeSettings(position_bandwidth=0.005, orientation_bandwidth=0.15, feature_bandwidth=array([0.005])), frame_jitter=True, jitter_sharpness=100.0, completed_weight=1.0, link_floor=-20.0): QuerySettings
       annealing = AnnealingSettings(iterations=100, initial_temperature=1.0, position_step=0.005, rotation_step=0.1, joint_step=0.5): AnnealingSettings
       seed = 0: seeds everything random in synthesis (None: 0)
     """
@@ -3785,6 +3794,7 @@ class GraspSynthesizer:
           frame_jitter = True: rotate each sampled surface frame about its normal by up to pi exp(-jitter_sharpness ((k1 - k2) / k1)^2)
           jitter_sharpness = 100.0: s of Kopicki's rule above
           completed_weight = 1.0: prior weight of a completed (unseen) point in the query densities, an observed one's being 1
+          link_floor = -20.0: nats or None: each link's contact term is log(Q_i + exp(link_floor)); None: log Q_i (the paper's)
         """
     def sample_grasps(self, query: collections.abc.Sequence[QueryDensity], n: typing.Any, seed: typing.Any = None) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 7]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]]:
         """
@@ -3797,7 +3807,7 @@ class GraspSynthesizer:
         Settings: settings= a SynthesizerSettings (None: its defaults), and/or its fields as keywords,
         which override it (an unknown keyword is a ValueError):
           sampling = SamplingSettings(n_samples=200, n_optimise=10, optimise=True, clear_pregrasp=True, max_sampling_rounds=10, topdown_seeds=True): SamplingSettings
-          query = QuerySettings(n_samples=500, n_components=5, max_iter=100, reg_covar=1e-06, kde=KdeSettings(position_bandwidth=0.005, orientation_bandwidth=0.15, feature_bandwidth=array([0.005])), frame_jitter=True, jitter_sharpness=100.0, completed_weight=1.0): QuerySettings
+          query = QuerySettings(n_samples=500, n_components=5, max_iter=100, reg_covar=1e-06, kde=KdeSettings(position_bandwidth=0.005, orientation_bandwidth=0.15, feature_bandwidth=array([0.005])), frame_jitter=True, jitter_sharpness=100.0, completed_weight=1.0, link_floor=-20.0): QuerySettings
           annealing = AnnealingSettings(iterations=100, initial_temperature=1.0, position_step=0.005, rotation_step=0.1, joint_step=0.5): AnnealingSettings
           seed = 0: seeds everything random in synthesis (None: 0)
         """

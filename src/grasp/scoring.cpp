@@ -60,6 +60,8 @@ Evaluation GraspSynthesizer::evaluate_bounded(const Scoring& scoring, const Eige
   for (size_t l = 0; l < query.size(); ++l) {
     const PoseArray P = link_poses.middleCols(7 * query[l].link, 7);
     contact.col(l) = query[l].density->log_density(P, RowMatrixXd(m, 0));
+    if (query[l].floor)
+      contact.col(l) = contact.col(l).unaryExpr([&](double v) { return contact_log_term(v, query[l].floor); });
   }
   const Eigen::VectorXd config = config_.log_density(q);
   Eigen::VectorXd coll, pre_w = Eigen::VectorXd::Zero(m);

@@ -111,6 +111,9 @@ std::vector<QueryDensity> GraspSynthesizer::query_densities(const Eigen::Ref<con
   if (s.n_samples < std::max(2, s.n_components)) {
     throw std::invalid_argument("query densities: n_samples must be at least n_components and 2");
   }
+  if (s.link_floor && !std::isfinite(*s.link_floor)) {
+    throw std::invalid_argument("query densities: link_floor must be finite or unset");
+  }
   require_finite(frames, "query densities: frames");
   require_finite(features, "query densities: features");
   std::uniform_real_distribution<double> uni(-1.0, 1.0);
@@ -155,7 +158,7 @@ std::vector<QueryDensity> GraspSynthesizer::query_densities(const Eigen::Ref<con
     if (e) std::rethrow_exception(e);
   std::vector<QueryDensity> out;
   for (size_t l = 0; l < densities.size(); ++l) {
-    out.push_back({contact_models_[l].link, contact_models_[l].link_name, std::move(densities[l])});
+    out.push_back({contact_models_[l].link, contact_models_[l].link_name, std::move(densities[l]), s.link_floor});
   }
   return out;
 }

@@ -138,13 +138,15 @@ class SynthesisOptions:
     @classmethod
     def paper(cls, **parts) -> "SynthesisOptions":
         """The paper's synthesis: the collision expert on the cloud's points and the plane alone (no solid volume,
-        no charge of unseen space), grasps drawn from the query densities alone (no top-down seeds), no clear
+        no charge of unseen space), each link's contact term its query density as it is (no floor), grasps drawn
+        from the query densities alone (no top-down seeds), no clear
         approach, no contact quality, no completion, no split of a cluster
         larger than one object (the experiment's "paper" preset: its single objects, some longer than 15 cm, stay
         whole); `parts` as the constructor's."""
         return cls(
             **{
                 "segmentation": _core.SegmentationSettings(split_touching=False),
+                "query": _core.QuerySettings(link_floor=None),
                 "sampling": _core.SamplingSettings(topdown_seeds=False),
                 "collision": _core.CollisionSettings(
                     model="surface", volume=False, unseen_weight=0.0, unseen_margin=0.0

@@ -279,3 +279,56 @@ TEST(Synthesis, AnnealingOnSeveralThreadsGivesTheGraspsOfOne) {
   std::mt19937_64 r(1);
   EXPECT_THROW(f.synth->anneal(Scoring{query, *f.collision, {kinematic}}, s, r, w, short_q), std::invalid_argument);
 }
+
+TEST(Synthesis, TheLinkFloorMixesEachContactTermWithAFlatDensity) {
+  // Each link's contact term is log(Q_i(pose) + exp(floor)): against the query density's own log value (the same
+  // densities: the floor is set after they are fitted), for grasps near the box and grasps moved far from it, where
+  // the density is tiny and the term the floor's to the last bit. Unset, the term is log Q_i bit for bit.
+  const Fixture f = make_fixture();
+  std::mt19937_64 rng(11);
+  auto [query, w, q] = sampled(f, 40, rng);
+  PoseArray moved = w;
+  moved.col(0).array() += 0.5;  // half a metre off: every link far from its density
+  PoseArray both(2 * w.rows(), 7);
+  both << w, moved;
+  RowMatrixXd joints(2 * q.rows(), q.cols());
+  joints << q, q;
+  const std::vector<std::shared_ptr<const Expert>> none;
+  std::vector<QueryDensity> unset = query;
+  for (QueryDensity& d : unset) d.floor.reset();
+  const Evaluation plain = f.synth->evaluate(Scoring{unset, *f.collision, none}, both, joints);
+  constexpr double kFloor = -20.0;
+  std::vector<QueryDensity> floored = query;
+  for (QueryDensity& d : floored) d.floor = kFloor;
+  const Evaluation e = f.synth->evaluate(Scoring{floored, *f.collision, none}, both, joints);
+  const RowMatrixXd link_poses = f.hand->fk_batch(both, joints);
+  int near = 0, far = 0;
+  for (size_t l = 0; l < query.size(); ++l) {
+    const Eigen::VectorXd log_q =
+        query[l].density->log_density(link_poses.middleCols(7 * query[l].link, 7), RowMatrixXd(both.rows(), 0));
+    for (Eigen::Index i = 0; i < both.rows(); ++i) {
+      if (!std::isfinite(plain.log_contact(i, l))) continue;  // rejected by the kinematic limits: not scored
+      EXPECT_EQ(plain.log_contact(i, l), log_q[i]);
+      EXPECT_NEAR(e.log_contact(i, l), std::log(std::exp(log_q[i]) + std::exp(kFloor)), 1e-9);
+      EXPECT_GE(e.log_contact(i, l), kFloor);
+      EXPECT_GE(e.log_contact(i, l), log_q[i]);
+      if (log_q[i] > 0.0) ++near;
+      if (log_q[i] < kFloor - 40.0) {
+        EXPECT_EQ(e.log_contact(i, l), kFloor);
+        ++far;
+      }
+    }
+  }
+  EXPECT_GT(near, 10);
+  EXPECT_GT(far, 10);
+  // The default settings carry the floor into the densities; unset, none.
+  std::mt19937_64 a(5), b(5);
+  QuerySettings off;
+  off.link_floor.reset();
+  EXPECT_EQ(f.synth->query_densities(f.box.frames, f.box.features, QuerySettings{}, a).front().floor,
+            QuerySettings{}.link_floor);
+  EXPECT_FALSE(f.synth->query_densities(f.box.frames, f.box.features, off, b).front().floor.has_value());
+  QuerySettings bad;
+  bad.link_floor = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(f.synth->query_densities(f.box.frames, f.box.features, bad, a), std::invalid_argument);
+}

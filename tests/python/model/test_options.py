@@ -128,14 +128,28 @@ def test_each_part_reaches_the_synthesis(gmm):
     assert len(unseeded) == 30 and unseeded.evaluations < ref.evaluations
     down = [np.asarray(g.approach) @ [0, 0, -1] for g in ref]
     assert max(down) > 1 - 1e-9 and max(np.asarray(g.approach) @ [0, 0, -1] for g in unseeded) < 1 - 1e-6
+    # the floor under each link's contact term (-20 nats by default, none in the paper's preset): no contact term
+    # below it, while without it a link's term on the mug falls far lower.
+    floor = base.query.link_floor
+    assert floor == -20.0 and SynthesisOptions.paper().query.link_floor is None
+    terms = [v for g in ref for k, v in g.experts.items() if k.startswith("contact/") and np.isfinite(v)]
+    bare_terms = [
+        v
+        for g in gmm.synthesize(cloud, base.updated({"query.link_floor": None}))
+        for k, v in g.experts.items()
+        if k.startswith("contact/") and np.isfinite(v)
+    ]
+    assert min(terms) >= floor and min(bare_terms) < floor - 10
     # experts off: their terms leave the table.
     bare = gmm.synthesize(cloud, base.updated({"approach": None, "contact_quality": None, "kinematic": None}))
     assert not set(bare.best().experts) & {"clear_approach", "contact_quality", "kinematic"}
 
-    # contact quality's friction: the same samples (it is soft and scored last; no annealing), and a wider cone
-    # forgives more, so no grasp scores worse on it and some score better (NaN: rejected before it was scored).
+    # contact quality's friction: the same samples (it is soft and scored last; no annealing; no top-down seeds,
+    # whose best are kept in place of the worst drawn grasps by a score that contact quality is part of), and a wider
+    # cone forgives more, so no grasp scores worse on it and some score better (NaN: rejected before it was scored).
     def quality(friction):
-        g = gmm.synthesize(cloud, base.updated({"contact_quality.friction": friction, "sampling.optimise": False}))
+        changes = {"contact_quality.friction": friction, "sampling.optimise": False, "sampling.topdown_seeds": False}
+        g = gmm.synthesize(cloud, base.updated(changes))
         return {tuple(x.T_world_wrist): x.experts["contact_quality"] for x in g}
 
     loose, tight = quality(5.0), quality(0.05)

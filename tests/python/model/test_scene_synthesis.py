@@ -36,10 +36,11 @@ def packed(cube):
     return spec, acq, GraspModel.load(default_model_path("gmm"))
 
 
-def synthesize(model, acq, target, **changes):
-    """The scene's synthesis with 100 samples, the best 3 annealed; `changes`: more sampling settings."""
+def synthesize(model, acq, target, options=None, **changes):
+    """The scene's synthesis with 100 samples, the best 3 annealed; `changes`: more sampling settings; `options`:
+    other settings ("part.field" -> value)."""
     sampling = {f"sampling.{k}": v for k, v in dict(n_samples=100, n_optimise=3, **changes).items()}
-    opts = SynthesisOptions().updated(sampling)
+    opts = SynthesisOptions().updated({**sampling, **(options or {})})
     return model.synthesize(acq.points, opts, viewpoints=acq.viewpoints, target=target)
 
 
@@ -47,7 +48,11 @@ def synthesize(model, acq, target, **changes):
 def test_grasps_are_on_the_target_and_clear_of_its_neighbours(packed, k):
     spec, acq, model = packed
     x, y = CUBES[k]
-    grasps = synthesize(model, acq, f"point:{x},{y},0.05")
+    # Each link's contact term as its density gives it (no floor): with the floor (the default), the middle cube's
+    # grasps include some with one finger far from its density (at the floor) and beside the hidden side of the cube
+    # behind it, which no point shows; the best ones start 2-5 mm inside that cube (docs/one-view.md, "A floor under
+    # each link's contact term"). What this test checks is the neighbours' points and volume keeping the hand out.
+    grasps = synthesize(model, acq, f"point:{x},{y},0.05", options={"query.link_floor": None})
     assert len(grasps.targets) == 1 and len(grasps) > 0
     target = grasps.targets[0]
     # The segmented target is the intended cube (its seen points' centroid within the cube's footprint).

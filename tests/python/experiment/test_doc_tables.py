@@ -59,6 +59,14 @@ PAGES = {
         "seeds-heldout",
         "seeds-four-views",
         "seeds-clutter",
+        "floor-test60",
+        "floor-test60-kde",
+        "floor-dev",
+        "floor-four-views-dev",
+        "floor-clutter-dev",
+        "floor-heldout",
+        "floor-four-views",
+        "floor-clutter",
     },
 }
 SCRIPTS = ("scripts/findings_table.py", "scripts/ablation_table.py", "scripts/clutter_table.py")

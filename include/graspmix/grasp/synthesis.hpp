@@ -54,7 +54,7 @@ struct QuerySettings {
   /// nats: each link's contact term is scored as log(Q_i(pose) + exp(link_floor)), its query density mixed with a
   /// flat one (contact_log_term), so that a link that finds nothing like the surface it touched in the demonstration
   /// costs at most a bounded amount and does not outweigh the others: on a flat object one WSG 50 finger's term
-  /// fell to -400 to -1000 nats and ranked grasps by which was least far from it. Unset: the densities as they are
+  /// fell to -160 to -1750 nats and ranked grasps by which was least far from it. Unset: the densities as they are
   /// (the paper's product; SynthesisOptions.paper()). -20: chosen on the development sets, one view, GMM: test60
   /// 91.2 -> 94.0% (+23 / -6), a named object in packed clutter_dev scenes 86.2 -> 95.0% (docs/one-view.md, "A
   /// floor under each link's contact term"); a link where its density is high scores within 1e-8 nats of it.

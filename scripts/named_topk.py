@@ -34,19 +34,10 @@ def main(argv=None) -> int:
     ap.add_argument("--set", action="append", default=[], metavar="PART.FIELD=VALUE")
     args = ap.parse_args(argv)
 
-    from graspmix.clutter.named import (
-        choose_targets,
-        classify,
-        eligible_objects,
-        named_point,
-        object_tops,
-        point_target,
-        target_seed,
-    )
+    from graspmix.clutter.named import classify, named_scene, point_target
     from graspmix.clutter.protocol import clutter_protocol_from_json
     from graspmix.experiment.attempt import cached_model
-    from graspmix.sim.scene_camera import acquire_scene
-    from graspmix.sim.scenes import choose_objects, execute_in_scene, make_scene
+    from graspmix.sim.scenes import execute_in_scene
 
     p = clutter_protocol_from_json(json.loads((Path(args.run) / "clutter.json").read_text())["protocol"])
     changes = {}
@@ -56,15 +47,11 @@ def main(argv=None) -> int:
     model = cached_model(str(p.model_path("gmm").resolve()))
     rows = []
     for scene in range(p.scenes):
-        scene_seed = p.scene_seed(args.mode, scene)
-        spec = make_scene(choose_objects(p.object_list_path, p.objects, scene_seed), args.mode, scene_seed)
-        obs = acquire_scene(spec, views=p.views, noise=p.noise, seed=p.stage_seed("observe", args.mode, scene, 0))
-        tops = object_tops(spec)
-        eligible = eligible_objects(obs.points, obs.labels, tops)
-        picks = choose_targets(eligible, p.targets, target_seed(p, args.mode, scene))
-        for pick, target in enumerate(picks):
+        ns = named_scene(p, args.mode, scene)
+        spec, obs = ns.spec, ns.obs
+        for pick, target in enumerate(ns.picks):
             opts = p.synthesis.updated({"seed": p.stage_seed("synthesis", args.mode, scene, pick), **changes})
-            text = point_target(named_point(obs.points, obs.labels, target, tops[target]))
+            text = point_target(ns.point(target))
             grasps = model.synthesize(obs.points, opts, target=text, viewpoints=obs.viewpoints)
             grasps.add_frames()
             marks = ""

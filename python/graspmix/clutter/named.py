@@ -247,34 +247,58 @@ def target_seed(p, mode: str, scene: int) -> int:
     return derive_seed(p.seed, "clutter named", mode, scene)
 
 
-def run_named(pdoc: dict, unit: tuple, todo=None) -> list[dict]:
-    """The row of one named-target unit (mode, scene, method, pick): a pure function of the protocol and
-    the unit (but the times). pdoc: ClutterProtocol.to_json() plus "model_paths"; todo: unused."""
+@dataclass
+class NamedScene:
+    """One scene of a named-target protocol as its attempts see it: the placed scene, its observation (and the
+    seconds it took), the objects' true tops, the eligible objects and the targets drawn among them."""
+
+    scene_seed: int
+    observe_seed: int
+    spec: object
+    obs: object
+    t_observe: float
+    tops: np.ndarray
+    eligible: list
+    picks: list
+
+    def point(self, target: int) -> np.ndarray:
+        """The point that names scene object `target` (named_point)."""
+        return named_point(self.obs.points, self.obs.labels, target, self.tops[target])
+
+
+def named_scene(p, mode: str, scene: int) -> NamedScene:
+    """Scene `scene` of `mode` of protocol p, placed, observed and its targets drawn (every attempt on it the same)."""
     from ..sim.scene_camera import acquire_scene
     from ..sim.scenes import choose_objects, make_scene
 
-    p = clutter_protocol_from_json(pdoc)
-    mode, scene, method, pick = unit[0], int(unit[1]), unit[2], int(unit[3])
     scene_seed = p.scene_seed(mode, scene)
     spec = make_scene(choose_objects(p.object_list_path, p.objects, scene_seed), mode, scene_seed)
-    row = {"mode": mode, "scene": scene, "method": method, "pick": pick, "scene_seed": scene_seed}
-    row.update(placed=len(spec.objects), observe_seed=p.stage_seed("observe", mode, scene, 0))
+    observe_seed = p.stage_seed("observe", mode, scene, 0)
     t0 = time.perf_counter()
-    obs = acquire_scene(spec, views=p.views, noise=p.noise, seed=row["observe_seed"])
-    row.update(t_observe=time.perf_counter() - t0, n_points=len(obs.points))
+    obs = acquire_scene(spec, views=p.views, noise=p.noise, seed=observe_seed)
+    t_observe = time.perf_counter() - t0
     tops = object_tops(spec)
     eligible = eligible_objects(obs.points, obs.labels, tops)
     picks = choose_targets(eligible, p.targets, target_seed(p, mode, scene))
-    row["eligible"] = len(eligible)
+    return NamedScene(scene_seed, observe_seed, spec, obs, t_observe, tops, eligible, picks)
+
+
+def run_named(pdoc: dict, unit: tuple, todo=None) -> list[dict]:
+    """The row of one named-target unit (mode, scene, method, pick): a pure function of the protocol and
+    the unit (but the times). pdoc: ClutterProtocol.to_json() plus "model_paths"; todo: unused."""
+    p = clutter_protocol_from_json(pdoc)
+    mode, scene, method, pick = unit[0], int(unit[1]), unit[2], int(unit[3])
+    ns = named_scene(p, mode, scene)
+    row = {"mode": mode, "scene": scene, "method": method, "pick": pick, "scene_seed": ns.scene_seed}
+    row.update(placed=len(ns.spec.objects), observe_seed=ns.observe_seed)
+    row.update(t_observe=ns.t_observe, n_points=len(ns.obs.points), eligible=len(ns.eligible))
     seed = p.stage_seed("synthesis", mode, scene, pick)
-    if pick >= len(picks):
+    if pick >= len(ns.picks):
         blank = {c: "" for c in RESULT_COLUMNS + TIME_COLUMNS if c not in row}
         return [{**row, **blank, "outcome": NO_TARGET, "success": 0, "synthesis_seed": seed}]
-    target = picks[pick]
+    target = ns.picks[pick]
     stages = named_stages(p, method, pdoc.get("model_paths", {}))
-    row.update(
-        named_attempt(spec, obs, target, named_point(obs.points, obs.labels, target, tops[target]), stages, seed)
-    )
+    row.update(named_attempt(ns.spec, ns.obs, target, ns.point(target), stages, seed))
     return [row]
 
 

@@ -61,11 +61,11 @@ Eigen::VectorXd ClearApproachExpert::log_value(const GraspBatch& b) const {
       w.row(k).head<3>() -= s * axis.row(i);
       q.row(k) = open.row(i);
     }
-    const CollisionBatchResult r = collision_->evaluate_batch(w, q);
+    const Eigen::Matrix<bool, Eigen::Dynamic, 1> free = collision_->collision_free_batch(w, q);
     std::vector<Eigen::Index> still;
     for (Eigen::Index k = 0; k < m; ++k) {
       const Eigen::Index i = alive[static_cast<size_t>(k)];
-      if (r.collision_free[k]) {
+      if (free[k]) {
         still.push_back(i);
       } else {
         out[i] = -std::numeric_limits<double>::infinity();

@@ -215,7 +215,9 @@ double CollisionExpert::cell_size() const { return index_->grid.cell_size(); }
 namespace {
 
 /// The surface model's D_l term of one shape posed at T (its world box: centre, half): the deepest penetrating point
-/// (into `deepest`, a running maximum) and their count (added to `inside`).
+/// (into `deepest`, a running maximum) and their count (added to `inside`). kFirst: stop at the first penetrating
+/// point (`inside` then says whether there is one).
+template <bool kFirst = false>
 void cloud_term(const CollisionExpert::Index& ix, const CollisionExpert::Shapes::Shape& sh, const Eigen::Isometry3d& T,
                 const WorldBox& box_w, double r, double tol, double& deepest, int& inside) {
   const Eigen::Matrix3d& R = T.linear();
@@ -249,6 +251,10 @@ void cloud_term(const CollisionExpert::Index& ix, const CollisionExpert::Shapes:
           count += in;
           best = std::max(best, in ? depth : best);
         }
+        if (kFirst && count > 0) {
+          inside += count;
+          return;
+        }
         continue;
       }
       for (Eigen::Index i = b; i < e; ++i) {
@@ -260,8 +266,9 @@ void cloud_term(const CollisionExpert::Index& ix, const CollisionExpert::Shapes:
           // Counted for sure inside the inner proxy; and, inside the proxy box, no deeper than r - its excess:
           // such a point cannot raise the deepest one found, so the hull is not needed for it.
           const detail::ProxyView v = detail::proxy_view(*sh.src, p);
-          if (r - v.inner > tol && v.excess <= 0.0 && r - v.excess <= best) {
+          if (r - v.inner > tol && v.excess <= 0.0 && (kFirst || r - v.excess <= best)) {
             ++count;
+            if (kFirst) break;
             continue;
           }
         }
@@ -270,7 +277,12 @@ void cloud_term(const CollisionExpert::Index& ix, const CollisionExpert::Shapes:
         if (depth > tol) {
           ++count;
           best = std::max(best, depth);
+          if (kFirst) break;
         }
+      }
+      if (kFirst && count > 0) {
+        inside += count;
+        return;
       }
     }
   deepest = best;
@@ -315,6 +327,41 @@ void CollisionExpert::evaluate_into(const Eigen::Isometry3d* link_poses, double*
       if (depth > tol) plane_depth[sh.link] = std::max(plane_depth[sh.link], depth);
     }
   }
+}
+
+bool CollisionExpert::penetrates(const Eigen::Isometry3d* link_poses) const {
+  const double tol = settings_.contact_tolerance;
+  const Eigen::Index N = index_->grid.size();
+  // evaluate_into's hard terms (the unseen charge never refuses), each stopping at its first penetration.
+  for (const Shapes::Shape& sh : shapes_->shapes) {
+    const Eigen::Isometry3d T = link_poses[sh.link] * sh.src->T_link_shape;
+    const WorldBox box_w = world_box(sh, T);
+    const Eigen::Vector3d lo = box_w.centre - box_w.half, hi = box_w.centre + box_w.half;
+    if (plane_ && plane_term(*shapes_, sh, T, box_w, *plane_, settings_.plane_margin) > tol) return true;
+    if (N > 0) {
+      double deepest = 0.0;
+      int inside = 0;
+      cloud_term<true>(*index_, sh, T, box_w, settings_.point_radius, tol, deepest, inside);
+      if (inside > 0) return true;
+    }
+    if (occupancy_ && settings_.occupied_cells && occupancy_->any_blocked(lo, hi) &&
+        any_blocked_sample(*occupancy_, sh, T, tol)) {
+      return true;
+    }
+    if (volume_ && volume_->any_blocked(lo, hi) && any_blocked_sample(*volume_, sh, T, tol)) return true;
+  }
+  return false;
+}
+
+Eigen::Matrix<bool, Eigen::Dynamic, 1> CollisionExpert::collision_free_batch(
+    const Eigen::Ref<const PoseArray>& T_world_wrist, const Eigen::Ref<const RowMatrixXd>& q) const {
+  Eigen::Matrix<bool, Eigen::Dynamic, 1> out(std::max(T_world_wrist.rows(), q.rows()));
+  const Eigen::Index parallel_from = index_->grid.size() == 0 && !occupancy_ && !volume_ ? 4096 : 64;
+  const Eigen::Index N = hand_->fk_each(
+      T_world_wrist, q, parallel_from,
+      [&](Eigen::Index i, const Eigen::VectorXd&, const Eigen::Isometry3d* poses) { out[i] = !penetrates(poses); });
+  out.conservativeResize(N);
+  return out;
 }
 
 CollisionResult CollisionExpert::evaluate(const Eigen::Isometry3d& T_world_wrist,

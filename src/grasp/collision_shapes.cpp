@@ -195,7 +195,8 @@ namespace {
 
 /// The volume of the shape's samples charged: those for which `charged(sample, its cell's state)` holds and whose
 /// cell's centre lies deeper than tol + h/2 inside the shape. `any(lo, hi)`: whether a box may hold a charged cell.
-template <class Any, class Charged>
+/// kFirst: stop at the first sample charged (its volume alone: whether there is any).
+template <bool kFirst = false, class Any, class Charged>
 double charged_volume(const OccupancyMap& map, const CollisionExpert::Shapes::Shape& sh, const Eigen::Isometry3d& T,
                       double tol, int& count, Any any, Charged charged) {
   const double erosion = tol + 0.5 * map.resolution();
@@ -212,8 +213,12 @@ double charged_volume(const OccupancyMap& map, const CollisionExpert::Shapes::Sh
       Eigen::Vector3d centre;
       const Eigen::Vector3d x = R * in.samples[s] + t;
       if (!charged(x, map.cell(x, centre))) continue;
-      if (-signed_distance(*sh.src, R.transpose() * (centre - t)) > erosion) ++n;
+      if (detail::deeper_inside(*sh.src, R.transpose() * (centre - t), erosion)) {
+        ++n;
+        if (kFirst) break;
+      }
     }
+    if (kFirst && n > 0) break;
   }
   count += n;
   return n * in.sample_volume;
@@ -227,6 +232,15 @@ double blocked_volume(const OccupancyMap& map, const CollisionExpert::Shapes::Sh
       map, sh, T, tol, count,
       [&](const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) { return map.any_blocked(lo, hi); },
       [&](const Eigen::Vector3d&, CellState st) { return map.blocked(st); });
+}
+
+bool any_blocked_sample(const OccupancyMap& map, const CollisionExpert::Shapes::Shape& sh, const Eigen::Isometry3d& T,
+                        double tol) {
+  int count = 0;
+  return charged_volume<true>(
+             map, sh, T, tol, count,
+             [&](const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) { return map.any_blocked(lo, hi); },
+             [&](const Eigen::Vector3d&, CellState st) { return map.blocked(st); }) > 0.0;
 }
 
 double unseen_volume(const OccupancyMap& map, const OccupancyMap* solid, double margin,

@@ -66,6 +66,10 @@ double plane_term(const CollisionExpert::Shapes& shapes, const CollisionExpert::
 double blocked_volume(const OccupancyMap& map, const CollisionExpert::Shapes::Shape& sh, const Eigen::Isometry3d& T,
                       double tol, int& count);
 
+/// Whether blocked_volume would charge any sample (it stops at the first).
+bool any_blocked_sample(const OccupancyMap& map, const CollisionExpert::Shapes::Shape& sh, const Eigen::Isometry3d& T,
+                        double tol);
+
 /// The same volume over the map's unknown cells whose sample lies outside the solid volume (`solid`'s occupied
 /// cells; none when null) and, with margin > 0, farther than `margin` from it along every axis (no occupied cell in
 /// the cube of half-side margin around it): the unseen space a soft charge weighs (CollisionSettings::unseen_weight).

@@ -5,6 +5,7 @@
 #include <numeric>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "graspmix/core/se3.hpp"
 
@@ -114,15 +115,28 @@ Eigen::VectorXd CollisionFreeExpert::log_value(const GraspBatch& b) const {
   const Eigen::Index n = b.wrists.rows();
   require_joints_shape(n, b.joints, collision_->hand().n_dofs(), name_ + " expert");
   Eigen::VectorXd out = Eigen::VectorXd::Zero(n);
-  if (config_) {
-    const auto [grasp, pregrasp] = collision_->total_depth_pair(b.wrists, b.joints, config_->pregrasps_for(b.joints));
-    for (Eigen::Index i = 0; i < n; ++i)
-      if (!(grasp[i] <= 0.0 && pregrasp[i] <= 0.0)) out[i] = kRejected;
-  } else {
-    const CollisionBatchResult r = collision_->evaluate_batch(b.wrists, b.joints);
-    for (Eigen::Index i = 0; i < n; ++i)
-      if (!r.collision_free[i]) out[i] = kRejected;
+  const Eigen::Matrix<bool, Eigen::Dynamic, 1> free = collision_->collision_free_batch(b.wrists, b.joints);
+  std::vector<Eigen::Index> kept;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (!free[i]) {
+      out[i] = kRejected;
+    } else {
+      kept.push_back(i);
+    }
   }
+  if (!config_ || kept.empty()) return out;
+  // The pre-grasps of the grasps that are free.
+  const auto m = static_cast<Eigen::Index>(kept.size());
+  PoseArray w(m, 7);
+  RowMatrixXd q(m, b.joints.cols());
+  for (Eigen::Index k = 0; k < m; ++k) {
+    w.row(k) = b.wrists.row(kept[static_cast<std::size_t>(k)]);
+    q.row(k) = b.joints.row(kept[static_cast<std::size_t>(k)]);
+  }
+  const Eigen::Matrix<bool, Eigen::Dynamic, 1> pre_free =
+      collision_->collision_free_batch(w, config_->pregrasps_for(q));
+  for (Eigen::Index k = 0; k < m; ++k)
+    if (!pre_free[k]) out[kept[static_cast<std::size_t>(k)]] = kRejected;
   return out;
 }
 

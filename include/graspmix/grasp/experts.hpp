@@ -120,8 +120,9 @@ class AxisAlignmentExpert : public Expert {
 
 /// The hard expert that keeps the hand out of a collision expert's cloud and plane (e.g. a scene's other
 /// objects): log E = 0 where the hand touches none of them at the grasp and, given a configuration model, at
-/// the grasp's pre-grasp (ConfigModel::pregrasp_for; the links the pre-grasp leaves in place are scored
-/// once), -inf elsewhere. Collision-free is CollisionBatchResult::collision_free: total depth <= 0.
+/// the grasp's pre-grasp (ConfigModel::pregrasp_for; checked for the grasps free at the grasp), -inf elsewhere.
+/// Collision-free is CollisionExpert::collision_free_batch's (CollisionBatchResult::collision_free: no hard term;
+/// the unseen charge never refuses).
 class CollisionFreeExpert : public Expert {
  public:
   CollisionFreeExpert(std::shared_ptr<const CollisionExpert> collision, std::optional<ConfigModel> pregrasp_config,

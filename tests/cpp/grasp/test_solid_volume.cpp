@@ -1,14 +1,18 @@
 // The solid volume of objects on a table against the exact insides of a box and a cylinder, and the collision
 // expert charging a finger inside a completed object that touches none of its points.
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <functional>
 #include <memory>
 #include <random>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "grasp/collision_geometry.hpp"
 #include "graspmix/grasp/collision.hpp"
 #include "graspmix/grasp/solid_volume.hpp"
 #include "graspmix/robot/hand.hpp"
@@ -200,16 +204,33 @@ TEST(CollisionVolume, AFingerInsideACompletedObjectIsChargedOneOutsideIsNot) {
   EXPECT_THROW(CollisionExpert(finger(), pts, kTable, with), std::invalid_argument);
 }
 
-TEST(CollisionUnseen, SpaceBehindASeenFaceIsChargedSoftlyOutsideTheVolume) {
-  // One camera at -x sees the box's face x = 0; the completion gives its other faces (box_points).
+namespace {
+
+/// The box of box_points seen by one camera at -x (its face x = 0) and completed (its other faces), and the map of
+/// what the camera saw, unknown space not an obstacle.
+struct OneView {
+  Vec3Array seen, completed;
+  std::shared_ptr<const OccupancyMap> map;
+};
+OneView box_seen_from_minus_x() {
   std::vector<Eigen::Vector3d> face;
   for (const auto& p : box_points())
     if (p.x() == 0.0) face.push_back(p);
-  const Vec3Array seen = to_array(face), completed = to_array(box_points());
+  OneView v{to_array(face), to_array(box_points()), nullptr};
   graspmix::OccupancySettings free_unknown;
   free_unknown.unknown_is_occupied = false;
-  const auto map =
-      std::make_shared<const OccupancyMap>(seen, Eigen::RowVector3d(-0.5, 0, 0.05), completed, kTable, free_unknown);
+  v.map = std::make_shared<const OccupancyMap>(v.seen, Eigen::RowVector3d(-0.5, 0, 0.05), v.completed, kTable,
+                                               free_unknown);
+  return v;
+}
+
+}  // namespace
+
+TEST(CollisionUnseen, SpaceBehindASeenFaceIsChargedSoftlyOutsideTheVolume) {
+  // One camera at -x sees the box's face x = 0; the completion gives its other faces (box_points).
+  const OneView view = box_seen_from_minus_x();
+  const Vec3Array &seen = view.seen, &completed = view.completed;
+  const auto& map = view.map;
   CollisionSettings s;
   s.volume = false;  // first the charge alone, no margin
   s.unseen_margin = 0.0;
@@ -304,4 +325,86 @@ TEST(CollisionVolume, WhatTheCamerasSawThroughIsNotSolid) {
   EXPECT_FALSE(carved.evaluate(at(0.33, 0, 0.035), q).collision_free);
   EXPECT_FALSE(columns.evaluate(at(0.33, 0, 0.035), q).collision_free);
   EXPECT_TRUE(carved.has_volume());
+}
+
+namespace {
+
+/// A frustum as an OBJ mesh (the hull the expert uses is the mesh itself): its base 2 x 4 cm at z = 0, its top
+/// 1 x 2 cm at z = 6 cm. Its proxy boxes are not the hull, so every branch of a mesh's depth test is taken.
+std::string frustum_obj() {
+  std::string s;
+  for (int i = 0; i < 8; ++i) {
+    const double k = (i & 4) ? 0.5 : 1.0;
+    s += "v " + std::to_string(((i & 1) ? 0.01 : -0.01) * k) + " " + std::to_string(((i & 2) ? 0.02 : -0.02) * k) +
+         " " + std::to_string((i & 4) ? 0.06 : 0.0) + "\n";
+  }
+  const int f[12][3] = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                        {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+  for (const auto& t : f)
+    s += "f " + std::to_string(t[0] + 1) + " " + std::to_string(t[1] + 1) + " " + std::to_string(t[2] + 1) + "\n";
+  return s;
+}
+
+}  // namespace
+
+TEST(CollisionFreeBatch, GivesTheFullEvaluationsVerdictOnRandomHands) {
+  // A mesh link (the frustum) and a box finger that slides from it, posed at random around a box seen from one
+  // camera and completed: collision_free_batch (no unseen charge, first penetration ends a hand) says what
+  // evaluate_batch's collision_free says, for the surface model with and without the volume and the occupancy model.
+  const auto dir = std::filesystem::temp_directory_path() / "graspmix_test_collision_free_batch";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "frustum.obj") << frustum_obj();
+  const auto hand = std::make_shared<graspmix::Hand>(graspmix::Hand::from_urdf_string(R"(<robot name="m">
+    <link name="palm"><collision><geometry><mesh filename="frustum.obj"/></geometry></collision></link>
+    <link name="finger"><collision><geometry><box size="0.01 0.02 0.05"/></geometry></collision></link>
+    <joint name="slide" type="prismatic"><parent link="palm"/><child link="finger"/><origin xyz="0 0 0.06"/>
+      <axis xyz="1 0 0"/><limit lower="-0.04" upper="0.04" effort="1" velocity="1"/></joint></robot>)",
+                                                                                      dir.string()));
+  std::filesystem::remove_all(dir);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> U(0, 1);
+  // The mesh's depth test against its hull's signed distance, at the erosions the maps use and beyond.
+  const graspmix::CollisionShape& mesh = hand->links()[0].collisions.at(0);
+  ASSERT_GT(mesh.box_inner.minCoeff(), 0.0);
+  int deeper = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const Eigen::Vector3d p(0.03 * (U(rng) - 0.5), 0.05 * (U(rng) - 0.5), 0.07 * U(rng) - 0.005);
+    for (const double depth : {0.0, 0.0015, 0.0035, 0.006}) {
+      const bool want = graspmix::detail::signed_distance(mesh, p) < -depth;
+      EXPECT_EQ(graspmix::detail::deeper_inside(mesh, p, depth), want) << p.transpose() << " " << depth;
+      deeper += want;
+    }
+  }
+  EXPECT_GT(deeper, 10000);
+  const OneView view = box_seen_from_minus_x();
+  const Vec3Array &seen = view.seen, &completed = view.completed;
+  const auto& map = view.map;
+  const int N = 600;
+  graspmix::PoseArray W(N, 7);
+  graspmix::RowMatrixXd Q(N, 1);
+  for (int i = 0; i < N; ++i) {
+    Eigen::Vector4d qv(U(rng) - 0.5, U(rng) - 0.5, U(rng) - 0.5, U(rng) - 0.5);
+    qv.normalize();
+    W.row(i) << 0.2 * U(rng) - 0.05, 0.16 * (U(rng) - 0.5), 0.15 * U(rng), qv[0], qv[1], qv[2], qv[3];
+    Q(i, 0) = 0.08 * (U(rng) - 0.5);
+  }
+  CollisionSettings s;
+  s.unseen_weight = 0.1;
+  const CollisionExpert volume_unseen(hand, completed, kTable, s, map), occupancy(hand, map, completed, kTable, s);
+  s.volume = false;
+  const CollisionExpert surface(hand, completed, kTable, s);
+  for (const CollisionExpert* e : {&volume_unseen, &occupancy, &surface}) {
+    const graspmix::CollisionBatchResult full = e->evaluate_batch(W, Q);
+    const Eigen::Matrix<bool, Eigen::Dynamic, 1> fast = e->collision_free_batch(W, Q);
+    ASSERT_EQ(fast.size(), N);
+    int free = 0, soft = 0;
+    for (int i = 0; i < N; ++i) {
+      EXPECT_EQ(fast[i], full.collision_free[i]) << "hand " << i;
+      free += fast[i];
+      soft += fast[i] && full.unseen_depth.row(i).sum() > 0;
+    }
+    EXPECT_GT(free, N / 5);  // both verdicts well represented
+    EXPECT_LT(free, 4 * N / 5);
+    if (e != &surface) EXPECT_GT(soft, 10);  // hands in unseen space only: charged, yet free
+  }
 }

@@ -87,22 +87,6 @@ inline bool within(const CollisionShape& s, const Eigen::Vector3d& p, double lim
   return signed_distance_within(s, p, limit) <= limit;
 }
 
-/// Whether p (shape frame) lies deeper than `depth` (>= 0) inside the shape: signed_distance(s, p) < -depth. A mesh's
-/// proxy boxes answer first (outside the outer box by less than depth: the hull, inside it, is no deeper; inside the
-/// inner box by more: the hull holds that box), then its hull's planes, stopping at the first one not below -depth.
-/// The same answer as the signed distance's but at ties within rounding.
-inline bool deeper_inside(const CollisionShape& s, const Eigen::Vector3d& p, double depth) {
-  if (s.type != ShapeType::Mesh) return signed_distance(s, p) < -depth;
-  const Eigen::Vector3d q = (s.T_shape_box.linear().transpose() * (p - s.T_shape_box.translation())).cwiseAbs();
-  if ((q - s.box_half).maxCoeff() >= -depth) return false;
-  if (s.box_inner.minCoeff() > 0.0 && (q - s.box_inner).maxCoeff() < -depth) return true;
-  const RowMatrixXd& P = *s.hull_planes;
-  for (Eigen::Index f = 0; f < P.rows(); ++f) {
-    if (P(f, 0) * p.x() + P(f, 1) * p.y() + P(f, 2) * p.z() - P(f, 3) >= -depth) return false;
-  }
-  return true;
-}
-
 /// The cells of a grid (origin o, cubic cells of side h) that an oriented box (centre c, axes the columns of
 /// R, half extents half) grown by r can meet, column by column. A cell is left out only when one of the
 /// box's axes separates it from the grown box, with a margin over rounding: every point the per-point box

@@ -213,7 +213,7 @@ double charged_volume(const OccupancyMap& map, const CollisionExpert::Shapes::Sh
       Eigen::Vector3d centre;
       const Eigen::Vector3d x = R * in.samples[s] + t;
       if (!charged(x, map.cell(x, centre))) continue;
-      if (detail::deeper_inside(*sh.src, R.transpose() * (centre - t), erosion)) {
+      if (-signed_distance(*sh.src, R.transpose() * (centre - t)) > erosion) {
         ++n;
         if (kFirst) break;
       }

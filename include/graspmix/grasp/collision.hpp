@@ -164,7 +164,8 @@ class CollisionExpert {
                                       const Eigen::Ref<const RowMatrixXd>& q) const;
 
   /// evaluate_batch's collision_free alone, faster: without the unseen charge (which never refuses a hand) and
-  /// stopping at a hand's first penetration. The same answers but at ties within rounding. Parallel (OpenMP).
+  /// stopping at a hand's first penetration (a point deeper than the tolerance, a charged sample of a map's volume,
+  /// the plane). The same answers, exactly. Parallel (OpenMP).
   Eigen::Matrix<bool, Eigen::Dynamic, 1> collision_free_batch(const Eigen::Ref<const PoseArray>& T_world_wrist,
                                                               const Eigen::Ref<const RowMatrixXd>& q) const;
 

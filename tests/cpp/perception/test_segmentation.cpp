@@ -391,3 +391,55 @@ TEST(Segmentation, TheSplitRuleCutsTwoTouchingBoxesAndNotOneObject) {
     }
   }
 }
+
+TEST(Segmentation, APointTargetsSegmentIsTriedByTheSplitRuleBelowItsSizeGate) {
+  // Two touching boxes (the split test's above, 0.7 times as long and as tall): their segment's principal box is
+  // within split_max_size (15 cm), so the rule leaves it whole. Named by a point on the low box, the segment is cut
+  // at split_named_max_size (12 cm) into the two boxes; one box 10 cm long is left whole; without viewpoints nothing
+  // is cut. The rule's limit, asserted so that a change to it shows: the mug of the test above (11 cm with its
+  // handle; its principal box longer than 12 cm) named by a point is cut too.
+  const SegmentationSettings s;
+  const std::vector<Box> touching = {box_at(-0.0315, 0.0, 0.063, 0.06, 0.07), box_at(0.0315, 0.0, 0.063, 0.10, 0.035)};
+  const Render r = render(kEye, kTarget, touching, 1.0, 1.0, 0.001, 11, 640, 480);
+  Segmentation scene = segment_scene(r.points, one(kEye), s);
+  ASSERT_EQ(scene.objects.size(), 1u) << "within the size gate: one segment";
+  EXPECT_EQ(scene.n_split, 0u);
+  const Vec3Array viewpoints = one(kEye).replicate(scene.points.rows(), 1);
+  ASSERT_LT(scene.objects[0].obb_extents.maxCoeff(), s.split_max_size);
+  const Eigen::Vector3d low(0.0315, 0, 0.035);
+  EXPECT_EQ(graspmix::split_object_near(scene, Vec3Array(0, 3), low, s, s.split_named_max_size), 0u);
+  EXPECT_EQ(graspmix::split_object_near(scene, viewpoints, low, s, s.split_named_max_size), 1u);
+  EXPECT_EQ(scene.n_split, 1u);
+  expect_objects_are_the_boxes(scene, touching);
+  EXPECT_EQ(scene.labels.size(), scene.points.rows());
+  for (std::size_t k = 0; k < scene.objects.size(); ++k) {
+    EXPECT_EQ(scene.objects[k].index, static_cast<int>(k));
+    for (Eigen::Index j = 0; j < scene.objects[k].rows.size(); ++j)
+      EXPECT_EQ(scene.labels[scene.objects[k].rows[j]], static_cast<int>(k));
+  }
+  EXPECT_GE(scene.objects[0].n_points, scene.objects[1].n_points);  // ordered as segment_scene orders them
+  const double w = 0.006, x0 = -0.04, x1 = 0.04;                    // the mug of the test above
+  const std::vector<Box> mug = {{{x0, -0.04, 0}, {x1, -0.04 + w, 0.10}},
+                                {{x0, 0.04 - w, 0}, {x1, 0.04, 0.10}},
+                                {{x0, -0.04, 0}, {x0 + w, 0.04, 0.10}},
+                                {{x1 - w, -0.04, 0}, {x1, 0.04, 0.10}},
+                                {{x0, -0.04, 0}, {x1, 0.04, w}},
+                                {{x1, -0.006, 0.02}, {x1 + 0.03, 0.006, 0.032}},
+                                {{x1, -0.006, 0.07}, {x1 + 0.03, 0.006, 0.082}},
+                                {{x1 + 0.018, -0.006, 0.02}, {x1 + 0.03, 0.006, 0.082}}};
+  for (const auto& [boxes, cut] :
+       {std::pair<std::vector<Box>, bool>{{box_at(0.0, 0.0, 0.10, 0.06, 0.05)}, false}, {mug, true}}) {
+    const Render m = render(kEye, kTarget, boxes, 1.0, 1.0, 0.001, 13, 640, 480);
+    Segmentation one_object = segment_scene(m.points, one(kEye), s);
+    ASSERT_EQ(one_object.objects.size(), 1u);
+    EXPECT_EQ(
+        graspmix::split_object_near(one_object, one(kEye), Eigen::Vector3d(0, 0, 0.1), s, s.split_named_max_size) > 0,
+        cut);
+    EXPECT_EQ(one_object.objects.size() > 1, cut);
+  }
+  EXPECT_THROW(graspmix::split_object_near(scene, viewpoints, Eigen::Vector3d(0, 0, 0), s, 0.0), std::invalid_argument);
+  EXPECT_THROW(graspmix::split_object_near(scene, one(kEye), Eigen::Vector3d(0, std::nan(""), 0), s, 0.12),
+               std::invalid_argument);
+  EXPECT_THROW(graspmix::split_object_near(scene, Vec3Array::Zero(2, 3), Eigen::Vector3d(0, 0, 0), s, 0.12),
+               std::invalid_argument);
+}

@@ -106,19 +106,6 @@ const Eigen::Vector3d kEye(0.5, 0.1, 0.45), kTarget(0, 0, 0.03);
 
 Vec3Array one(const Eigen::Vector3d& v) { return v.transpose(); }
 
-/// A mug of boxes: an 8 x 8 x 10 cm body (walls 6 mm), its handle 3 cm beyond x = 4 cm.
-std::vector<Box> mug_boxes() {
-  const double w = 0.006, x0 = -0.04, x1 = 0.04;
-  return {{{x0, -0.04, 0}, {x1, -0.04 + w, 0.10}},
-          {{x0, 0.04 - w, 0}, {x1, 0.04, 0.10}},
-          {{x0, -0.04, 0}, {x0 + w, 0.04, 0.10}},
-          {{x1 - w, -0.04, 0}, {x1, 0.04, 0.10}},
-          {{x0, -0.04, 0}, {x1, 0.04, w}},
-          {{x1, -0.006, 0.02}, {x1 + 0.03, 0.006, 0.032}},
-          {{x1, -0.006, 0.07}, {x1 + 0.03, 0.006, 0.082}},
-          {{x1 + 0.018, -0.006, 0.02}, {x1 + 0.03, 0.006, 0.082}}};
-}
-
 /// The support rule's figures, printed when an expectation on the plane fails.
 std::string figures(const Segmentation& s) {
   std::string out;
@@ -380,7 +367,15 @@ TEST(Segmentation, TheSplitRuleCutsTwoTouchingBoxesAndNotOneObject) {
     EXPECT_GE(s.times.split, 0.0);
   }
   const std::vector<Box> long_box = {box_at(0.0, 0.0, 0.18, 0.06, 0.05)};
-  const std::vector<Box> mug = mug_boxes();
+  const double w = 0.006, x0 = -0.04, x1 = 0.04;  // the mug: an 8 x 8 x 10 cm body, the handle 3 cm beyond x1
+  const std::vector<Box> mug = {{{x0, -0.04, 0}, {x1, -0.04 + w, 0.10}},
+                                {{x0, 0.04 - w, 0}, {x1, 0.04, 0.10}},
+                                {{x0, -0.04, 0}, {x0 + w, 0.04, 0.10}},
+                                {{x1 - w, -0.04, 0}, {x1, 0.04, 0.10}},
+                                {{x0, -0.04, 0}, {x1, 0.04, w}},
+                                {{x1, -0.006, 0.02}, {x1 + 0.03, 0.006, 0.032}},
+                                {{x1, -0.006, 0.07}, {x1 + 0.03, 0.006, 0.082}},
+                                {{x1 + 0.018, -0.006, 0.02}, {x1 + 0.03, 0.006, 0.082}}};
   for (const auto& [name, boxes] : {std::pair<std::string, std::vector<Box>>{"long box", long_box}, {"mug", mug}}) {
     for (const Eigen::Vector3d& eye : {kEye, kFront, Eigen::Vector3d(-0.2, -0.4, 0.4)}) {
       SCOPED_TRACE(name + ", eye " + std::to_string(eye.x()) + " " + std::to_string(eye.y()) + " " +
@@ -401,7 +396,7 @@ TEST(Segmentation, APointTargetsSegmentIsTriedByTheSplitRuleBelowItsSizeGate) {
   // Two touching boxes (the split test's above, 0.7 times as long and as tall): their segment's principal box is
   // within split_max_size (15 cm), so the rule leaves it whole. Named by a point on the low box, the segment is cut
   // at split_named_max_size (12 cm) into the two boxes; one box 10 cm long is left whole; without viewpoints nothing
-  // is cut. The rule's limit, asserted so that a change to it shows: the mug of mug_boxes (11 cm with its
+  // is cut. The rule's limit, asserted so that a change to it shows: the mug of the test above (11 cm with its
   // handle; its principal box longer than 12 cm) named by a point is cut too.
   const SegmentationSettings s;
   const std::vector<Box> touching = {box_at(-0.0315, 0.0, 0.063, 0.06, 0.07), box_at(0.0315, 0.0, 0.063, 0.10, 0.035)};
@@ -423,7 +418,15 @@ TEST(Segmentation, APointTargetsSegmentIsTriedByTheSplitRuleBelowItsSizeGate) {
       EXPECT_EQ(scene.labels[scene.objects[k].rows[j]], static_cast<int>(k));
   }
   EXPECT_GE(scene.objects[0].n_points, scene.objects[1].n_points);  // ordered as segment_scene orders them
-  const std::vector<Box> mug = mug_boxes();
+  const double w = 0.006, x0 = -0.04, x1 = 0.04;                    // the mug of the test above
+  const std::vector<Box> mug = {{{x0, -0.04, 0}, {x1, -0.04 + w, 0.10}},
+                                {{x0, 0.04 - w, 0}, {x1, 0.04, 0.10}},
+                                {{x0, -0.04, 0}, {x0 + w, 0.04, 0.10}},
+                                {{x1 - w, -0.04, 0}, {x1, 0.04, 0.10}},
+                                {{x0, -0.04, 0}, {x1, 0.04, w}},
+                                {{x1, -0.006, 0.02}, {x1 + 0.03, 0.006, 0.032}},
+                                {{x1, -0.006, 0.07}, {x1 + 0.03, 0.006, 0.082}},
+                                {{x1 + 0.018, -0.006, 0.02}, {x1 + 0.03, 0.006, 0.082}}};
   for (const auto& [boxes, cut] :
        {std::pair<std::vector<Box>, bool>{{box_at(0.0, 0.0, 0.10, 0.06, 0.05)}, false}, {mug, true}}) {
     const Render m = render(kEye, kTarget, boxes, 1.0, 1.0, 0.001, 13, 640, 480);

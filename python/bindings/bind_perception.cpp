@@ -223,9 +223,6 @@ void bind_perception(py::module_& m) {
              "a split piece with fewer points goes back to the neighbour it touches most")
       .field("split_max_size", &SegmentationSettings::split_max_size,
              "m: one object's largest principal-box side; only larger clusters are cut, and pieces re-join within it")
-      .field("split_named_max_size", &SegmentationSettings::split_named_max_size,
-             "m: with a point target, the segment it names is tried again by the split rule gated at this size\n"
-             "(split_object_near: a segment that size or larger may be the named object and a neighbour it touches)")
       .field("visibility_tolerance", &SegmentationSettings::visibility_tolerance,
              "m: Segmentation.visibility's surface_tolerance (within this of the observed surface is Surface)")
       .field("visibility_resolution", &SegmentationSettings::visibility_resolution,

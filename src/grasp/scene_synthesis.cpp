@@ -270,11 +270,6 @@ SceneSynthesis synthesize_scene(const SceneInput& input, const std::vector<Scene
   Vec3Array given_viewpoints;
   std::tie(out.scene, given_viewpoints) = segment_input(input, settings.segmentation, request.plane);
   out.viewpoints = point_viewpoints(out.scene, given_viewpoints);
-  const SegmentationSettings& seg = settings.segmentation;
-  if (request.target.kind == Target::Kind::Point && seg.split_touching &&
-      split_object_near(out.scene, out.viewpoints, request.target.point, seg, seg.split_named_max_size) > 0) {
-    out.viewpoints = point_viewpoints(out.scene, given_viewpoints);
-  }
   if (settings.completion)
     out.completion = complete_scene(out.scene, *settings.completion);
   else

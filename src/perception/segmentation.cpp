@@ -478,45 +478,4 @@ Segmentation segment_scene(const Vec3Array& points, const Vec3Array& viewpoints,
   return out;
 }
 
-std::size_t split_object_near(Segmentation& scene, const Vec3Array& viewpoints, const Eigen::Vector3d& point,
-                              const SegmentationSettings& settings, double max_size) {
-  if (!(max_size > 0) || !std::isfinite(max_size))
-    throw std::invalid_argument("split_object_near: max_size must be finite and > 0 (m)");
-  if (!point.allFinite()) throw std::invalid_argument("split_object_near: the point must be finite");
-  if (viewpoints.rows() > 1 && viewpoints.rows() != scene.points.rows())
-    throw std::invalid_argument("split_object_near: viewpoints must be one row, or one per point of the scene");
-  if (scene.objects.empty() || viewpoints.rows() == 0) return 0;
-  Extraction e;
-  std::size_t named = 0;
-  double nearest = std::numeric_limits<double>::infinity();
-  for (const SceneObject& o : scene.objects) {
-    std::vector<int> g(o.rows.data(), o.rows.data() + o.rows.size());
-    for (const int r : g) {
-      const double d = (scene.points.row(r).transpose() - point).squaredNorm();
-      if (d < nearest) {
-        nearest = d;
-        named = e.groups.size();
-      }
-    }
-    e.groups.push_back(std::move(g));
-  }
-  std::vector<std::vector<int>> one = {e.groups[named]};
-  const std::size_t added = detail::split_touching(
-      scene.points, viewpoints, one,
-      detail::SplitRule{std::max(settings.split_voxel_resolution, settings.voxel_size), settings.split_seed_resolution,
-                        settings.split_concavity_tolerance, settings.split_min_points, max_size});
-  if (added == 0) return 0;
-  e.groups[named] = std::move(one.front());
-  for (std::size_t k = 1; k < one.size(); ++k) e.groups.push_back(std::move(one[k]));
-  e.n_plane = scene.n_plane;
-  e.n_outliers = scene.n_outliers;
-  e.n_small = scene.n_small_clusters;
-  const Vec3Array P = scene.points;
-  const Eigen::VectorXi sources = scene.sources;
-  scene.objects.clear();
-  finish(P, sources, e, settings, scene);
-  scene.n_split += added;
-  return added;
-}
-
 }  // namespace graspmix

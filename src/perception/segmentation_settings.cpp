@@ -70,10 +70,9 @@ void detail::check_segmentation_settings(const SegmentationSettings& s) {
       !(finite_ge(s.split_voxel_resolution, 0) && s.split_voxel_resolution > 0 &&
         finite_ge(s.split_seed_resolution, 0) && s.split_seed_resolution > s.split_voxel_resolution &&
         finite_ge(s.split_concavity_tolerance, 0) && s.split_concavity_tolerance < M_PI / 2 &&
-        s.split_min_points >= 1 && finite_ge(s.split_max_size, 0) && s.split_max_size > 0 &&
-        finite_ge(s.split_named_max_size, 0) && s.split_named_max_size > 0)) {
+        s.split_min_points >= 1 && finite_ge(s.split_max_size, 0) && s.split_max_size > 0)) {
     bad("split_voxel_resolution must be > 0 (m), split_seed_resolution larger (m), split_concavity_tolerance in "
-        "[0, pi/2) rad, split_min_points >= 1, split_max_size and split_named_max_size > 0 (m)");
+        "[0, pi/2) rad, split_min_points >= 1 and split_max_size > 0 (m)");
   }
   try {
     check_visibility_settings(visibility_settings(s));

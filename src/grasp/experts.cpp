@@ -126,17 +126,11 @@ Eigen::VectorXd CollisionFreeExpert::log_value(const GraspBatch& b) const {
   }
   if (!config_ || kept.empty()) return out;
   // The pre-grasps of the grasps that are free.
-  const auto m = static_cast<Eigen::Index>(kept.size());
-  PoseArray w(m, 7);
-  RowMatrixXd q(m, b.joints.cols());
-  for (Eigen::Index k = 0; k < m; ++k) {
-    w.row(k) = b.wrists.row(kept[static_cast<std::size_t>(k)]);
-    q.row(k) = b.joints.row(kept[static_cast<std::size_t>(k)]);
-  }
+  const auto [w, q] = batch_rows(b.wrists, b.joints, kept);
   const Eigen::Matrix<bool, Eigen::Dynamic, 1> pre_free =
       collision_->collision_free_batch(w, config_->pregrasps_for(q));
-  for (Eigen::Index k = 0; k < m; ++k)
-    if (!pre_free[k]) out[kept[static_cast<std::size_t>(k)]] = kRejected;
+  for (std::size_t k = 0; k < kept.size(); ++k)
+    if (!pre_free[static_cast<Eigen::Index>(k)]) out[kept[k]] = kRejected;
   return out;
 }
 

@@ -224,23 +224,27 @@ double charged_volume(const OccupancyMap& map, const CollisionExpert::Shapes::Sh
   return n * in.sample_volume;
 }
 
-}  // namespace
-
-double blocked_volume(const OccupancyMap& map, const CollisionExpert::Shapes::Shape& sh, const Eigen::Isometry3d& T,
-                      double tol, int& count) {
-  return charged_volume(
+/// charged_volume over the map's blocked cells (kFirst: stop at the first).
+template <bool kFirst>
+double blocked(const OccupancyMap& map, const CollisionExpert::Shapes::Shape& sh, const Eigen::Isometry3d& T,
+               double tol, int& count) {
+  return charged_volume<kFirst>(
       map, sh, T, tol, count,
       [&](const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) { return map.any_blocked(lo, hi); },
       [&](const Eigen::Vector3d&, CellState st) { return map.blocked(st); });
 }
 
+}  // namespace
+
+double blocked_volume(const OccupancyMap& map, const CollisionExpert::Shapes::Shape& sh, const Eigen::Isometry3d& T,
+                      double tol, int& count) {
+  return blocked<false>(map, sh, T, tol, count);
+}
+
 bool any_blocked_sample(const OccupancyMap& map, const CollisionExpert::Shapes::Shape& sh, const Eigen::Isometry3d& T,
                         double tol) {
   int count = 0;
-  return charged_volume<true>(
-             map, sh, T, tol, count,
-             [&](const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) { return map.any_blocked(lo, hi); },
-             [&](const Eigen::Vector3d&, CellState st) { return map.blocked(st); }) > 0.0;
+  return blocked<true>(map, sh, T, tol, count) > 0.0;
 }
 
 double unseen_volume(const OccupancyMap& map, const OccupancyMap* solid, double margin,

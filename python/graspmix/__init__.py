@@ -101,6 +101,7 @@ from .model import (
     Grasp,
     GraspModel,
     GraspSet,
+    NoFeasibleGraspWarning,
     SynthesisOptions,
     default_model_path,
     describe_hand,

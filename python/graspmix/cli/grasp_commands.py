@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import math
 import sys
 import time
 from pathlib import Path
@@ -13,6 +12,7 @@ from ..io import data_path
 from ..io.checks import MAX_COMPONENTS, MAX_ITERATIONS
 from ..model import GraspModel, default_model_path, learn
 from ..model.grasp_frames import opening_widths
+from ..model.grasps import infeasible_unwarned
 from ..model.settings import METHODS, LearnSettings
 from ..perception import kind_name, parse_target
 from .common import CliError, float_in, input_path, int_in, output_file, parse_floats, parse_joints, seed
@@ -168,9 +168,10 @@ def cmd_synthesize(args: argparse.Namespace) -> int:
     model, model_path = _model_for(args)
     axis = parse_floats(args.approach_axis, 3, "--approach-axis") if args.approach_axis else None
     opts, plane = synthesis_options(args), known_plane(args)
-    grasps = model.synthesize(
-        options=opts, plane=plane, target=args.target, approach_axis=axis, types=args.types, **given
-    )
+    with infeasible_unwarned():  # said below in the command's own words, after the grasps are written
+        grasps = model.synthesize(
+            options=opts, plane=plane, target=args.target, approach_axis=axis, types=args.types, **given
+        )
     t = grasps.timing
     source = args.cloud or args.depth
     print(f"{model.method} model '{model_path.name}' on {source}: {len(grasps.surface.points)} surface points")
@@ -187,7 +188,7 @@ def cmd_synthesize(args: argparse.Namespace) -> int:
     print_grasps(grasps, args.top)
     grasps.save(args.out)
     print(f"wrote {args.out} ({len(grasps)} grasps, best first)")
-    if len(grasps) and not math.isfinite(grasps.best().log_likelihood):
+    if len(grasps) and grasps.n_feasible == 0:
         print(f"graspmix_cli synthesize: warning: {no_grasp_passed(grasps)}", file=sys.stderr)
     if args.png:
         grasps.plot(args.png, top=max(min(args.top, 3), 1))
@@ -196,12 +197,9 @@ def cmd_synthesize(args: argparse.Namespace) -> int:
 
 
 def no_grasp_passed(grasps) -> str:
-    """Why every grasp of a synthesis was rejected: the hard experts that rejected them, first one per grasp."""
-    first = {}
-    for g in grasps:
-        name = next((k for k, v in g.experts.items() if v == -math.inf), "?")
-        first[name] = first.get(name, 0) + 1
-    why = ", ".join(f"{k} {n}" for k, n in sorted(first.items(), key=lambda kv: -kv[1]))
+    """Why every grasp of a synthesis was rejected (the hard experts that rejected them, first one per grasp), and
+    the flags that may help."""
+    why = ", ".join(f"{k} {n}" for k, n in grasps.rejections().items())
     return (
         f"no sampled grasp passed the hard experts (rejected first by: {why}); the grasps written are the least bad. "
         "More --samples or another --seed may find one; with --collision occupancy the cloud must hold the table "

@@ -19,7 +19,7 @@ from dataclasses import dataclass
 from typing import Callable
 
 from ..experiment.attempt import cached_model
-from ..model.grasps import Grasp, check_grasp
+from ..model.grasps import Grasp, check_grasp, infeasible_unwarned
 from .protocol import MAX_CONSECUTIVE_FAILURES, ClutterProtocol, clutter_protocol_from_json
 
 
@@ -125,7 +125,8 @@ def _model_planner(p: ClutterProtocol, model_path: str) -> Callable:
     model = cached_model(model_path)
 
     def plan(obs, seed):
-        grasps = model.synthesize(obs.points, p.synthesis.updated({"seed": seed}), viewpoints=obs.viewpoints)
+        with infeasible_unwarned():  # the protocol executes the best grasp whatever it scored
+            grasps = model.synthesize(obs.points, p.synthesis.updated({"seed": seed}), viewpoints=obs.viewpoints)
         if len(grasps) == 0:
             raise ValueError("synthesis returned no grasps")
         best, timing = grasps.best(), grasps.timing

@@ -10,6 +10,7 @@ from typing import Callable, Iterable
 
 from ..model import GraspModel
 from ..model.grasp_types import REFERENCE_EXPERT
+from ..model.grasps import infeasible_unwarned
 from ..sim import execute, rest_pose
 from ..sim.acquisition import Acquisition, acquire
 from .protocol import CLOSING, CONDITIONS, SUPPORT_PLANE, Protocol, protocol_from_json
@@ -44,12 +45,13 @@ def synthesize_on(model: GraspModel, acq: Acquisition, p: Protocol, obj: str, tr
     (Protocol.attempt_options), the known support plane; the camera's depth image, intrinsics and pose (cloud
     "image"), or the points with the cameras' positions."""
     opts, plane = p.attempt_options(obj, trial, condition), list(SUPPORT_PLANE)
-    if p.cloud == "image":
-        cam = acq.cameras[0]
-        return model.synthesize(
-            depth=acq.depth_images[0], intrinsics=cam.pinhole(), camera_pose=cam.pose(), options=opts, plane=plane
-        )
-    return model.synthesize(acq.points, opts, viewpoints=acq.viewpoints, plane=plane)
+    with infeasible_unwarned():  # the protocol executes the best grasp whatever it scored
+        if p.cloud == "image":
+            cam = acq.cameras[0]
+            return model.synthesize(
+                depth=acq.depth_images[0], intrinsics=cam.pinhole(), camera_pose=cam.pose(), options=opts, plane=plane
+            )
+        return model.synthesize(acq.points, opts, viewpoints=acq.viewpoints, plane=plane)
 
 
 def acquire_unit(p: Protocol, obj: str, trial: int, noise: bool) -> Acquisition:

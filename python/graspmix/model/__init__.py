@@ -6,7 +6,16 @@ from .demonstration import Demonstration
 from .experts import expert
 from .grasp_frames import GraspFrameSettings
 from .grasp_model import GraspModel, default_model_path, learn
-from .grasps import EXECUTION_KEYS, STAGE_LABELS, STAGES, Grasp, GraspSet, grasp_by_rank, load_grasps
+from .grasps import (
+    EXECUTION_KEYS,
+    STAGE_LABELS,
+    STAGES,
+    Grasp,
+    GraspSet,
+    NoFeasibleGraspWarning,
+    grasp_by_rank,
+    load_grasps,
+)
 from .hands import describe_hand, hand_urdf_from_robot
 from .options import SynthesisOptions
 from .settings import (
@@ -35,6 +44,7 @@ __all__ = [
     "SynthesisOptions",
     "Grasp",
     "GraspSet",
+    "NoFeasibleGraspWarning",
     "GraspFrameSettings",
     "GraspModel",
     "learn",

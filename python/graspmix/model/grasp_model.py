@@ -14,6 +14,7 @@ from __future__ import annotations
 import dataclasses
 import json
 import time
+import warnings
 from pathlib import Path
 from typing import Callable, Iterable, Sequence
 
@@ -50,7 +51,7 @@ from .grasp_types import (
     type_from_json,
     type_to_json,
 )
-from .grasps import GraspSet
+from .grasps import GraspSet, NoFeasibleGraspWarning
 from .options import SynthesisOptions
 from .scene_synthesis import synthesize_scene
 from .serialization import config_dict, config_settings
@@ -282,10 +283,13 @@ class GraspModel:
         timing = dict(out.timing)
         segmentation = t_input + timing.pop("segmentation")  # reading the input counts as the segmentation's
         timing = _stage_times(timing, segmentation, time.perf_counter() - t0)
-        return GraspSet(
+        grasps = GraspSet(
             out.grasps, self.hand_path, self.method, name, timing, out.surface, out.scene.plane, out.evaluations,
             out.rejected, scene=out.scene, targets=out.targets, hand=self._hand, view=view,
         )  # fmt: skip
+        if len(grasps) and grasps.n_feasible == 0:
+            warnings.warn(grasps.no_feasible_message(), NoFeasibleGraspWarning, stacklevel=2)
+        return grasps
 
     def synthesizer_settings(self, opts: SynthesisOptions) -> "_core.SynthesizerSettings":
         """The GraspSynthesizer's settings of `opts` for this model (its KDE kernels where the options leave the

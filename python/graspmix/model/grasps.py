@@ -7,9 +7,11 @@ file form is ``to_dict()`` and ``Grasp.from_dict``.
 
 from __future__ import annotations
 
+import contextlib
 import importlib
 import json
 import math
+import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass, field, fields
 from pathlib import Path
@@ -150,6 +152,21 @@ def grasps_from_columns(columns: dict, term_names: list, hand, objects: list, ty
     return grasps
 
 
+class NoFeasibleGraspWarning(UserWarning):
+    """Every grasp a synthesis returned was rejected by a hard expert (collision, kinematics, the clear approach, a
+    caller's reachability test): GraspSet.best() is then the least bad of them, not a grasp to execute."""
+
+
+@contextlib.contextmanager
+def infeasible_unwarned():
+    """A block in which NoFeasibleGraspWarning is not shown: for callers that report it themselves (the CLI) or
+    record every attempt's outcome by protocol (the experiment and clutter runs execute the best grasp whatever it
+    scored)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", NoFeasibleGraspWarning)
+        yield
+
+
 # The grasp pictures are drawn by graspmix.viz, a higher layer: it registers its drawing function here when
 # it is imported (GraspSet.plot imports it when it has not been), so this layer needs nothing from it.
 _PLOTTER: list = []
@@ -199,7 +216,35 @@ class GraspSet:
         return self.grasps[i]
 
     def best(self) -> Grasp:
+        """The first grasp (check ``n_feasible``: when it is 0, it is the least bad of grasps every one of which a
+        hard expert rejected)."""
         return self.grasps[0]
+
+    @property
+    def n_feasible(self) -> int:
+        """How many grasps passed every hard expert (a finite log-likelihood); they come first."""
+        return sum(1 for g in self.grasps if g.log_likelihood is not None and math.isfinite(g.log_likelihood))
+
+    def rejections(self) -> dict:
+        """{hard expert: how many grasps it rejected first} (its order in each grasp's experts table) for the
+        grasps that did not pass; {} when every grasp passed."""
+        first: dict = {}
+        for g in self.grasps:
+            if g.log_likelihood is not None and math.isfinite(g.log_likelihood):
+                continue
+            name = next((k for k, v in (g.experts or {}).items() if v == -math.inf), "?")
+            first[name] = first.get(name, 0) + 1
+        return dict(sorted(first.items(), key=lambda kv: -kv[1]))
+
+    def no_feasible_message(self) -> str:
+        """Why no grasp passed, and what may help: the text of NoFeasibleGraspWarning."""
+        why = ", ".join(f"{k} {n}" for k, n in self.rejections().items())
+        return (
+            f"no sampled grasp passed the hard experts (rejected first by: {why}); the grasps are the least bad, "
+            "not grasps to execute. More samples (sampling.n_samples, sampling.max_sampling_rounds) or another seed "
+            "may find one; with the occupancy collision model the cloud must hold the table around the objects (a "
+            "whole depth image), or the space beside them is unseen and counts as solid"
+        )
 
     def get_hand(self):
         """The graspmix.Hand of hand_path, read once."""

@@ -8,6 +8,7 @@ library's collision code.
 import json
 import subprocess
 import sys
+import warnings
 
 import graspmix
 import numpy as np
@@ -196,6 +197,24 @@ def test_user_experts_see_batches_and_hard_ones_reject(gmm):
     assert max(batches) > 1, "the user expert must be called on batches"
     finite = [g for g in grasps if np.isfinite(g.log_likelihood)]
     assert finite and all(g.T_world_wrist[2] > 0.05 and g.experts["high"] == 0.0 for g in finite)
+
+
+def test_a_synthesis_none_of_whose_grasps_passed_warns_and_says_which_expert_rejected_them(gmm):
+    """A grasp set whose every grasp a hard expert rejected is not a result to execute: synthesize warns
+    (NoFeasibleGraspWarning, naming the experts), n_feasible is 0; a set with grasps that passed says nothing."""
+    cloud = graspmix.data_path("mug.pcd")
+    fast = options({"seed": 2, "sampling.n_samples": 30, "sampling.max_sampling_rounds": 2, "sampling.n_optimise": 2})
+    never = graspmix.expert("out_of_reach", lambda w, q: np.zeros(len(w), dtype=bool), kind="hard")
+    with pytest.warns(graspmix.NoFeasibleGraspWarning, match="no sampled grasp passed.*out_of_reach") as caught:
+        grasps = gmm.synthesize(cloud, fast, experts=[never])
+    assert len(caught) == 1 and len(grasps) == 30 and grasps.n_feasible == 0
+    assert not any(np.isfinite(g.log_likelihood) for g in grasps)
+    assert sum(grasps.rejections().values()) == 30 and "out_of_reach" in grasps.rejections()
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        fine = gmm.synthesize(cloud, fast)
+    assert fine.n_feasible == sum(np.isfinite(g.log_likelihood) for g in fine) > 0
+    assert np.isfinite(fine.best().log_likelihood) and sum(fine.rejections().values()) == len(fine) - fine.n_feasible
 
 
 @pytest.mark.parametrize("axis", [(1.0, 0.0, 0.0), (-1.0, 0.0, 0.0)])

@@ -189,22 +189,19 @@ def cmd_synthesize(args: argparse.Namespace) -> int:
     grasps.save(args.out)
     print(f"wrote {args.out} ({len(grasps)} grasps, best first)")
     if len(grasps) and grasps.n_feasible == 0:
-        print(f"graspmix_cli synthesize: warning: {no_grasp_passed(grasps)}", file=sys.stderr)
+        print(f"graspmix_cli synthesize: warning: {grasps.no_feasible_message(NO_GRASP_ADVICE)}", file=sys.stderr)
     if args.png:
         grasps.plot(args.png, top=max(min(args.top, 3), 1))
         print(f"wrote {args.png}")
     return 0
 
 
-def no_grasp_passed(grasps) -> str:
-    """Why every grasp of a synthesis was rejected (the hard experts that rejected them, first one per grasp), and
-    the flags that may help."""
-    why = ", ".join(f"{k} {n}" for k, n in grasps.rejections().items())
-    return (
-        f"no sampled grasp passed the hard experts (rejected first by: {why}); the grasps written are the least bad. "
-        "More --samples or another --seed may find one; with --collision occupancy the cloud must hold the table "
-        "around the objects (a whole depth image), or the space beside them is unseen and counts as solid"
-    )
+# What may help when no grasp passed, in the command's flags (GraspSet.no_feasible_message).
+NO_GRASP_ADVICE = (
+    "the grasps written are the least bad. More --samples or another --seed may find one; with --collision occupancy "
+    "the cloud must hold the table around the objects (a whole depth image), or the space beside them is unseen and "
+    "counts as solid"
+)
 
 
 COMMANDS = ("demo", "learn", "synthesize")

@@ -157,6 +157,19 @@ class NoFeasibleGraspWarning(UserWarning):
     caller's reachability test): GraspSet.best() is then the least bad of them, not a grasp to execute."""
 
 
+# What may help when no grasp passed, in the settings' words (GraspSet.no_feasible_message).
+NO_FEASIBLE_ADVICE = (
+    "the grasps are the least bad, not grasps to execute. More samples (sampling.n_samples, "
+    "sampling.max_sampling_rounds) or another seed may find one; with the occupancy collision model the cloud must "
+    "hold the table around the objects (a whole depth image), or the space beside them is unseen and counts as solid"
+)
+
+
+def _passed(g: Grasp) -> bool:
+    """Whether a grasp passed every hard expert (its log-likelihood is finite)."""
+    return g.log_likelihood is not None and math.isfinite(g.log_likelihood)
+
+
 @contextlib.contextmanager
 def infeasible_unwarned():
     """A block in which NoFeasibleGraspWarning is not shown: for callers that report it themselves (the CLI) or
@@ -223,28 +236,23 @@ class GraspSet:
     @property
     def n_feasible(self) -> int:
         """How many grasps passed every hard expert (a finite log-likelihood); they come first."""
-        return sum(1 for g in self.grasps if g.log_likelihood is not None and math.isfinite(g.log_likelihood))
+        return sum(1 for g in self.grasps if _passed(g))
 
     def rejections(self) -> dict:
         """{hard expert: how many grasps it rejected first} (its order in each grasp's experts table) for the
         grasps that did not pass; {} when every grasp passed."""
         first: dict = {}
         for g in self.grasps:
-            if g.log_likelihood is not None and math.isfinite(g.log_likelihood):
-                continue
-            name = next((k for k, v in (g.experts or {}).items() if v == -math.inf), "?")
-            first[name] = first.get(name, 0) + 1
+            if not _passed(g):
+                name = next((k for k, v in (g.experts or {}).items() if v == -math.inf), "?")
+                first[name] = first.get(name, 0) + 1
         return dict(sorted(first.items(), key=lambda kv: -kv[1]))
 
-    def no_feasible_message(self) -> str:
-        """Why no grasp passed, and what may help: the text of NoFeasibleGraspWarning."""
+    def no_feasible_message(self, advice: str = NO_FEASIBLE_ADVICE) -> str:
+        """Why no grasp passed (the experts that rejected them, rejections()), then `advice`: what may help, in the
+        caller's words (the default: the settings; the CLI names its flags). The text of NoFeasibleGraspWarning."""
         why = ", ".join(f"{k} {n}" for k, n in self.rejections().items())
-        return (
-            f"no sampled grasp passed the hard experts (rejected first by: {why}); the grasps are the least bad, "
-            "not grasps to execute. More samples (sampling.n_samples, sampling.max_sampling_rounds) or another seed "
-            "may find one; with the occupancy collision model the cloud must hold the table around the objects (a "
-            "whole depth image), or the space beside them is unseen and counts as solid"
-        )
+        return f"no sampled grasp passed the hard experts (rejected first by: {why}); {advice}"
 
     def get_hand(self):
         """The graspmix.Hand of hand_path, read once."""

@@ -389,8 +389,9 @@ void bind_experts(py::module_& m) {
              "m: the hand starts this far back along its approach axis from the pre-grasp (>= 0)")
       .field("step", &ClearApproachSettings::step, "m: the path is checked at poses this far apart (> 0)")
       .field("clearance", &ClearApproachSettings::clearance,
-             "m: the open hand keeps this far from every point on its way (the points of the collision expert the "
-             "path is checked against are balls of this radius; scene synthesis builds it so)")
+             "m: the points of the collision expert the path is checked against are balls of this radius (scene "
+             "synthesis builds it so), which the open hand may enter by that expert's contact tolerance (1 mm by "
+             "default: the hand keeps 1 mm from every point)")
       .property(
           "hand_axis", [](const ClearApproachSettings& s) { return optional_axis(s.hand_axis); },
           [](ClearApproachSettings& s, const py::object& v) { s.hand_axis = axis_or_none(v, "hand_axis"); },

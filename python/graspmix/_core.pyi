@@ -2972,7 +2972,7 @@ class ClearApproachSettings:
     which override it (an unknown keyword is a ValueError):
       stand_off = 0.1: m: the hand starts this far back along its approach axis from the pre-grasp (>= 0)
       step = 0.02: m: the path is checked at poses this far apart (> 0)
-      clearance = 0.002: m: the open hand keeps this far from every point on its way (the points of the collision expert the path is checked against are balls of this radius; scene synthesis builds it so)
+      clearance = 0.002: m: the points of the collision expert the path is checked against are balls of this radius (scene synthesis builds it so), which the open hand may enter by that expert's contact tolerance (1 mm by default: the hand keeps 1 mm from every point)
       hand_axis = None: (3,) the approach axis in the wrist frame; None: the hand's approach_axis (Hand.approach_axis)
       name = 'clear_approach': the key of its term in a grasp's experts table
     """
@@ -3003,7 +3003,7 @@ class ClearApproachSettings:
     @property
     def clearance(self) -> float:
         """
-        m: the open hand keeps this far from every point on its way (the points of the collision expert the path is checked against are balls of this radius; scene synthesis builds it so)
+        m: the points of the collision expert the path is checked against are balls of this radius (scene synthesis builds it so), which the open hand may enter by that expert's contact tolerance (1 mm by default: the hand keeps 1 mm from every point)
         """
     @clearance.setter
     def clearance(self, arg0: typing.Any) -> None:
@@ -3051,7 +3051,7 @@ class ClearApproachExpert(Expert):
         which override it (an unknown keyword is a ValueError):
           stand_off = 0.1: m: the hand starts this far back along its approach axis from the pre-grasp (>= 0)
           step = 0.02: m: the path is checked at poses this far apart (> 0)
-          clearance = 0.002: m: the open hand keeps this far from every point on its way (the points of the collision expert the path is checked against are balls of this radius; scene synthesis builds it so)
+          clearance = 0.002: m: the points of the collision expert the path is checked against are balls of this radius (scene synthesis builds it so), which the open hand may enter by that expert's contact tolerance (1 mm by default: the hand keeps 1 mm from every point)
           hand_axis = None: (3,) the approach axis in the wrist frame; None: the hand's approach_axis (Hand.approach_axis)
           name = 'clear_approach': the key of its term in a grasp's experts table
         """

@@ -32,10 +32,12 @@ struct ClearApproachSettings {
   double stand_off = 0.10;
   /// m: the path is checked at poses this far apart (> 0); keep it below every link's length along the axis.
   double step = 0.02;
-  /// m: on its way the open hand keeps this far from every point: whoever builds the `collision` expert the
-  /// path is checked against (scene synthesis does) makes the points balls of this radius. A cleaned cloud's
-  /// points are the centres of 3 mm voxels: a hand clear of them by the collision's 1 mm contact tolerance can
-  /// still sit 1-2 mm inside the surface they sample, which Bullet calls a start in collision (over 2 mm).
+  /// m: whoever builds the `collision` expert the path is checked against (scene synthesis does) makes the points
+  /// balls of this radius, which the open hand may enter by that expert's contact tolerance: with the default 1 mm
+  /// it keeps 1 mm from every point (kept so: without the tolerance, the whole 2 mm, it lost grasps on the
+  /// development scenes, docs/one-view.md). A cleaned cloud's points are the centres of 3 mm voxels: a hand clear of
+  /// them by the collision's 1 mm contact tolerance can still sit 1-2 mm inside the surface they sample, which
+  /// Bullet calls a start in collision (over 2 mm).
   double clearance = 0.002;
   /// The approach axis in the wrist frame, normalised; unset: the hand's approach_axis() (robot/hand.hpp: read from
   /// its URDF or inferred from its fingertips; the WSG 50's palm z).

@@ -56,7 +56,10 @@ VALUE_FLAGS = (
     (
         "--approach-clearance",
         "approach.clearance",
-        dict(type=float, help="m: how far the open hand keeps from every point on its approach"),
+        dict(
+            type=float,
+            help="m: the radius of the balls the points become for the open hand's approach (it may enter them by collision.contact_tolerance, 1 mm by default)",
+        ),
     ),
     (
         "--friction",

@@ -277,6 +277,18 @@ void refuse_a_table_seen_from_its_plane(const Vec3Array& P, const Segmentation& 
   }
 }
 
+/// When no object stands on the plane but enough points for one lie beyond table_clearance behind it: the likely
+/// causes, named (the plane is turned towards the cameras, so a camera placed below the table puts the objects
+/// behind it; a given plane may be wrong itself). Empty otherwise.
+std::string behind_hint(const Vec3Array& P, const Eigen::Vector4d& plane, bool given, const SegmentationSettings& s) {
+  const Eigen::Index behind = (heights(P, plane).array() < -s.table_clearance).count();
+  if (behind < s.min_cluster_size) return "";
+  return "; " + std::to_string(behind) + " points lie behind it, on the side away from the cameras: is " +
+         (given ? "the plane given right, and " : "") +
+         "the camera's position right (a viewpoint or camera pose below the table, or a pose inverted, puts the "
+         "objects there)?";
+}
+
 /// The objects of an extraction described and ordered as documented (segmentation.hpp) into `out`.
 void finish(const Vec3Array& P, const Eigen::VectorXi& src, const Extraction& e, const SegmentationSettings& s,
             Segmentation& out) {
@@ -285,10 +297,10 @@ void finish(const Vec3Array& P, const Eigen::VectorXi& src, const Extraction& e,
   out.n_small_clusters = e.n_small;
   refuse_a_table_seen_from_its_plane(P, out, s.plane_distance);
   if (e.groups.empty()) {
-    bad(out.plane_found || out.plane_given
-            ? "no object above the support plane (every point is within table_clearance of it, behind it, in a "
-              "cluster under min_cluster_size, or in one no higher than the table's own noise)"
-            : "no object in the cloud (every cluster is under min_cluster_size)");
+    if (!(out.plane_found || out.plane_given)) bad("no object in the cloud (every cluster is under min_cluster_size)");
+    bad("no object above the support plane (every point is within table_clearance of it, behind it, in a cluster "
+        "under min_cluster_size, or in one no higher than the table's own noise)" +
+        behind_hint(P, out.plane, out.plane_given, s));
   }
   std::vector<SceneObject> described;
   for (const auto& g : e.groups) described.push_back(describe(P, g));

@@ -2,6 +2,8 @@
 with pybullet (one and four cameras, with and without noise), no plane on object-only clouds, clusters
 against pybullet's segmentation mask, every target mode, the camera-frame input, bad inputs."""
 
+import re
+
 import graspmix
 import numpy as np
 import pybullet as p
@@ -338,6 +340,26 @@ def test_the_scene_models_what_its_cameras_saw():
     assert segment_scene(acq.points, plane=[0, 0, 1, 0]).result.visibility is None
 
 
+def test_a_camera_given_below_the_table_is_named_as_the_likely_cause(rendered):
+    """The plane is turned towards the cameras: a viewpoint mirrored below the table puts the three objects behind
+    it, and the error says how many points lie there and asks about the camera's position (with a given plane, about
+    the plane too). The count is of the cleaned cloud's points: some, and no more than numpy finds behind z = 0 in
+    the raw cloud."""
+    points, eye, _, _, _ = rendered
+    below = eye * np.array([1.0, 1.0, -1.0])
+    clearance = graspmix.SegmentationSettings().table_clearance
+    raw_behind = int(np.sum(points[:, 2] > clearance))  # above the table: behind it seen from below
+    for plane, also in ((None, ""), ([0, 0, 1, 0], "the plane given right, and ")):
+        with pytest.raises(ValueError, match="no object above the support plane") as err:
+            segment_scene(points, below, plane=plane)
+        m = re.search(
+            r"; (\d+) points lie behind it, on the side away from the cameras: is (.*)the camera's position",
+            str(err.value),
+        )
+        assert m, str(err.value)
+        assert 20 <= int(m.group(1)) <= raw_behind and m.group(2) == also
+
+
 def test_a_cloud_of_only_a_table_has_no_object(tmp_path, capsys):
     """A flat noisy table and nothing on it: seen from a camera above, the table is found and nothing stands on
     it; with no viewpoint (the PCD convention's camera at the origin, in the table's own plane) the table is
@@ -347,8 +369,9 @@ def test_a_cloud_of_only_a_table_has_no_object(tmp_path, capsys):
 
     rng = np.random.default_rng(0)
     table = np.c_[rng.uniform(-0.3, 0.3, (20000, 2)), rng.normal(0.0, 0.001, 20000)]
-    with pytest.raises(ValueError, match="no object above the support plane"):
+    with pytest.raises(ValueError, match="no object above the support plane") as err:
         segment_scene(table, [0.0, 0.0, 1.0])
+    assert "behind it, on the side away" not in str(err.value)  # nothing behind the table to name
     with pytest.raises(ValueError, match="no object found: 100% of the cloud lies in one plane.*camera"):
         segment_scene(table)
     graspmix.save_cloud(str(tmp_path / "table.pcd"), table)

@@ -1,11 +1,12 @@
-// The contact-quality expert (grasp/contact_quality.hpp) and its settings and diagnostics; called by
-// bind_grasp after the Expert base class is bound.
+// The contact-quality expert (grasp/contact_quality.hpp) and its settings and diagnostics, and the grasp-depth
+// expert (grasp/grasp_depth.hpp); called by bind_grasp after the Expert base class is bound.
 #include <algorithm>
 #include <string>
 #include <vector>
 
 #include "common.hpp"
 #include "graspmix/grasp/contact_quality.hpp"
+#include "graspmix/grasp/grasp_depth.hpp"
 #include "settings.hpp"
 
 namespace graspmix::py_bind {
@@ -117,6 +118,45 @@ void bind_contact_quality(py::module_& m) {
       .def_property_readonly(
           "settings", [](const ContactQualityExpert& e) { return ContactQualitySettings(e.settings()); },
           "The ContactQualitySettings it was built with (a copy).");
+
+  SettingsClass<GraspDepthSettings>(m, "GraspDepthSettings",
+                                    "The grasp-depth expert (how far back the object reaches between the fingers).")
+      .field("min_depth", &GraspDepthSettings::min_depth,
+             "m: how far back from the fingertips' far end the object's points between the fingers must reach")
+      .field("penalty", &GraspDepthSettings::penalty, "nats per metre short of min_depth")
+      .field("min_radius", &GraspDepthSettings::min_radius,
+             "m: the radius of the cylinder between the fingers is at least this")
+      .field("name", &GraspDepthSettings::name, "the key of its term in a grasp's experts table")
+      .done();
+
+  py::class_<GraspDepthExpert, Expert, std::shared_ptr<GraspDepthExpert>>(
+      m, "GraspDepthExpert",
+      "Soft: log E = -penalty * max(0, min_depth - depth), depth how far back from the fingertips' far end (along\n"
+      "the approach) the object's points inside the cylinder between the fingers reach\n"
+      "(include/graspmix/grasp/grasp_depth.hpp).")
+      .def(py::init([](HandPtr hand, const py::object& points, const py::object& settings, const py::kwargs& kw) {
+             if (!hand) throw py::value_error("hand: expected a Hand, got None");
+             const GraspDepthSettings s = settings_from<GraspDepthSettings>(settings, kw, "GraspDepthExpert");
+             const Vec3Array P(to_matrix(points, "points", 3));
+             py::gil_scoped_release release;
+             return std::make_shared<GraspDepthExpert>(std::move(hand), P, s);
+           }),
+           py::arg("hand"), py::arg("points"), py::kw_only(), py::arg("settings") = py::none(),
+           ("hand: Hand; points: (N, 3) the object's surface (world frame).\n" + settings_doc<GraspDepthSettings>())
+               .c_str())
+      .def(
+          "depths",
+          [](const GraspDepthExpert& e, const py::object& wrists, const py::object& joints) {
+            const PoseArray w = to_poses(wrists, "wrists");
+            const RowMatrixXd q = to_matrix(joints, "joints", e.hand().n_dofs());
+            py::gil_scoped_release release;
+            return Eigen::VectorXd(e.depths(w, q));
+          },
+          py::arg("wrists"), py::arg("joints"),
+          "(N,) each grasp's depth (m) for wrists (N, 7) and joints (N, D), capped at min_depth.")
+      .def_property_readonly(
+          "settings", [](const GraspDepthExpert& e) { return GraspDepthSettings(e.settings()); },
+          "The GraspDepthSettings it was built with (a copy).");
 }
 
 }  // namespace graspmix::py_bind

@@ -165,7 +165,7 @@ void bind_scene_synthesis(py::module_& m) {
          const py::object& experts, const py::object& segmentation, const py::object& completion,
          const py::object& features, const py::object& synthesizer, const py::object& collision,
          const py::object& occupancy, const py::object& kinematic, const py::object& axis_alignment,
-         const py::object& approach, const py::object& contact_quality) {
+         const py::object& approach, const py::object& contact_quality, const py::object& grasp_depth) {
         const SceneInput input = to_input(depth, organized, points, viewpoints, camera, pose);
         SceneSynthesisSettings s;
         s.segmentation = settings_from<SegmentationSettings>(segmentation, py::dict(), "segmentation");
@@ -178,6 +178,7 @@ void bind_scene_synthesis(py::module_& m) {
         s.axis_alignment = settings_from<AxisAlignmentSettings>(axis_alignment, py::dict(), "axis_alignment");
         s.approach = optional_settings<ClearApproachSettings>(approach, "approach");
         s.contact_quality = optional_settings<ContactQualitySettings>(contact_quality, "contact_quality");
+        s.grasp_depth = optional_settings<GraspDepthSettings>(grasp_depth, "grasp_depth");
         SceneRequest r;
         if (!plane.is_none()) r.plane = Eigen::Vector4d(to_vector(plane, "plane", 4));
         r.target = to_target(target, target_index, target_point, py::none());
@@ -196,12 +197,13 @@ void bind_scene_synthesis(py::module_& m) {
       py::arg("completion") = py::none(), py::arg("features") = py::none(), py::arg("synthesizer") = py::none(),
       py::arg("collision") = py::none(), py::arg("occupancy") = py::none(), py::arg("kinematic") = py::none(),
       py::arg("axis_alignment") = py::none(), py::arg("approach") = py::none(), py::arg("contact_quality") = py::none(),
+      py::arg("grasp_depth") = py::none(),
       "The whole path from one view or a cloud to ranked grasps (include/graspmix/grasp/scene_synthesis.hpp).\n"
       "types: [(GraspSynthesizer, name, log_reference or None)]; the input: depth (H, W) metres with camera and\n"
       "T_world_camera [x, y, z, qx, qy, qz, qw], or organized (H * W, 3) sensor frame with camera and the pose, or\n"
       "points (N, 3) world frame with viewpoints (None, (3,) or (N, 3)); target: all | index | point | largest |\n"
-      "nearest (target_index, target_point); the settings of each part (completion, kinematic, approach and\n"
-      "contact_quality None: that step off; the others None: their defaults).");
+      "nearest (target_index, target_point); the settings of each part (completion, kinematic, approach,\n"
+      "contact_quality and grasp_depth None: that step off; the others None: their defaults).");
 }
 
 }  // namespace graspmix::py_bind

@@ -61,6 +61,8 @@ from ._core import (
     FunctionExpert,
     # densities (foundation)
     GaussianMixture,
+    GraspDepthExpert,
+    GraspDepthSettings,
     GraspSynthesizer,
     Hand,
     KinematicFeasibilityExpert,

@@ -8,7 +8,7 @@ import enum
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AnnealingSettings', 'AxisAlignmentExpert', 'AxisAlignmentSettings', 'COMPLETED_VIEW_DISTANCE', 'CleanupResult', 'CleanupSettings', 'ClearApproachExpert', 'ClearApproachSettings', 'CloudData', 'CollisionBatchResult', 'CollisionExpert', 'CollisionFreeExpert', 'CollisionResult', 'CollisionSettings', 'Completion', 'CompletionKind', 'CompletionSettings', 'ConfigModel', 'ConfigModelSettings', 'ContactData', 'ContactModel', 'ContactQualityExpert', 'ContactQualityResult', 'ContactQualitySettings', 'ContactSettings', 'Evaluation', 'Expert', 'FunctionExpert', 'GaussianMixture', 'GmmSettings', 'Grasp', 'GraspSynthesizer', 'Hand', 'HandLoadSettings', 'KdeSettings', 'KinematicFeasibilityExpert', 'KinematicFeasibilitySettings', 'OccupancyMap', 'OccupancySettings', 'POINT_TARGET_MAX_DISTANCE', 'PinholeCamera', 'PinholeFit', 'PlaneCandidate', 'PoseDensity', 'PoseKDE', 'PoseMixture', 'QueryDensity', 'QuerySettings', 'SamplingSettings', 'SceneCompletion', 'SceneObject', 'SceneSimResult', 'SceneSynthesis', 'Segmentation', 'SegmentationSettings', 'SettleResult', 'SimObject', 'SimResult', 'SimSettings', 'SpaceState', 'SurfaceCloud', 'SurfaceFeatureSettings', 'SynthesisResult', 'SynthesisTiming', 'SynthesizerSettings', 'TYPE_REFERENCE_TERM', 'URDF_AXES_ELEMENT', 'VisibilityModel', 'VisibilitySettings', 'build_info', 'camera_pose_matrix', 'complete_object', 'complete_scene', 'compute_surface_features', 'contact_data', 'learn_contact_models', 'load_cloud', 'load_mesh', 'log_vmf_s3_normaliser', 'object_surface', 'orient_plane', 'pose_inverse', 'pose_multiply', 'prepare_cloud', 'quat_exp', 'quat_log', 'query_weights', 'save_cloud', 'segment_depth', 'segment_organized', 'segment_scene', 'select_targets', 'sim_closing_speeds', 'sim_execute', 'sim_execute_scene', 'sim_settle_scene', 'solid_volume', 'synthesize_scene']
+__all__: list[str] = ['AnnealingSettings', 'AxisAlignmentExpert', 'AxisAlignmentSettings', 'COMPLETED_VIEW_DISTANCE', 'CleanupResult', 'CleanupSettings', 'ClearApproachExpert', 'ClearApproachSettings', 'CloudData', 'CollisionBatchResult', 'CollisionExpert', 'CollisionFreeExpert', 'CollisionResult', 'CollisionSettings', 'Completion', 'CompletionKind', 'CompletionSettings', 'ConfigModel', 'ConfigModelSettings', 'ContactData', 'ContactModel', 'ContactQualityExpert', 'ContactQualityResult', 'ContactQualitySettings', 'ContactSettings', 'Evaluation', 'Expert', 'FunctionExpert', 'GaussianMixture', 'GmmSettings', 'Grasp', 'GraspDepthExpert', 'GraspDepthSettings', 'GraspSynthesizer', 'Hand', 'HandLoadSettings', 'KdeSettings', 'KinematicFeasibilityExpert', 'KinematicFeasibilitySettings', 'OccupancyMap', 'OccupancySettings', 'POINT_TARGET_MAX_DISTANCE', 'PinholeCamera', 'PinholeFit', 'PlaneCandidate', 'PoseDensity', 'PoseKDE', 'PoseMixture', 'QueryDensity', 'QuerySettings', 'SamplingSettings', 'SceneCompletion', 'SceneObject', 'SceneSimResult', 'SceneSynthesis', 'Segmentation', 'SegmentationSettings', 'SettleResult', 'SimObject', 'SimResult', 'SimSettings', 'SpaceState', 'SurfaceCloud', 'SurfaceFeatureSettings', 'SynthesisResult', 'SynthesisTiming', 'SynthesizerSettings', 'TYPE_REFERENCE_TERM', 'URDF_AXES_ELEMENT', 'VisibilityModel', 'VisibilitySettings', 'build_info', 'camera_pose_matrix', 'complete_object', 'complete_scene', 'compute_surface_features', 'contact_data', 'learn_contact_models', 'load_cloud', 'load_mesh', 'log_vmf_s3_normaliser', 'object_surface', 'orient_plane', 'pose_inverse', 'pose_multiply', 'prepare_cloud', 'quat_exp', 'quat_log', 'query_weights', 'save_cloud', 'segment_depth', 'segment_organized', 'segment_scene', 'select_targets', 'sim_closing_speeds', 'sim_execute', 'sim_execute_scene', 'sim_settle_scene', 'solid_volume', 'synthesize_scene']
 class GmmSettings:
     """
     How a GaussianMixture (or PoseMixture) is fitted by EM.
@@ -3265,6 +3265,98 @@ class ContactQualityExpert(Expert):
         """
         The ContactQualitySettings it was built with (a copy).
         """
+class GraspDepthSettings:
+    """
+    The grasp-depth expert (how far back the object reaches between the fingers).
+    
+    Settings: settings= a GraspDepthSettings (None: its defaults), and/or its fields as keywords,
+    which override it (an unknown keyword is a ValueError):
+      min_depth = 0.02: m: how far back from the fingertips' far end the object's points between the fingers must reach
+      penalty = 1000.0: nats per metre short of min_depth
+      min_radius = 0.01: m: the radius of the cylinder between the fingers is at least this
+      name = 'grasp_depth': the key of its term in a grasp's experts table
+    """
+    __hash__: typing.ClassVar[None] = None
+    _fields: typing.ClassVar[tuple] = ('min_depth', 'penalty', 'min_radius', 'name')
+    def __copy__(self) -> GraspDepthSettings:
+        ...
+    def __deepcopy__(self, memo: typing.Any) -> GraspDepthSettings:
+        ...
+    def __eq__(self, arg0: typing.Any) -> typing.Any:
+        ...
+    def __getstate__(self) -> dict:
+        ...
+    @typing.overload
+    def __init__(self) -> None:
+        """
+        The defaults: those of the default-constructed C++ struct.
+        """
+    @typing.overload
+    def __init__(self, **kwargs) -> None:
+        """
+        Keyword constructor: any of the fields (min_depth, penalty, min_radius, name); the others keep their defaults.
+        """
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    @property
+    def min_depth(self) -> float:
+        """
+        m: how far back from the fingertips' far end the object's points between the fingers must reach
+        """
+    @min_depth.setter
+    def min_depth(self, arg0: typing.Any) -> None:
+        ...
+    @property
+    def min_radius(self) -> float:
+        """
+        m: the radius of the cylinder between the fingers is at least this
+        """
+    @min_radius.setter
+    def min_radius(self, arg0: typing.Any) -> None:
+        ...
+    @property
+    def name(self) -> str:
+        """
+        the key of its term in a grasp's experts table
+        """
+    @name.setter
+    def name(self, arg0: typing.Any) -> None:
+        ...
+    @property
+    def penalty(self) -> float:
+        """
+        nats per metre short of min_depth
+        """
+    @penalty.setter
+    def penalty(self, arg0: typing.Any) -> None:
+        ...
+class GraspDepthExpert(Expert):
+    """
+    Soft: log E = -penalty * max(0, min_depth - depth), depth how far back from the fingertips' far end (along
+    the approach) the object's points inside the cylinder between the fingers reach
+    (include/graspmix/grasp/grasp_depth.hpp).
+    """
+    def __init__(self, hand: Hand, points: typing.Any, *, settings: typing.Any = None, **kwargs) -> None:
+        """
+        hand: Hand; points: (N, 3) the object's surface (world frame).
+        Settings: settings= a GraspDepthSettings (None: its defaults), and/or its fields as keywords,
+        which override it (an unknown keyword is a ValueError):
+          min_depth = 0.02: m: how far back from the fingertips' far end the object's points between the fingers must reach
+          penalty = 1000.0: nats per metre short of min_depth
+          min_radius = 0.01: m: the radius of the cylinder between the fingers is at least this
+          name = 'grasp_depth': the key of its term in a grasp's experts table
+        """
+    def depths(self, wrists: typing.Any, joints: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        (N,) each grasp's depth (m) for wrists (N, 7) and joints (N, D), capped at min_depth.
+        """
+    @property
+    def settings(self) -> GraspDepthSettings:
+        """
+        The GraspDepthSettings it was built with (a copy).
+        """
 class QuerySettings:
     """
     Contact query densities Q_i (eq:query_density_approx).
@@ -4520,14 +4612,14 @@ def solid_volume(points: typing.Any, plane: typing.Any, *, resolution: typing.Su
     The solid columns of objects (points (N, 3)) standing on plane [a, b, c, d]: an OccupancyMap whose occupied
     cells lie under the points' tops (the rule: include/graspmix/grasp/solid_volume.hpp); resolution, gap in m.
     """
-def synthesize_scene(types: typing.Any, *, depth: typing.Any = None, organized: typing.Any = None, points: typing.Any = None, viewpoints: typing.Any = None, camera: PinholeCamera | None = None, T_world_camera: typing.Any = None, plane: typing.Any = None, target: str = 'all', target_index: typing.Any = None, target_point: typing.Any = None, approach_axis: typing.Any = None, reachable: typing.Any = None, experts: typing.Any = None, segmentation: typing.Any = None, completion: typing.Any = None, features: typing.Any = None, synthesizer: typing.Any = None, collision: typing.Any = None, occupancy: typing.Any = None, kinematic: typing.Any = None, axis_alignment: typing.Any = None, approach: typing.Any = None, contact_quality: typing.Any = None) -> SceneSynthesis:
+def synthesize_scene(types: typing.Any, *, depth: typing.Any = None, organized: typing.Any = None, points: typing.Any = None, viewpoints: typing.Any = None, camera: PinholeCamera | None = None, T_world_camera: typing.Any = None, plane: typing.Any = None, target: str = 'all', target_index: typing.Any = None, target_point: typing.Any = None, approach_axis: typing.Any = None, reachable: typing.Any = None, experts: typing.Any = None, segmentation: typing.Any = None, completion: typing.Any = None, features: typing.Any = None, synthesizer: typing.Any = None, collision: typing.Any = None, occupancy: typing.Any = None, kinematic: typing.Any = None, axis_alignment: typing.Any = None, approach: typing.Any = None, contact_quality: typing.Any = None, grasp_depth: typing.Any = None) -> SceneSynthesis:
     """
     The whole path from one view or a cloud to ranked grasps (include/graspmix/grasp/scene_synthesis.hpp).
     types: [(GraspSynthesizer, name, log_reference or None)]; the input: depth (H, W) metres with camera and
     T_world_camera [x, y, z, qx, qy, qz, qw], or organized (H * W, 3) sensor frame with camera and the pose, or
     points (N, 3) world frame with viewpoints (None, (3,) or (N, 3)); target: all | index | point | largest |
-    nearest (target_index, target_point); the settings of each part (completion, kinematic, approach and
-    contact_quality None: that step off; the others None: their defaults).
+    nearest (target_index, target_point); the settings of each part (completion, kinematic, approach,
+    contact_quality and grasp_depth None: that step off; the others None: their defaults).
     """
 COMPLETED_VIEW_DISTANCE: float = 1.0
 POINT_TARGET_MAX_DISTANCE: float = 0.05

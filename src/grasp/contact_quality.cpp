@@ -11,6 +11,7 @@
 
 #include "grasp/contact_closing.hpp"
 #include "grasp/shape_bounds.hpp"
+#include "grasp/wrist_rows.hpp"
 #include "graspmix/core/se3.hpp"
 
 namespace graspmix {
@@ -286,13 +287,7 @@ ContactQualityResult ContactQualityExpert::evaluate(const Eigen::Ref<const PoseA
 #pragma omp for schedule(dynamic, 16)
     for (Eigen::Index i = 0; i < n; ++i) {
       Eigen::Isometry3d W;
-      try {
-        W = pose_from_vector(wrists.row(i).transpose());
-      } catch (const std::invalid_argument& e) {
-#pragma omp critical
-        error = "wrists row " + std::to_string(i) + ": " + e.what();
-        continue;
-      }
+      if (!wrist_of_row(wrists, i, W, error)) continue;
       const Eigen::VectorXd q = joints.row(i).transpose(), p = pre.row(i).transpose();
       const Eigen::VectorXd c = closed_configuration(p, q, demo, limits);
       hand_->fk_into(W, p.data(), s.poses0.data());

@@ -207,6 +207,10 @@ void synthesize_target(int i, const std::vector<SceneGraspType>& types, const Sc
     if (neighbours) experts.push_back(std::make_shared<CollisionFreeExpert>(neighbours, config, "clear_of_neighbours"));
     if (shared.approach)
       experts.push_back(std::make_shared<ClearApproachExpert>(shared.approach, config, *settings.approach));
+    // The grasp depth before the contact quality: annealing skips the last expert where its bound shows a proposal
+    // refused (Expert::max_log_value), and the contact quality is the expensive one.
+    if (settings.grasp_depth)
+      experts.push_back(std::make_shared<GraspDepthExpert>(shared.hand, surface.points, *settings.grasp_depth));
     if (settings.contact_quality)
       experts.push_back(std::make_shared<ContactQualityExpert>(shared.hand, surface.points, surface.normals, config,
                                                                *settings.contact_quality));

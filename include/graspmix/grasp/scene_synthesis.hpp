@@ -14,9 +14,9 @@
 //      point's towards a viewpoint COMPLETED_VIEW_DISTANCE out along its outward normal; the observed points
 //      first), each point's prior weight in the query densities (1 observed, query.completed_weight completed);
 //      per grasp type: the hard "clear_of_neighbours" (in a scene of several objects: the hand, at the grasp and
-//      at its pre-grasp, holds no point of another object), the hard clear approach and the soft contact
-//      quality on the target's own surface, then GraspSynthesizer::synthesize (query densities, sampling,
-//      ranking, annealing) with the settings' seed;
+//      at its pre-grasp, holds no point of another object), the hard clear approach, the soft grasp depth
+//      (grasp_depth.hpp) and the soft contact quality on the target's own surface, then
+//      GraspSynthesizer::synthesize (query densities, sampling, ranking, annealing) with the settings' seed;
 //   4. every target's and type's grasps ranked together by log L (a stable sort: equal scores keep the targets'
 //      and types' order). A type with a log_reference (a model of several grasp types) has it subtracted from
 //      its grasps' log L and recorded as the term kTypeReferenceTerm = -log_reference, so types compare.
@@ -34,6 +34,7 @@
 #include "graspmix/grasp/collision.hpp"
 #include "graspmix/grasp/contact_quality.hpp"
 #include "graspmix/grasp/experts.hpp"
+#include "graspmix/grasp/grasp_depth.hpp"
 #include "graspmix/grasp/occupancy.hpp"
 #include "graspmix/grasp/synthesis.hpp"
 #include "graspmix/perception/camera.hpp"
@@ -109,6 +110,7 @@ struct SceneSynthesisSettings {
   AxisAlignmentSettings axis_alignment;
   std::optional<ClearApproachSettings> approach = ClearApproachSettings{};
   std::optional<ContactQualitySettings> contact_quality = ContactQualitySettings{};
+  std::optional<GraspDepthSettings> grasp_depth = GraspDepthSettings{};
 };
 
 /// What a call asks besides the settings.

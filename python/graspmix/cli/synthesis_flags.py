@@ -83,6 +83,12 @@ SWITCHES = (
         "scored by the antipodal friction-cone test",
     ),
     (
+        "grasp-depth",
+        "grasp_depth",
+        "the soft grasp-depth expert: grasps whose fingertips reach less than grasp_depth.min_depth back into the "
+        "object (its points between the fingers) are charged",
+    ),
+    (
         "completion",
         "completion",
         "complete the unseen side of every object from what the camera saw (mirror or rotation symmetry, else the "

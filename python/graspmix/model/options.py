@@ -35,6 +35,7 @@ PARTS = {
     "axis_alignment": (_core.AxisAlignmentSettings, False),
     "approach": (_core.ClearApproachSettings, True),
     "contact_quality": (_core.ContactQualitySettings, True),
+    "grasp_depth": (_core.GraspDepthSettings, True),
     "completion": (_core.CompletionSettings, True),
 }
 COLLISION_MODELS = ("surface", "occupancy")
@@ -63,6 +64,8 @@ class SynthesisOptions:
     axis_alignment: the preference for an approach axis, used when synthesize(approach_axis=...) is given.
     approach: the hard clear approach of the open hand from the stand-off (None: off).
     contact_quality: the soft antipodal contact test of the closing hand (None: off).
+    grasp_depth: the soft charge of a grasp whose fingertips reach less than grasp_depth.min_depth back into the object
+        (the object's points between the fingers, along the approach: grasp_depth.hpp; None: off).
     completion: the unseen side of every object completed from what the cameras saw (graspmix.complete_object;
         None: off). The completed points join the target's surface, weighing query.completed_weight in the query
         densities, and the points the hand keeps out of (collision, clear approach, contact quality). Without a
@@ -80,6 +83,7 @@ class SynthesisOptions:
     axis_alignment: _core.AxisAlignmentSettings = _part("axis_alignment")
     approach: _core.ClearApproachSettings | None = _part("approach")
     contact_quality: _core.ContactQualitySettings | None = _part("contact_quality")
+    grasp_depth: _core.GraspDepthSettings | None = _part("grasp_depth")
     completion: _core.CompletionSettings | None = _part("completion")
     seed: int = 0
 
@@ -120,6 +124,9 @@ class SynthesisOptions:
             check_float(self.approach.clearance, "approach.clearance", 0.0)
         if self.contact_quality is not None:
             check_float(self.contact_quality.friction, "contact_quality.friction", gt=0.0)
+        if self.grasp_depth is not None:
+            for name in ("min_depth", "penalty", "min_radius"):
+                check_float(getattr(self.grasp_depth, name), f"grasp_depth.{name}", 0.0)
         check_float(q.completed_weight, "query.completed_weight", gt=0.0)
         if q.completed_weight > 1.0:
             raise ValueError(
@@ -140,7 +147,7 @@ class SynthesisOptions:
         """The paper's synthesis: the collision expert on the cloud's points and the plane alone (no solid volume,
         no charge of unseen space), each link's contact term its query density as it is (no floor), grasps drawn
         from the query densities alone (no top-down seeds), no clear
-        approach, no contact quality, no completion, no split of a cluster
+        approach, no contact quality, no grasp depth, no completion, no split of a cluster
         larger than one object (the experiment's "paper" preset: its single objects, some longer than 15 cm, stay
         whole); `parts` as the constructor's."""
         return cls(
@@ -153,6 +160,7 @@ class SynthesisOptions:
                 ),
                 "approach": None,
                 "contact_quality": None,
+                "grasp_depth": None,
                 "completion": None,
                 **parts,
             }

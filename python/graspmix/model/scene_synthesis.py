@@ -144,6 +144,7 @@ def synthesize_scene(
         axis_alignment=opts.axis_alignment,
         approach=opts.approach,
         contact_quality=opts.contact_quality,
+        grasp_depth=opts.grasp_depth,
     )
     scene = Scene(res.scene, None, point_viewpoints=res.viewpoints)
     if opts.completion is not None:

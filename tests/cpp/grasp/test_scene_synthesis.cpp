@@ -136,6 +136,7 @@ TEST(SceneSynthesis, EqualsItsStepsComposedByHand) {
                                                    *s.kinematic),
       std::make_shared<CollisionFreeExpert>(neighbours, config, "clear_of_neighbours"),
       std::make_shared<ClearApproachExpert>(approach, config, *s.approach),
+      std::make_shared<GraspDepthExpert>(hand, surface.points, *s.grasp_depth),
       std::make_shared<ContactQualityExpert>(hand, surface.points, surface.normals, config, *s.contact_quality)};
   const SeedGrasps seeds =
       topdown_seeds(*hand, config, surface.points, orient_plane(scene.plane, scene.points, PlaneSide::Mean));

@@ -28,6 +28,7 @@ SETTINGS = [
     "SynthesizerSettings",
     "ClearApproachSettings",
     "ContactQualitySettings",
+    "GraspDepthSettings",
     "OccupancySettings",
     "VisibilitySettings",
     "SimSettings",

@@ -34,16 +34,17 @@ GraspDepthExpert::GraspDepthExpert(std::shared_ptr<const Hand> hand, const Eigen
     : hand_(std::move(hand)), settings_(std::move(settings)) {
   if (!hand_) throw std::invalid_argument("GraspDepthExpert: no hand");
   check_settings(settings_);
+  if (points.rows() == 0) throw std::invalid_argument("GraspDepthExpert: no points");
   require_finite(points, "GraspDepthExpert: points");
   for (const int l : hand_->fingertips()) {
     std::vector<Eigen::Vector3d> c = shape_corners(hand_->links()[static_cast<size_t>(l)].collisions);
-    if (c.empty()) continue;
+    if (c.empty())
+      throw std::invalid_argument("GraspDepthExpert: fingertip link '" + hand_->link_names()[static_cast<size_t>(l)] +
+                                  "' of hand '" + hand_->name() + "' has no collision geometry to bound it");
     tips_.push_back(l);
     corners_.push_back(std::move(c));
   }
-  if (tips_.empty())
-    throw std::invalid_argument("GraspDepthExpert: hand '" + hand_->name() +
-                                "' has no fingertip link with collision geometry");
+  if (tips_.empty()) throw std::invalid_argument("GraspDepthExpert: hand '" + hand_->name() + "' has no fingertips");
   // A fixed shuffle: the points of a scan lie all over the object, so one deep enough is met early.
   std::vector<Eigen::Index> order(static_cast<size_t>(points.rows()));
   std::iota(order.begin(), order.end(), Eigen::Index{0});
@@ -60,6 +61,8 @@ Eigen::VectorXd GraspDepthExpert::depths(const Eigen::Ref<const PoseArray>& wris
     throw std::invalid_argument("GraspDepthExpert: joints must be (" + std::to_string(n) + ", " +
                                 std::to_string(hand_->n_dofs()) + "), got (" + std::to_string(joints.rows()) + ", " +
                                 std::to_string(joints.cols()) + ")");
+  require_finite(wrists, "GraspDepthExpert: wrists");
+  require_finite(joints, "GraspDepthExpert: joints");
   const double need = settings_.min_depth;
   const Eigen::Vector3d axis = hand_->approach_axis().normalized();
   Eigen::VectorXd out(n);

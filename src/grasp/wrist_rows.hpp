@@ -11,8 +11,8 @@
 
 namespace graspmix {
 
-/// Row i of wrists (N, 7) as a pose in W; false, with "wrists row i: ..." in `error` (the last bad row's), when it
-/// is no pose (pose_from_vector's check). Safe to call from the threads of one parallel loop.
+/// Row i of wrists (N, 7) as a pose in W; false, with "wrists row i: ..." in `error` (one bad row's, whichever thread
+/// wrote last), when it is no pose (pose_from_vector's check). Safe to call from the threads of one parallel loop.
 inline bool wrist_of_row(const Eigen::Ref<const PoseArray>& wrists, Eigen::Index i, Eigen::Isometry3d& W,
                          std::string& error) {
   try {

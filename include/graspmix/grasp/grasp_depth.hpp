@@ -14,8 +14,10 @@
 //   depth = max over points p inside the cylinder of (reach - a . p)   (0 when none is inside),
 //   log E = -penalty * max(0, min_depth - depth).
 // A point beyond the fingertips counts negative, so fingertips above the whole object are charged more than
-// min_depth * penalty. The points are the target's observed and completed surface (scene_synthesis.hpp). log E is
-// finite and <= 0: a soft expert.
+// min_depth * penalty; fingers with no point between them at all (beside the object) are charged min_depth *
+// penalty, less than fingertips hovering above it: such a grasp of air is the contact quality's to refuse (its air
+// penalty, 40 nats a finger). The points are the target's observed and completed surface (scene_synthesis.hpp). log E
+// is finite and <= 0: a soft expert.
 #include <memory>
 #include <string>
 #include <vector>
@@ -44,8 +46,8 @@ struct GraspDepthSettings {
 class GraspDepthExpert : public Expert {
  public:
   /// points: (N, 3) the object's surface (world frame). Throws std::invalid_argument for a null hand, a hand
-  /// without fingertips or without collision geometry on them, non-finite points, or bad settings (negative
-  /// min_depth, penalty or min_radius).
+  /// without fingertips or a fingertip without collision geometry, no points or non-finite ones, or bad settings
+  /// (negative or non-finite min_depth, penalty or min_radius).
   GraspDepthExpert(std::shared_ptr<const Hand> hand, const Eigen::Ref<const Vec3Array>& points,
                    GraspDepthSettings settings = {});
 
@@ -54,7 +56,8 @@ class GraspDepthExpert : public Expert {
   bool scores_in_parts() const override { return true; }
   double max_log_value() const override { return 0.0; }
   /// The depth (m) of every grasp, capped at min_depth (the search stops at the first point that reaches it).
-  /// Parallel (OpenMP) over grasps.
+  /// Parallel (OpenMP) over grasps. Throws std::invalid_argument for joints not (N, n_dofs), non-finite wrists or
+  /// joints, or a wrist that is no pose.
   Eigen::VectorXd depths(const Eigen::Ref<const PoseArray>& wrists, const Eigen::Ref<const RowMatrixXd>& joints) const;
 
   const GraspDepthSettings& settings() const { return settings_; }

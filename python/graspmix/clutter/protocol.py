@@ -174,7 +174,7 @@ PROTOCOL_FIELDS = [f.name for f in dataclasses.fields(ClutterProtocol)]
 
 def clutter_protocol_from_json(d: dict) -> ClutterProtocol:
     kw = {k: d[k] for k in PROTOCOL_FIELDS if k in d and k not in ("models", "synthesis")}
-    return ClutterProtocol(**kw, synthesis=SynthesisOptions.from_dict(d["synthesis"]))
+    return ClutterProtocol(**kw, synthesis=SynthesisOptions.from_stored(d["synthesis"]))
 
 
 def load_clutter_protocol(run_dir) -> dict:

@@ -229,7 +229,7 @@ PROTOCOL_FIELDS = [f.name for f in dataclasses.fields(Protocol)]
 def protocol_from_json(d: dict) -> Protocol:
     """The Protocol of a protocol.json's "protocol" entry (model paths are not in it: the defaults)."""
     kw = {k: d[k] for k in PROTOCOL_FIELDS if k in d and k not in ("models", "synthesis")}
-    return Protocol(**kw, synthesis=SynthesisOptions.from_dict(d["synthesis"]))
+    return Protocol(**kw, synthesis=SynthesisOptions.from_stored(d["synthesis"]))
 
 
 def load_protocol(run_dir: str | Path) -> dict:

@@ -293,6 +293,8 @@ def _synthesis_text(syn: dict) -> str:
         )
     if syn["contact_quality"] is not None:
         extra.append(f"the contact quality (friction {syn['contact_quality']['friction']:g})")
+    if syn.get("grasp_depth") is not None:
+        extra.append(f"the grasp depth (at least {1000 * syn['grasp_depth']['min_depth']:g} mm)")
     return ("Synthesis with " + ", ".join(extra) + ". ") if extra else "The paper's synthesis. "
 
 

@@ -38,6 +38,9 @@ PARTS = {
     "grasp_depth": (_core.GraspDepthSettings, True),
     "completion": (_core.CompletionSettings, True),
 }
+# The parts added after runs began to store their options (to_dict writes every part, None when off): a stored
+# document without one was made before it existed, so it ran without it (SynthesisOptions.from_stored).
+LATER_PARTS = ("grasp_depth",)
 COLLISION_MODELS = ("surface", "occupancy")
 # m: the default table clearance, for the tools that crop a table outside a synthesis (plots, the top-down planner)
 TABLE_CLEARANCE = _core.SegmentationSettings().table_clearance
@@ -221,6 +224,14 @@ class SynthesisOptions:
             else:
                 raise ValueError(f"synthesis options: {name} must be an object of fields, got {quote(value)}")
         return cls(**parts, seed=d.get("seed", 0))
+
+    @classmethod
+    def from_stored(cls, d: Mapping) -> "SynthesisOptions":
+        """The options a run stored (to_dict's form, written whole): as from_dict, but a part of LATER_PARTS that the
+        document leaves out is off, since the run was made before the part existed (from_dict would turn it on)."""
+        if not isinstance(d, Mapping):
+            return cls.from_dict(d)  # its error
+        return cls.from_dict({**{name: None for name in LATER_PARTS}, **d})
 
     # -- what the C++ calls take
     def synthesizer_settings(

@@ -91,6 +91,10 @@ TEST(GraspDepth, SettingsScaleTheChargeAndBadInputIsRefused) {
   Vec3Array bad = box();
   bad(3, 1) = std::nan("");
   EXPECT_THROW(GraspDepthExpert(wsg50(), bad), std::invalid_argument);
+  EXPECT_THROW(GraspDepthExpert(wsg50(), Vec3Array(0, 3)), std::invalid_argument);
   const auto g = top_grasp(0.01);
   EXPECT_THROW(e.depths(g.first, RowMatrixXd::Zero(1, 2)), std::invalid_argument);
+  EXPECT_THROW(e.depths(g.first, RowMatrixXd::Constant(1, 1, std::nan(""))), std::invalid_argument);
+  PoseArray none(0, 7);
+  EXPECT_EQ(e.depths(none, RowMatrixXd(0, 1)).size(), 0);
 }

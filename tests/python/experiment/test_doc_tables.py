@@ -67,6 +67,9 @@ PAGES = {
         "floor-heldout",
         "floor-four-views",
         "floor-clutter",
+        "grasp-depth-heldout",
+        "grasp-depth-four-views",
+        "grasp-depth-clutter",
     },
 }
 SCRIPTS = ("scripts/findings_table.py", "scripts/ablation_table.py", "scripts/clutter_table.py")

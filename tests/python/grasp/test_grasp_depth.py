@@ -7,6 +7,7 @@ import pytest
 from graspmix.model.grasp_frames import rotation_matrices
 
 MIN_DEPTH = graspmix.GraspDepthSettings().min_depth
+PENALTY = graspmix.GraspDepthSettings().penalty
 
 
 def corners(shape):
@@ -74,6 +75,11 @@ def test_bad_settings_and_points_are_value_errors():
         graspmix.GraspDepthExpert(hand, np.zeros((3, 3)), penalty=-1.0)
     with pytest.raises(ValueError, match="points"):
         graspmix.GraspDepthExpert(hand, np.full((3, 3), np.nan))
+    with pytest.raises(ValueError, match="no points"):
+        graspmix.GraspDepthExpert(hand, np.zeros((0, 3)))
+    expert = graspmix.GraspDepthExpert(hand, np.zeros((3, 3)))
+    with pytest.raises(ValueError, match="joints"):
+        expert.depths([[0, 0, 0.2, 1, 0, 0, 0]], [[np.nan]])
     with pytest.raises(ValueError, match="grasp_depth.min_depth"):
         graspmix.SynthesisOptions(grasp_depth=graspmix.GraspDepthSettings(min_depth=float("nan")))
 
@@ -89,7 +95,7 @@ def test_a_synthesis_charges_each_grasp_its_depth_term_and_none_turns_it_off():
     expert = graspmix.GraspDepthExpert(model.hand, on.surface.points)
     wrists = np.array([g.T_world_wrist for g in scored])
     joints = np.array([model.hand.joints_array(g.grasp_joints) for g in scored])
-    want = -1000.0 * np.maximum(0.0, MIN_DEPTH - np.asarray(expert.depths(wrists, joints)))
+    want = -PENALTY * np.maximum(0.0, MIN_DEPTH - np.asarray(expert.depths(wrists, joints)))
     np.testing.assert_allclose([g.experts["grasp_depth"] for g in scored], want, rtol=0, atol=1e-9)
     off = model.synthesize(cloud, graspmix.SynthesisOptions(seed=1, grasp_depth=None))
     assert all("grasp_depth" not in g.experts for g in off)

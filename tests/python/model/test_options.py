@@ -10,7 +10,7 @@ import graspmix
 import numpy as np
 import pytest
 from graspmix import SynthesisOptions
-from graspmix.model.options import PARTS, options_field_names
+from graspmix.model.options import LATER_PARTS, PARTS, options_field_names
 
 FAST = {"sampling.n_samples": 30, "sampling.n_optimise": 1, "annealing.iterations": 10}
 
@@ -42,6 +42,17 @@ def test_updated_reaches_every_field_and_round_trips_through_json():
     # A part left out of a file keeps its defaults; null turns an optional expert off.
     partial = SynthesisOptions.from_dict({"sampling": {"n_samples": 9}, "approach": None})
     assert partial == SynthesisOptions().updated({"sampling.n_samples": 9, "approach": None})
+
+
+def test_a_stored_run_made_before_a_later_part_existed_ran_without_it():
+    stored = SynthesisOptions().to_dict()
+    assert SynthesisOptions.from_stored(stored) == SynthesisOptions()  # written whole: read as written
+    for name in LATER_PARTS:
+        old = {k: v for k, v in stored.items() if k != name}
+        assert getattr(SynthesisOptions.from_stored(old), name) is None
+        assert getattr(SynthesisOptions.from_dict(old), name) is not None  # a hand-written file: its default
+    with pytest.raises(ValueError, match="expected an object of parts"):
+        SynthesisOptions.from_stored([1])
 
 
 def test_switching_an_expert_on_keeps_its_settings_and_a_field_turns_it_on():

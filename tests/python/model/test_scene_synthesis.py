@@ -131,6 +131,7 @@ def test_one_call_returns_every_target_and_terms_that_sum_to_log_l(packed):
         kinematic=opts.kinematic,
         approach=opts.approach,
         contact_quality=opts.contact_quality,
+        grasp_depth=opts.grasp_depth,
     )
     c = res.columns()
     n = len(res)

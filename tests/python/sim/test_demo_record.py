@@ -12,6 +12,7 @@ import pytest
 from graspmix import _core, cli
 from graspmix.io import data_path, relative_path, resolve_path
 from graspmix.model import Demonstration
+from graspmix.sim import demonstration
 from graspmix.sim.demonstration import _check_outcome, record, record_demonstration
 from scipy.spatial.transform import Rotation
 
@@ -32,19 +33,24 @@ def test_a_good_top_grasp_stops_at_the_box_faces():
     assert r.object_shift < 0.005
 
 
-def test_a_flat_box_gripped_low_on_the_pads_records_the_same_grip(tmp_path):
+def test_a_flat_box_gripped_low_on_the_pads_records_the_same_grip(tmp_path, monkeypatch):
     # The bundled box cut to 30 mm tall, the fingertips 5 mm above the table (the wrist 112.5 mm above their ends):
     # the fingers squeeze it low on their pads, where they swing in a cycle of a few steps between two contact sets
     # instead of resting; that is a grip, and it is the same 60 mm one as on the tall box.
     flat = tmp_path / "flat.urdf"
     flat.write_text(Path(BOX).read_text().replace('size="0.06 0.10 0.14"', 'size="0.06 0.10 0.03"'))
     assert flat.read_text().count("0.06 0.10 0.03") == 2
-    r = record(
-        flat, WSG, [0.0, 0.0, 0.1585, 1.0, 0.0, 0.0, 0.0], {"finger_left_joint": 0.05}, {"finger_left_joint": 0.0}
-    )
+    wrist = [0.0, 0.0, 0.1585, 1.0, 0.0, 0.0, 0.0]
+    r = record(flat, WSG, wrist, {"finger_left_joint": 0.05}, {"finger_left_joint": 0.0})
     assert r.demonstration.grasp_joints["finger_left_joint"] == pytest.approx(0.030, abs=1.5e-3)
     assert r.touching_links == ["finger_left", "finger_right"]
     assert r.object_shift < 0.005
+    # They did swing: with no band they never rest, and the error names the joints that moved and how far.
+    monkeypatch.setattr(demonstration, "REST_BAND", 0.0)
+    with pytest.raises(
+        ValueError, match=r"did not come to rest within 2000 steps \(over the last 240 steps: finger_left"
+    ):
+        record(flat, WSG, wrist, {"finger_left_joint": 0.05}, {"finger_left_joint": 0.0})
 
 
 def test_pregrasp_with_the_fingers_inside_the_box_is_refused_with_its_depth():

@@ -75,8 +75,7 @@ Eigen::VectorXd GraspDepthExpert::depths(const Eigen::Ref<const PoseArray>& wris
     for (Eigen::Index i = 0; i < n; ++i) {
       Eigen::Isometry3d W;
       if (!wrist_of_row(wrists, i, W, error)) continue;
-      const Eigen::VectorXd q = joints.row(i).transpose();
-      hand_->fk_into(W, q.data(), poses.data());
+      hand_->fk_into(W, joints.row(i).data(), poses.data());  // a row of a row-major matrix: contiguous
       const Eigen::Vector3d a = W.linear() * axis;
       double reach = -std::numeric_limits<double>::infinity();
       for (size_t f = 0; f < tips_.size(); ++f) {
@@ -87,12 +86,9 @@ Eigen::VectorXd GraspDepthExpert::depths(const Eigen::Ref<const PoseArray>& wris
           middles[f] += w / static_cast<double>(corners_[f].size());
         }
       }
-      Eigen::Vector3d m = Eigen::Vector3d::Zero(), others = Eigen::Vector3d::Zero();
-      for (size_t f = 0; f < middles.size(); ++f) {
-        m += middles[f] / static_cast<double>(middles.size());
-        if (f > 0) others += middles[f] / static_cast<double>(middles.size() - 1);
-      }
-      const double half_gap = middles.size() > 1 ? 0.5 * (others - middles.front()).norm() : 0.0;
+      const FingertipSpan tips_span = fingertip_span(middles);
+      const Eigen::Vector3d& m = tips_span.mean;
+      const double half_gap = 0.5 * tips_span.span.norm();
       const double rho2 = std::pow(std::max(half_gap, settings_.min_radius), 2);
       const double tip = reach - a.dot(m);  // the far end's distance along a from the line's point m
       double best = -std::numeric_limits<double>::infinity();

@@ -64,4 +64,24 @@ inline std::vector<LinkBounds> link_bounds(const Hand& hand, const std::vector<i
   return out;
 }
 
+/// Fingertips' middles (LinkBounds::middle, one per fingertip, at least one): their mean, and the span from the
+/// first fingertip's middle to the mean of the others' (zero for one fingertip). The line of the span is the line
+/// the fingers close along: grasp/topdown_seeds.cpp lays it across the object, grasp/grasp_depth.cpp's cylinder is
+/// as wide as half of it.
+struct FingertipSpan {
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  Eigen::Vector3d span = Eigen::Vector3d::Zero();
+};
+
+inline FingertipSpan fingertip_span(const std::vector<Eigen::Vector3d>& middles) {
+  FingertipSpan out;
+  Eigen::Vector3d others = Eigen::Vector3d::Zero();
+  for (size_t f = 0; f < middles.size(); ++f) {
+    out.mean += middles[f] / static_cast<double>(middles.size());
+    if (f > 0) others += middles[f] / static_cast<double>(middles.size() - 1);
+  }
+  if (middles.size() > 1) out.span = others - middles.front();
+  return out;
+}
+
 }  // namespace graspmix

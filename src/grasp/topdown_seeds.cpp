@@ -64,12 +64,9 @@ SeedGrasps topdown_seeds(const Hand& hand, const ConfigModel& config, const Vec3
     middles.push_back(b.middle);
   }
   if (middles.empty()) return out;
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero(), others = Eigen::Vector3d::Zero();
-  for (size_t f = 0; f < middles.size(); ++f) {
-    mean += middles[f] / static_cast<double>(middles.size());
-    if (f > 0) others += middles[f] / static_cast<double>(middles.size() - 1);
-  }
-  Eigen::Vector3d c = middles.size() > 1 ? Eigen::Vector3d(others - middles.front()) : a.unitOrthogonal();
+  const FingertipSpan tips_span = fingertip_span(middles);
+  const Eigen::Vector3d& mean = tips_span.mean;
+  Eigen::Vector3d c = middles.size() > 1 ? tips_span.span : a.unitOrthogonal();
   c -= a.dot(c) * a;
   c = c.norm() > 1e-9 ? Eigen::Vector3d(c.normalized()) : Eigen::Vector3d(a.unitOrthogonal());
   const Eigen::Vector3d tip_point = mean - a.dot(mean) * a + reach * a;  // the fingertips' far end, on the axis

@@ -263,11 +263,6 @@ def _link_poses(p, c: int, body: int, links: dict, wrist: np.ndarray) -> dict:
     return poses
 
 
-def _moving_names(hand) -> list:
-    """The joints _close drives, in its order: the independent joints, then the mimic joints."""
-    return list(hand.joint_names) + list(hand.mimic_joints)
-
-
 def _close(p, c: int, hand, body: int, joints: dict, q_close, force: float, max_steps: int) -> dict:
     """Position motors drive the independent joints to q_close (at most `force`); each mimic joint's
     motor follows its master's current value every step (a stiff linkage). Steps until the joints have rested for 20
@@ -285,7 +280,8 @@ def _close(p, c: int, hand, body: int, joints: dict, q_close, force: float, max_
             physicsClientId=c,
         )
     mimics = [(joints[m], joints[master], k, off) for m, (master, k, off) in hand.mimic_joints.items()]
-    moving = [joints[n] for n in hand.joint_names] + [m[0] for m in mimics]
+    names = list(hand.joint_names) + list(hand.mimic_joints)  # the independent joints first
+    moving = [joints[n] for n in names]
     still = 0
     window = np.zeros((min(REST_WINDOW, max_steps), len(moving)))
     for step in range(max_steps):
@@ -310,9 +306,9 @@ def _close(p, c: int, hand, body: int, joints: dict, q_close, force: float, max_
             return {n: p.getJointState(body, joints[n], physicsClientId=c)[0] for n in hand.joint_names}
     band = np.ptp(window, axis=0)
     if max_steps >= REST_WINDOW and np.all(band < REST_BAND):
-        mean = window.mean(axis=0)  # the independent joints come first
+        mean = window.mean(axis=0)
         return {n: float(mean[i]) for i, n in enumerate(hand.joint_names)}
-    moved = ", ".join(f"{n} {1000 * b:.1f}" for n, b in zip(_moving_names(hand), band) if b >= REST_BAND)
+    moved = ", ".join(f"{n} {1000 * b:.1f}" for n, b in zip(names, band) if b >= REST_BAND)
     moved = f" (over the last {len(window)} steps: {moved} mm or mrad)" if moved else ""
     raise ValueError(
         f"the hand's joints did not come to rest within {max_steps} steps{moved}; "

@@ -2,7 +2,7 @@
 lower-ranked grasp lifts the object) or the candidates' (none does)? And which of a grasp's terms tell the grasps
 that lift from those that do not, within one attempt?
 
-    python scripts/named_topk.py RUN OUT.csv [--top 10] [--mode packed] [--set part.field=value ...]
+    python scripts/named_topk.py RUN OUT.csv [--top 10] [--mode packed] [--scenes A:B] [--set part.field=value ...]
 
 RUN is a `graspmix_cli clutter --task named` folder (its clutter.json gives the scenes, the targets, the seeds and
 the synthesis options; --set changes the options). For each attempt the synthesis is repeated as the run made it,
@@ -31,6 +31,7 @@ def main(argv=None) -> int:
     ap.add_argument("out")
     ap.add_argument("--top", type=int, default=10)
     ap.add_argument("--mode", default="packed")
+    ap.add_argument("--scenes", default=None, metavar="A:B", help="only scenes A to B-1 (all by default)")
     ap.add_argument("--set", action="append", default=[], metavar="PART.FIELD=VALUE")
     args = ap.parse_args(argv)
 
@@ -45,8 +46,16 @@ def main(argv=None) -> int:
         key, _, value = item.partition("=")
         changes[key] = json.loads(value)
     model = cached_model(str(p.model_path("gmm").resolve()))
+    first, last = 0, p.scenes
+    if args.scenes:
+        try:
+            first, last = (int(x) for x in args.scenes.split(":"))
+        except ValueError:
+            ap.error(f"--scenes must be A:B (two integers), got {args.scenes!r}")
+        if not 0 <= first < last <= p.scenes:
+            ap.error(f"--scenes {args.scenes}: need 0 <= A < B <= {p.scenes} (the run has scenes 0 to {p.scenes - 1})")
     rows = []
-    for scene in range(p.scenes):
+    for scene in range(first, last):
         ns = named_scene(p, args.mode, scene)
         spec, obs = ns.spec, ns.obs
         for pick, target in enumerate(ns.picks):

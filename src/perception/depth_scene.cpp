@@ -277,7 +277,8 @@ DepthImage median_filtered(const Eigen::Ref<const DepthImage>& depth, int r) {
 
 /// The blocks' points through prepare_cloud's voxel grid, each with the pixel of the block it came from.
 Blocks voxelised(const Blocks& b, double voxel_size) {
-  CleanupSettings voxel;  // prepare_cloud's voxel grid only: the sources follow every centroid
+  if (b.points.rows() == 0) return b;  // nothing above the table: the scene's rule says so, not the voxel grid
+  CleanupSettings voxel;               // prepare_cloud's voxel grid only: the sources follow every centroid
   voxel.voxel_size = voxel_size;
   voxel.remove_outliers = false;
   voxel.remove_plane = false;

@@ -135,6 +135,8 @@ def test_synthesize_takes_each_input_and_answers_in_the_world(view):
         ({"depth": np.ones((48, 64)), "intrinsics": [[60, 1, 32], [0, 60, 24], [0, 0, 1]]}, "pinhole K"),
         ({"depth": -np.ones((48, 64)), "intrinsics": (60, 60, 32, 24)}, "negative"),
         ({"depth": np.full((48, 64), np.nan), "intrinsics": (60, 60, 32, 24)}, "no pixel has a return"),
+        # a bare table seen straight on: the table is found and nothing stands on it (once "the cloud is empty")
+        ({"depth": np.full((48, 64), 0.8), "intrinsics": (50, 50, 32, 24)}, "no object above the support plane"),
         ({"depth": np.ones((48, 64)), "intrinsics": (60, 60, 32, 24), "camera_pose": [0, 0, 1, 0, 0, 0, 2]}, "unit"),
         ({"depth": np.ones((48, 64)), "intrinsics": (60, 60, 32, 24), "depth_scale": 0}, "depth_scale"),
         ({"depth": np.ones((48, 64)), "cloud": np.ones((5, 3)), "intrinsics": (60, 60, 32, 24)}, "not both"),

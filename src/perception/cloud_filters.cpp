@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include <pcl/console/print.h>
 #include <pcl/kdtree/kdtree_flann.h>
 #include <pcl/sample_consensus/ransac.h>
 #include <pcl/sample_consensus/sac_model_plane.h>
@@ -287,9 +288,25 @@ VoxelCells voxel_grid(const Cloud& cloud, float leaf) {
 
 namespace {
 
+/// PCL's console silenced while it lives: RANSAC prints on stderr when a sample is degenerate or no model is found
+/// ("Sample points too similar or collinear!", up to one line per iteration), which fit_plane's caller handles
+/// itself (a plane refused, or the error naming what the scene lacks). PCL's level is process-wide: concurrent
+/// fits may leave it silenced, never louder than it was.
+class QuietPcl {
+ public:
+  QuietPcl() : level_(pcl::console::getVerbosityLevel()) { pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS); }
+  ~QuietPcl() { pcl::console::setVerbosityLevel(level_); }
+  QuietPcl(const QuietPcl&) = delete;
+  QuietPcl& operator=(const QuietPcl&) = delete;
+
+ private:
+  pcl::console::VERBOSITY_LEVEL level_;
+};
+
 template <typename Model>
 bool fit_plane_with(const Cloud::ConstPtr& cloud, double distance, int iterations, std::uint64_t seed,
                     Eigen::VectorXf& coeffs, pcl::Indices& inliers) {
+  const QuietPcl quiet;
   typename Model::Ptr model(new Model(cloud, fold_seed(seed)));
   SeededRansac ransac(model, distance, fold_seed(seed) ^ 0x9e3779b9u);
   ransac.setMaxIterations(iterations);

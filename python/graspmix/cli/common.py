@@ -6,6 +6,7 @@ before any work starts, by the helpers of graspmix.io.checks."""
 from __future__ import annotations
 
 import argparse
+import os
 import re
 import sys
 
@@ -123,9 +124,47 @@ def _output_folder(text: str) -> str:
     return text
 
 
+# What matplotlib writes a picture as, by the file's suffix (a name without one would be written as NAME.png).
+PICTURE_SUFFIXES = (".png", ".pdf", ".svg", ".jpg", ".jpeg", ".webp", ".tif", ".tiff", ".eps", ".ps", ".svgz")
+
+
+def _suffixed(text: str, suffixes: tuple, what: str) -> str:
+    _output_file(text)
+    if not text.lower().endswith(suffixes):
+        raise ValueError(f"expected {what} ending in {', '.join(suffixes)}, got {quote(text)}")
+    return text
+
+
 input_path = _typed(_path, "path")  # an input file: UTF-8, names <= 255 bytes (existence: the readers')
 output_file = _typed(_output_file, "output file")  # a file that can be written, checked before the work
 output_folder = _typed(_output_folder, "output folder")  # a folder that exists or can be made, writable
+# an output_file that is a picture, or an interactive page, by its suffix
+picture_file = _typed(lambda text: _suffixed(text, PICTURE_SUFFIXES, "a picture file"), "picture file")
+html_file = _typed(lambda text: _suffixed(text, (".html", ".htm"), "a page"), "page file")
+OUTPUT_TYPES = (output_file, picture_file, html_file)
+
+
+def check_distinct_files(parser: argparse.ArgumentParser, args: argparse.Namespace) -> None:
+    """A CliError when a file the command writes is also one it reads or another it writes (the same file by
+    any path): writing it would replace the input, or one output the other."""
+    seen: dict = {}
+    for action in parser._actions:
+        writes = action.type in OUTPUT_TYPES
+        if not writes and action.type is not input_path and not getattr(action.type, "reads_file", False):
+            continue
+        value = getattr(args, action.dest, None)
+        for path in value if isinstance(value, list) else [value]:
+            if not isinstance(path, str):
+                continue
+            if not writes and "=" in path and not os.path.exists(path):
+                path = path.split("=", 1)[1]  # NAME=FILE
+            key = os.path.realpath(path)
+            name = f"{action.option_strings[0] if action.option_strings else action.dest} {path}"
+            if key in seen:
+                other, other_writes = seen[key]
+                if writes or other_writes:
+                    raise CliError(f"{name} and {other} are the same file: one would replace the other")
+            seen[key] = (name, writes)
 
 
 def parse_floats(text: str, n: int, what: str) -> np.ndarray:

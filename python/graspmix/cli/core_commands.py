@@ -14,7 +14,7 @@ from .. import _core
 from ..io import GMM_FORMAT, data_path, load_array
 from ..io.checks import MAX_COMPONENTS, MAX_ITERATIONS, MAX_SAMPLES
 from ..model.settings import FeatureScale
-from .common import CliError, float_in, given, input_path, int_in, output_file, seed
+from .common import CliError, float_in, given, input_path, int_in, output_file, picture_file, seed
 
 
 def cmd_info(args: argparse.Namespace) -> int:
@@ -206,7 +206,7 @@ def add_parsers(sub) -> None:
         "--out", type=output_file, help="write the features as .npz (points, normals, curvatures, frames, indices, ...)"
     )
     s.add_argument(
-        "--plot", type=output_file, help="write a picture of the cloud coloured by k1 and k2 (.png/.pdf/.svg)"
+        "--plot", type=picture_file, help="write a picture of the cloud coloured by k1 and k2 (.png/.pdf/.svg)"
     )
     s.add_argument(
         "--plot-normals", type=int_in(0, MAX_SAMPLES), default=0, metavar="N", help="draw N normals in the picture"

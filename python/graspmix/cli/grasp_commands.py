@@ -15,7 +15,7 @@ from ..model.grasp_frames import opening_widths
 from ..model.grasps import infeasible_unwarned
 from ..model.settings import METHODS, LearnSettings
 from ..perception import kind_name, parse_target
-from .common import CliError, float_in, input_path, int_in, output_file, parse_floats, parse_joints, seed
+from .common import CliError, float_in, input_path, int_in, output_file, parse_floats, parse_joints, picture_file, seed
 from .synthesis_flags import add_synthesis_arguments, list_settings, synthesis_options
 from .views import add_view_arguments, input_keywords, known_plane
 
@@ -82,6 +82,9 @@ def _demo_spec(text: str) -> str:
     """--demo PATH or NAME=PATH: the file must exist."""
     input_path(text.split("=", 1)[1] if "=" in text else text)
     return text
+
+
+_demo_spec.reads_file = True  # a file the command reads (check_distinct_files)
 
 
 GAP_LABEL = "opening: finger gap (m)"  # what synthesize and demo print for a hand with two fingertip links
@@ -240,7 +243,7 @@ def _add_demo(sub) -> None:
     )
     s.add_argument("--seed", type=seed, default=0)
     s.add_argument("--out", type=output_file, required=True, help="demonstration file (.json)")
-    s.add_argument("--png", type=output_file, help="draw the object cloud and the hand at pre-grasp and grasp")
+    s.add_argument("--png", type=picture_file, help="draw the object cloud and the hand at pre-grasp and grasp")
     s.add_argument(
         "--cloud-out", type=output_file, help="write the object cloud to this PCD and refer to it (default: inline)"
     )
@@ -334,5 +337,5 @@ def _add_synthesize(sub) -> None:
     s.add_argument("--list-settings", action="store_true", help="print every synthesis setting (--set) and exit")
     s.add_argument("--top", type=int_in(0), default=5, help="grasps to print")
     s.add_argument("--out", type=output_file, default="grasps.json", help="grasps file (default grasps.json)")
-    s.add_argument("--png", type=output_file, help="draw the cloud and the best grasps' hands")
+    s.add_argument("--png", type=picture_file, help="draw the cloud and the best grasps' hands")
     s.set_defaults(func=cmd_synthesize)

@@ -20,7 +20,7 @@ from . import (
     segment_commands,
     sim_commands,
 )
-from .common import CliError, OneLineParser, report_error
+from .common import CliError, OneLineParser, check_distinct_files, report_error
 
 
 class _VersionAction(argparse.Action):
@@ -61,14 +61,22 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
     return p
 
 
+def _subparser(parser: argparse.ArgumentParser, command: str) -> argparse.ArgumentParser:
+    """The parser of one subcommand."""
+    sub = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    return sub.choices[command]
+
+
 def main(argv: list[str] | None = None) -> int:
     words = list(sys.argv[1:] if argv is None else argv)
+    parser = build_parser(next((w for w in words if not w.startswith("-")), None))
     try:
-        args = build_parser(next((w for w in words if not w.startswith("-")), None)).parse_args(argv)
+        args = parser.parse_args(argv)
     except SystemExit as e:  # a bad option (one line already printed, status 2), or --help / --version
         return e.code if isinstance(e.code, int) else 2
     args.argv = words
     try:
+        check_distinct_files(_subparser(parser, args.command), args)
         return args.func(args)
     except BrokenPipeError:  # the reader went away (e.g. `| head`): nothing more to say
         sys.stderr.close()

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 
 from ..model import GraspSet
-from .common import CliError, input_path, int_in, output_file
+from .common import CliError, html_file, input_path, int_in, picture_file
 
 
 def cmd_plot(args: argparse.Namespace) -> int:
@@ -36,6 +36,6 @@ def add_parsers(sub) -> None:
         help="the cloud to draw (.pcd, .ply, .npy); default: the file's cloud or depth image, if it exists",
     )
     s.add_argument("--top", type=int_in(1), default=3, help="how many of the best grasps to draw (3)")
-    s.add_argument("--png", type=output_file, help="write a picture (.png, .pdf, .svg): two views")
-    s.add_argument("--html", type=output_file, help="write an interactive 3D view (.html, plotly, self-contained)")
+    s.add_argument("--png", type=picture_file, help="write a picture (.png, .pdf, .svg): two views")
+    s.add_argument("--html", type=html_file, help="write an interactive 3D view (.html, plotly, self-contained)")
     s.set_defaults(func=cmd_plot)

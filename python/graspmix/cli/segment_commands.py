@@ -11,7 +11,7 @@ import numpy as np
 
 from .. import _core
 from ..perception import CameraView, kind_name, scene_input, segment_scene, segment_view
-from .common import box, float_in, given, input_path, int_in, output_file, seed
+from .common import box, float_in, given, input_path, int_in, picture_file, seed
 from .views import add_view_arguments, input_keywords, known_plane
 
 
@@ -99,7 +99,7 @@ def add_parsers(sub) -> None:
         "--cloud", type=input_path, help="the scene cloud (.pcd, .ply, or .npy (N, 3)); required unless --depth"
     )
     add_view_arguments(s)
-    s.add_argument("--png", type=output_file, help="write a picture of the objects over the plane")
+    s.add_argument("--png", type=picture_file, help="write a picture of the objects over the plane")
     s.add_argument("--json", action="store_true", help="print the segmentation as JSON instead")
     s.add_argument(
         "--completion",

@@ -12,7 +12,7 @@ from .. import _core
 from ..io.checks import MAX_SIM_TIME
 from ..model.grasps import grasp_by_rank
 from ..model.settings import FeatureScale
-from .common import CliError, float_in, input_path, int_in, output_file, parse_floats, seed
+from .common import CliError, float_in, input_path, int_in, output_file, parse_floats, picture_file, seed
 
 
 def _scene_of(args: argparse.Namespace):
@@ -148,7 +148,7 @@ def add_parsers(sub) -> None:
         default="binary",
         help="PCD encoding (default binary; binary_compressed for files to keep)",
     )
-    s.add_argument("--picture", type=output_file, help="also save a picture of the depth images (.png)")
+    s.add_argument("--picture", type=picture_file, help="also save a picture of the depth images (.png)")
     s.add_argument(
         "--clean",
         action="store_true",

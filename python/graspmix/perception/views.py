@@ -10,6 +10,7 @@ space (graspmix._core.segment_depth / segment_organized, include/graspmix/percep
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -61,6 +62,10 @@ def checked_pose(camera_pose) -> np.ndarray:
     return pose
 
 
+# A depth PNG larger than this is refused before it is decoded (today's depth cameras: 1-2 Mpx; PIL warns at 89 Mpx).
+MAX_DEPTH_PIXELS = 40_000_000
+
+
 def read_depth(path) -> np.ndarray:
     """The depth image of a file: a 16-bit single-channel PNG (millimetres, as RealSense and ROS write it) or a .npy
     (H, W) array; ValueError naming the file for anything else (an 8-bit or colour PNG is not a depth image)."""
@@ -75,7 +80,15 @@ def read_depth(path) -> np.ndarray:
     from PIL import Image, UnidentifiedImageError
 
     try:
-        with Image.open(p) as im:
+        with warnings.catch_warnings():  # the size is this function's to judge, below, in one line
+            warnings.simplefilter("ignore", Image.DecompressionBombWarning)
+            im = Image.open(p)
+        with im:
+            if im.width * im.height > MAX_DEPTH_PIXELS:
+                raise ValueError(
+                    f"{quote(str(path))}: {im.width} x {im.height} pixels is not a depth camera's image (at most "
+                    f"{MAX_DEPTH_PIXELS:,} pixels)"
+                )
             mode = im.mode
             if mode not in ("I;16", "I;16B", "I"):
                 raise ValueError(
@@ -83,7 +96,7 @@ def read_depth(path) -> np.ndarray:
                     "(8-bit or colour: a picture, not a depth image)"
                 )
             return np.asarray(im)
-    except (UnidentifiedImageError, OSError) as e:
+    except (UnidentifiedImageError, Image.DecompressionBombError, OSError) as e:
         raise ValueError(f"{quote(str(path))}: cannot read the PNG ({e})") from None
 
 

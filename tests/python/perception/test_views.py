@@ -3,6 +3,10 @@ in the sensor frame, with the camera's pose, segmented in image space, against t
 cloud (graspmix.segment_scene) on the bundled packed scene rendered by pybullet; the depth image written as a 16-bit
 PNG in millimetres; GraspModel.synthesize and the CLI on each input; bad input naming what is wrong."""
 
+import struct
+import warnings
+import zlib
+
 import graspmix
 import numpy as np
 import pytest
@@ -163,6 +167,25 @@ def test_an_eight_bit_png_is_not_a_depth_image(tmp_path):
     Image.fromarray(np.zeros((8, 8), np.uint8)).save(tmp_path / "d.png")
     with pytest.raises(ValueError, match="16-bit"):
         read_depth(tmp_path / "d.png")
+
+
+@pytest.mark.parametrize("width, height", [(8000, 6000), (15000, 12000)])  # over our limit; over PIL's own too
+def test_a_png_larger_than_a_depth_cameras_is_refused_before_decoding(tmp_path, width, height):
+    """The header says the size: a 16-bit grey PNG of zeros written by hand (zlib, not a decoded image)."""
+
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+
+    z = zlib.compressobj()
+    row = b"\0" * (1 + 2 * width)
+    data = b"".join(z.compress(row) for _ in range(height)) + z.flush()
+    header = struct.pack(">IIBBBBB", width, height, 16, 0, 0, 0, 0)
+    path = tmp_path / "big.png"
+    path.write_bytes(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", data) + chunk(b"IEND", b""))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # no DecompressionBombWarning on the way
+        with pytest.raises(ValueError, match="big.png"):
+            read_depth(path)
 
 
 def test_cli_synthesize_and_segment_on_a_depth_png(view, tmp_path, capsys):

@@ -52,10 +52,19 @@ class CameraView:
         return pts @ T[:3, :3].T + T[:3, 3]
 
 
+def _numbers(value, what: str) -> np.ndarray:
+    """value as an array of floats; ValueError naming `what` for text, ragged lists or anything not numbers."""
+    try:
+        out = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"{what}: expected numbers, got {value!r:.80}") from None
+    return out
+
+
 def checked_pose(camera_pose) -> np.ndarray:
     """(7,) T_world_camera, a unit quaternion (the C++ check, kUnitQuaternionTolerance); None is the identity (the
     world is the camera's frame)."""
-    pose = np.asarray(IDENTITY_POSE if camera_pose is None else camera_pose, dtype=float)
+    pose = _numbers(IDENTITY_POSE if camera_pose is None else camera_pose, "camera_pose")
     if pose.shape != (7,):
         raise ValueError(f"camera_pose: expected 7 numbers x, y, z, qx, qy, qz, qw, got shape {pose.shape}")
     _core.camera_pose_matrix(pose)  # the C++ check (a unit quaternion, finite)
@@ -109,7 +118,7 @@ def pinhole(intrinsics, width: int, height: int):
                 f"intrinsics: the camera is {intrinsics.width} x {intrinsics.height}, the image {width} x {height}"
             )
         return intrinsics
-    k = np.asarray(intrinsics, dtype=float)
+    k = _numbers(intrinsics, "intrinsics")
     if k.shape == (3, 3):
         if not np.allclose(k[[1, 2, 2, 2], [0, 0, 1, 2]], [0, 0, 0, 1]) or k[0, 1] != 0:
             raise ValueError(f"intrinsics: a pinhole K is [[fx, 0, cx], [0, fy, cy], [0, 0, 1]], got {k.tolist()}")
@@ -128,7 +137,12 @@ def depth_view(depth, intrinsics, camera_pose=None, depth_scale=None) -> CameraV
         raise ValueError(f"depth: expected an (H, W) image, got shape {d.shape}")
     if d.dtype.kind not in "uif":
         raise ValueError(f"depth: expected numbers, got dtype {d.dtype}")
-    scale = (INTEGER_DEPTH_SCALE if d.dtype.kind in "ui" else 1.0) if depth_scale is None else float(depth_scale)
+    scale = INTEGER_DEPTH_SCALE if d.dtype.kind in "ui" else 1.0
+    if depth_scale is not None:
+        scale = _numbers(depth_scale, "depth_scale")
+        if scale.shape != ():
+            raise ValueError(f"depth_scale: expected one number (metres per unit), got shape {scale.shape}")
+        scale = float(scale)
     if not (np.isfinite(scale) and scale > 0):
         raise ValueError(f"depth_scale: expected metres per unit > 0, got {depth_scale!r}")
     metres = d.astype(float) * scale  # 0, NaN and inf stay no return; a negative depth is the C++ check's error

@@ -179,9 +179,10 @@ struct Extraction {
 /// tail above table_clearance falls apart into such fragments) go with the table. Done once the support is
 /// chosen: rule 4 still judges each candidate on every cluster above it, so that the face of an object seen
 /// without a table, whose own noise stands above it, is still no support.
-void drop_table_noise(const Vec3Array& P, const Eigen::Vector4d& plane, const SegmentationSettings& s, Extraction& e) {
+void drop_table_noise(const Vec3Array& P, const Eigen::Vector4d& plane, const SegmentationSettings& s, Extraction& e,
+                      const Vec3Array* table_sample) {
   const Eigen::VectorXd h = heights(P, plane);
-  const TableNoise noise = table_noise(h, s.plane_distance);
+  const TableNoise noise = table_noise(table_sample ? heights(*table_sample, plane) : h, s.plane_distance);
   if (!noise.known) return;
   std::vector<std::vector<int>> kept;
   for (auto& g : e.groups) {
@@ -370,9 +371,10 @@ namespace {
 /// The objects of an extraction after the support is chosen: the table's noise dropped, the merge and join rules,
 /// the objects described into `out`.
 void finish_objects(const Vec3Array& P, const Eigen::VectorXi& sources, const Cameras& cams,
-                    const SegmentationSettings& s, Extraction e, Segmentation& out) {
+                    const SegmentationSettings& s, Extraction e, Segmentation& out,
+                    const Vec3Array* table_sample = nullptr) {
   Lap lap;
-  if (out.plane_found || out.plane_given) drop_table_noise(P, out.plane, s, e);
+  if (out.plane_found || out.plane_given) drop_table_noise(P, out.plane, s, e, table_sample);
   lap.add_to(out.times.clusters);
   if (s.merge_seen_through && e.groups.size() > 1) {
     const Vec3Array one = cams.single.transpose();
@@ -430,9 +432,9 @@ void detail::search_support(const Vec3Array& P, const Cameras& cams, const Segme
 }
 
 void detail::segment_on_support(const Vec3Array& P, const Eigen::VectorXi& sources, const Cameras& cams,
-                                const SegmentationSettings& s, Segmentation& out) {
+                                const SegmentationSettings& s, Segmentation& out, const Vec3Array* table_sample) {
   const bool plane = out.plane_found || out.plane_given;
-  finish_objects(P, sources, cams, s, extract(P, plane ? &out.plane : nullptr, s, out.times), out);
+  finish_objects(P, sources, cams, s, extract(P, plane ? &out.plane : nullptr, s, out.times), out, table_sample);
 }
 
 Segmentation segment_scene(const Vec3Array& points, const Vec3Array& viewpoints, const SegmentationSettings& s,

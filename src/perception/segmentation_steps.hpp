@@ -60,10 +60,12 @@ void segment_voxelised(const Vec3Array& P, const Eigen::VectorXi& sources, const
 
 /// segment_voxelised in two steps on two point sets: the support on P (a given plane turned towards the cameras, or
 /// the plane by the rule when find_plane: out.plane, plane_found, candidates, rule 4 judged on P's objects), then
-/// the objects of other points above the support (or of all of them without one).
+/// the objects of other points above the support (or of all of them without one). table_sample: where the table's
+/// noise is to be measured on other points than P's (a depth image's: P's table and objects come from blocks of
+/// different sizes, whose scatter differs), a sample of the scene as fine as P's objects, evenly over the image.
 void search_support(const Vec3Array& P, const Cameras& cams, const SegmentationSettings& s,
                     const std::optional<Eigen::Vector4d>& plane, Segmentation& out);
 void segment_on_support(const Vec3Array& P, const Eigen::VectorXi& sources, const Cameras& cams,
-                        const SegmentationSettings& s, Segmentation& out);
+                        const SegmentationSettings& s, Segmentation& out, const Vec3Array* table_sample = nullptr);
 
 }  // namespace graspmix::detail

@@ -283,7 +283,14 @@ Blocks voxelised(const Blocks& b, double voxel_size) {
   voxel.voxel_size = voxel_size;
   voxel.remove_outliers = false;
   voxel.remove_plane = false;
-  CleanupResult down = prepare_cloud(b.points, voxel);
+  CleanupResult down;
+  try {
+    down = prepare_cloud(b.points, voxel);
+  } catch (const std::invalid_argument& e) {  // a scene kilometres wide: most likely the image's units, not a scene
+    throw std::invalid_argument(std::string(e.what()) +
+                                "; from a depth image, check its depth scale (metres per unit: 0.001 for millimetres) "
+                                "and the intrinsics (pixels)");
+  }
   Blocks out{std::move(down.points), Eigen::VectorXi(down.sources.size())};
   for (Eigen::Index i = 0; i < out.pixels.size(); ++i) out.pixels[i] = b.pixels[down.sources[i]];
   return out;

@@ -143,6 +143,8 @@ def test_synthesize_takes_each_input_and_answers_in_the_world(view):
         ({"depth": np.full((48, 64), 0.8), "intrinsics": (50, 50, 32, 24)}, "no object above the support plane"),
         ({"depth": np.ones((48, 64)), "intrinsics": (60, 60, 32, 24), "camera_pose": [0, 0, 1, 0, 0, 0, 2]}, "unit"),
         ({"depth": np.ones((48, 64)), "intrinsics": (60, 60, 32, 24), "depth_scale": 0}, "depth_scale"),
+        # millimetres read as metres: a scene 850 m wide, the voxel grid's error with what to check
+        ({"depth": np.full((48, 64), 800.0), "intrinsics": (60, 60, 32, 24)}, "check its depth scale"),
         # text and ragged lists where numbers belong: the argument named, not numpy's words
         ({"depth": np.ones((48, 64)), "intrinsics": "60,60,32,24"}, "intrinsics: expected numbers"),
         ({"depth": np.ones((48, 64)), "intrinsics": [[60, 0, 32], [0, 60]]}, "intrinsics: expected numbers"),

@@ -338,7 +338,7 @@ Segmentation segment_image(const Eigen::Ref<const Vec3Array>& S, const Eigen::Re
     // coarse ones on it; each voxelised on its own, so no voxel blends an object's foot with the table.
     BlockFilter all{s};
     const Blocks blocks = block_points(S, H, W, s.plane_image_stride, s.voxel_size, T, all);
-    if (all.seen == 0) detail::nothing_in_workspace(s, "depth");
+    if (all.seen == 0) detail::nothing_in_workspace(s, "the image (a depth image or an organized cloud)");
     const Blocks coarse = voxelised(blocks, s.voxel_size);
     out.times.voxel += since(t_step);
     detail::search_support(coarse.points, cams, s, plane, out);
@@ -362,7 +362,7 @@ Segmentation segment_image(const Eigen::Ref<const Vec3Array>& S, const Eigen::Re
   if (!out.plane_found && !out.plane_given) {
     BlockFilter all{s};
     const Blocks blocks = block_points(S, H, W, fine, s.voxel_size, T, all);
-    if (all.seen == 0) detail::nothing_in_workspace(s, "depth");
+    if (all.seen == 0) detail::nothing_in_workspace(s, "the image (a depth image or an organized cloud)");
     down = voxelised(blocks, s.voxel_size);
   }
   out.n_after_voxel = static_cast<std::size_t>(down.points.rows());

@@ -183,6 +183,8 @@ def parse_joints(text: str, what: str) -> dict:
         name, sep, value = item.partition("=")
         if not sep or not name.strip():
             raise CliError(f"{what}: expected name=value[,name=value...], got {quote(text)}")
+        if name.strip() in out:
+            raise CliError(f"{what}: joint {quote(name.strip())} is given twice")
         try:
             out[name.strip()] = check_float(float(value), f"{what}: joint {quote(name.strip())}")
         except ValueError:

@@ -27,3 +27,11 @@ def test_a_missing_value_is_still_an_error(capsys):
         build_parser("demo").parse_args(["demo", "--wrist", "--out", "d.json"])
     assert e.value.code == 2
     assert "--wrist: expected one argument" in capsys.readouterr().err
+
+
+def test_a_joint_given_twice_is_an_error():
+    from graspmix.cli.common import CliError, parse_joints
+
+    assert parse_joints("a=0.05,b=-1", "--pregrasp") == {"a": 0.05, "b": -1.0}
+    with pytest.raises(CliError, match="'a' is given twice"):
+        parse_joints("a=0.05,a=0.01", "--pregrasp")

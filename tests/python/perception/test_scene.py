@@ -141,9 +141,10 @@ def test_every_target_picks_the_intended_object(rendered):
 def test_parse_target_forms_and_errors():
     assert str(parse_target("point:0.1,-2,3e-2")) == "point:0.1,-2,0.03"
     assert parse_target(" largest ").kind == "largest" and parse_target("7").index == 7
-    for bad in ["point:1,2", "point:1,2,nan", "biggest", "-1", ""]:
+    for bad in ["point:1,2", "point:1,2,nan", "biggest", "-1", "", "9999999999999", 2**31, -1]:
         with pytest.raises(ValueError, match="target"):
             parse_target(bad)
+    assert parse_target(str(2**31 - 1)).index == 2**31 - 1  # the largest index C++ holds
 
 
 def test_camera_frame_cloud_gives_the_same_scene(rendered):

@@ -10,7 +10,7 @@ import sys
 import numpy as np
 
 from .. import _core
-from ..perception import CameraView, kind_name, scene_input, segment_scene, segment_view
+from ..perception import CameraView, kind_name, quaternion_order_note, scene_input, segment_scene, segment_view
 from .common import box, float_in, given, input_path, int_in, picture_file, seed
 from .views import add_view_arguments, input_keywords, known_plane
 
@@ -37,7 +37,8 @@ def _plane_lines(scene) -> list[str]:
 
 
 def cmd_segment(args) -> int:
-    source, _, notes = scene_input(**input_keywords(args, "the scene cloud"))
+    keywords = input_keywords(args, "the scene cloud")
+    source, _, notes = scene_input(**keywords)
     settings = given(
         args, "cluster_tolerance", "min_cluster_size", "table_clearance", "voxel_size", "seed", "workspace"
     )
@@ -47,7 +48,8 @@ def cmd_segment(args) -> int:
     else:
         points, viewpoints = source
         scene = segment_scene(points, viewpoints, known_plane(args), **settings)
-    scene.notes[:0] = notes
+    order = quaternion_order_note(keywords.get("camera_pose"), scene.plane if scene.plane_found else None)
+    scene.notes[:0] = notes + ([order] if order else [])
     if args.completion:
         scene.complete()
     for note in scene.notes:

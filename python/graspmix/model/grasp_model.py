@@ -38,7 +38,7 @@ from ..io.checks import (
     check_path_text,
     check_seed,
 )
-from ..perception import depth_record, scene_input
+from ..perception import depth_record, quaternion_order_note, scene_input
 from .demonstration import Demonstration
 from .grasp_types import (
     GraspType,
@@ -279,7 +279,8 @@ class GraspModel:
             experts=experts,
             types=chosen,
         )
-        out.scene.notes[:0] = notes
+        order = quaternion_order_note(camera_pose, out.scene.plane if out.scene.plane_found else None)
+        out.scene.notes[:0] = notes + ([order] if order else [])
         timing = dict(out.timing)
         segmentation = t_input + timing.pop("segmentation")  # reading the input counts as the segmentation's
         timing = _stage_times(timing, segmentation, time.perf_counter() - t0)

@@ -18,11 +18,21 @@ from .scene import (
     parse_target,
     segment_scene,
 )
-from .views import CameraView, depth_record, depth_view, organized_view, read_depth, scene_input, segment_view
+from .views import (
+    CameraView,
+    depth_record,
+    depth_view,
+    organized_view,
+    quaternion_order_note,
+    read_depth,
+    scene_input,
+    segment_view,
+)
 
 __all__ = [
     "CameraView",
     "scene_input",
+    "quaternion_order_note",
     "depth_record",
     "depth_view",
     "organized_view",

@@ -200,6 +200,41 @@ def organized_file_view(loaded, camera_pose=None) -> CameraView | None:
         raise
 
 
+# A table tilted more than this from the world's z axis, which a w-first reading of the camera pose's quaternion
+# would level to within LEVEL_DEG, is noted as the likely mistake (quaternion_order_note).
+TILTED_DEG, LEVEL_DEG = 30.0, 10.0
+
+
+def _tilt_deg(normal: np.ndarray) -> float:
+    return float(np.degrees(np.arccos(min(1.0, abs(normal[2]) / np.linalg.norm(normal)))))
+
+
+def quaternion_order_note(camera_pose, plane) -> str | None:
+    """A note when the support plane found from a camera with this pose stands tilted from the world's z axis and
+    the pose's quaternion read w-first ([qw, qx, qy, qz], as some libraries write it) would make it level: the
+    quaternion order is the likely mistake. None otherwise (no pose, no plane, a level table, or a tilt the other
+    order does not explain)."""
+    if camera_pose is None or plane is None:
+        return None
+    pose = checked_pose(camera_pose)
+    normal = np.asarray(plane, dtype=float)[:3]
+    tilt = _tilt_deg(normal)
+    if tilt <= TILTED_DEG:
+        return None
+    R = np.asarray(_core.camera_pose_matrix(pose))[:3, :3]
+    other = np.concatenate([pose[:3], pose[[4, 5, 6, 3]]])  # what [qw, qx, qy, qz] meant, as x, y, z, w
+    R_other = np.asarray(_core.camera_pose_matrix(other))[:3, :3]
+    level = _tilt_deg(R_other @ (R.T @ normal))
+    if level > LEVEL_DEG:
+        return None
+    q = ", ".join(f"{v:g}" for v in pose[3:])
+    meant = ", ".join(f"{v:g}" for v in other[3:])
+    return (
+        f"the table found is {tilt:.0f} degrees from the world's z axis; the camera pose's quaternion is read qx, qy, "
+        f"qz, qw: if [{q}] was meant w-first (qw, qx, qy, qz), give [{meant}] (the table then {level:.0f} degrees)"
+    )
+
+
 # What scene_input says when an organized file is taken as points (the scene's notes).
 NOT_A_CAMERA_VIEW = (
     "{path}: organized, but no camera's image in its frame (no VIEWPOINT with the camera's optical-frame pose, "

@@ -340,3 +340,21 @@ def test_a_noisy_bare_table_seen_from_above_has_no_object_and_a_box_on_it_is_one
     scene = segment_view(depth_view(depth + noise, intrinsics=(579.41, 579.41, 320, 239), camera_pose=pose))
     assert len(scene.objects) == 1
     np.testing.assert_allclose(scene.objects[0].centroid[:2], [0.0, 0.0], atol=0.01)
+
+
+def test_a_w_first_camera_quaternion_is_named_when_it_tilts_the_table():
+    """The camera 45 degrees down at the table (x, y, z, qx, qy, qz, qw); the same pose written w-first and read
+    x, y, z, w tilts the table the camera sees (its normal in the camera's frame is the true one) by 45 degrees:
+    the note names the order and the reading that levels it; a level table or another tilt gets none."""
+    from graspmix.perception import quaternion_order_note
+
+    true = np.array([0, -0.55, 0.55, *Rotation.from_euler("x", -135, degrees=True).as_quat()])
+    w_first = np.concatenate([true[:3], true[[6, 3, 4, 5]]])  # [qw, qx, qy, qz] as a user may write it
+    in_camera = Rotation.from_quat(true[3:]).inv().apply([0, 0, 1])  # the table's normal the camera sees
+    seen = Rotation.from_quat(w_first[3:]).apply(in_camera)  # where the w-first pose puts it in the world
+    note = quaternion_order_note(w_first, [*seen, 0.1])
+    assert note is not None and "w-first" in note and "table then 0 degrees" in note
+    assert ", ".join(f"{v:g}" for v in true[3:]) in note  # the pose to give
+    assert quaternion_order_note(true, [0, 0, 1, 0.1]) is None  # level
+    assert quaternion_order_note(w_first, [1, 0, 0, 0.1]) is None  # tilted, but not by the order
+    assert quaternion_order_note(None, [*seen, 0.1]) is None and quaternion_order_note(w_first, None) is None

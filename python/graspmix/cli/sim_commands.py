@@ -32,8 +32,11 @@ def _scene_of(args: argparse.Namespace):
 def cmd_acquire(args: argparse.Namespace) -> int:
     from ..sim import acquisition, scene_camera
 
+    if args.voxel_size is not None and not args.clean:
+        raise CliError("--voxel-size is the voxel grid of --clean: give --clean too, or drop --voxel-size")
     spec = _scene_of(args)
-    post = acquisition.clean_up(voxel_size=args.voxel_size, seed=args.seed) if args.clean else None
+    voxel = FeatureScale.voxel_size if args.voxel_size is None else args.voxel_size
+    post = acquisition.clean_up(voxel_size=voxel, seed=args.seed) if args.clean else None
     t0 = time.perf_counter()
     acq = scene_camera.acquire_scene(spec, views=args.views, noise=args.noise, seed=args.seed, keep=args.keep)
     if post is not None:
@@ -157,7 +160,6 @@ def add_parsers(sub) -> None:
     s.add_argument(
         "--voxel-size",
         type=float_in(0.0),
-        default=FeatureScale.voxel_size,
         help=f"m, voxel grid of --clean (default {FeatureScale.voxel_size})",
     )
     s.set_defaults(func=cmd_acquire)

@@ -172,6 +172,12 @@ def test_cli_acquire(tmp_path, capsys):
     assert cli.main(["acquire", "--object", "missing/thing.urdf", "--out", str(out)]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "missing/thing.urdf" in err
+    # a voxel size without the clean-up it belongs to was ignored; now it is an error, before any rendering
+    assert (
+        cli.main(["acquire", "--object", "random_urdfs/012/012.urdf", "--voxel-size", "0.005", "--out", str(out)]) == 2
+    )
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "--clean" in err
 
 
 def test_clean_up_removes_the_table_of_a_scene_and_keeps_viewpoints_aligned():

@@ -195,9 +195,24 @@ def organized_file_view(loaded, camera_pose=None) -> CameraView | None:
     try:
         return organized_view(grid, pose)
     except ValueError as e:
-        if "sensor frame" in str(e):
-            return None
-        raise
+        if "sensor frame" not in str(e):
+            raise
+    if camera_pose is None and loaded.has_viewpoint and _is_sensor_grid(loaded.organized()):
+        raise ValueError(
+            f"{loaded.path}: its points are a camera's image in their own frame (the sensor's), but its VIEWPOINT "
+            "(the camera's pose in the world) says they are in the world: write the VIEWPOINT as 0 0 0 1 0 0 0 and "
+            "give the pose as --camera-pose (camera_pose=), or write the points in the world frame"
+        )
+    return None
+
+
+def _is_sensor_grid(grid: np.ndarray) -> bool:
+    """Whether an organized (H, W, 3) grid is a pinhole camera's image in its own frame."""
+    try:
+        organized_view(grid, None)
+    except ValueError:
+        return False
+    return True
 
 
 # A table tilted more than this from the world's z axis, which a w-first reading of the camera pose's quaternion

@@ -334,8 +334,9 @@ Segmentation segment_image(const Eigen::Ref<const Vec3Array>& S, const Eigen::Re
   Blocks down, sample;
   std::size_t dropped = 0, on_table = 0;
   if (two_levels) {
-    // The objects from the fine blocks above the table, the table (for the table-noise rule's statistic) from the
-    // coarse ones on it; each voxelised on its own, so no voxel blends an object's foot with the table.
+    // The objects from the fine blocks above the table, the table from the coarse ones on it (and behind it: the
+    // rule that names a camera below the table counts them); each voxelised on its own, so no voxel blends an
+    // object's foot with the table. The table's noise is measured on `sample`, below.
     BlockFilter all{s};
     const Blocks blocks = block_points(S, H, W, s.plane_image_stride, s.voxel_size, T, all);
     if (all.seen == 0) detail::nothing_in_workspace(s, "the image (a depth image or an organized cloud)");
@@ -377,8 +378,7 @@ Segmentation segment_image(const Eigen::Ref<const Vec3Array>& S, const Eigen::Re
         nearest_pool(depth, camera, s.visibility_resolution), camera, T, detail::visibility_settings(s)));
   };
   if (two_levels) {
-    detail::segment_on_support(down.points, down.pixels, cams, s, out,
-                               out.plane_found || out.plane_given ? &sample.points : nullptr);
+    detail::segment_on_support(down.points, down.pixels, cams, s, out, &sample.points);  // used with a plane only
     out.n_plane = out.n_plane - on_table + dropped;
   } else {
     detail::segment_voxelised(down.points, down.pixels, cams, s, plane, out);

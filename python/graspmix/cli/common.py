@@ -136,6 +136,7 @@ def _suffixed(text: str, suffixes: tuple, what: str) -> str:
 
 
 input_path = _typed(_path, "path")  # an input file: UTF-8, names <= 255 bytes (existence: the readers')
+input_path.file_of = str  # the file a value names (check_distinct_files; a NAME=FILE type says its own)
 output_file = _typed(_output_file, "output file")  # a file that can be written, checked before the work
 output_folder = _typed(_output_folder, "output folder")  # a folder that exists or can be made, writable
 # an output_file that is a picture, or an interactive page, by its suffix
@@ -150,14 +151,14 @@ def check_distinct_files(parser: argparse.ArgumentParser, args: argparse.Namespa
     seen: dict = {}
     for action in parser._actions:
         writes = action.type in OUTPUT_TYPES
-        if not writes and action.type is not input_path and not getattr(action.type, "reads_file", False):
+        file_of = getattr(action.type, "file_of", None)  # an input type: the file a value names
+        if not writes and file_of is None:
             continue
         value = getattr(args, action.dest, None)
-        for path in value if isinstance(value, list) else [value]:
-            if not isinstance(path, str):
+        for text in value if isinstance(value, list) else [value]:
+            if not isinstance(text, str):
                 continue
-            if not writes and "=" in path and not os.path.exists(path):
-                path = path.split("=", 1)[1]  # NAME=FILE
+            path = text if writes else file_of(text)
             key = os.path.realpath(path)
             name = f"{action.option_strings[0] if action.option_strings else action.dest} {path}"
             if key in seen:

@@ -78,13 +78,18 @@ def cmd_learn(args: argparse.Namespace) -> int:
     return 0
 
 
+def _demo_file(text: str) -> str:
+    """The file of --demo PATH or NAME=PATH."""
+    return text.split("=", 1)[1] if "=" in text else text
+
+
 def _demo_spec(text: str) -> str:
     """--demo PATH or NAME=PATH: the file must exist."""
-    input_path(text.split("=", 1)[1] if "=" in text else text)
+    input_path(_demo_file(text))
     return text
 
 
-_demo_spec.reads_file = True  # a file the command reads (check_distinct_files)
+_demo_spec.file_of = _demo_file  # the file the command reads (check_distinct_files)
 
 
 GAP_LABEL = "opening: finger gap (m)"  # what synthesize and demo print for a hand with two fingertip links

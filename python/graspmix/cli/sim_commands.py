@@ -12,7 +12,7 @@ from .. import _core
 from ..io.checks import MAX_SIM_TIME
 from ..model.grasps import grasp_by_rank
 from ..model.settings import FeatureScale
-from .common import CliError, float_in, input_path, int_in, output_file, parse_floats, picture_file, seed
+from .common import CliError, float_in, given, input_path, int_in, output_file, parse_floats, picture_file, seed
 
 
 def _scene_of(args: argparse.Namespace):
@@ -35,8 +35,7 @@ def cmd_acquire(args: argparse.Namespace) -> int:
     if args.voxel_size is not None and not args.clean:
         raise CliError("--voxel-size is the voxel grid of --clean: give --clean too, or drop --voxel-size")
     spec = _scene_of(args)
-    voxel = FeatureScale.voxel_size if args.voxel_size is None else args.voxel_size
-    post = acquisition.clean_up(voxel_size=voxel, seed=args.seed) if args.clean else None
+    post = acquisition.clean_up(**given(args, "voxel_size"), seed=args.seed) if args.clean else None
     t0 = time.perf_counter()
     acq = scene_camera.acquire_scene(spec, views=args.views, noise=args.noise, seed=args.seed, keep=args.keep)
     if post is not None:

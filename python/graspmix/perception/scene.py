@@ -36,24 +36,26 @@ class Target:
 INDEX_MAX = 2**31 - 1  # an object index C++ can hold
 
 
+def _index_target(index: int) -> Target:
+    if not 0 <= index <= INDEX_MAX:
+        raise ValueError(f"target: the object index {index} is out of range (the scene's objects count from 0)")
+    return Target("index", index=index)
+
+
 def parse_target(text) -> Target:
     """A Target from "all", "largest", "nearest", an object index ("2") or "point:x,y,z" (metres, the
     cloud's frame); ValueError naming the text otherwise. A Target or an int passes through."""
     if isinstance(text, Target):
         return text
     if isinstance(text, (int, np.integer)) and not isinstance(text, bool):
-        if not 0 <= text <= INDEX_MAX:
-            raise ValueError(f"target: an object index is >= 0 and within the scene's objects, got {text}")
-        return Target("index", index=int(text))
+        return _index_target(int(text))
     if not isinstance(text, str):
         raise ValueError(f"target must be a string or an object index, got {type(text).__name__}")
     t = text.strip()
     if t in TARGET_KINDS:
         return Target(t)
     if t.isdigit():
-        if int(t) > INDEX_MAX:
-            raise ValueError(f"target: the object index {t} is out of range (the scene's objects count from 0)")
-        return Target("index", index=int(t))
+        return _index_target(int(t))
     if t.startswith("point:"):
         try:
             xyz = tuple(float(v) for v in t[len("point:") :].split(","))

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -175,23 +176,33 @@ struct Extraction {
   std::size_t n_plane = 0, n_outliers = 0, n_small = 0;
 };
 
-/// The clusters above the support plane that rise no higher than the table's own noise reaches (a noisy table's
-/// tail above table_clearance falls apart into such fragments) go with the table. Done once the support is
-/// chosen: rule 4 still judges each candidate on every cluster above it, so that the face of an object seen
-/// without a table, whose own noise stands above it, is still no support.
+/// The clusters above the support plane that do not rise above the table's own noise (a noisy table's tail above
+/// table_clearance falls apart into such fragments) go with the table: a point rises above it when it stands
+/// above the whole table's noise and above the noise of the table where it stands (one view's near table is
+/// noisier than its far one; where that is not measured, the whole table's counts alone). Nothing is dropped
+/// when the table's noise is unknown (no table's: table_noise). table_sample: where the noise is measured (P's
+/// rows when null). Done once the support is chosen: rule 4 still judges each candidate on every cluster above
+/// it, so that the face of an object seen without a table, whose own noise stands above it, is still no support.
 void drop_table_noise(const Vec3Array& P, const Eigen::Vector4d& plane, const SegmentationSettings& s, Extraction& e,
                       const Vec3Array* table_sample) {
   const Eigen::VectorXd h = heights(P, plane);
-  const TableNoise noise = table_noise(table_sample ? heights(*table_sample, plane) : h, s.plane_distance);
+  const Vec3Array& sample = table_sample ? *table_sample : P;
+  const Eigen::VectorXd hs = table_sample ? heights(sample, plane) : h;
+  const TableNoise noise = table_noise(hs, s.plane_distance);
   if (!noise.known) return;
+  std::optional<detail::TableNoiseMap> local;  // made at the first point above the whole table's noise
+  const auto rises = [&](int r) {
+    if (noise.holds(h[r])) return false;
+    if (!local) local.emplace(sample, hs, plane, s.plane_distance);
+    const TableNoise& here = local->at(P.row(r).transpose());
+    return !(here.known && here.holds(h[r]));
+  };
   std::vector<std::vector<int>> kept;
   for (auto& g : e.groups) {
-    double top = -std::numeric_limits<double>::infinity();
-    for (const int r : g) top = std::max(top, h[r]);
-    if (noise.holds(top)) {
-      e.n_plane += g.size();
-    } else {
+    if (std::any_of(g.begin(), g.end(), rises)) {
       kept.push_back(std::move(g));
+    } else {
+      e.n_plane += g.size();
     }
   }
   e.groups.swap(kept);
@@ -396,6 +407,9 @@ void finish_objects(const Vec3Array& P, const Eigen::VectorXi& sources, const Ca
         detail::SplitRule{std::max(s.split_voxel_resolution, s.voxel_size), s.split_seed_resolution,
                           s.split_concavity_tolerance, s.split_min_points, s.split_max_size});
   }
+  // A piece cut off an object can be the table's noise the object stood in (a noisy near table joins the base
+  // of what stands on it into one cluster): judged again.
+  if (out.n_split > 0 && (out.plane_found || out.plane_given)) drop_table_noise(P, out.plane, s, e, table_sample);
   lap.add_to(out.times.split);
   finish(P, sources, e, s, out);
   lap.add_to(out.times.objects);

@@ -5,6 +5,8 @@
 #include <cstddef>
 #include <vector>
 
+#include <Eigen/Geometry>
+
 namespace graspmix::detail {
 
 namespace {
@@ -61,6 +63,46 @@ TableNoise table_noise(const Eigen::VectorXd& h, double band) {
   }
   t.known = !(t.spread > 0) || symmetric(h, t);
   return t;
+}
+
+namespace {
+
+constexpr std::int64_t kCellSpan = std::int64_t{1} << 31;
+
+std::int64_t pack(std::int64_t i, std::int64_t j) { return (i + kCellSpan / 2) * kCellSpan + (j + kCellSpan / 2); }
+
+}  // namespace
+
+TableNoiseMap::TableNoiseMap(const Vec3Array& sample, const Eigen::VectorXd& h, const Eigen::Vector4d& plane,
+                             double band)
+    : band_(band) {
+  const Eigen::Vector3d n = plane.head<3>().normalized();
+  u_ = n.unitOrthogonal();
+  v_ = n.cross(u_);
+  for (Eigen::Index r = 0; r < sample.rows(); ++r)
+    if (std::abs(h[r]) <= kReach) heights_[key(sample.row(r).transpose())].push_back(h[r]);
+}
+
+std::int64_t TableNoiseMap::key(const Eigen::Vector3d& p) const {
+  return pack(static_cast<std::int64_t>(std::floor(p.dot(u_) / kCell)),
+              static_cast<std::int64_t>(std::floor(p.dot(v_) / kCell)));
+}
+
+const TableNoise& TableNoiseMap::at(const Eigen::Vector3d& p) {
+  const std::int64_t k = key(p);
+  if (const auto it = noise_.find(k); it != noise_.end()) return it->second;
+  const std::int64_t i = k / kCellSpan, j = k % kCellSpan;
+  std::vector<double> pooled;
+  for (std::int64_t di = -1; di <= 1; ++di) {
+    for (std::int64_t dj = -1; dj <= 1; ++dj) {
+      if (const auto it = heights_.find((i + di) * kCellSpan + (j + dj)); it != heights_.end())
+        pooled.insert(pooled.end(), it->second.begin(), it->second.end());
+    }
+  }
+  TableNoise t;
+  if (pooled.size() >= kMinPoints)
+    t = table_noise(Eigen::Map<const Eigen::VectorXd>(pooled.data(), static_cast<Eigen::Index>(pooled.size())), band_);
+  return noise_.emplace(k, t).first->second;
 }
 
 }  // namespace graspmix::detail

@@ -2,6 +2,11 @@
 // How far a support plane's own points scatter about it, private to perception: segment_scene uses it to tell
 // a noisy table's fragments from objects, and a lone table from a scene (segmentation.hpp states the rules).
 #include <Eigen/Core>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include "graspmix/core/types.hpp"
 
 namespace graspmix::detail {
 
@@ -27,5 +32,28 @@ struct TableNoise {
 /// lie between 1 and 3 spreads above the centre as below it (the face of a flat object seen without a table
 /// has its sides close behind it and nothing in front).
 TableNoise table_noise(const Eigen::VectorXd& h, double band);
+
+/// The table's noise where a point stands: one camera sees the near table along steep rays and the far table
+/// along grazing ones, so its depth noise lifts the near table's points about twice as far (a 45-degree view).
+/// The plane is cut into square cells of kCell; a place's noise is table_noise of the sample's heights in
+/// its cell and the 8 around it, measured on first use; unknown (holds nothing) where they are fewer than
+/// kMinPoints or do not look like a table's noise.
+class TableNoiseMap {
+ public:
+  static constexpr std::size_t kMinPoints = 50;
+  static constexpr double kCell = 0.05;   ///< m, a cell's side: a place's noise is measured on 15 x 15 cm
+  static constexpr double kReach = 0.04;  ///< m, no table's noise reaches further from its plane (8 mm sigma)
+  /// `sample`: points of the view (the table's and what stands on it), `h` their heights above `plane`, `band` the
+  /// plane's RANSAC band (table_noise's first estimate).
+  TableNoiseMap(const Vec3Array& sample, const Eigen::VectorXd& h, const Eigen::Vector4d& plane, double band);
+  const TableNoise& at(const Eigen::Vector3d& p);
+
+ private:
+  std::int64_t key(const Eigen::Vector3d& p) const;
+  Eigen::Vector3d u_, v_;
+  double band_;
+  std::unordered_map<std::int64_t, std::vector<double>> heights_;
+  std::unordered_map<std::int64_t, TableNoise> noise_;
+};
 
 }  // namespace graspmix::detail

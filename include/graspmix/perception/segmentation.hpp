@@ -5,10 +5,12 @@
 // given or searched for (rule below); points within table_clearance of it or behind it dropped;
 // statistical outlier removal on the object points only (after the cut: cheaper, and the table's
 // points cannot make an object's edge look like an outlier); Euclidean clusters of what is left. Once the
-// support is chosen, a cluster whose highest point is within 5 sigma of the table's own scatter (robust: the
-// median and MAD of the heights near the plane, when they look like a table's noise) is a fragment of a noisy
-// table's tail, not an object, and goes with the table (rule 4 below still sees it, so the noise above an
-// object's face keeps that face no support).
+// support is chosen, a cluster whose points all lie within 5 sigma of the table's own scatter (robust: the
+// median and MAD of the heights near the plane, when they look like a table's noise), of the whole table's
+// or of the table in the 15 x 15 cm around the point (one view's near table is noisier than its far one), is
+// a fragment of a noisy table's tail, not an object, and goes with the table; so does such a piece the split
+// rule cuts off an object (a noisy table's tail can join an object's base). Rule 4 below still sees those
+// fragments, so the noise above an object's face keeps that face no support.
 //
 // Which side of a plane is "up": the side the cameras are on, decided by the viewpoints, never by
 // where most points lie (far-field noise can outnumber an object). Per-point viewpoints (N, 3): the mean

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -103,4 +104,36 @@ TEST(TableNoise, ANoisyTableAloneHasNoObjectAndAnObjectOnItIsStillFound) {
       EXPECT_LT(s.objects[0].obb_extents.maxCoeff(), 0.1);
     }
   }
+}
+
+TEST(TableNoiseMap, FollowsNoiseThatGrowsAcrossTheTable) {
+  // A 1 x 1 m table whose height noise grows from 1 mm at y = -0.5 to 4 mm at y = 0.5 (a camera's near table is
+  // noisier than its far one), on a plane tilted 10 degrees about x; each place's spread is the local sigma.
+  std::mt19937_64 rng(4);
+  std::uniform_real_distribution<double> u(-0.5, 0.5);
+  std::normal_distribution<double> g(0.0, 1.0);
+  const double tilt = 10.0 * M_PI / 180.0;
+  const Eigen::Vector3d n(0.0, -std::sin(tilt), std::cos(tilt));  // the plane's normal, through the origin
+  const Eigen::Vector3d along(0.0, std::cos(tilt), std::sin(tilt));
+  const auto sigma_at = [](double y) { return 0.001 + 0.003 * (y + 0.5); };
+  Vec3Array P(200000, 3);
+  Eigen::VectorXd h(P.rows());
+  for (Eigen::Index r = 0; r < P.rows(); ++r) {
+    const double x = u(rng), y = u(rng);
+    h[r] = sigma_at(y) * g(rng);
+    P.row(r) = (Eigen::Vector3d(x, 0, 0) + y * along + h[r] * n).transpose();
+  }
+  detail::TableNoiseMap map(P, h, Eigen::Vector4d(n.x(), n.y(), n.z(), 0.0), kBand);
+  for (const double y : {-0.4, -0.2, 0.0, 0.2, 0.4}) {
+    const detail::TableNoise& t = map.at(y * along);
+    ASSERT_TRUE(t.known) << y;
+    EXPECT_NEAR(t.spread, sigma_at(y), 0.1 * sigma_at(y)) << y;  // the pooled 15 cm span 0.45 mm of sigma
+    EXPECT_NEAR(t.centre, 0.0, 0.2 * sigma_at(y)) << y;
+  }
+  // Outside the table: nothing measured, nothing held but the band.
+  EXPECT_FALSE(map.at(Eigen::Vector3d(2.0, 0.0, 0.0)).known);
+  // The whole table's noise is one figure between the two ends.
+  const detail::TableNoise whole = table_noise(h, kBand);
+  EXPECT_GT(whole.spread, 1.5 * sigma_at(-0.4));
+  EXPECT_LT(whole.spread, 0.8 * sigma_at(0.4));
 }

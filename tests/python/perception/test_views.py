@@ -378,3 +378,50 @@ def test_an_organized_file_in_the_sensor_frame_with_its_cameras_viewpoint_says_h
     original = segment_view(scene_input(str(data_path("scenes", "packed4.pcd")))[0])
     assert len(fixed.objects) == len(original.objects)
     np.testing.assert_allclose(fixed.plane, original.plane, atol=1e-4)
+
+
+def _oblique_table(tilt_deg: float, sigma: float, box: bool):
+    """A depth image (m) of the table z = 0, optionally with a 6 x 6 x 4 cm box at the origin (its top and the face
+    towards the camera, by exact ray intersection), from a camera 0.78 m from the origin looking at it tilt_deg
+    below the horizon, with Gaussian depth noise sigma a pixel; and the camera's pose (PCL's axes)."""
+    a = np.radians(tilt_deg)
+    eye = np.array([0.0, -0.78 * np.cos(a), 0.78 * np.sin(a)])
+    forward = -eye / np.linalg.norm(eye)
+    right = np.cross(forward, [0.0, 0.0, 1.0])
+    right /= np.linalg.norm(right)
+    rot = np.stack([right, np.cross(forward, right), forward], axis=1)
+    u, v = np.meshgrid(np.arange(640), np.arange(480))
+    rays = np.stack([(u - 320) / 579.41, (v - 239) / 579.41, np.ones(u.shape)], axis=-1) @ rot.T  # z-depth 1
+    surfaces = [(2, 0.0, lambda p: True)]  # (axis, the plane's value on it, where on that plane the surface is)
+    if box:
+        surfaces += [
+            (2, 0.04, lambda p: (np.abs(p[..., 0]) < 0.03) & (np.abs(p[..., 1]) < 0.03)),
+            (1, -0.03, lambda p: (np.abs(p[..., 0]) < 0.03) & (p[..., 2] > 0) & (p[..., 2] < 0.04)),
+        ]
+    depth = np.full(u.shape, np.inf)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        for axis, at, on in surfaces:
+            t = (at - eye[axis]) / rays[..., axis]
+            hit = (t > 0) & on(eye + t[..., None] * rays)
+            depth = np.where(hit, np.minimum(depth, t), depth)
+    depth += np.random.default_rng(1).normal(0.0, sigma, depth.shape)
+    return np.where(np.isfinite(depth), depth, 0.0), [*eye, *Rotation.from_matrix(rot).as_quat()]
+
+
+@pytest.mark.parametrize("tilt,sigma", [(45, 0.003), (45, 0.004), (60, 0.004)])
+def test_a_noisy_table_seen_at_a_slant_has_no_object_and_a_box_on_it_is_one(tilt, sigma):
+    """A camera looking down at 45-60 degrees sees the near table along steep rays and the far table along grazing
+    ones: the same depth noise a pixel lifts the near table's points about twice as far. The table's noise is
+    measured where each fragment stands (before: one figure for the whole table, and 1-3 fragments of the near
+    table, up to 8669 points, came out as objects; at 60 degrees a fragment joined to the box's base, cut off it by
+    the split rule, stayed an object of 13,839 points)."""
+    intrinsics = (579.41, 579.41, 320, 239)
+    depth, pose = _oblique_table(tilt, sigma, box=False)
+    with pytest.raises(ValueError, match="no object above the support plane"):
+        segment_view(depth_view(depth, intrinsics=intrinsics, camera_pose=pose))
+    depth, pose = _oblique_table(tilt, sigma, box=True)
+    scene = segment_view(depth_view(depth, intrinsics=intrinsics, camera_pose=pose))
+    assert len(scene.objects) == 1
+    (box,) = scene.objects
+    np.testing.assert_allclose(box.centroid[:2], [0.0, -0.01], atol=0.012)
+    assert 0.05 < box.obb_extents.max() < 0.1

@@ -265,7 +265,7 @@ def scene_input(cloud=None, depth=None, intrinsics=None, depth_scale=None, camer
     camera_pose, points given in that camera's frame are mapped to the world and the camera is their viewpoint).
     ValueError for inputs that do not go together (a depth image and a cloud, intrinsics without a depth image,
     viewpoints with a view: its camera is its pose)."""
-    view, name = None, None
+    view, name, notes = None, None, []
     if depth is not None:
         if cloud is not None:
             raise ValueError("give a cloud or a depth image (depth=...), not both")
@@ -273,6 +273,7 @@ def scene_input(cloud=None, depth=None, intrinsics=None, depth_scale=None, camer
             raise ValueError("depth: a depth image needs its camera's intrinsics (intrinsics=K or (fx, fy, cx, cy))")
         view = depth_view(depth, intrinsics, camera_pose, depth_scale)
         name = str(depth) if isinstance(depth, (str, Path)) else "<depth image>"
+        notes = _principal_point_notes(view.camera)
     elif intrinsics is not None or depth_scale is not None:
         raise ValueError("intrinsics and depth_scale go with a depth image (depth=...)")
     elif cloud is None:
@@ -291,7 +292,18 @@ def scene_input(cloud=None, depth=None, intrinsics=None, depth_scale=None, camer
         return in_world(as_points(cloud), viewpoints, camera_pose), "<array>", []
     if viewpoints is not None:
         raise ValueError("viewpoints: a camera view's viewpoint is its camera (camera_pose); give no viewpoints")
-    return view, name, []
+    return view, name, notes
+
+
+def _principal_point_notes(camera) -> list[str]:
+    """A note when the principal point lies outside the image: right for a crop of a larger image, else a slip of
+    a sign or of the order fx, fy, cx, cy (the objects then land where the camera did not look, without an error)."""
+    if 0 <= camera.cx <= camera.width and 0 <= camera.cy <= camera.height:
+        return []
+    return [
+        f"intrinsics: the principal point (cx {camera.cx:g}, cy {camera.cy:g}) lies outside the {camera.width} x "
+        f"{camera.height} image: right only for a crop of a larger image; check the order fx, fy, cx, cy and the signs"
+    ]
 
 
 def depth_record(depth, view: CameraView, depth_scale=None) -> dict | None:

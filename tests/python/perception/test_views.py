@@ -425,3 +425,30 @@ def test_a_noisy_table_seen_at_a_slant_has_no_object_and_a_box_on_it_is_one(tilt
     (box,) = scene.objects
     np.testing.assert_allclose(box.centroid[:2], [0.0, -0.01], atol=0.012)
     assert 0.05 < box.obb_extents.max() < 0.1
+
+
+def test_a_principal_point_outside_the_image_is_noted(view, capsys):
+    """A principal point outside the image (a sign slip, cx = -320, or the order cx, cy, fx, fy) segments without an
+    error, the objects where the camera did not look: scene_input notes it, `segment` prints it as one line; the
+    camera's own intrinsics give no note."""
+    _, cam, _, png = view
+    c = cam.pinhole()
+    pose = cam.pose()
+    for intrinsics, noted in (
+        ((c.fx, c.fy, c.cx, c.cy), False),
+        ((c.fx, c.fy, -c.cx, c.cy), True),
+        ((c.cx, c.cy, c.fx, c.fy), True),
+    ):
+        _, _, notes = scene_input(depth=str(png), intrinsics=intrinsics, camera_pose=pose)
+        assert any("principal point" in n for n in notes) == noted, intrinsics
+        code = main(
+            [
+                "segment",
+                "--depth",
+                str(png),
+                f"--intrinsics={','.join(map(str, intrinsics))}",
+                f"--camera-pose={','.join(map(str, pose))}",
+            ]
+        )
+        err = capsys.readouterr().err
+        assert (err.count("principal point") == 1) == noted, (code, err)

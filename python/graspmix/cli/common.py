@@ -9,6 +9,7 @@ import argparse
 import os
 import re
 import sys
+from pathlib import Path
 
 import numpy as np
 
@@ -22,6 +23,7 @@ from ..io.checks import (
     check_path_text,
     quote,
 )
+from ..io.paths import PACKAGE_PREFIX, PYBULLET_DATA_PREFIX, resolve_path
 
 
 class CliError(Exception):
@@ -137,6 +139,19 @@ def _suffixed(text: str, suffixes: tuple, what: str) -> str:
 
 input_path = _typed(_path, "path")  # an input file: UTF-8, names <= 255 bytes (existence: the readers')
 input_path.file_of = str  # the file a value names (check_distinct_files; a NAME=FILE type says its own)
+
+
+def _urdf(text: str) -> str:
+    check_path_text(text)
+    if text.startswith((PACKAGE_PREFIX, PYBULLET_DATA_PREFIX)):
+        return str(resolve_path(text, Path.cwd()))
+    return text
+
+
+# A URDF file as files name it too: package://graspmix/... (the bundled data), pybullet_data://... (the installed
+# pybullet_data's, e.g. pybullet_data://pr2_gripper.urdf), or a path.
+urdf_path = _typed(_urdf, "URDF")
+urdf_path.file_of = str
 output_file = _typed(_output_file, "output file")  # a file that can be written, checked before the work
 output_folder = _typed(_output_folder, "output folder")  # a folder that exists or can be made, writable
 # an output_file that is a picture, or an interactive page, by its suffix

@@ -15,7 +15,18 @@ from ..model.grasp_frames import opening_widths
 from ..model.grasps import infeasible_unwarned
 from ..model.settings import METHODS, LearnSettings
 from ..perception import kind_name, parse_target
-from .common import CliError, float_in, input_path, int_in, output_file, parse_floats, parse_joints, picture_file, seed
+from .common import (
+    CliError,
+    float_in,
+    input_path,
+    int_in,
+    output_file,
+    parse_floats,
+    parse_joints,
+    picture_file,
+    seed,
+    urdf_path,
+)
 from .synthesis_flags import add_synthesis_arguments, list_settings, synthesis_options
 from .views import add_view_arguments, input_keywords, known_plane
 
@@ -232,7 +243,7 @@ def _add_demo(sub) -> None:
         help="object URDF (a path, or relative to pybullet_data); default: the bundled box",
     )
     s.add_argument(
-        "--hand", type=input_path, default=str(data_path("hands", "wsg50.urdf")), help="hand URDF (default: WSG 50)"
+        "--hand", type=urdf_path, default=str(data_path("hands", "wsg50.urdf")), help="hand URDF (default: WSG 50)"
     )
     s.add_argument("--wrist", required=True, help="wrist pose x,y,z,qx,qy,qz,qw in the world (m)")
     s.add_argument("--pregrasp", required=True, help="pre-grasp joints name=value,...")
@@ -325,7 +336,7 @@ def _add_synthesize(sub) -> None:
         help="learnt model (.json); default: the bundled box demonstration model of --method",
     )
     s.add_argument("--method", choices=list(METHODS), default=None, help="with no --model: which bundled model (gmm)")
-    s.add_argument("--hand", type=input_path, help="hand URDF; must be the model's hand")
+    s.add_argument("--hand", type=urdf_path, help="hand URDF; must be the model's hand")
     s.add_argument("--types", help="comma-separated grasp types of the model to sample (default: all)")
     s.add_argument(
         "--approach-axis", help="prefer wrists approaching along this world axis, e.g. 0,0,-1 for top grasps"

@@ -7,14 +7,14 @@ from __future__ import annotations
 
 import json
 
-from .common import CliError, input_path, output_file, parse_floats, picture_file
+from .common import CliError, output_file, parse_floats, picture_file, urdf_path
 
 COMMANDS = ("hand",)
 
 
 def add_parsers(sub) -> None:
     s = sub.add_parser("hand", help="links, joints, frames and opening of a hand URDF; --png draws it at its limits")
-    s.add_argument("--urdf", type=input_path, required=True, help="the hand's URDF (its root link is the wrist)")
+    s.add_argument("--urdf", type=urdf_path, required=True, help="the hand's URDF (its root link is the wrist)")
     s.add_argument("--png", type=picture_file, help="draw the hand at its lower and upper joint limits")
     s.add_argument("--json", action="store_true", help="print the description as JSON instead")
     s.add_argument("--wrist-link", help="--urdf is a robot's: cut the hand below this link (the new wrist) ...")

@@ -12,7 +12,18 @@ from .. import _core
 from ..io.checks import MAX_SIM_TIME
 from ..model.grasps import grasp_by_rank
 from ..model.settings import FeatureScale
-from .common import CliError, float_in, given, input_path, int_in, output_file, parse_floats, picture_file, seed
+from .common import (
+    CliError,
+    float_in,
+    given,
+    input_path,
+    int_in,
+    output_file,
+    parse_floats,
+    picture_file,
+    seed,
+    urdf_path,
+)
 
 
 def _scene_of(args: argparse.Namespace):
@@ -177,7 +188,7 @@ def add_parsers(sub) -> None:
     s.add_argument("--grasps", type=input_path, required=True, help="grasps.json (format graspmix.grasps/1)")
     s.add_argument("--rank", type=int_in(1), default=1, help="which grasp (1 = the best)")
     s.add_argument(
-        "--hand", type=input_path, help="hand URDF (default: the grasps file's hand, else the bundled WSG 50)"
+        "--hand", type=urdf_path, help="hand URDF (default: the grasps file's hand, else the bundled WSG 50)"
     )
     s.add_argument("--grip-force", type=float_in(gt=0.0), help=f"N (default {d.grip_force:g})")
     s.add_argument("--lift-height", type=float_in(gt=0.0), help=f"m (default {d.lift_height:g})")

@@ -125,3 +125,19 @@ def test_cli_hand_writes_the_axes(tmp_path, capsys):
     assert Hand.from_urdf(out).fingertips == ["left_tip", "right_tip"]
     assert main(["hand", "--urdf", PR2, "--approach-axis", "0,1"]) == 2
     assert capsys.readouterr().err.startswith("graspmix_cli hand: ")
+
+
+def test_cli_urdf_options_take_the_prefixes_files_use(tmp_path, capsys):
+    """`--urdf` / `--hand` take pybullet_data://... and package://graspmix/... as the files graspmix writes name
+    them (before: "pybullet_data:/pr2_gripper.urdf: no such urdf file"); the same description as the plain path."""
+    assert main(["hand", "--urdf", PR2, "--json"]) == 0
+    plain = capsys.readouterr().out
+    assert main(["hand", "--urdf", "pybullet_data://pr2_gripper.urdf", "--json"]) == 0
+    assert capsys.readouterr().out == plain
+    assert main(["hand", "--urdf", "package://graspmix/hands/wsg50.urdf", "--json"]) == 0
+    bundled = capsys.readouterr().out
+    assert main(["hand", "--urdf", str(data_path("hands", "wsg50.urdf")), "--json"]) == 0
+    assert capsys.readouterr().out == bundled
+    assert main(["hand", "--urdf", "pybullet_data://no_such_hand.urdf"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "no_such_hand.urdf" in err

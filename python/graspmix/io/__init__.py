@@ -44,6 +44,7 @@ from .objects import read_object_list, read_objects_file, test_objects
 from .paths import (
     PACKAGE_PREFIX,
     PYBULLET_DATA_PREFIX,
+    check_digest,
     data_path,
     default_hand_path,
     object_reference,

@@ -170,9 +170,11 @@ _GRASPS = Obj(
                 "intrinsics": Tensor(1, (4,), "fx, fy, cx, cy"),
                 "depth_scale": Either(Num(lo=0.0), Null()),
                 "camera_pose": _POSE,
+                "sha256": Str(nonempty=True),  # the image file's (plot refuses a file replaced since)
             },
             required=["depth", "intrinsics", "depth_scale", "camera_pose"],
         ),
+        "cloud_sha256": Str(),  # the cloud file's
         "frames": Obj(
             {
                 "approach_axis": Tensor(1, (3,)),

@@ -13,6 +13,7 @@ import os
 from pathlib import Path
 
 from .checks import check_path_text
+from .provenance import sha256_file
 
 PACKAGE_PREFIX = "package://graspmix/"
 PYBULLET_DATA_PREFIX = "pybullet_data://"  # a file of the installed pybullet_data package (e.g. its hands)
@@ -108,3 +109,14 @@ def resolve_object(path: str | Path) -> Path:
     if q.is_file():
         return q
     raise ValueError(f"{path}: no such object file (looked in the working directory and in pybullet_data)")
+
+
+def check_digest(path: str | Path, digest: str | None, what: str) -> None:
+    """ValueError when `path` no longer holds the bytes whose SHA-256 `digest` a grasps file recorded of the cloud
+    or depth image it was made on (drawing it over a file replaced since, e.g. a camera driver writing depth.png
+    again, would put the grasps on another scene); nothing recorded: nothing to check."""
+    if digest and sha256_file(path) != digest:
+        raise ValueError(
+            f"{path}: not the {what} the grasps were synthesised on (its content changed since: its SHA-256 differs "
+            "from the one the grasps file records); synthesise again on it, or give the picture's cloud yourself"
+        )

@@ -28,6 +28,7 @@ from ..io import (
     relative_path,
     require_field,
     resolve_path,
+    sha256_file,
 )
 from ..io.checks import (
     MAX_COMPONENTS,
@@ -287,6 +288,7 @@ class GraspModel:
         grasps = GraspSet(
             out.grasps, self.hand_path, self.method, name, timing, out.surface, out.scene.plane, out.evaluations,
             out.rejected, scene=out.scene, targets=out.targets, hand=self._hand, view=view,
+            cloud_sha256=sha256_file(name) if isinstance(cloud, (str, Path)) else "",
         )  # fmt: skip
         if len(grasps) and grasps.n_feasible == 0:
             warnings.warn(grasps.no_feasible_message(), NoFeasibleGraspWarning, stacklevel=2)

@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from .. import _core
-from ..io import GRASPS_FORMAT, read_document, relative_path, resolve_path
+from ..io import GRASPS_FORMAT, check_digest, read_document, relative_path, resolve_path
 from ..io.checks import check_int, check_output_path
 from .grasp_frames import FRAME_KEYS, FrameMaker, GraspFrameSettings
 
@@ -213,8 +213,10 @@ class GraspSet:
     fingertips: list = field(default_factory=list)  # the fingertip links the frames were made with
     hand: object = None  # the graspmix.Hand of hand_path (read when first needed)
     # the depth image file the grasps were synthesised on, as synthesize(depth=...) read it: {"depth": path,
-    # "intrinsics": [fx, fy, cx, cy], "depth_scale": metres per unit or None, "camera_pose": [x, y, z, qx, qy, qz, qw]}
+    # "intrinsics": [fx, fy, cx, cy], "depth_scale": metres per unit or None, "camera_pose": [x, y, z, qx, qy, qz, qw],
+    # "sha256": the file's}
     view: dict | None = None
+    cloud_sha256: str = ""  # of the cloud file (`cloud`) the grasps were synthesised on; "" for no file
 
     def __post_init__(self):
         for i, g in enumerate(self.grasps):
@@ -336,6 +338,7 @@ class GraspSet:
             "targets": [int(t) for t in self.targets],
             "frames": {**self.frame_settings.to_json(), "fingertip_links": list(self.fingertips)},
             **({} if self.view is None else {"view": {**self.view, "depth": _relative(self.view["depth"], base)}}),
+            **({"cloud_sha256": self.cloud_sha256} if self.cloud_sha256 else {}),
         }
 
     def save(self, path: str | Path) -> None:
@@ -386,17 +389,19 @@ class GraspSet:
             frame_settings=settings.checked(),
             fingertips=list(frames.get("fingertip_links", [])),
             view=view,
+            cloud_sha256=str(doc.get("cloud_sha256", "")),
         )
 
     def view_points(self) -> np.ndarray | None:
         """(N, 3) the objects' points (world frame) of the depth image the grasps were synthesised on (`view`), read
-        again from its file and segmented on the set's support plane (the library's default segmentation); None
-        without a view."""
+        again from its file (ValueError when the file changed since) and segmented on the set's support plane (the
+        library's default segmentation); None without a view."""
         if self.view is None:
             return None
         from ..perception.views import depth_view, segment_view
 
         v = self.view
+        check_digest(v["depth"], v.get("sha256"), "depth image")
         view = depth_view(v["depth"], v["intrinsics"], v["camera_pose"], v["depth_scale"])
         return np.asarray(segment_view(view, self.plane).points, dtype=float)
 

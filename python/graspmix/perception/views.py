@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from .. import _core
-from ..io import as_points, check_input_file, quote
+from ..io import as_points, check_input_file, quote, sha256_file
 from .scene import in_world
 
 IDENTITY_POSE = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0)
@@ -308,12 +308,14 @@ def _principal_point_notes(camera) -> list[str]:
 
 def depth_record(depth, view: CameraView, depth_scale=None) -> dict | None:
     """What a GraspSet keeps of a depth image file so the view can be read again (GraspSet.view): its path, the
-    intrinsics fx, fy, cx, cy, the depth scale as given and the camera's pose; None for an array (no file)."""
+    intrinsics fx, fy, cx, cy, the depth scale as given, the camera's pose and the file's SHA-256 (GraspSet.view_points
+    refuses a file replaced since); None for an array (no file)."""
     if not isinstance(depth, (str, Path)):
         return None
     c = view.camera
     return {
         "depth": str(Path(depth).resolve()),
+        "sha256": sha256_file(depth),
         "intrinsics": [float(c.fx), float(c.fy), float(c.cx), float(c.cy)],
         "depth_scale": None if depth_scale is None else float(depth_scale),
         "camera_pose": [float(x) for x in view.pose],

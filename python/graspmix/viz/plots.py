@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from .. import _core
-from ..io import load_points
+from ..io import check_digest, load_points
 from ..model.options import TABLE_CLEARANCE
 
 
@@ -132,6 +132,8 @@ def _cloud_points(grasps, cloud, plane) -> np.ndarray:
         cloud = grasps.view_points() if getattr(grasps, "view", None) is not None else name
         if not isinstance(cloud, np.ndarray) and (not name or not Path(name).is_file()):
             return np.zeros((0, 3))
+        if not isinstance(cloud, np.ndarray):
+            check_digest(name, getattr(grasps, "cloud_sha256", ""), "cloud")
     points = np.asarray(load_points(cloud)[0], dtype=float)
     if points.ndim != 2 or points.shape[1] != 3:
         raise ValueError(f"plot_grasps: cloud must be (N, 3) points, got shape {points.shape}")

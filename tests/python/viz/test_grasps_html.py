@@ -99,3 +99,37 @@ def test_cli_plot_writes_png_and_html(grasps_file, tmp_path, capsys):
         assert cli.main(argv) == 2
         err = capsys.readouterr().err
         assert err.count("\n") == 1 and err.startswith("graspmix_cli plot"), err
+
+
+def test_plot_refuses_a_cloud_or_depth_image_replaced_since(tmp_path, capsys):
+    """A grasps file records the SHA-256 of the cloud file or depth image it was synthesised on; `plot`, which reads
+    that file again, draws it while it is unchanged and refuses it in one line (exit 2) once it was replaced (a
+    camera driver writing depth.png again: before, the grasps were drawn over the new scene without a word);
+    `--cloud` draws what it is given."""
+    from PIL import Image
+
+    model = graspmix.GraspModel.load(graspmix.default_model_path("gmm"))
+    opts = graspmix.SynthesisOptions().updated({"sampling.n_samples": 20, "sampling.n_optimise": 2, "seed": 1})
+    cloud, grasps, png = tmp_path / "view.pcd", str(tmp_path / "g.json"), str(tmp_path / "p.png")
+    shutil.copy(graspmix.data_path("mug.pcd"), cloud)
+    model.synthesize(str(cloud), opts).save(grasps)
+    depth = np.full((480, 640), 800, np.uint16)
+    depth[200:280, 280:360] = 760  # a box 4 cm tall under a camera 0.8 m above the table, looking down
+    image, d_grasps = tmp_path / "depth.png", str(tmp_path / "d.json")
+    Image.fromarray(depth).save(image)
+    model.synthesize(depth=str(image), intrinsics=(579.41, 579.41, 320, 239), camera_pose=[0, 0, 0.8, 1, 0, 0, 0],
+                     options=opts).save(d_grasps)  # fmt: skip
+    for file, replaced_by, made in (
+        (cloud, graspmix.data_path("scenes", "packed4.pcd"), grasps),
+        (image, None, d_grasps),
+    ):
+        assert cli.main(["plot", "--grasps", made, "--png", png]) == 0
+        if replaced_by is None:
+            Image.fromarray(np.roll(depth, 100, axis=1)).save(image)  # the box moved
+        else:
+            shutil.copy(replaced_by, file)
+        capsys.readouterr()
+        assert cli.main(["plot", "--grasps", made, "--png", png]) == 2
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1 and file.name in err and "changed since" in err, err
+    assert cli.main(["plot", "--grasps", grasps, "--cloud", str(cloud), "--png", png]) == 0

@@ -20,7 +20,10 @@ SEED_MAX = 2**63 - 1  # seeds cross to C++ as 64-bit integers (signed on some pa
 INT_MAX = 2**31 - 1  # counts cross to C++ as int
 # Counts bounded by what finishes in reasonable memory and time, so a typo (3e9 samples) is an error,
 # not an allocation that fails after minutes or a machine brought to a halt.
-MAX_SAMPLES = 1_000_000  # grasps sampled, query samples per link
+MAX_SAMPLES = 1_000_000  # query samples per link, points drawn
+# Grasps sampled per target: every one is returned with its frames (~7-13 KB each with its Python objects), so
+# 100k take ~1 GB and ~10 s a target; a million, ~10 GB a target, can bring the machine down.
+MAX_GRASPS = 100_000
 MAX_COMPONENTS = 1000  # mixture components
 MAX_ITERATIONS = 10_000_000  # EM or annealing iterations, simulation steps
 MAX_SIM_TIME = 60.0  # s: longest simulated phase (closing, lifting, holding)

@@ -21,7 +21,7 @@ from typing import Mapping
 import numpy as np
 
 from .. import _core
-from ..io.checks import MAX_COMPONENTS, MAX_SAMPLES, check_float, check_int, check_seed, quote
+from ..io.checks import MAX_COMPONENTS, MAX_GRASPS, MAX_SAMPLES, check_float, check_int, check_seed, quote
 
 # name -> (settings class, whether None is allowed: the expert is left out)
 PARTS = {
@@ -106,8 +106,8 @@ class SynthesisOptions:
     def _check_numbers(self) -> None:
         """The numbers bounded before they reach a C++ cast or a long run (ValueError naming the field)."""
         s, q = self.sampling, self.query
-        check_int(s.n_samples, "sampling.n_samples", 1, MAX_SAMPLES)
-        check_int(s.n_optimise, "sampling.n_optimise", 0, MAX_SAMPLES)
+        check_int(s.n_samples, "sampling.n_samples", 1, MAX_GRASPS)
+        check_int(s.n_optimise, "sampling.n_optimise", 0, MAX_GRASPS)
         check_int(s.max_sampling_rounds, "sampling.max_sampling_rounds", 1, 1000)
         check_int(q.n_samples, "query.n_samples", 1, MAX_SAMPLES)
         check_int(q.n_components, "query.n_components", 1, MAX_COMPONENTS)

@@ -10,6 +10,7 @@ import graspmix
 import numpy as np
 import pytest
 from graspmix import SynthesisOptions
+from graspmix.io.checks import MAX_GRASPS, MAX_SAMPLES
 from graspmix.model.options import LATER_PARTS, PARTS, options_field_names
 
 FAST = {"sampling.n_samples": 30, "sampling.n_optimise": 1, "annealing.iterations": 10}
@@ -101,6 +102,16 @@ def test_bad_options_are_value_errors_naming_the_field(changes, named):
     with pytest.raises(ValueError, match=named.replace(".", r"\.")) as e:
         SynthesisOptions().updated(changes)
     assert "\n" not in str(e.value) and "C++" not in str(e.value)
+
+
+def test_grasp_samples_stop_where_memory_would():
+    """Every sampled grasp is returned with its frames (about 7-13 KB each, measured: 20,000 on the mug took 144 MB
+    more): a million a target could take ~10 GB, so the bound is 100,000 (MAX_GRASPS), the query's samples keep
+    theirs."""
+    assert SynthesisOptions().updated({"sampling.n_samples": MAX_GRASPS}).sampling.n_samples == MAX_GRASPS
+    with pytest.raises(ValueError, match=r"sampling\.n_samples.*100000"):
+        SynthesisOptions().updated({"sampling.n_samples": MAX_GRASPS + 1})
+    assert SynthesisOptions().updated({"query.n_samples": MAX_SAMPLES}).query.n_samples == MAX_SAMPLES
 
 
 def test_bad_parts_and_files_are_value_errors():

@@ -157,7 +157,8 @@ output_folder = _typed(_output_folder, "output folder")  # a folder that exists 
 # an output_file that is a picture, or an interactive page, by its suffix
 picture_file = _typed(lambda text: _suffixed(text, PICTURE_SUFFIXES, "a picture file"), "picture file")
 html_file = _typed(lambda text: _suffixed(text, (".html", ".htm"), "a page"), "page file")
-OUTPUT_TYPES = (output_file, picture_file, html_file)
+png_file = _typed(lambda text: _suffixed(text, (".png",), "a PNG file"), "PNG file")  # a 16-bit depth image
+OUTPUT_TYPES = (output_file, picture_file, html_file, png_file)
 
 
 def check_distinct_files(parser: argparse.ArgumentParser, args: argparse.Namespace) -> None:

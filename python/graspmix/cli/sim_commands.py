@@ -21,6 +21,7 @@ from .common import (
     output_file,
     parse_floats,
     picture_file,
+    png_file,
     seed,
     urdf_path,
 )
@@ -45,6 +46,10 @@ def cmd_acquire(args: argparse.Namespace) -> int:
 
     if args.voxel_size is not None and not args.clean:
         raise CliError("--voxel-size is the voxel grid of --clean: give --clean too, or drop --voxel-size")
+    if args.out is None and args.depth_out is None:
+        raise CliError("give --out (the cloud) or --depth-out (the depth image), or both")
+    if args.depth_out is not None and args.views != 1:
+        raise CliError(f"--depth-out writes one camera's depth image: give --views 1 (got --views {args.views})")
     spec = _scene_of(args)
     post = acquisition.clean_up(**given(args, "voxel_size"), seed=args.seed) if args.clean else None
     t0 = time.perf_counter()
@@ -63,17 +68,36 @@ def cmd_acquire(args: argparse.Namespace) -> int:
         points = np.full((depth.size, 3), np.nan)
         points[np.flatnonzero(np.isfinite(depth))] = acq.points  # every return, in the image's row order
         size = {"width": depth.shape[1], "height": depth.shape[0]}
-    _core.save_cloud(args.out, points, encoding=args.encoding, viewpoint=viewpoint, viewpoints=per_point, **size)
     what = args.scene or args.object
     print(
         f"acquired {len(acq.points)} points of {what} ({len(spec.objects)} object(s), "
         f"{'table and objects' if args.keep == 'scene' else 'objects only'}) from {len(acq.cameras)} camera(s) "
         f"(noise {'on' if args.noise else 'off'}, seed {args.seed}"
         + (", cleaned up" + (", support plane removed" if acq.plane is not None else "") if args.clean else "")
-        + f") in {dt * 1e3:.0f} ms; wrote {args.out}"
-        + (f" (viewpoint {', '.join(f'{v:.3f}' for v in viewpoint[:3])})" if viewpoint else " (per-point viewpoints)")
-        + (f", organized {size['width']} x {size['height']}" if size else "")
+        + f") in {dt * 1e3:.0f} ms"
     )
+    if args.out is not None:
+        _core.save_cloud(args.out, points, encoding=args.encoding, viewpoint=viewpoint, viewpoints=per_point, **size)
+        print(
+            f"wrote {args.out}"
+            + (
+                f" (viewpoint {', '.join(f'{v:.3f}' for v in viewpoint[:3])})"
+                if viewpoint
+                else " (per-point viewpoints)"
+            )
+            + (f", organized {size['width']} x {size['height']}" if size else "")
+        )
+    if args.depth_out is not None:
+        from ..perception import write_depth
+
+        depth, camera = acq.depth_images[0], acq.cameras[0]
+        c = camera.pinhole()
+        write_depth(args.depth_out, depth)
+        print(
+            f"wrote {args.depth_out} ({depth.shape[1]} x {depth.shape[0]}, 16-bit millimetres, 0: no return); give it as"
+            f" --depth {args.depth_out} --intrinsics {c.fx:.9g},{c.fy:.9g},{c.cx:.9g},{c.cy:.9g}"
+            f" --camera-pose={','.join(f'{v:.9g}' for v in camera.pose())}"
+        )
     if args.picture:
         from ..viz import plot_depth_images
 
@@ -154,7 +178,13 @@ def add_parsers(sub) -> None:
         default="scene",
         help="scene: what the camera sees, the table too (default); object: the objects' pixels only",
     )
-    s.add_argument("--out", type=output_file, required=True, help="output cloud (.pcd)")
+    s.add_argument("--out", type=output_file, help="output cloud (.pcd); required unless --depth-out")
+    s.add_argument(
+        "--depth-out",
+        type=png_file,
+        help="also (or instead) write the one camera's depth image as a 16-bit PNG in millimetres, as a driver "
+        "does, and print the --intrinsics and --camera-pose that go with it (--views 1)",
+    )
     s.add_argument(
         "--encoding",
         choices=["binary", "binary_compressed", "ascii"],

@@ -27,6 +27,7 @@ from .views import (
     read_depth,
     scene_input,
     segment_view,
+    write_depth,
 )
 
 __all__ = [
@@ -37,6 +38,7 @@ __all__ = [
     "depth_view",
     "organized_view",
     "read_depth",
+    "write_depth",
     "segment_view",
     "POINT_TARGET_MAX_DISTANCE",
     "Scene",

@@ -109,6 +109,24 @@ def read_depth(path) -> np.ndarray:
         raise ValueError(f"{quote(str(path))}: cannot read the PNG ({e})") from None
 
 
+def write_depth(path, depth) -> None:
+    """Writes a depth image ((H, W) metres; 0, NaN or inf: no return) as a 16-bit PNG in millimetres, as a RealSense or
+    ROS driver does (read_depth reads it back, to the millimetre); ValueError for a depth under 0 or beyond 65.535 m
+    (what 16 bits of millimetres hold)."""
+    from PIL import Image
+
+    d = np.asarray(depth, dtype=float)
+    if d.ndim != 2 or d.size == 0:
+        raise ValueError(f"depth: expected an (H, W) image, got shape {d.shape}")
+    hit = np.isfinite(d) & (d != 0)
+    mm = np.round(np.where(hit, d, 0.0) / INTEGER_DEPTH_SCALE)
+    if np.any(mm < 0) or np.any(mm > np.iinfo(np.uint16).max):
+        raise ValueError(
+            f"depth: a 16-bit PNG in millimetres holds 0-65.535 m, got {d[hit].min():g}-{d[hit].max():g} m"
+        )
+    Image.fromarray(mm.astype(np.uint16)).save(path, format="PNG")
+
+
 def pinhole(intrinsics, width: int, height: int):
     """A PinholeCamera of an image width x height from intrinsics: a PinholeCamera (its size must match), a 3x3
     matrix K, or (fx, fy, cx, cy); ValueError naming what is wrong (zero or negative focal lengths included)."""

@@ -29,6 +29,7 @@ def _protocol(args):
         synthesis=synthesis_options(args),
         task=args.task,
         targets=1 if args.targets is None else args.targets,
+        cloud=args.cloud,
     )
 
 
@@ -53,7 +54,7 @@ def cmd_clutter(args: argparse.Namespace) -> int:
 
     p = _protocol(args)
     what = f"{p.scenes} scenes x modes {','.join(p.modes)} x methods {','.join(p.methods)}, {p.objects} objects each"
-    seen = f"{p.views} view(s), {'noise' if p.noise else 'no noise'}"
+    seen = f"{p.views} view(s){' as a depth image' if p.cloud == 'image' else ''}, {'noise' if p.noise else 'no noise'}"
     task = f"; {p.targets} named object(s) per scene" if p.task == "named" else ""
     print(f"clutter: {what} from {p.object_list}; {seen}{task}; {args.jobs} job(s); into {args.out}", flush=True)
     res = run_clutter(p, args.out, **run_options(args))
@@ -65,7 +66,7 @@ COMMANDS = ("clutter",)
 
 
 def add_parsers(sub) -> None:
-    from ..clutter.protocol import ROUNDS
+    from ..clutter.protocol import CLOUDS, ROUNDS, ClutterProtocol
 
     s = sub.add_parser(
         "clutter",
@@ -78,6 +79,13 @@ def add_parsers(sub) -> None:
     s.add_argument("--scenes", type=int_in(1, 1_000_000), default=ROUNDS, help=f"scenes per mode (default {ROUNDS})")
     s.add_argument("--views", type=int_in(1, 64), default=1, help="cameras per observation (default 1)")
     s.add_argument("--noise", action="store_true", help="the depth noise model")
+    s.add_argument(
+        "--cloud",
+        choices=CLOUDS,
+        default=ClutterProtocol.cloud,
+        help=f"what the planners get of the camera: its points, or its depth image with intrinsics and pose, as a "
+        f"robot's camera gives it (--views 1; default {ClutterProtocol.cloud})",
+    )
     s.add_argument(
         "--object-list",
         type=input_path,

@@ -208,13 +208,13 @@ def _model_planner(p, model_path: str) -> Callable:
     def plan(obs, target, seed):
         opts = p.synthesis.updated({"seed": seed})
         with infeasible_unwarned():  # the protocol executes the best grasp whatever it scored
-            grasps = model.synthesize(obs.points, opts, target=target, viewpoints=obs.viewpoints)
+            grasps = p.synthesize(model, obs, opts, target=target)
         if len(grasps) == 0:
             raise ValueError("synthesis returned no grasps")
         best, timing = grasps.best(), grasps.timing
         seg, index = timing["segmentation"], int(best.object["index"])
         out = Plan(best, index, len(grasps.scene.objects), seg, timing["total"] - seg)
-        return out, cluster_of(grasps.scene, index, obs.labels)
+        return out, cluster_of(grasps.scene, index, p.object_labels(obs))
 
     return plan
 

@@ -19,6 +19,8 @@ import dataclasses
 from dataclasses import dataclass, field
 from pathlib import Path
 
+import numpy as np
+
 from ..experiment.log import CsvSchema
 from ..experiment.protocol import CLOSING as EXPERIMENT_CLOSING
 from ..experiment.protocol import derive_seed
@@ -41,6 +43,9 @@ OUTCOMES = ("success", "start in collision", "no contact", "not held", "two obje
 STOPS = ("clear", "two failures", "no grasp", "attempt limit")
 # What a run measures: "clear" the scenes (VGN's rounds), or lift a "named" object (graspmix.clutter.named).
 TASKS = ("clear", "named")
+# What the planners are given of an observation: the camera's "points" with its position (the points path of
+# segment_scene), or its depth "image" with its intrinsics and pose, as a robot's camera gives it (one camera).
+CLOUDS = ("points", "image")
 CLUTTER_NAME = "clutter.json"
 CLUTTER_CSV_NAME = "clutter_attempts.csv"
 
@@ -68,6 +73,7 @@ class ClutterProtocol:
     models: dict = field(default_factory=dict)  # method -> model file; empty: the bundled box models
     task: str = "clear"  # TASKS: clear the scenes, or lift a named object per scene
     targets: int = 1  # task "named": objects named per scene (each on the untouched scene)
+    cloud: str = "points"  # CLOUDS: the observation as points, or as the camera's depth image (views 1)
 
     def __post_init__(self):
         if not self.object_list:  # named as bundled data, so the run's files name no machine's path
@@ -94,6 +100,10 @@ class ClutterProtocol:
             raise ValueError(f"synthesis must be SynthesisOptions, got {type(self.synthesis).__name__}")
         check_int(self.max_attempts, "max_attempts", -1, 10_000)
         self._check_task()
+        if self.cloud not in CLOUDS:
+            raise ValueError(f"cloud must be one of {', '.join(CLOUDS)}, got {quote(self.cloud)}")
+        if self.cloud == "image" and self.views != 1:
+            raise ValueError(f"cloud 'image' is one camera's depth image: views must be 1, got {self.views}")
         check_seed(self.seed)
         if not isinstance(self.noise, bool):
             raise ValueError(f"noise must be true or false, got {quote(self.noise)}")
@@ -130,6 +140,29 @@ class ClutterProtocol:
             if not self.model_path(m).is_file():
                 raise ValueError(f"{self.model_path(m)}: no such {m} model file")
 
+    def synthesize(self, model, obs, options: SynthesisOptions, target="all"):
+        """A model's grasps on an observation (acquire_scene's), given as the protocol's `cloud` says."""
+        if self.cloud == "image":
+            camera = obs.cameras[0]
+            return model.synthesize(
+                depth=obs.depth_images[0],
+                intrinsics=camera.pinhole(),
+                camera_pose=camera.pose(),
+                options=options,
+                target=target,
+            )
+        return model.synthesize(obs.points, options, target=target, viewpoints=obs.viewpoints)
+
+    def object_labels(self, obs):
+        """Per row of the synthesis' input (Scene.sources index it), the simulator's object label (-1 the table):
+        per point of the observation, or per pixel of its image (-2 where nothing was hit); None without labels."""
+        if obs.labels is None or self.cloud == "points":
+            return obs.labels
+        depth = obs.depth_images[0]
+        labels = np.full(depth.size, -2, dtype=int)
+        labels[np.flatnonzero(np.isfinite(depth))] = obs.labels  # acquire_scene keeps every return, in pixel order
+        return labels
+
     def model_methods(self) -> list[str]:
         return [m for m in self.methods if m in METHODS]
 
@@ -141,6 +174,8 @@ class ClutterProtocol:
         d = {f: getattr(self, f) for f in PROTOCOL_FIELDS}
         if self.task == "clear":  # a clearing run's clutter.json as before the task existed: its folders resume
             del d["task"], d["targets"]
+        if self.cloud == "points":  # as before the image input existed: those folders resume
+            del d["cloud"]
         d["synthesis"] = self.synthesis.to_dict()
         d["object_list_sha256"] = sha256_file(self.object_list_path)
         d["models"] = {

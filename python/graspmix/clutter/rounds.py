@@ -126,7 +126,7 @@ def _model_planner(p: ClutterProtocol, model_path: str) -> Callable:
 
     def plan(obs, seed):
         with infeasible_unwarned():  # the protocol executes the best grasp whatever it scored
-            grasps = model.synthesize(obs.points, p.synthesis.updated({"seed": seed}), viewpoints=obs.viewpoints)
+            grasps = p.synthesize(model, obs, p.synthesis.updated({"seed": seed}))
         if len(grasps) == 0:
             raise ValueError("synthesis returned no grasps")
         best, timing = grasps.best(), grasps.timing

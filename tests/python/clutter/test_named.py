@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import json
 import math
+import types
 from dataclasses import dataclass
 
 import numpy as np
@@ -156,7 +157,12 @@ def test_the_protocol_file_round_trips(object_list):
     assert p.rounds()[:2] == [("packed", 0, "gmm", 0), ("packed", 0, "gmm", 1)] and len(p.rounds()) == 4
     clear = clutter.ClutterProtocol(object_list=object_list, objects=3)
     assert "task" not in clear.to_json() and clutter_protocol_from_json(clear.to_json()) == clear
+    image = clutter.ClutterProtocol(object_list=object_list, objects=3, task="named", cloud="image")
+    assert image.to_json()["cloud"] == "image" and clutter_protocol_from_json(image.to_json()) == image
+    assert "cloud" not in p.to_json()  # points, as before the image input: those folders resume
     for kw, msg in (
+        ({"cloud": "voxels"}, "cloud must be one of"),
+        ({"cloud": "image", "views": 4}, "views must be 1"),
         ({"task": "fetch"}, "task must be one of"),
         ({"targets": 2}, "for the named task only"),
         ({"task": "named", "max_attempts": 3}, "for the clear task only"),
@@ -164,6 +170,18 @@ def test_the_protocol_file_round_trips(object_list):
     ):
         with pytest.raises(ValueError, match=msg):
             clutter.ClutterProtocol(object_list=object_list, objects=3, **kw)
+
+
+def test_object_labels_follow_the_input_the_planner_gets(object_list):
+    """Scene.sources index the planner's input: the observation's points, or its image's pixels (row v * width + u);
+    the simulator's labels come per observed point, in pixel order."""
+    depth = np.array([[0.5, np.inf, 0.6], [np.inf, 0.7, 0.8]])
+    obs = types.SimpleNamespace(depth_images=[depth], labels=np.array([-1, 0, 1, 1]))
+    points = clutter.ClutterProtocol(object_list=object_list, objects=3)
+    image = clutter.ClutterProtocol(object_list=object_list, objects=3, cloud="image")
+    np.testing.assert_array_equal(points.object_labels(obs), [-1, 0, 1, 1])
+    np.testing.assert_array_equal(image.object_labels(obs), [-1, -2, 0, -2, 1, 1])
+    assert image.object_labels(types.SimpleNamespace(depth_images=[depth], labels=None)) is None
 
 
 def fake_named(pdoc, unit, todo=None):
@@ -225,18 +243,22 @@ def test_cli_bad_named_options(tmp_path, capsys, object_list):
 
 
 # ---- one real attempt ------------------------------------------------------------------------------
-def test_one_real_named_attempt(tmp_path, capsys):
+@pytest.mark.parametrize("cloud", ["points", "image"])
+def test_one_real_named_attempt(tmp_path, capsys, cloud):
+    """One named attempt, the planner given the camera's points or its depth image (--cloud image)."""
     from graspmix.cli.main import main
     from graspmix.io import data_path
 
     out = tmp_path / "run"
     argv = ["clutter", "--task", "named", "--mode", "packed", "--objects", "2", "--scenes", "1", "--quiet",
-            "--object-list", str(data_path("objects", "clutter_dev.txt")), "--out", str(out)]  # fmt: skip
+            "--object-list", str(data_path("objects", "clutter_dev.txt")), "--out", str(out),
+            "--cloud", cloud]  # fmt: skip
     assert main(argv) == 0
     printed = capsys.readouterr().out
     (row,) = read_rows(out / named.NAMED_CSV_NAME, named.NAMED_CSV)
     assert row["outcome"] in named.NAMED_OUTCOMES and 1 <= row["eligible"] <= row["placed"] <= 2
     assert 0 <= row["target"] < row["placed"] and row["observe_seed"] is not None
+    assert 0 <= row["cluster"] < row["placed"]  # the chosen segment's points (or pixels) mostly one placed object's
     summary = json.loads((out / "summary.json").read_text())
     c = summary["results"]["packed"]["gmm"]
     assert c["attempts"] == 1 and c["success"]["successes"] == row["success"]

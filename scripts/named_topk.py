@@ -61,7 +61,7 @@ def main(argv=None) -> int:
         for pick, target in enumerate(ns.picks):
             opts = p.synthesis.updated({"seed": p.stage_seed("synthesis", args.mode, scene, pick), **changes})
             text = point_target(ns.point(target))
-            grasps = model.synthesize(obs.points, opts, target=text, viewpoints=obs.viewpoints)
+            grasps = p.synthesize(model, obs, opts, target=text)  # as the run gave its planner the camera
             grasps.add_frames()
             marks = ""
             for rank in range(min(args.top, len(grasps))):

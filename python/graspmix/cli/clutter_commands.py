@@ -29,7 +29,7 @@ def _protocol(args):
         synthesis=synthesis_options(args),
         task=args.task,
         targets=1 if args.targets is None else args.targets,
-        cloud=args.cloud,
+        cloud=args.cloud or "",
     )
 
 
@@ -66,7 +66,7 @@ COMMANDS = ("clutter",)
 
 
 def add_parsers(sub) -> None:
-    from ..clutter.protocol import CLOUDS, ROUNDS, ClutterProtocol
+    from ..clutter.protocol import CLOUDS, ROUNDS
 
     s = sub.add_parser(
         "clutter",
@@ -82,9 +82,9 @@ def add_parsers(sub) -> None:
     s.add_argument(
         "--cloud",
         choices=CLOUDS,
-        default=ClutterProtocol.cloud,
-        help=f"what the planners get of the camera: its points, or its depth image with intrinsics and pose, as a "
-        f"robot's camera gives it (--views 1; default {ClutterProtocol.cloud})",
+        help="what the planners get of the camera: its depth image with intrinsics and pose, as a robot's camera "
+        "gives it (image; the default with one camera), or every pixel as points with its position (scene; "
+        "the default with several, and every run before this option existed)",
     )
     s.add_argument(
         "--object-list",

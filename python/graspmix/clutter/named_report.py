@@ -18,7 +18,7 @@ from ..experiment.stats import RateCI, clustered_rate, wilson_ci
 from ..io import CLUTTER_SUMMARY_FORMAT
 from ..io.checks import quote
 from .named import NAMED_CSV, NAMED_CSV_NAME, NAMED_OUTCOMES, NO_TARGET, TARGET_RULE, TIME_COLUMNS
-from .protocol import check_row
+from .protocol import check_row, input_words
 
 
 def _rate(successes: list[int], trials: list[int]) -> dict:
@@ -162,7 +162,7 @@ def named_blocks(summary: dict) -> list[tuple]:
             f"{p['scenes']} scenes x modes {','.join(p['modes'])} x methods {','.join(p['methods'])} x "
             f"{p['targets']} named object(s) per scene: {r['done']} of {r['expected']} attempts"
             + ("" if r["complete"] else " (INCOMPLETE run)")
-            + f". {p['objects']} objects per scene from {Path(p['object_list']).name}; {p['views']} view(s), "
+            + f". {p['objects']} objects per scene from {Path(p['object_list']).name}; {p['views']} view(s) {input_words(p)}, "
             f"{'with' if p['noise'] else 'no'} depth noise; grasps close {p['closing']}. The target is drawn "
             f"{summary['target_rule']}, and named as point:x,y,z, its observed point nearest the top centre of "
             "that box; one attempt per target on the untouched scene. " + provenance_text(prov),

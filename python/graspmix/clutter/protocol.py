@@ -43,9 +43,10 @@ OUTCOMES = ("success", "start in collision", "no contact", "not held", "two obje
 STOPS = ("clear", "two failures", "no grasp", "attempt limit")
 # What a run measures: "clear" the scenes (VGN's rounds), or lift a "named" object (graspmix.clutter.named).
 TASKS = ("clear", "named")
-# What the planners are given of an observation: the camera's "points" with its position (the points path of
-# segment_scene), or its depth "image" with its intrinsics and pose, as a robot's camera gives it (one camera).
-CLOUDS = ("points", "image")
+# What the planners are given of an observation (the experiment's words): every pixel as points with the
+# camera's position ("scene", the points path of segment_scene), or the camera's depth "image" with its intrinsics
+# and pose, as a robot's camera gives it (one camera; the default then, as the experiment's defaults take it).
+CLOUDS = ("scene", "image")
 CLUTTER_NAME = "clutter.json"
 CLUTTER_CSV_NAME = "clutter_attempts.csv"
 
@@ -73,11 +74,13 @@ class ClutterProtocol:
     models: dict = field(default_factory=dict)  # method -> model file; empty: the bundled box models
     task: str = "clear"  # TASKS: clear the scenes, or lift a named object per scene
     targets: int = 1  # task "named": objects named per scene (each on the untouched scene)
-    cloud: str = "points"  # CLOUDS: the observation as points, or as the camera's depth image (views 1)
+    cloud: str = ""  # CLOUDS; "": "image" with one camera, else "scene" (a clutter.json without it: "scene")
 
     def __post_init__(self):
         if not self.object_list:  # named as bundled data, so the run's files name no machine's path
             self.object_list = PACKAGE_PREFIX + "objects/clutter_test.txt"
+        if self.cloud == "":
+            self.cloud = "image" if self.views == 1 else "scene"
         self.validate()
 
     @property
@@ -156,7 +159,7 @@ class ClutterProtocol:
     def object_labels(self, obs):
         """Per row of the synthesis' input (Scene.sources index it), the simulator's object label (-1 the table):
         per point of the observation, or per pixel of its image (-2 where nothing was hit); None without labels."""
-        if obs.labels is None or self.cloud == "points":
+        if obs.labels is None or self.cloud == "scene":
             return obs.labels
         depth = obs.depth_images[0]
         labels = np.full(depth.size, -2, dtype=int)
@@ -174,7 +177,7 @@ class ClutterProtocol:
         d = {f: getattr(self, f) for f in PROTOCOL_FIELDS}
         if self.task == "clear":  # a clearing run's clutter.json as before the task existed: its folders resume
             del d["task"], d["targets"]
-        if self.cloud == "points":  # as before the image input existed: those folders resume
+        if self.cloud == "scene":  # as before the image input existed (a clutter.json without it): those resume
             del d["cloud"]
         d["synthesis"] = self.synthesis.to_dict()
         d["object_list_sha256"] = sha256_file(self.object_list_path)
@@ -207,8 +210,14 @@ class ClutterProtocol:
 PROTOCOL_FIELDS = [f.name for f in dataclasses.fields(ClutterProtocol)]
 
 
+def input_words(p: dict) -> str:
+    """What a stored protocol's planners were given, for its report."""
+    return "as its depth image" if p.get("cloud", "scene") == "image" else "as points"
+
+
 def clutter_protocol_from_json(d: dict) -> ClutterProtocol:
     kw = {k: d[k] for k in PROTOCOL_FIELDS if k in d and k not in ("models", "synthesis")}
+    kw.setdefault("cloud", "scene")  # written before the image input existed: the points
     return ClutterProtocol(**kw, synthesis=SynthesisOptions.from_stored(d["synthesis"]))
 
 

@@ -24,7 +24,16 @@ from ..io import CLUTTER_SUMMARY_FORMAT
 from ..io.checks import check_output_path, quote
 from .named import NAMED_CSV_NAME
 from .named_report import named_blocks, named_results_table, read_named_rows, summarize_named
-from .protocol import CLUTTER_CSV, CLUTTER_CSV_NAME, OUTCOMES, STOPS, TIME_COLUMNS, check_row, load_clutter_protocol
+from .protocol import (
+    CLUTTER_CSV,
+    CLUTTER_CSV_NAME,
+    OUTCOMES,
+    STOPS,
+    TIME_COLUMNS,
+    check_row,
+    input_words,
+    load_clutter_protocol,
+)
 
 
 def rounds_of(rows: list[dict]) -> dict:
@@ -157,7 +166,7 @@ def _blocks(summary: dict) -> list[tuple]:
             "p",
             f"{p['scenes']} scenes x modes {','.join(p['modes'])} x methods {','.join(p['methods'])}: {r['done']} "
             f"of {r['expected']} rounds" + ("" if r["complete"] else " (INCOMPLETE run)") + f". {p['objects']} "
-            f"objects per scene from {Path(p['object_list']).name}; {p['views']} view(s), "
+            f"objects per scene from {Path(p['object_list']).name}; {p['views']} view(s) {input_words(p)}, "
             f"{'with' if p['noise'] else 'no'} depth noise; grasps close {p['closing']}. A round ends when the "
             "table is clear, after 2 failures in a row, or when the planner finds no grasp (VGN's rules)"
             + (f", or after {_limit(p)} attempts" if _limit(p) else "")

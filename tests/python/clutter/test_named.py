@@ -157,9 +157,15 @@ def test_the_protocol_file_round_trips(object_list):
     assert p.rounds()[:2] == [("packed", 0, "gmm", 0), ("packed", 0, "gmm", 1)] and len(p.rounds()) == 4
     clear = clutter.ClutterProtocol(object_list=object_list, objects=3)
     assert "task" not in clear.to_json() and clutter_protocol_from_json(clear.to_json()) == clear
-    image = clutter.ClutterProtocol(object_list=object_list, objects=3, task="named", cloud="image")
-    assert image.to_json()["cloud"] == "image" and clutter_protocol_from_json(image.to_json()) == image
-    assert "cloud" not in p.to_json()  # points, as before the image input: those folders resume
+    # One camera: the planners get its depth image by default, several: the points; a clutter.json written before
+    # the option (no "cloud") was the points, and a points protocol's is written as then, so those folders resume.
+    assert p.cloud == "image" and p.to_json()["cloud"] == "image"
+    assert clutter.ClutterProtocol(object_list=object_list, objects=3, views=4).cloud == "scene"
+    points = clutter.ClutterProtocol(object_list=object_list, objects=3, task="named", cloud="scene")
+    assert "cloud" not in points.to_json() and clutter_protocol_from_json(points.to_json()) == points
+    old = p.to_json()
+    del old["cloud"]
+    assert clutter_protocol_from_json(old).cloud == "scene"
     for kw, msg in (
         ({"cloud": "voxels"}, "cloud must be one of"),
         ({"cloud": "image", "views": 4}, "views must be 1"),
@@ -177,7 +183,7 @@ def test_object_labels_follow_the_input_the_planner_gets(object_list):
     the simulator's labels come per observed point, in pixel order."""
     depth = np.array([[0.5, np.inf, 0.6], [np.inf, 0.7, 0.8]])
     obs = types.SimpleNamespace(depth_images=[depth], labels=np.array([-1, 0, 1, 1]))
-    points = clutter.ClutterProtocol(object_list=object_list, objects=3)
+    points = clutter.ClutterProtocol(object_list=object_list, objects=3, cloud="scene")
     image = clutter.ClutterProtocol(object_list=object_list, objects=3, cloud="image")
     np.testing.assert_array_equal(points.object_labels(obs), [-1, 0, 1, 1])
     np.testing.assert_array_equal(image.object_labels(obs), [-1, -2, 0, -2, 1, 1])
@@ -243,9 +249,9 @@ def test_cli_bad_named_options(tmp_path, capsys, object_list):
 
 
 # ---- one real attempt ------------------------------------------------------------------------------
-@pytest.mark.parametrize("cloud", ["points", "image"])
+@pytest.mark.parametrize("cloud", ["scene", "image"])
 def test_one_real_named_attempt(tmp_path, capsys, cloud):
-    """One named attempt, the planner given the camera's points or its depth image (--cloud image)."""
+    """One named attempt, the planner given the camera's points (--cloud scene) or its depth image (the default)."""
     from graspmix.cli.main import main
     from graspmix.io import data_path
 

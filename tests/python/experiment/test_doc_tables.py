@@ -70,6 +70,7 @@ PAGES = {
         "grasp-depth-heldout",
         "grasp-depth-four-views",
         "grasp-depth-clutter",
+        "image-clutter",
     },
 }
 SCRIPTS = ("scripts/findings_table.py", "scripts/ablation_table.py", "scripts/clutter_table.py")

@@ -84,8 +84,13 @@ TableNoiseMap::TableNoiseMap(const Vec3Array& sample, const Eigen::VectorXd& h, 
 }
 
 std::int64_t TableNoiseMap::key(const Eigen::Vector3d& p) const {
-  return pack(static_cast<std::int64_t>(std::floor(p.dot(u_) / kCell)),
-              static_cast<std::int64_t>(std::floor(p.dot(v_) / kCell)));
+  // Cells beyond +-2^29 (27,000 km of 5 cm cells) share the last one: no point of a scene is there, and the
+  // packed key must not overflow.
+  const auto cell = [](double x) {
+    const double c = std::floor(x / kCell), lim = static_cast<double>(kCellSpan / 4);
+    return static_cast<std::int64_t>(std::clamp(c, -lim, lim));
+  };
+  return pack(cell(p.dot(u_)), cell(p.dot(v_)));
 }
 
 const TableNoise& TableNoiseMap::at(const Eigen::Vector3d& p) {

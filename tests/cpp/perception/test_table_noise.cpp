@@ -130,8 +130,9 @@ TEST(TableNoiseMap, FollowsNoiseThatGrowsAcrossTheTable) {
     EXPECT_NEAR(t.spread, sigma_at(y), 0.1 * sigma_at(y)) << y;  // the pooled 15 cm span 0.45 mm of sigma
     EXPECT_NEAR(t.centre, 0.0, 0.2 * sigma_at(y)) << y;
   }
-  // Outside the table: nothing measured, nothing held but the band.
+  // Outside the table: nothing measured, nothing held but the band; as far as a double goes, the same.
   EXPECT_FALSE(map.at(Eigen::Vector3d(2.0, 0.0, 0.0)).known);
+  EXPECT_FALSE(map.at(Eigen::Vector3d(1e300, -1e300, 0.0)).known);
   // The whole table's noise is one figure between the two ends.
   const detail::TableNoise whole = table_noise(h, kBand);
   EXPECT_GT(whole.spread, 1.5 * sigma_at(-0.4));

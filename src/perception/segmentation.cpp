@@ -181,8 +181,7 @@ struct Extraction {
 /// above the whole table's noise and above the noise of the table where it stands (one view's near table is
 /// noisier than its far one; where that is not measured, the whole table's counts alone). Nothing is dropped
 /// when the table's noise is unknown (no table's: table_noise). table_sample: where the noise is measured (P's
-/// rows when null). Done once the support is chosen: rule 4 still judges each candidate on every cluster above
-/// it, so that the face of an object seen without a table, whose own noise stands above it, is still no support.
+/// rows when null). Rule 4 uses it too (find_support).
 void drop_table_noise(const Vec3Array& P, const Eigen::Vector4d& plane, const SegmentationSettings& s, Extraction& e,
                       const Vec3Array* table_sample) {
   const Eigen::VectorXd h = heights(P, plane);
@@ -361,7 +360,12 @@ Extraction find_support(const Vec3Array& P, const Cameras& cams, const Segmentat
     PlaneCandidate& c = out.candidates[i];
     Extraction e = extract(P, &c.plane, s, out.times);
     lap = Lap();
-    c.margin = footprint_margin(P, inliers[i], c.plane, e.groups);
+    // Judged on what rises above the candidate's noise when something does (a noisy table's fragments reach its
+    // edges); on every cluster when nothing does (an object's face, seen without a table, has only its noise
+    // above it, and that keeps it no support).
+    Extraction rising = e;
+    drop_table_noise(P, c.plane, s, rising, nullptr);
+    c.margin = footprint_margin(P, inliers[i], c.plane, rising.groups.empty() ? e.groups : rising.groups);
     lap.add_to(out.times.clusters);
     if (c.margin >= s.plane_margin) {
       out.plane = c.plane;

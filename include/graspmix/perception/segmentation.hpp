@@ -9,8 +9,8 @@
 // median and MAD of the heights near the plane, when they look like a table's noise), of the whole table's
 // or of the table in the 15 x 15 cm around the point (one view's near table is noisier than its far one), is
 // a fragment of a noisy table's tail, not an object, and goes with the table; so does such a piece the split
-// rule cuts off an object (a noisy table's tail can join an object's base). Rule 4 below still sees those
-// fragments, so the noise above an object's face keeps that face no support.
+// rule cuts off an object (a noisy table's tail can join an object's base). Rule 4 below sees those fragments
+// when nothing else stands above a candidate, so the noise above an object's face keeps that face no support.
 //
 // Which side of a plane is "up": the side the cameras are on, decided by the viewpoints, never by
 // where most points lie (far-field noise can outnumber an object). Per-point viewpoints (N, 3): the mean
@@ -27,7 +27,9 @@
 //     a table has only noise there;
 //  4. its inliers extend beyond the objects' footprint: along each of 8 directions in the plane, the
 //     farthest inlier is at least plane_margin beyond the farthest object point (object points: those
-//     more than table_clearance above it), so a table reaches past what stands on it.
+//     more than table_clearance above it, in the clusters that rise above its noise as the table's noise
+//     rule above judges them, or in every cluster when none does), so a table reaches past what stands on
+//     it, and a noisy table's fragments, which reach its edges, do not refuse it.
 // Among the accepted candidates the support is the lowest: the one farthest from the cameras.
 // An object-only cloud (no extended surface under it) therefore yields no plane, and then every
 // point is an object point. A cloud over 90% of which lies within the noise of a plane refused only by rule 2

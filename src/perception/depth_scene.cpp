@@ -19,6 +19,7 @@
 #include "graspmix/perception/cleanup.hpp"
 #include "graspmix/perception/visibility.hpp"
 #include "segmentation_steps.hpp"
+#include "table_noise.hpp"
 
 namespace graspmix {
 
@@ -298,7 +299,7 @@ Blocks voxelised(const Blocks& b, double voxel_size) {
 
 /// The rows of b at most `height` above `plane` (or below it): the table.
 Blocks on_plane(const Blocks& b, const Eigen::Vector4d& plane, double height) {
-  const Eigen::VectorXd h = (b.points * plane.head<3>()).array() + plane[3];
+  const Eigen::VectorXd h = detail::heights(b.points, plane);
   const auto keep = [&](Eigen::Index i) { return !(h[i] > height); };
   Eigen::Index n = 0;
   for (Eigen::Index i = 0; i < h.size(); ++i) n += keep(i) ? 1 : 0;

@@ -4,6 +4,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <numeric>
 #include <optional>
@@ -26,6 +27,7 @@ namespace {
 
 using detail::Cameras;
 using detail::Cloud;
+using detail::heights;
 using detail::table_noise;
 using detail::TableNoise;
 
@@ -61,10 +63,6 @@ void check_inputs(const Vec3Array& points, const Vec3Array& viewpoints) {
 
 pcl::PointXYZ to_pcl(const Vec3Array& P, int r) {
   return {static_cast<float>(P(r, 0)), static_cast<float>(P(r, 1)), static_cast<float>(P(r, 2))};
-}
-
-Eigen::VectorXd heights(const Vec3Array& P, const Eigen::Vector4d& plane) {
-  return (P * plane.head<3>()).array() + plane[3];
 }
 
 /// Rule 4's figure: along 8 directions in the plane, the least reach of the inliers beyond the objects
@@ -176,29 +174,15 @@ struct Extraction {
   std::size_t n_plane = 0, n_outliers = 0, n_small = 0;
 };
 
-/// The clusters above the support plane that do not rise above the table's own noise (a noisy table's tail above
-/// table_clearance falls apart into such fragments) go with the table: a point rises above it when it stands
-/// above the whole table's noise and above the noise of the table where it stands (one view's near table is
-/// noisier than its far one; where that is not measured, the whole table's counts alone). Nothing is dropped
-/// when the table's noise is unknown (no table's: table_noise). table_sample: where the noise is measured (P's
-/// rows when null). Rule 4 uses it too (find_support).
+/// The clusters above the support plane that do not rise above the table's own noise (AboveTableNoise: a noisy
+/// table's tail above table_clearance falls apart into such fragments) go with the table. table_sample: where the
+/// noise is measured (P's rows when null).
 void drop_table_noise(const Vec3Array& P, const Eigen::Vector4d& plane, const SegmentationSettings& s, Extraction& e,
                       const Vec3Array* table_sample) {
-  const Eigen::VectorXd h = heights(P, plane);
-  const Vec3Array& sample = table_sample ? *table_sample : P;
-  const Eigen::VectorXd hs = table_sample ? heights(sample, plane) : h;
-  const TableNoise noise = table_noise(hs, s.plane_distance);
-  if (!noise.known) return;
-  std::optional<detail::TableNoiseMap> local;  // made at the first point above the whole table's noise
-  const auto rises = [&](int r) {
-    if (noise.holds(h[r])) return false;
-    if (!local) local.emplace(sample, hs, plane, s.plane_distance);
-    const TableNoise& here = local->at(P.row(r).transpose());
-    return !(here.known && here.holds(h[r]));
-  };
+  detail::AboveTableNoise above(P, plane, s.plane_distance, table_sample);
   std::vector<std::vector<int>> kept;
   for (auto& g : e.groups) {
-    if (std::any_of(g.begin(), g.end(), rises)) {
+    if (above.any(g)) {
       kept.push_back(std::move(g));
     } else {
       e.n_plane += g.size();
@@ -363,9 +347,11 @@ Extraction find_support(const Vec3Array& P, const Cameras& cams, const Segmentat
     // Judged on what rises above the candidate's noise when something does (a noisy table's fragments reach its
     // edges); on every cluster when nothing does (an object's face, seen without a table, has only its noise
     // above it, and that keeps it no support).
-    Extraction rising = e;
-    drop_table_noise(P, c.plane, s, rising, nullptr);
-    c.margin = footprint_margin(P, inliers[i], c.plane, rising.groups.empty() ? e.groups : rising.groups);
+    detail::AboveTableNoise above(P, c.plane, s.plane_distance);
+    std::vector<std::vector<int>> rising;
+    std::copy_if(e.groups.begin(), e.groups.end(), std::back_inserter(rising),
+                 [&](const auto& g) { return above.any(g); });
+    c.margin = footprint_margin(P, inliers[i], c.plane, rising.empty() ? e.groups : rising);
     lap.add_to(out.times.clusters);
     if (c.margin >= s.plane_margin) {
       out.plane = c.plane;

@@ -110,4 +110,24 @@ const TableNoise& TableNoiseMap::at(const Eigen::Vector3d& p) {
   return noise_.emplace(k, t).first->second;
 }
 
+Eigen::VectorXd heights(const Vec3Array& P, const Eigen::Vector4d& plane) {
+  return (P * plane.head<3>()).array() + plane[3];
+}
+
+AboveTableNoise::AboveTableNoise(const Vec3Array& P, const Eigen::Vector4d& plane, double band, const Vec3Array* sample)
+    : P_(P), sample_(sample ? *sample : P), plane_(plane), band_(band), h_(heights(P, plane)) {
+  hs_ = sample ? heights(*sample, plane) : h_;
+  noise_ = table_noise(hs_, band);
+}
+
+bool AboveTableNoise::any(const std::vector<int>& rows) {
+  if (!noise_.known) return !rows.empty();
+  return std::any_of(rows.begin(), rows.end(), [&](int r) {
+    if (noise_.holds(h_[r])) return false;
+    if (!local_) local_.emplace(sample_, hs_, plane_, band_);
+    const TableNoise& here = local_->at(P_.row(r).transpose());
+    return !(here.known && here.holds(h_[r]));
+  });
+}
+
 }  // namespace graspmix::detail

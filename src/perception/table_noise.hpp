@@ -3,12 +3,16 @@
 // a noisy table's fragments from objects, and a lone table from a scene (segmentation.hpp states the rules).
 #include <Eigen/Core>
 #include <cstdint>
+#include <optional>
 #include <unordered_map>
 #include <vector>
 
 #include "graspmix/core/types.hpp"
 
 namespace graspmix::detail {
+
+/// Signed heights of P's points above a plane [a, b, c, d] with a unit normal (a x + b y + c z + d).
+Eigen::VectorXd heights(const Vec3Array& P, const Eigen::Vector4d& plane);
 
 struct TableNoise {
   /// Spreads above the centre that a table's own point reaches with a chance under 3e-7 (Gaussian noise).
@@ -54,6 +58,26 @@ class TableNoiseMap {
   double band_;
   std::unordered_map<std::int64_t, std::vector<double>> heights_;
   std::unordered_map<std::int64_t, TableNoise> noise_;
+};
+
+/// Whether points of P rise above the own noise of the table a plane fits: above the whole table's noise and above
+/// the noise of the table where they stand (TableNoiseMap; where that is not measured, the whole table's counts
+/// alone). Every point rises when the table's noise is unknown (no table's: table_noise). The noise is measured on
+/// `sample`'s points (P's when null); the local map is made at the first point above the whole table's noise.
+class AboveTableNoise {
+ public:
+  AboveTableNoise(const Vec3Array& P, const Eigen::Vector4d& plane, double band, const Vec3Array* sample = nullptr);
+  /// Whether any of `rows` of P rises above the table's noise.
+  bool any(const std::vector<int>& rows);
+
+ private:
+  const Vec3Array& P_;
+  const Vec3Array& sample_;
+  Eigen::Vector4d plane_;
+  double band_;
+  Eigen::VectorXd h_, hs_;
+  TableNoise noise_;
+  std::optional<TableNoiseMap> local_;
 };
 
 }  // namespace graspmix::detail

@@ -65,8 +65,7 @@ def cmd_acquire(args: argparse.Namespace) -> int:
     points, size = acq.points, {}
     if viewpoint is not None and args.keep == "scene" and not args.clean:
         depth = acq.depth_images[0]
-        points = np.full((depth.size, 3), np.nan)
-        points[np.flatnonzero(np.isfinite(depth))] = acq.points  # every return, in the image's row order
+        points = acq.per_pixel(acq.points, np.nan)  # every return at its pixel, NaN where nothing was hit
         size = {"width": depth.shape[1], "height": depth.shape[0]}
     what = args.scene or args.object
     print(

@@ -19,8 +19,6 @@ import dataclasses
 from dataclasses import dataclass, field
 from pathlib import Path
 
-import numpy as np
-
 from ..experiment.log import CsvSchema
 from ..experiment.protocol import CLOSING as EXPERIMENT_CLOSING
 from ..experiment.protocol import derive_seed
@@ -146,14 +144,7 @@ class ClutterProtocol:
     def synthesize(self, model, obs, options: SynthesisOptions, target="all"):
         """A model's grasps on an observation (acquire_scene's), given as the protocol's `cloud` says."""
         if self.cloud == "image":
-            camera = obs.cameras[0]
-            return model.synthesize(
-                depth=obs.depth_images[0],
-                intrinsics=camera.pinhole(),
-                camera_pose=camera.pose(),
-                options=options,
-                target=target,
-            )
+            return model.synthesize(**obs.view_input(), options=options, target=target)
         return model.synthesize(obs.points, options, target=target, viewpoints=obs.viewpoints)
 
     def object_labels(self, obs):
@@ -161,10 +152,7 @@ class ClutterProtocol:
         per point of the observation, or per pixel of its image (-2 where nothing was hit); None without labels."""
         if obs.labels is None or self.cloud == "scene":
             return obs.labels
-        depth = obs.depth_images[0]
-        labels = np.full(depth.size, -2, dtype=int)
-        labels[np.flatnonzero(np.isfinite(depth))] = obs.labels  # acquire_scene keeps every return, in pixel order
-        return labels
+        return obs.per_pixel(obs.labels, -2)
 
     def model_methods(self) -> list[str]:
         return [m for m in self.methods if m in METHODS]

@@ -47,10 +47,7 @@ def synthesize_on(model: GraspModel, acq: Acquisition, p: Protocol, obj: str, tr
     opts, plane = p.attempt_options(obj, trial, condition), list(SUPPORT_PLANE)
     with infeasible_unwarned():  # the protocol executes the best grasp whatever it scored
         if p.cloud == "image":
-            cam = acq.cameras[0]
-            return model.synthesize(
-                depth=acq.depth_images[0], intrinsics=cam.pinhole(), camera_pose=cam.pose(), options=opts, plane=plane
-            )
+            return model.synthesize(**acq.view_input(), options=opts, plane=plane)
         return model.synthesize(acq.points, opts, viewpoints=acq.viewpoints, plane=plane)
 
 

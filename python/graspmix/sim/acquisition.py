@@ -145,6 +145,20 @@ class Acquisition:
     plane: np.ndarray | None = None  # [a, b, c, d] of the support plane when a clean-up found it
     labels: np.ndarray | None = None  # (N,) of a scene: -1 the table, else the object's index (acquire_scene)
 
+    def view_input(self) -> dict:
+        """The first camera's depth image with its intrinsics and pose, as GraspModel.synthesize takes a view."""
+        camera = self.cameras[0]
+        return {"depth": self.depth_images[0], "intrinsics": camera.pinhole(), "camera_pose": camera.pose()}
+
+    def per_pixel(self, per_point: np.ndarray, fill) -> np.ndarray:
+        """(H * W, ...) values of the first camera's pixels from values per point: a one-camera scene acquisition
+        keeps every return in the image's row order (acquire_scene, keep "scene"); `fill` where nothing was hit."""
+        depth = self.depth_images[0]
+        per_point = np.asarray(per_point)
+        out = np.full((depth.size, *per_point.shape[1:]), fill, dtype=np.result_type(per_point, np.asarray(fill)))
+        out[np.flatnonzero(np.isfinite(depth))] = per_point
+        return out
+
 
 def depth_from_buffer(buffer: np.ndarray, near: float, far: float) -> np.ndarray:
     """OpenGL depth buffer values in [0, 1] to metric depth along the optical axis."""

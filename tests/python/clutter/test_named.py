@@ -5,9 +5,9 @@ folder with a fake unit (resume), the command line's errors, and one tiny real a
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
-import types
 from dataclasses import dataclass
 
 import numpy as np
@@ -18,6 +18,7 @@ from graspmix.clutter.protocol import clutter_protocol_from_json
 from graspmix.clutter.rounds import Plan
 from graspmix.experiment.log import AttemptLog, read_rows
 from graspmix.model import Grasp
+from graspmix.sim.acquisition import Acquisition
 
 
 def _yaw(yaw):
@@ -182,12 +183,13 @@ def test_object_labels_follow_the_input_the_planner_gets(object_list):
     """Scene.sources index the planner's input: the observation's points, or its image's pixels (row v * width + u);
     the simulator's labels come per observed point, in pixel order."""
     depth = np.array([[0.5, np.inf, 0.6], [np.inf, 0.7, 0.8]])
-    obs = types.SimpleNamespace(depth_images=[depth], labels=np.array([-1, 0, 1, 1]))
+    obs = Acquisition(np.zeros((4, 3)), np.zeros((4, 3)), np.zeros(4), [depth], np.zeros(7), [], False, 0,
+                      labels=np.array([-1, 0, 1, 1]))  # fmt: skip
     points = clutter.ClutterProtocol(object_list=object_list, objects=3, cloud="scene")
     image = clutter.ClutterProtocol(object_list=object_list, objects=3, cloud="image")
     np.testing.assert_array_equal(points.object_labels(obs), [-1, 0, 1, 1])
     np.testing.assert_array_equal(image.object_labels(obs), [-1, -2, 0, -2, 1, 1])
-    assert image.object_labels(types.SimpleNamespace(depth_images=[depth], labels=None)) is None
+    assert image.object_labels(dataclasses.replace(obs, labels=None)) is None
 
 
 def fake_named(pdoc, unit, todo=None):

@@ -100,7 +100,7 @@ void bind_synthesis(py::module_& m) {
       .done();
 
   SettingsClass<SamplingSettings>(m, "SamplingSettings", "How many grasps are drawn, kept and annealed.")
-      .field("n_samples", &SamplingSettings::n_samples, "grasps sampled and ranked")
+      .field("n_samples", &SamplingSettings::n_samples, "grasps sampled, ranked and returned")
       .field("n_optimise", &SamplingSettings::n_optimise, "the best this many are optimised")
       .field("optimise", &SamplingSettings::optimise, "anneal the best n_optimise")
       .field("clear_pregrasp", &SamplingSettings::clear_pregrasp,
@@ -109,7 +109,10 @@ void bind_synthesis(py::module_& m) {
              "batches of n_samples drawn at most until n_samples grasps pass every hard expert")
       .field("topdown_seeds", &SamplingSettings::topdown_seeds,
              "scene synthesis adds each object's top-down seeds (grasp/topdown_seeds.hpp) to the drawn grasps")
+      .field("oversample", &SamplingSettings::oversample,
+             "oversample * n_samples grasps are drawn and ranked, the best n_samples returned (1: the paper's)")
       .done();
+  m.attr("MAX_OVERSAMPLE") = kMaxOversample;
 
   SettingsClass<SynthesizerSettings>(m, "SynthesizerSettings",
                                      "What GraspSynthesizer.synthesize needs besides the object and the experts (scene "

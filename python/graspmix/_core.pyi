@@ -8,7 +8,7 @@ import enum
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AnnealingSettings', 'AxisAlignmentExpert', 'AxisAlignmentSettings', 'COMPLETED_VIEW_DISTANCE', 'CleanupResult', 'CleanupSettings', 'ClearApproachExpert', 'ClearApproachSettings', 'CloudData', 'CollisionBatchResult', 'CollisionExpert', 'CollisionFreeExpert', 'CollisionResult', 'CollisionSettings', 'Completion', 'CompletionKind', 'CompletionSettings', 'ConfigModel', 'ConfigModelSettings', 'ContactData', 'ContactModel', 'ContactQualityExpert', 'ContactQualityResult', 'ContactQualitySettings', 'ContactSettings', 'Evaluation', 'Expert', 'FunctionExpert', 'GaussianMixture', 'GmmSettings', 'Grasp', 'GraspDepthExpert', 'GraspDepthSettings', 'GraspSynthesizer', 'Hand', 'HandLoadSettings', 'KdeSettings', 'KinematicFeasibilityExpert', 'KinematicFeasibilitySettings', 'OccupancyMap', 'OccupancySettings', 'POINT_TARGET_MAX_DISTANCE', 'PinholeCamera', 'PinholeFit', 'PlaneCandidate', 'PoseDensity', 'PoseKDE', 'PoseMixture', 'QueryDensity', 'QuerySettings', 'SamplingSettings', 'SceneCompletion', 'SceneObject', 'SceneSimResult', 'SceneSynthesis', 'Segmentation', 'SegmentationSettings', 'SettleResult', 'SimObject', 'SimResult', 'SimSettings', 'SpaceState', 'SurfaceCloud', 'SurfaceFeatureSettings', 'SynthesisResult', 'SynthesisTiming', 'SynthesizerSettings', 'TYPE_REFERENCE_TERM', 'URDF_AXES_ELEMENT', 'VisibilityModel', 'VisibilitySettings', 'build_info', 'camera_pose_matrix', 'complete_object', 'complete_scene', 'compute_surface_features', 'contact_data', 'learn_contact_models', 'load_cloud', 'load_mesh', 'log_vmf_s3_normaliser', 'object_surface', 'orient_plane', 'pose_inverse', 'pose_multiply', 'prepare_cloud', 'quat_exp', 'quat_log', 'query_weights', 'save_cloud', 'segment_depth', 'segment_organized', 'segment_scene', 'select_targets', 'sim_closing_speeds', 'sim_execute', 'sim_execute_scene', 'sim_settle_scene', 'solid_volume', 'synthesize_scene']
+__all__: list[str] = ['AnnealingSettings', 'AxisAlignmentExpert', 'AxisAlignmentSettings', 'COMPLETED_VIEW_DISTANCE', 'CleanupResult', 'CleanupSettings', 'ClearApproachExpert', 'ClearApproachSettings', 'CloudData', 'CollisionBatchResult', 'CollisionExpert', 'CollisionFreeExpert', 'CollisionResult', 'CollisionSettings', 'Completion', 'CompletionKind', 'CompletionSettings', 'ConfigModel', 'ConfigModelSettings', 'ContactData', 'ContactModel', 'ContactQualityExpert', 'ContactQualityResult', 'ContactQualitySettings', 'ContactSettings', 'Evaluation', 'Expert', 'FunctionExpert', 'GaussianMixture', 'GmmSettings', 'Grasp', 'GraspDepthExpert', 'GraspDepthSettings', 'GraspSynthesizer', 'Hand', 'HandLoadSettings', 'KdeSettings', 'KinematicFeasibilityExpert', 'KinematicFeasibilitySettings', 'MAX_OVERSAMPLE', 'OccupancyMap', 'OccupancySettings', 'POINT_TARGET_MAX_DISTANCE', 'PinholeCamera', 'PinholeFit', 'PlaneCandidate', 'PoseDensity', 'PoseKDE', 'PoseMixture', 'QueryDensity', 'QuerySettings', 'SamplingSettings', 'SceneCompletion', 'SceneObject', 'SceneSimResult', 'SceneSynthesis', 'Segmentation', 'SegmentationSettings', 'SettleResult', 'SimObject', 'SimResult', 'SimSettings', 'SpaceState', 'SurfaceCloud', 'SurfaceFeatureSettings', 'SynthesisResult', 'SynthesisTiming', 'SynthesizerSettings', 'TYPE_REFERENCE_TERM', 'URDF_AXES_ELEMENT', 'VisibilityModel', 'VisibilitySettings', 'build_info', 'camera_pose_matrix', 'complete_object', 'complete_scene', 'compute_surface_features', 'contact_data', 'learn_contact_models', 'load_cloud', 'load_mesh', 'log_vmf_s3_normaliser', 'object_surface', 'orient_plane', 'pose_inverse', 'pose_multiply', 'prepare_cloud', 'quat_exp', 'quat_log', 'query_weights', 'save_cloud', 'segment_depth', 'segment_organized', 'segment_scene', 'select_targets', 'sim_closing_speeds', 'sim_execute', 'sim_execute_scene', 'sim_settle_scene', 'solid_volume', 'synthesize_scene']
 class GmmSettings:
     """
     How a GaussianMixture (or PoseMixture) is fitted by EM.
@@ -3551,15 +3551,16 @@ class SamplingSettings:
     
     Settings: settings= a SamplingSettings (None: its defaults), and/or its fields as keywords,
     which override it (an unknown keyword is a ValueError):
-      n_samples = 200: grasps sampled and ranked
+      n_samples = 200: grasps sampled, ranked and returned
       n_optimise = 10: the best this many are optimised
       optimise = True: anneal the best n_optimise
       clear_pregrasp = True: an extra collision expert on the pre-grasp configuration (log W of the opened hand)
       max_sampling_rounds = 10: batches of n_samples drawn at most until n_samples grasps pass every hard expert
       topdown_seeds = True: scene synthesis adds each object's top-down seeds (grasp/topdown_seeds.hpp) to the drawn grasps
+      oversample = 2: oversample * n_samples grasps are drawn and ranked, the best n_samples returned (1: the paper's)
     """
     __hash__: typing.ClassVar[None] = None
-    _fields: typing.ClassVar[tuple] = ('n_samples', 'n_optimise', 'optimise', 'clear_pregrasp', 'max_sampling_rounds', 'topdown_seeds')
+    _fields: typing.ClassVar[tuple] = ('n_samples', 'n_optimise', 'optimise', 'clear_pregrasp', 'max_sampling_rounds', 'topdown_seeds', 'oversample')
     def __copy__(self) -> SamplingSettings:
         ...
     def __deepcopy__(self, memo: typing.Any) -> SamplingSettings:
@@ -3576,7 +3577,7 @@ class SamplingSettings:
     @typing.overload
     def __init__(self, **kwargs) -> None:
         """
-        Keyword constructor: any of the fields (n_samples, n_optimise, optimise, clear_pregrasp, max_sampling_rounds, topdown_seeds); the others keep their defaults.
+        Keyword constructor: any of the fields (n_samples, n_optimise, optimise, clear_pregrasp, max_sampling_rounds, topdown_seeds, oversample); the others keep their defaults.
         """
     def __repr__(self) -> str:
         ...
@@ -3609,7 +3610,7 @@ class SamplingSettings:
     @property
     def n_samples(self) -> int:
         """
-        grasps sampled and ranked
+        grasps sampled, ranked and returned
         """
     @n_samples.setter
     def n_samples(self, arg0: typing.Any) -> None:
@@ -3621,6 +3622,14 @@ class SamplingSettings:
         """
     @optimise.setter
     def optimise(self, arg0: typing.Any) -> None:
+        ...
+    @property
+    def oversample(self) -> int:
+        """
+        oversample * n_samples grasps are drawn and ranked, the best n_samples returned (1: the paper's)
+        """
+    @oversample.setter
+    def oversample(self, arg0: typing.Any) -> None:
         ...
     @property
     def topdown_seeds(self) -> bool:
@@ -3636,7 +3645,7 @@ class SynthesizerSettings:
     
     Settings: settings= a SynthesizerSettings (None: its defaults), and/or its fields as keywords,
     which override it (an unknown keyword is a ValueError):
-      sampling = SamplingSettings(n_samples=200, n_optimise=10, optimise=True, clear_pregrasp=True, max_sampling_rounds=10, topdown_seeds=True): SamplingSettings
+      sampling = SamplingSettings(n_samples=200, n_optimise=10, optimise=True, clear_pregrasp=True, max_sampling_rounds=10, topdown_seeds=True, oversample=2): SamplingSettings
       query = QuerySettings(n_samples=500, n_components=5, max_iter=100, reg_covar=1e-06, kde=KdeSettings(position_bandwidth=0.005, orientation_bandwidth=0.15, feature_bandwidth=array([0.005])), frame_jitter=True, jitter_sharpness=100.0, completed_weight=1.0, link_floor=-20.0): QuerySettings
       annealing = AnnealingSettings(iterations=100, initial_temperature=1.0, position_step=0.005, rotation_step=0.1, joint_step=0.5): AnnealingSettings
       seed = 0: seeds everything random in synthesis (None: 0)
@@ -3898,7 +3907,7 @@ class GraspSynthesizer:
         weights (N,): each point's prior weight in the query densities (None: all 1).
         Settings: settings= a SynthesizerSettings (None: its defaults), and/or its fields as keywords,
         which override it (an unknown keyword is a ValueError):
-          sampling = SamplingSettings(n_samples=200, n_optimise=10, optimise=True, clear_pregrasp=True, max_sampling_rounds=10, topdown_seeds=True): SamplingSettings
+          sampling = SamplingSettings(n_samples=200, n_optimise=10, optimise=True, clear_pregrasp=True, max_sampling_rounds=10, topdown_seeds=True, oversample=2): SamplingSettings
           query = QuerySettings(n_samples=500, n_components=5, max_iter=100, reg_covar=1e-06, kde=KdeSettings(position_bandwidth=0.005, orientation_bandwidth=0.15, feature_bandwidth=array([0.005])), frame_jitter=True, jitter_sharpness=100.0, completed_weight=1.0, link_floor=-20.0): QuerySettings
           annealing = AnnealingSettings(iterations=100, initial_temperature=1.0, position_step=0.005, rotation_step=0.1, joint_step=0.5): AnnealingSettings
           seed = 0: seeds everything random in synthesis (None: 0)
@@ -4622,6 +4631,7 @@ def synthesize_scene(types: typing.Any, *, depth: typing.Any = None, organized: 
     contact_quality and grasp_depth None: that step off; the others None: their defaults).
     """
 COMPLETED_VIEW_DISTANCE: float = 1.0
+MAX_OVERSAMPLE: int = 100
 POINT_TARGET_MAX_DISTANCE: float = 0.05
 TYPE_REFERENCE_TERM: str = 'type_reference'
 URDF_AXES_ELEMENT: str = 'graspmix'

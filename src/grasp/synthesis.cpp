@@ -261,19 +261,19 @@ GraspSynthesizer::Candidates GraspSynthesizer::sample_passing(const Scoring& sco
   std::vector<RowMatrixXd> batch_q;
   std::vector<Evaluation> batch_e;
   std::vector<std::pair<int, Eigen::Index>> passed, rejected;  // (batch, row)
-  for (int round = 0; round < s.sampling.max_sampling_rounds && static_cast<int>(passed.size()) < s.sampling.n_samples;
-       ++round) {
+  const int n = s.sampling.n_samples * s.sampling.oversample;  // checked by synthesize: no overflow
+  for (int round = 0; round < s.sampling.max_sampling_rounds && static_cast<int>(passed.size()) < n; ++round) {
     PoseArray w;
     RowMatrixXd q;
-    sample_grasps(scoring.query, s.sampling.n_samples, rng, w, q);
+    sample_grasps(scoring.query, n, rng, w, q);
     batch_e.push_back(evaluate(scoring, w, q));
     batch_w.push_back(std::move(w));
     batch_q.push_back(std::move(q));
-    res.evaluations += s.sampling.n_samples;
+    res.evaluations += n;
     const Evaluation& e = batch_e.back();
     for (Eigen::Index i = 0; i < e.total.size(); ++i) {
       if (e.total[i] > -std::numeric_limits<double>::infinity()) {
-        if (static_cast<int>(passed.size()) < s.sampling.n_samples) passed.emplace_back(round, i);
+        if (static_cast<int>(passed.size()) < n) passed.emplace_back(round, i);
       } else {
         ++res.rejected;
         rejected.emplace_back(round, i);
@@ -281,14 +281,13 @@ GraspSynthesizer::Candidates GraspSynthesizer::sample_passing(const Scoring& sco
     }
   }
   // Too few passed: rejected samples fill up (ranked last; still optimised if among the best).
-  for (size_t k = 0; static_cast<int>(passed.size()) < s.sampling.n_samples && k < rejected.size(); ++k)
-    passed.push_back(rejected[k]);
+  for (size_t k = 0; static_cast<int>(passed.size()) < n && k < rejected.size(); ++k) passed.push_back(rejected[k]);
   Candidates c;
-  const Eigen::Index n = static_cast<Eigen::Index>(passed.size());
-  c.wrists.resize(n, 7);
-  c.joints.resize(n, hand_->n_dofs());
-  c.eval = empty_evaluation(n, scoring.query.size(), scoring.experts.size());
-  for (Eigen::Index k = 0; k < n; ++k) {
+  const Eigen::Index kept = static_cast<Eigen::Index>(passed.size());
+  c.wrists.resize(kept, 7);
+  c.joints.resize(kept, hand_->n_dofs());
+  c.eval = empty_evaluation(kept, scoring.query.size(), scoring.experts.size());
+  for (Eigen::Index k = 0; k < kept; ++k) {
     const auto [b, i] = passed[k];
     c.wrists.row(k) = batch_w[b].row(i);
     c.joints.row(k) = batch_q[b].row(i);
@@ -344,6 +343,10 @@ SynthesisResult GraspSynthesizer::synthesize(
     const CollisionExpert& collision, const std::vector<std::shared_ptr<const Expert>>& experts,
     const SynthesizerSettings& s, const Eigen::Ref<const Eigen::VectorXd>& weights, const SeedGrasps* seeds) const {
   if (s.sampling.n_samples < 1) throw std::invalid_argument("synthesize: n_samples must be >= 1");
+  if (s.sampling.oversample < 1 || s.sampling.oversample > kMaxOversample ||
+      s.sampling.n_samples > std::numeric_limits<int>::max() / s.sampling.oversample)
+    throw std::invalid_argument("synthesize: oversample must be in [1, " + std::to_string(kMaxOversample) +
+                                "] and oversample * n_samples an int");
   if (s.sampling.n_optimise < 0) throw std::invalid_argument("synthesize: n_optimise must be >= 0");
   if (s.sampling.max_sampling_rounds < 1) throw std::invalid_argument("synthesize: max_sampling_rounds must be >= 1");
   if (collision.hand().name() != hand_->name() || collision.hand().link_names() != hand_->link_names()) {
@@ -371,7 +374,7 @@ SynthesisResult GraspSynthesizer::synthesize(
 
   for (const QueryDensity& q : query) res.contact_links.push_back(q.link_name);
   for (const auto& e : experts) res.expert_names.push_back(e->name());
-  // The best n_samples: seeds take the places of the worst drawn grasps.
+  // The best n_samples of the drawn grasps (oversample times as many) and the seeds.
   if (order.size() > static_cast<size_t>(s.sampling.n_samples)) order.resize(static_cast<size_t>(s.sampling.n_samples));
   res.grasps.reserve(order.size());
   for (int i : order) {

@@ -24,6 +24,9 @@ MAX_SAMPLES = 1_000_000  # query samples per link, points drawn
 # Grasps sampled per target: every one is returned with its frames (~7-13 KB each with its Python objects), so
 # 100k take ~1 GB and ~10 s a target; a million, ~10 GB a target, can bring the machine down.
 MAX_GRASPS = 100_000
+# Grasps drawn per target (sampling.n_samples * sampling.oversample): a drawn grasp not returned is a few hundred
+# bytes, but each is scored by every expert.
+MAX_DRAWN = MAX_SAMPLES
 MAX_COMPONENTS = 1000  # mixture components
 MAX_ITERATIONS = 10_000_000  # EM or annealing iterations, simulation steps
 MAX_SIM_TIME = 60.0  # s: longest simulated phase (closing, lifting, holding)

@@ -21,7 +21,7 @@ from typing import Mapping
 import numpy as np
 
 from .. import _core
-from ..io.checks import MAX_COMPONENTS, MAX_GRASPS, MAX_SAMPLES, check_float, check_int, check_seed, quote
+from ..io.checks import MAX_COMPONENTS, MAX_DRAWN, MAX_GRASPS, MAX_SAMPLES, check_float, check_int, check_seed, quote
 
 # name -> (settings class, whether None is allowed: the expert is left out)
 PARTS = {
@@ -41,6 +41,9 @@ PARTS = {
 # The parts added after runs began to store their options (to_dict writes every part, None when off): a stored
 # document without one was made before it existed, so it ran without it (SynthesisOptions.from_stored).
 LATER_PARTS = ("grasp_depth",)
+# The fields added to a part after runs began to store their options, with the value that gives the behaviour from
+# before: a stored part without one ran that way (SynthesisOptions.from_stored).
+LATER_FIELDS = {("sampling", "oversample"): 1}
 COLLISION_MODELS = ("surface", "occupancy")
 # m: the default table clearance, for the tools that crop a table outside a synthesis (plots, the top-down planner)
 TABLE_CLEARANCE = _core.SegmentationSettings().table_clearance
@@ -109,6 +112,12 @@ class SynthesisOptions:
         check_int(s.n_samples, "sampling.n_samples", 1, MAX_GRASPS)
         check_int(s.n_optimise, "sampling.n_optimise", 0, MAX_GRASPS)
         check_int(s.max_sampling_rounds, "sampling.max_sampling_rounds", 1, 1000)
+        check_int(s.oversample, "sampling.oversample", 1, _core.MAX_OVERSAMPLE)
+        if s.n_samples * s.oversample > MAX_DRAWN:
+            raise ValueError(
+                f"sampling.n_samples * sampling.oversample (the grasps drawn) must be at most {MAX_DRAWN}, got "
+                f"{s.n_samples} * {s.oversample}"
+            )
         check_int(q.n_samples, "query.n_samples", 1, MAX_SAMPLES)
         check_int(q.n_components, "query.n_components", 1, MAX_COMPONENTS)
         if q.n_components > q.n_samples:
@@ -149,7 +158,7 @@ class SynthesisOptions:
     def paper(cls, **parts) -> "SynthesisOptions":
         """The paper's synthesis: the collision expert on the cloud's points and the plane alone (no solid volume,
         no charge of unseen space), each link's contact term its query density as it is (no floor), grasps drawn
-        from the query densities alone (no top-down seeds), no clear
+        from the query densities alone (no top-down seeds, n_samples drawn, not twice as many), no clear
         approach, no contact quality, no grasp depth, no completion, no split of a cluster
         larger than one object (the experiment's "paper" preset: its single objects, some longer than 15 cm, stay
         whole); `parts` as the constructor's."""
@@ -157,7 +166,7 @@ class SynthesisOptions:
             **{
                 "segmentation": _core.SegmentationSettings(split_touching=False),
                 "query": _core.QuerySettings(link_floor=None),
-                "sampling": _core.SamplingSettings(topdown_seeds=False),
+                "sampling": _core.SamplingSettings(topdown_seeds=False, oversample=1),
                 "collision": _core.CollisionSettings(
                     model="surface", volume=False, unseen_weight=0.0, unseen_margin=0.0
                 ),
@@ -228,10 +237,15 @@ class SynthesisOptions:
     @classmethod
     def from_stored(cls, d: Mapping) -> "SynthesisOptions":
         """The options a run stored (to_dict's form, written whole): as from_dict, but a part of LATER_PARTS that the
-        document leaves out is off, since the run was made before the part existed (from_dict would turn it on)."""
+        document leaves out is off, and a field of LATER_FIELDS its part leaves out has its value from before, since
+        the run was made before they existed (from_dict would give their defaults)."""
         if not isinstance(d, Mapping):
             return cls.from_dict(d)  # its error
-        return cls.from_dict({**{name: None for name in LATER_PARTS}, **d})
+        d = {**{name: None for name in LATER_PARTS}, **d}
+        for (part, name), before in LATER_FIELDS.items():
+            if isinstance(d.get(part), Mapping) and name not in d[part]:
+                d[part] = {**d[part], name: before}
+        return cls.from_dict(d)
 
     # -- what the C++ calls take
     def synthesizer_settings(

@@ -176,6 +176,36 @@ TEST(Synthesis, AnnealingSkipsABoundedLastExpertOnlyWhereTheOutcomeIsDecided) {
   EXPECT_GT(bounded->scored, 0);
 }
 
+TEST(Synthesis, OversamplingIsTheSearchOfMoreSamplesCutToNSamples) {
+  // oversample k draws and ranks k * n_samples grasps with the random numbers of a synthesis of k * n_samples, anneals
+  // the same best n_optimise, and returns the first n_samples of that synthesis's grasps, bit for bit.
+  const Fixture f = make_fixture();
+  const std::vector<std::shared_ptr<const Expert>> experts{
+      std::make_shared<KinematicFeasibilityExpert>(f.hand, Eigen::Vector4d(0, 0, 1, 0))};
+  SynthesizerSettings wide = small_settings(4), over = small_settings(4);
+  wide.sampling.n_samples = 90;
+  wide.sampling.oversample = 1;
+  over.sampling.n_samples = 30;
+  over.sampling.oversample = 3;
+  const SynthesisResult a = f.synth->synthesize(f.box.frames, f.box.features, *f.collision, experts, wide);
+  const SynthesisResult b = f.synth->synthesize(f.box.frames, f.box.features, *f.collision, experts, over);
+  ASSERT_EQ(a.grasps.size(), 90u);
+  ASSERT_EQ(b.grasps.size(), 30u);
+  for (std::size_t i = 0; i < b.grasps.size(); ++i) {
+    EXPECT_EQ(a.grasps[i].T_world_wrist, b.grasps[i].T_world_wrist) << i;
+    EXPECT_EQ(a.grasps[i].joints, b.grasps[i].joints) << i;
+    EXPECT_EQ(a.grasps[i].log_likelihood, b.grasps[i].log_likelihood) << i;
+    EXPECT_EQ(a.grasps[i].optimised, b.grasps[i].optimised) << i;
+  }
+  EXPECT_EQ(a.evaluations, b.evaluations);
+  // and it is a wider search than n_samples alone: another draw, no worse a best grasp on this box
+  SynthesizerSettings narrow = over;
+  narrow.sampling.oversample = 1;
+  const SynthesisResult c = f.synth->synthesize(f.box.frames, f.box.features, *f.collision, experts, narrow);
+  EXPECT_LT(c.evaluations, b.evaluations);
+  EXPECT_NE(c.grasps.front().T_world_wrist, b.grasps.front().T_world_wrist);
+}
+
 TEST(Synthesis, PointWeightsSteerTheQueryDensities) {
   // Weight 0 on every face but the +x side: each link's query density then lies on +x faces' frames moved by
   // its contact model, so its mean position is the same as that of densities fitted on the +x face alone,
@@ -229,6 +259,14 @@ TEST(Synthesis, BadInputThrows) {
   EXPECT_THROW(
       f.synth->synthesize(f.box.frames, RowMatrixXd::Zero(f.box.frames.rows(), 3), *f.collision, {}, small_settings(0)),
       std::invalid_argument);
+  SynthesizerSettings s = small_settings(0);
+  for (const int bad : {0, kMaxOversample + 1}) {
+    s.sampling.oversample = bad;
+    EXPECT_THROW(f.synth->synthesize(f.box.frames, f.box.features, *f.collision, {}, s), std::invalid_argument);
+  }
+  s.sampling.oversample = kMaxOversample;
+  s.sampling.n_samples = std::numeric_limits<int>::max() / 2;
+  EXPECT_THROW(f.synth->synthesize(f.box.frames, f.box.features, *f.collision, {}, s), std::invalid_argument);
   Eigen::VectorXd two(2);
   two << 0.0, 0.0;
   EXPECT_THROW(GraspSynthesizer(f.hand, f.synth->contact_models(), ConfigModel(two, two, RowMatrixXd::Zero(2, 2))),

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 from graspmix import SynthesisOptions
 from graspmix.io.checks import MAX_GRASPS, MAX_SAMPLES
-from graspmix.model.options import LATER_PARTS, PARTS, options_field_names
+from graspmix.model.options import LATER_FIELDS, LATER_PARTS, PARTS, options_field_names
 
 FAST = {"sampling.n_samples": 30, "sampling.n_optimise": 1, "annealing.iterations": 10}
 
@@ -54,6 +54,24 @@ def test_a_stored_run_made_before_a_later_part_existed_ran_without_it():
         assert getattr(SynthesisOptions.from_dict(old), name) is not None  # a hand-written file: its default
     with pytest.raises(ValueError, match="expected an object of parts"):
         SynthesisOptions.from_stored([1])
+
+
+def test_a_stored_part_without_a_later_field_ran_with_its_value_from_before():
+    stored = SynthesisOptions().to_dict()
+    for (part, name), before in LATER_FIELDS.items():
+        assert getattr(getattr(SynthesisOptions(), part), name) != before  # the default changed the behaviour
+        old = {**stored, part: {k: v for k, v in stored[part].items() if k != name}}
+        assert getattr(getattr(SynthesisOptions.from_stored(old), part), name) == before
+        assert getattr(getattr(SynthesisOptions.from_dict(old), part), name) != before  # a hand-written file
+
+
+def test_oversampling_is_bounded_and_off_in_the_papers_synthesis():
+    assert SynthesisOptions.paper().sampling.oversample == 1
+    for bad in (0, graspmix._core.MAX_OVERSAMPLE + 1):
+        with pytest.raises(ValueError, match="sampling.oversample"):
+            SynthesisOptions().updated({"sampling.oversample": bad})
+    with pytest.raises(ValueError, match=r"n_samples \* sampling.oversample"):
+        SynthesisOptions().updated({"sampling.n_samples": 60_000, "sampling.oversample": 20})
 
 
 def test_switching_an_expert_on_keeps_its_settings_and_a_field_turns_it_on():
@@ -142,7 +160,11 @@ def test_each_part_reaches_the_synthesis(gmm):
     # sampling: how many grasps come back; max_sampling_rounds bounds the rejection sampling's batches.
     assert len(gmm.synthesize(cloud, base.updated({"sampling.n_samples": 12}))) == 12
     one_round = gmm.synthesize(cloud, base.updated({"sampling.max_sampling_rounds": 1}))
-    assert one_round.rejected <= 30 < ref.rejected
+    assert one_round.rejected <= 30 * base.sampling.oversample < ref.rejected
+    # oversampling: twice as many drawn by default (once in the paper's preset), as many returned
+    assert base.sampling.oversample == 2 and SynthesisOptions.paper().sampling.oversample == 1
+    once = gmm.synthesize(cloud, base.updated({"sampling.oversample": 1}))
+    assert len(once) == 30 and once.evaluations < ref.evaluations
     # the top-down seeds (on by default, off in the paper's preset): scored with the drawn grasps, so more
     # evaluations, a grasp straight down among those returned, and the count still n_samples.
     assert not SynthesisOptions.paper().sampling.topdown_seeds and base.sampling.topdown_seeds

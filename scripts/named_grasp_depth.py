@@ -14,8 +14,6 @@ object's height (under 45 mm: flat). --scenes: only the first N scenes (default 
 from __future__ import annotations
 
 import argparse
-import csv
-import gzip
 import json
 import sys
 from pathlib import Path
@@ -26,21 +24,13 @@ BANDS_MM = (-1000, 5, 10, 15, 20, 30, 1000)
 FLAT_M = 0.045
 
 
-def rows_of(run: Path) -> list[dict]:
-    path = run / "named_attempts.csv"
-    if not path.exists():
-        path = run / "named_attempts.csv.gz"
-    with gzip.open(path, "rt") if path.suffix == ".gz" else open(path) as f:
-        return list(csv.DictReader(f))
-
-
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("run", type=Path)
     ap.add_argument("--scenes", type=int, default=None)
     args = ap.parse_args(argv)
 
-    from graspmix.clutter.named import object_tops
+    from graspmix.clutter.named import named_rows, object_tops
     from graspmix.clutter.protocol import clutter_protocol_from_json
     from graspmix.model.grasp_frames import FrameMaker
     from graspmix.sim.execution import load_hand
@@ -50,7 +40,7 @@ def main(argv=None) -> int:
     hand = load_hand(None)
     frames = FrameMaker(hand)
     depth, tops, held = [], [], []
-    for r in rows_of(args.run):
+    for r in named_rows(args.run):
         if r["outcome"] not in ("success", "not held") or not r["grasp"]:
             continue
         if args.scenes is not None and int(r["scene"]) >= args.scenes:

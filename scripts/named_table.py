@@ -11,46 +11,39 @@ RUN is a run folder (named_attempts.csv or named_attempts.csv.gz).
 from __future__ import annotations
 
 import argparse
-import csv
-import gzip
 import sys
 from collections import Counter
 from pathlib import Path
 
+from graspmix.clutter.named import NO_TARGET, named_rows
 from graspmix.experiment.stats import mcnemar_exact, wilson_ci
 
 NEIGHBOUR = ("wrong object", "two objects lifted")
 
 
 def load(run: Path) -> dict:
-    """(mode, scene, method, pick) -> the attempt's row."""
-    path = run / "named_attempts.csv"
-    if not path.exists():
-        path = run / "named_attempts.csv.gz"
-    if not path.exists():
-        raise ValueError(f"{run}: no named_attempts.csv(.gz): not a `clutter --task named` run")
-    with gzip.open(path, "rt") if path.suffix == ".gz" else open(path) as f:
-        return {(r["mode"], r["scene"], r["method"], r["pick"]): r for r in csv.DictReader(f)}
+    """(mode, scene, method, pick) -> the attempt's row (picks with no eligible target are no attempts)."""
+    return {(r["mode"], r["scene"], r["method"], r["pick"]): r for r in named_rows(run) if r["outcome"] != NO_TARGET}
 
 
 def same_attempt(a: dict, b: dict) -> bool:
     return a["scene_seed"] == b["scene_seed"] and a["target"] == b["target"] and a["point"] == b["point"]
 
 
-def row(name: str, runs: dict, base: str | None) -> str:
+def row(name: str, runs: dict, base: str) -> str:
     rows = runs[name]
     n = len(rows)
-    ok = sum(r["success"] == "1" for r in rows.values())
+    ok = sum(r["success"] == 1 for r in rows.values())
     lo, hi = wilson_ci(ok, n)
     outcomes = Counter(r["outcome"] for r in rows.values())
     neighbour = sum(outcomes[k] for k in NEIGHBOUR)
     text = ", ".join(f"{k} {v}" for k, v in outcomes.most_common() if k != "success")
     paired = ""
-    if base is not None and base != name:
+    if name != base:
         # the same attempt: the same scene (its seed) and the same named object
         both = {k for k in runs[base].keys() & rows.keys() if same_attempt(runs[base][k], rows[k])}
-        a = {k for k in both if runs[base][k]["success"] == "1"}
-        b = {k for k in both if rows[k]["success"] == "1"}
+        a = {k for k in both if runs[base][k]["success"] == 1}
+        b = {k for k in both if rows[k]["success"] == 1}
         gained, lost = len(b - a), len(a - b)
         if both:
             paired = f"+{gained} / -{lost}, p = {mcnemar_exact(lost, gained):.2g}"

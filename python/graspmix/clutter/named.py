@@ -312,3 +312,18 @@ def done_named(path) -> set[tuple]:
     if not Path(path).is_file():
         return set()
     return {(r["mode"], r["scene"], r["method"], r["pick"]) for r in read_rows(path, NAMED_CSV)}
+
+
+def named_rows(run_dir) -> list[dict]:
+    """A named run's attempts (read_rows of NAMED_CSV): its named_attempts.csv, or the .csv.gz the repository keeps
+    results as; ValueError when the folder has neither."""
+    from pathlib import Path
+
+    from ..experiment.log import read_rows
+
+    path = Path(run_dir) / NAMED_CSV_NAME
+    if not path.exists():
+        path = path.with_name(NAMED_CSV_NAME + ".gz")
+    if not path.exists():
+        raise ValueError(f"{run_dir}: no {NAMED_CSV_NAME}(.gz): not a `clutter --task named` run")
+    return read_rows(path, NAMED_CSV)

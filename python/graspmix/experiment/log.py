@@ -4,6 +4,7 @@ columns (a CsvSchema): the paper's experiment uses EXPERIMENT_CSV, the clutter p
 from __future__ import annotations
 
 import csv
+import gzip
 import io
 import os
 from dataclasses import dataclass
@@ -124,10 +125,16 @@ class AttemptLog:
 
 def read_rows(path: str | Path, schema: CsvSchema = EXPERIMENT_CSV) -> list[dict]:
     """The rows of an attempts.csv (of the given schema), typed (ints, floats, None for empty numbers), in
-    file order; a trailing partial line (a killed run) is ignored."""
+    file order; a trailing partial line (a killed run) is ignored. A path ending in .gz is read gzip-compressed
+    (the results kept in the repository)."""
     path = check_input_file(path, schema.what)
     try:
-        text = path.read_bytes().decode("utf-8")
+        raw = path.read_bytes()
+        if path.suffix == ".gz":
+            raw = gzip.decompress(raw)
+        text = raw.decode("utf-8")
+    except (gzip.BadGzipFile, EOFError) as e:
+        raise ValueError(f"{path}: not a gzip file ({e})") from None
     except UnicodeDecodeError as e:
         raise ValueError(f"{path}: not UTF-8 text (byte {e.start})") from None
     if text and not text.endswith("\n"):

@@ -9,20 +9,33 @@ import subprocess
 import sys
 from pathlib import Path
 
+from graspmix.clutter.named import NAMED_CSV, NAMED_CSV_NAME, NO_TARGET
 from scipy.stats import binomtest, norm
 
 REPO = Path(__file__).resolve().parents[3]
-FIELDS = ["mode", "scene", "method", "pick", "scene_seed", "target", "point", "outcome", "success"]
 
 
 def write_run(folder: Path, outcomes: list[str], seed_offset: int = 0, gz: bool = False) -> Path:
+    """A named-object run's attempts in the runner's schema (every column; those the table does not read blank)."""
     folder.mkdir()
-    path = folder / ("named_attempts.csv.gz" if gz else "named_attempts.csv")
+    path = folder / (NAMED_CSV_NAME + (".gz" if gz else ""))
     with gzip.open(path, "wt", newline="") if gz else open(path, "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(FIELDS)
+        w = csv.DictWriter(f, NAMED_CSV.columns, restval="")
+        w.writeheader()
         for i, o in enumerate(outcomes):
-            w.writerow(["packed", i, "gmm", 0, 1000 + i + seed_offset, 2, "0.1,0.2,0.03", o, int(o == "success")])
+            w.writerow(
+                dict(
+                    mode="packed",
+                    scene=i,
+                    method="gmm",
+                    pick=0,
+                    scene_seed=1000 + i + seed_offset,
+                    target=2,
+                    point="0.1,0.2,0.03",
+                    outcome=o,
+                    success=int(o == "success"),
+                )
+            )
     return folder
 
 
@@ -44,13 +57,13 @@ def wilson(k: int, n: int) -> tuple[float, float]:
 
 def test_counts_interval_and_pairs_against_the_closed_forms(tmp_path):
     s, h, w, t = "success", "not held", "wrong object", "two objects lifted"
-    base = write_run(tmp_path / "base", [s, h, h, h, h, h, s, s, w, t])
+    base = write_run(tmp_path / "base", [s, h, h, h, h, h, s, s, w, t, NO_TARGET])  # the last: no attempt
     # against base: attempts 1-5 and 8 gained, 0 lost, 6 and 7 lifted in both, 9 in neither
     new = write_run(tmp_path / "new", [h, s, s, s, s, s, s, s, s, w], gz=True)
     other = write_run(tmp_path / "other", [s] * 10, seed_offset=100)  # other scenes: no pairs
     rows = table(f"base={base}", f"new={new}", f"other={other}")
     lo, hi = wilson(8, 10)
-    assert rows["new"][1] == "10"
+    assert rows["new"][1] == rows["base"][1] == "10"  # the pick with no target is no attempt
     assert rows["new"][2] == f"8, 80.0% [{100 * lo:.1f}, {100 * hi:.1f}]"
     assert rows["base"][3] == "2" and rows["new"][3] == "1"  # a neighbour lifted, alone or with the target
     assert rows["new"][5] == f"+6 / -1, p = {binomtest(1, 7, 0.5).pvalue:.2g}"
@@ -66,6 +79,12 @@ def test_a_folder_without_named_attempts_is_one_line_and_exit_2(tmp_path):
         text=True,
     )
     assert r.returncode == 2 and len(r.stderr.strip().splitlines()) == 1 and "named_attempts" in r.stderr
+    (tmp_path / "bad").mkdir()
+    (tmp_path / "bad" / (NAMED_CSV_NAME + ".gz")).write_bytes(b"not gzip")
+    r = subprocess.run(
+        [sys.executable, str(REPO / "scripts/named_table.py"), f"x={tmp_path / 'bad'}"], capture_output=True, text=True
+    )
+    assert r.returncode == 2 and len(r.stderr.strip().splitlines()) == 1 and "not a gzip file" in r.stderr
     r = subprocess.run(
         [sys.executable, str(REPO / "scripts/named_table.py"), "noequals"], capture_output=True, text=True
     )

@@ -8,6 +8,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #ifdef __SSE2__
@@ -71,12 +72,34 @@ struct BlockRow {
 
 /// A thread's buffers for a block's returns and their depths.
 struct BlockBuffers {
-  std::vector<Eigen::Index> returns;
+  std::vector<std::pair<int, int>> returns;  ///< (v, u)
   std::vector<double> z;
 };
 
-Blocks block_points(const Eigen::Ref<const Vec3Array>& S, int height, int width, int stride, double near,
-                    const Eigen::Isometry3d& T, BlockFilter& filter, int every = 1) {
+/// The sensor-frame points of an organized cloud, pixel by pixel: (v, u) is row v * width + u of S, a return where
+/// the row is finite.
+struct OrganizedPixels {
+  const Eigen::Ref<const Vec3Array>& S;
+  int width;
+  bool has(int v, int u) const { return S.row(index(v, u)).allFinite(); }
+  double z(int v, int u) const { return S(index(v, u), 2); }
+  Eigen::Vector3d point(int v, int u) const { return S.row(index(v, u)).transpose(); }
+  Eigen::Index index(int v, int u) const { return static_cast<Eigen::Index>(v) * width + u; }
+};
+
+/// The same of a depth image, each point back-projected where it is read (PinholeCamera::back_project's values,
+/// without the image of points it would make).
+struct DepthPixels {
+  const Eigen::Ref<const DepthImage>& depth;
+  const PinholeCamera& camera;
+  bool has(int v, int u) const { return has_return(depth(v, u)); }
+  double z(int v, int u) const { return depth(v, u); }
+  Eigen::Vector3d point(int v, int u) const { return camera.back_project(u, v, depth(v, u)); }
+};
+
+template <class Pixels>
+Blocks block_points(const Pixels& S, int height, int width, int stride, double near, const Eigen::Isometry3d& T,
+                    BlockFilter& filter, int every = 1) {
   // A block's height above the plane from its sensor-frame point: n . (T p) + d = (R^T n) . p + (n . t + d).
   Eigen::Vector3d n_sensor = Eigen::Vector3d::Zero();
   double d_sensor = 1;  // without a plane every block is "above"
@@ -100,40 +123,38 @@ Blocks block_points(const Eigen::Ref<const Vec3Array>& S, int height, int width,
     const int bv = static_cast<int>(i);  // row bv of blocks into made[bv]
     if (bv % every != 0) return;         // one block in `every` along each axis
     BlockRow& row = made[static_cast<std::size_t>(bv)];
-    std::vector<Eigen::Index>& returns = buffers.returns;
+    std::vector<std::pair<int, int>>& returns = buffers.returns;
     std::vector<double>& z = buffers.z;
     Eigen::Vector3d world;
-    const auto add = [&row, &world](Eigen::Index pixel) {
+    const auto add = [&row, &world, width](int v, int u) {
       row.xyz.insert(row.xyz.end(), world.data(), world.data() + 3);
-      row.pixels.push_back(static_cast<int>(pixel));
+      row.pixels.push_back(v * width + u);
     };
     for (int bu = 0; bu < cols; bu += every) {
       if (stride == 1) {  // each return its own block
-        const Eigen::Index r = static_cast<Eigen::Index>(bv) * width + bu;
-        if (S.row(r).allFinite() && keep(S.row(r).transpose(), world, row.seen)) add(r);
+        if (S.has(bv, bu) && keep(S.point(bv, bu), world, row.seen)) add(bv, bu);
         continue;
       }
       returns.clear();
       z.clear();
       for (int v = bv * stride; v < std::min(height, (bv + 1) * stride); ++v)
         for (int u = bu * stride; u < std::min(width, (bu + 1) * stride); ++u) {
-          const Eigen::Index r = static_cast<Eigen::Index>(v) * width + u;
-          if (!S.row(r).allFinite()) continue;
-          returns.push_back(r);
-          z.push_back(S(r, 2));
+          if (!S.has(v, u)) continue;
+          returns.emplace_back(v, u);
+          z.push_back(S.z(v, u));
         }
       if (returns.empty()) continue;
       const double median = upper_median(z);
       Eigen::Vector3d sum = Eigen::Vector3d::Zero();
       int count = 0;
-      Eigen::Index first = -1;
-      for (const Eigen::Index r : returns) {
-        if (std::abs(S(r, 2) - median) > near) continue;
-        sum += S.row(r).transpose();
-        if (count++ == 0) first = r;
+      std::pair<int, int> first{-1, -1};
+      for (const auto& [v, u] : returns) {
+        if (std::abs(S.z(v, u) - median) > near) continue;
+        sum += S.point(v, u);
+        if (count++ == 0) first = {v, u};
       }
       // the median's own return is always counted
-      if (keep(sum / count, world, row.seen)) add(first);
+      if (keep(sum / count, world, row.seen)) add(first.first, first.second);
     }
   });
   Eigen::Index n = 0;
@@ -318,11 +339,13 @@ Blocks joined(const Blocks& a, const Blocks& b) {
   return out;
 }
 
-/// segment_depth's steps on an organized sensor-frame cloud S and its depth image. The support plane is searched
-/// for (or a given one turned towards the camera) on blocks of plane_image_stride pixels: RANSAC and the rule need
-/// the table's extent, not its every point; the objects are then made of the fine blocks above it.
-Segmentation segment_image(const Eigen::Ref<const Vec3Array>& S, const Eigen::Ref<const DepthImage>& depth,
-                           const PinholeCamera& camera, const Eigen::Isometry3d& T, const SegmentationSettings& s,
+/// segment_depth's steps on an organized sensor-frame cloud S (its pixels: OrganizedPixels or DepthPixels) and its
+/// depth image. The support plane is searched for (or a given one turned towards the camera) on blocks of
+/// plane_image_stride pixels: RANSAC and the rule need the table's extent, not its every point; the objects are then
+/// made of the fine blocks above it.
+template <class Pixels>
+Segmentation segment_image(const Pixels& S, const Eigen::Ref<const DepthImage>& depth, const PinholeCamera& camera,
+                           const Eigen::Isometry3d& T, const SegmentationSettings& s,
                            const std::optional<Eigen::Vector4d>& plane, Clock::time_point t0, std::int64_t n_returns) {
   Segmentation out;
   out.n_input = static_cast<std::size_t>(n_returns);
@@ -423,7 +446,7 @@ Segmentation segment_depth(const Eigen::Ref<const DepthImage>& depth, const Pinh
   detail::check_segmentation_settings(settings);
   const std::int64_t n = camera.check_image(depth, "depth");
   check_view(n, T_world_camera, "depth");
-  return segment_image(camera.back_project(depth, "depth"), depth, camera, T_world_camera, settings, plane, t0, n);
+  return segment_image(DepthPixels{depth, camera}, depth, camera, T_world_camera, settings, plane, t0, n);
 }
 
 namespace {
@@ -451,7 +474,8 @@ Segmentation segment_organized(const Eigen::Ref<const Vec3Array>& points, int he
   detail::check_segmentation_settings(settings);
   const OrganizedInput in = checked_organized(points, height, width, T_world_camera);
   const PinholeFit fit = fit_pinhole(points, height, width, max_fit_rms, "points");
-  return segment_image(points, in.depth, fit.camera, T_world_camera, settings, plane, t0, in.n_returns);
+  return segment_image(OrganizedPixels{points, width}, in.depth, fit.camera, T_world_camera, settings, plane, t0,
+                       in.n_returns);
 }
 
 Segmentation segment_organized(const Eigen::Ref<const Vec3Array>& points, const PinholeCamera& camera,
@@ -460,7 +484,8 @@ Segmentation segment_organized(const Eigen::Ref<const Vec3Array>& points, const 
   const auto t0 = Clock::now();
   detail::check_segmentation_settings(settings);
   const OrganizedInput in = checked_organized(points, camera.height(), camera.width(), T_world_camera);
-  return segment_image(points, in.depth, camera, T_world_camera, settings, plane, t0, in.n_returns);
+  return segment_image(OrganizedPixels{points, camera.width()}, in.depth, camera, T_world_camera, settings, plane, t0,
+                       in.n_returns);
 }
 
 }  // namespace graspmix

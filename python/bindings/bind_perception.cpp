@@ -223,6 +223,9 @@ void bind_perception(py::module_& m) {
              "a split piece with fewer points goes back to the neighbour it touches most")
       .field("split_max_size", &SegmentationSettings::split_max_size,
              "m: one object's largest principal-box side; only larger clusters are cut, and pieces re-join within it")
+      .field("split_named_max_size", &SegmentationSettings::split_named_max_size,
+             "m: with a point target, its segment is tried again by the split rule gated at this size "
+             "(split_object_near)")
       .field("visibility_tolerance", &SegmentationSettings::visibility_tolerance,
              "m: Segmentation.visibility's surface_tolerance (within this of the observed surface is Surface)")
       .field("visibility_resolution", &SegmentationSettings::visibility_resolution,

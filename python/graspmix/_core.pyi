@@ -663,6 +663,7 @@ class SegmentationSettings:
       split_concavity_tolerance = 0.35: rad: a crease less concave than this is no cut (LCCP)
       split_min_points = 150: a split piece with fewer points goes back to the neighbour it touches most
       split_max_size = 0.15: m: one object's largest principal-box side; only larger clusters are cut, and pieces re-join within it
+      split_named_max_size = 0.12: m: with a point target, its segment is tried again by the split rule gated at this size (split_object_near)
       visibility_tolerance = 0.008: m: Segmentation.visibility's surface_tolerance (within this of the observed surface is Surface)
       visibility_resolution = 0.005: rad: the bin of Segmentation.visibility's range images (VisibilitySettings.angular_resolution)
       visibility_median_window = 1: px: segment_depth's visibility model keeps the depth image median-filtered over (2 r + 1)^2 pixels
@@ -672,7 +673,7 @@ class SegmentationSettings:
       workspace = []: m: the world-frame box [x_min, y_min, z_min, x_max, y_max, z_max] the input is cropped to first; [] = none
     """
     __hash__: typing.ClassVar[None] = None
-    _fields: typing.ClassVar[tuple] = ('voxel_size', 'plane_distance', 'plane_max_iterations', 'seed', 'find_plane', 'plane_candidates', 'plane_min_fraction', 'plane_behind_distance', 'plane_max_behind_fraction', 'plane_margin', 'table_clearance', 'remove_outliers', 'outlier_neighbours', 'outlier_std_ratio', 'cluster_tolerance', 'min_cluster_size', 'max_cluster_size', 'merge_seen_through', 'merge_through_fraction', 'merge_inset', 'join_occluded', 'join_max_gap', 'join_seen_margin', 'join_max_size', 'split_touching', 'split_voxel_resolution', 'split_seed_resolution', 'split_concavity_tolerance', 'split_min_points', 'split_max_size', 'visibility_tolerance', 'visibility_resolution', 'visibility_median_window', 'image_stride', 'plane_image_stride', 'workspace')
+    _fields: typing.ClassVar[tuple] = ('voxel_size', 'plane_distance', 'plane_max_iterations', 'seed', 'find_plane', 'plane_candidates', 'plane_min_fraction', 'plane_behind_distance', 'plane_max_behind_fraction', 'plane_margin', 'table_clearance', 'remove_outliers', 'outlier_neighbours', 'outlier_std_ratio', 'cluster_tolerance', 'min_cluster_size', 'max_cluster_size', 'merge_seen_through', 'merge_through_fraction', 'merge_inset', 'join_occluded', 'join_max_gap', 'join_seen_margin', 'join_max_size', 'split_touching', 'split_voxel_resolution', 'split_seed_resolution', 'split_concavity_tolerance', 'split_min_points', 'split_max_size', 'split_named_max_size', 'visibility_tolerance', 'visibility_resolution', 'visibility_median_window', 'image_stride', 'plane_image_stride', 'workspace')
     def __copy__(self) -> SegmentationSettings:
         ...
     def __deepcopy__(self, memo: typing.Any) -> SegmentationSettings:
@@ -689,7 +690,7 @@ class SegmentationSettings:
     @typing.overload
     def __init__(self, **kwargs) -> None:
         """
-        Keyword constructor: any of the fields (voxel_size, plane_distance, plane_max_iterations, seed, find_plane, plane_candidates, plane_min_fraction, plane_behind_distance, plane_max_behind_fraction, plane_margin, table_clearance, remove_outliers, outlier_neighbours, outlier_std_ratio, cluster_tolerance, min_cluster_size, max_cluster_size, merge_seen_through, merge_through_fraction, merge_inset, join_occluded, join_max_gap, join_seen_margin, join_max_size, split_touching, split_voxel_resolution, split_seed_resolution, split_concavity_tolerance, split_min_points, split_max_size, visibility_tolerance, visibility_resolution, visibility_median_window, image_stride, plane_image_stride, workspace); the others keep their defaults.
+        Keyword constructor: any of the fields (voxel_size, plane_distance, plane_max_iterations, seed, find_plane, plane_candidates, plane_min_fraction, plane_behind_distance, plane_max_behind_fraction, plane_margin, table_clearance, remove_outliers, outlier_neighbours, outlier_std_ratio, cluster_tolerance, min_cluster_size, max_cluster_size, merge_seen_through, merge_through_fraction, merge_inset, join_occluded, join_max_gap, join_seen_margin, join_max_size, split_touching, split_voxel_resolution, split_seed_resolution, split_concavity_tolerance, split_min_points, split_max_size, split_named_max_size, visibility_tolerance, visibility_resolution, visibility_median_window, image_stride, plane_image_stride, workspace); the others keep their defaults.
         """
     def __repr__(self) -> str:
         ...
@@ -910,6 +911,14 @@ class SegmentationSettings:
         """
     @split_min_points.setter
     def split_min_points(self, arg0: typing.Any) -> None:
+        ...
+    @property
+    def split_named_max_size(self) -> float:
+        """
+        m: with a point target, its segment is tried again by the split rule gated at this size (split_object_near)
+        """
+    @split_named_max_size.setter
+    def split_named_max_size(self, arg0: typing.Any) -> None:
         ...
     @property
     def split_seed_resolution(self) -> float:
@@ -4479,6 +4488,7 @@ def segment_depth(depth: typing.Any, camera: PinholeCamera, T_world_camera: typi
       split_concavity_tolerance = 0.35: rad: a crease less concave than this is no cut (LCCP)
       split_min_points = 150: a split piece with fewer points goes back to the neighbour it touches most
       split_max_size = 0.15: m: one object's largest principal-box side; only larger clusters are cut, and pieces re-join within it
+      split_named_max_size = 0.12: m: with a point target, its segment is tried again by the split rule gated at this size (split_object_near)
       visibility_tolerance = 0.008: m: Segmentation.visibility's surface_tolerance (within this of the observed surface is Surface)
       visibility_resolution = 0.005: rad: the bin of Segmentation.visibility's range images (VisibilitySettings.angular_resolution)
       visibility_median_window = 1: px: segment_depth's visibility model keeps the depth image median-filtered over (2 r + 1)^2 pixels
@@ -4524,6 +4534,7 @@ def segment_organized(points: typing.Any, T_world_camera: typing.Any, plane: typ
       split_concavity_tolerance = 0.35: rad: a crease less concave than this is no cut (LCCP)
       split_min_points = 150: a split piece with fewer points goes back to the neighbour it touches most
       split_max_size = 0.15: m: one object's largest principal-box side; only larger clusters are cut, and pieces re-join within it
+      split_named_max_size = 0.12: m: with a point target, its segment is tried again by the split rule gated at this size (split_object_near)
       visibility_tolerance = 0.008: m: Segmentation.visibility's surface_tolerance (within this of the observed surface is Surface)
       visibility_resolution = 0.005: rad: the bin of Segmentation.visibility's range images (VisibilitySettings.angular_resolution)
       visibility_median_window = 1: px: segment_depth's visibility model keeps the depth image median-filtered over (2 r + 1)^2 pixels
@@ -4567,6 +4578,7 @@ def segment_scene(points: typing.Any, viewpoints: typing.Any = None, plane: typi
       split_concavity_tolerance = 0.35: rad: a crease less concave than this is no cut (LCCP)
       split_min_points = 150: a split piece with fewer points goes back to the neighbour it touches most
       split_max_size = 0.15: m: one object's largest principal-box side; only larger clusters are cut, and pieces re-join within it
+      split_named_max_size = 0.12: m: with a point target, its segment is tried again by the split rule gated at this size (split_object_near)
       visibility_tolerance = 0.008: m: Segmentation.visibility's surface_tolerance (within this of the observed surface is Surface)
       visibility_resolution = 0.005: rad: the bin of Segmentation.visibility's range images (VisibilitySettings.angular_resolution)
       visibility_median_window = 1: px: segment_depth's visibility model keeps the depth image median-filtered over (2 r + 1)^2 pixels

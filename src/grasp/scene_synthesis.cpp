@@ -274,6 +274,10 @@ SceneSynthesis synthesize_scene(const SceneInput& input, const std::vector<Scene
   Vec3Array given_viewpoints;
   std::tie(out.scene, given_viewpoints) = segment_input(input, settings.segmentation, request.plane);
   out.viewpoints = point_viewpoints(out.scene, given_viewpoints);
+  // A point names one object: its segment is tried again by the split rule below the size gate.
+  if (request.target.kind == Target::Kind::Point && settings.segmentation.split_touching &&
+      split_object_near(out.scene, out.viewpoints, request.target.point, settings.segmentation) > 0)
+    out.viewpoints = point_viewpoints(out.scene, given_viewpoints);
   if (settings.completion)
     out.completion = complete_scene(out.scene, *settings.completion);
   else

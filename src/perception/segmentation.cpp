@@ -441,6 +441,18 @@ void detail::segment_on_support(const Vec3Array& P, const Eigen::VectorXi& sourc
   finish_objects(P, sources, cams, s, extract(P, plane ? &out.plane : nullptr, s, out.times), out, table_sample);
 }
 
+void detail::regroup(Segmentation& scene, std::vector<std::vector<int>> groups, const SegmentationSettings& s) {
+  Extraction e;
+  e.groups = std::move(groups);
+  e.n_plane = scene.n_plane;
+  e.n_outliers = scene.n_outliers;
+  e.n_small = scene.n_small_clusters;
+  const Vec3Array P = scene.points;
+  const Eigen::VectorXi sources = scene.sources;
+  scene.objects.clear();
+  finish(P, sources, e, s, scene);
+}
+
 Segmentation segment_scene(const Vec3Array& points, const Vec3Array& viewpoints, const SegmentationSettings& s,
                            const std::optional<Eigen::Vector4d>& plane) {
   const auto t0 = std::chrono::steady_clock::now();

@@ -74,6 +74,8 @@ void detail::check_segmentation_settings(const SegmentationSettings& s) {
     bad("split_voxel_resolution must be > 0 (m), split_seed_resolution larger (m), split_concavity_tolerance in "
         "[0, pi/2) rad, split_min_points >= 1 and split_max_size > 0 (m)");
   }
+  if (!(finite_ge(s.split_named_max_size, 0) && s.split_named_max_size > 0))
+    bad("split_named_max_size must be a finite size > 0 (m)");
   try {
     check_visibility_settings(visibility_settings(s));
   } catch (const std::invalid_argument&) {

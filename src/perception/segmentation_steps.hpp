@@ -4,6 +4,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -67,5 +68,9 @@ void search_support(const Vec3Array& P, const Cameras& cams, const SegmentationS
                     const std::optional<Eigen::Vector4d>& plane, Segmentation& out);
 void segment_on_support(const Vec3Array& P, const Eigen::VectorXi& sources, const Cameras& cams,
                         const SegmentationSettings& s, Segmentation& out, const Vec3Array* table_sample = nullptr);
+
+/// The scene's objects made again from `groups` (rows of scene.points, each sorted): described, ordered and indexed
+/// as segment_scene does; the counts of points dropped kept.
+void regroup(Segmentation& scene, std::vector<std::vector<int>> groups, const SegmentationSettings& s);
 
 }  // namespace graspmix::detail

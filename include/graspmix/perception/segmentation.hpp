@@ -163,6 +163,11 @@ struct SegmentationSettings {
   /// m: only clusters larger than this are cut, and pieces re-join within it (rule 3): the largest object the
   /// clutter lists hold, as join_max_size
   double split_max_size = 0.15;
+  /// m: with a point target, the split rule is tried again on the segment the point names, gated at this size instead
+  /// of split_max_size (split_object_near; with split_touching): the user says one object is there. Of the 27
+  /// neighbours lifted instead of a named object from the depth image on the development scenes, 26 came from one
+  /// segment of both, no larger than one object; with it 12 (docs/one-view.md, "The named segment split again").
+  double split_named_max_size = 0.12;
   /// The model of what the cameras saw (Segmentation::visibility, built when viewpoints are given): m within
   /// which a point is on the observed surface, and rad per bin of each view's range image (VisibilitySettings).
   /// 8 mm, not the model's own 5 mm: a scene's cloud carries its camera's depth noise and a range image's bin
@@ -259,5 +264,16 @@ struct Segmentation {
 Segmentation segment_scene(const Vec3Array& points, const Vec3Array& viewpoints,
                            const SegmentationSettings& settings = {},
                            const std::optional<Eigen::Vector4d>& plane = std::nullopt);
+
+/// The split rule (above) on the one object of `scene` whose points come nearest `point`, gated at
+/// settings.split_named_max_size instead of split_max_size (its other settings as given): a point target names one
+/// object, so a segment there no larger than one object may still hold two (the named object and a neighbour it
+/// touches, which the size gate leaves whole). The rule's limit: a single object that long with a concave crease (a
+/// mug with its handle) is cut too, and the piece nearest the point is its target. viewpoints: one row, or one per
+/// point of the scene (none: nothing is cut). When it cuts, the objects are described, ordered and indexed again as
+/// segment_scene does (n_split counts the pieces added). Returns the pieces added (0: the scene unchanged). Throws
+/// std::invalid_argument for a non-finite point or viewpoints of another number of rows.
+std::size_t split_object_near(Segmentation& scene, const Vec3Array& viewpoints, const Eigen::Vector3d& point,
+                              const SegmentationSettings& settings);
 
 }  // namespace graspmix

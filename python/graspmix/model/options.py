@@ -43,7 +43,8 @@ PARTS = {
 LATER_PARTS = ("grasp_depth",)
 # The fields added to a part after runs began to store their options, with the value that gives the behaviour from
 # before: a stored part without one ran that way (SynthesisOptions.from_stored).
-LATER_FIELDS = {("sampling", "oversample"): 1}
+# (A named segment larger than 1 km: the split of a point target's segment never cuts, as before it existed.)
+LATER_FIELDS = {("sampling", "oversample"): 1, ("segmentation", "split_named_max_size"): 1000.0}
 COLLISION_MODELS = ("surface", "occupancy")
 # m: the default table clearance, for the tools that crop a table outside a synthesis (plots, the top-down planner)
 TABLE_CLEARANCE = _core.SegmentationSettings().table_clearance

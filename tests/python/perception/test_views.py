@@ -131,8 +131,13 @@ def test_synthesize_takes_each_input_and_answers_in_the_world(view):
     ]
     tcp = np.asarray(a.best().T_world_tcp[:3])
     assert np.min(np.linalg.norm(target_points - tcp, axis=1)) < 0.05
+    # Every grasp on one segment, made of the named object's points (a piece of it: the named segment is tried by the
+    # split rule below its size gate, and this object's creases cut it; SegmentationSettings.split_named_max_size).
     on = {g.object["index"] for g in a}
-    assert len(on) == 1 and np.linalg.norm(a.scene.objects[on.pop()].centroid - target_points.mean(axis=0)) < 0.02
+    assert len(on) == 1
+    segment = a.scene.objects[on.pop()].points
+    nearest = cKDTree(target_points).query(segment)[0]
+    assert np.mean(nearest < 0.005) > 0.95
     c = model.synthesize(
         depth=str(png), intrinsics=cam.pinhole().K, camera_pose=cam.pose(), options=opts, target=target
     )

@@ -40,6 +40,9 @@ void bind_contact_quality(py::module_& m) {
       .field("closing_steps", &ContactQualitySettings::closing_steps,
              "steps of the closing motion before bisection (links that do not translate)")
       .field("name", &ContactQualitySettings::name, "the key of its term in a grasp's experts table")
+      .field("target_first", &ContactQualitySettings::target_first,
+             "scene synthesis: a grasp whose finger, closing, meets another object's observed points before the\n"
+             "target's is rejected (its target_first term -inf)")
       .done();
 
   py::class_<ContactQualityResult>(m, "ContactQualityResult",

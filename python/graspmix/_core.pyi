@@ -3089,9 +3089,11 @@ class ContactQualitySettings:
       contact_tolerance = 0.001: m: points within this of a link's surface are in contact
       closing_steps = 16: steps of the closing motion before bisection (links that do not translate)
       name = 'contact_quality': the key of its term in a grasp's experts table
+      target_first = True: scene synthesis: a grasp whose finger, closing, meets another object's observed points before the
+    target's is rejected (its target_first term -inf)
     """
     __hash__: typing.ClassVar[None] = None
-    _fields: typing.ClassVar[tuple] = ('friction', 'concentration', 'air_penalty', 'patch_points', 'patch_penalty', 'contact_tolerance', 'closing_steps', 'name')
+    _fields: typing.ClassVar[tuple] = ('friction', 'concentration', 'air_penalty', 'patch_points', 'patch_penalty', 'contact_tolerance', 'closing_steps', 'name', 'target_first')
     def __copy__(self) -> ContactQualitySettings:
         ...
     def __deepcopy__(self, memo: typing.Any) -> ContactQualitySettings:
@@ -3108,7 +3110,7 @@ class ContactQualitySettings:
     @typing.overload
     def __init__(self, **kwargs) -> None:
         """
-        Keyword constructor: any of the fields (friction, concentration, air_penalty, patch_points, patch_penalty, contact_tolerance, closing_steps, name); the others keep their defaults.
+        Keyword constructor: any of the fields (friction, concentration, air_penalty, patch_points, patch_penalty, contact_tolerance, closing_steps, name, target_first); the others keep their defaults.
         """
     def __repr__(self) -> str:
         ...
@@ -3178,6 +3180,15 @@ class ContactQualitySettings:
     @patch_points.setter
     def patch_points(self, arg0: typing.Any) -> None:
         ...
+    @property
+    def target_first(self) -> bool:
+        """
+        scene synthesis: a grasp whose finger, closing, meets another object's observed points before the
+        target's is rejected (its target_first term -inf)
+        """
+    @target_first.setter
+    def target_first(self, arg0: typing.Any) -> None:
+        ...
 class ContactQualityResult:
     """
     The contacts of N grasps, F finger links each (expert.finger_links order).
@@ -3246,6 +3257,8 @@ class ContactQualityExpert(Expert):
           contact_tolerance = 0.001: m: points within this of a link's surface are in contact
           closing_steps = 16: steps of the closing motion before bisection (links that do not translate)
           name = 'contact_quality': the key of its term in a grasp's experts table
+          target_first = True: scene synthesis: a grasp whose finger, closing, meets another object's observed points before the
+        target's is rejected (its target_first term -inf)
         """
     def evaluate(self, wrists: typing.Any, joints: typing.Any) -> ContactQualityResult:
         """

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -188,6 +189,38 @@ Shared shared_part(const SceneInput& input, std::shared_ptr<const Hand> hand, co
   return shared;
 }
 
+/// The observed points of every object of the scene but `without`.
+Vec3Array others_observed(const Segmentation& scene, int without) {
+  Vec3Array out((scene.labels.array() != without).count(), 3);
+  Eigen::Index r = 0;
+  for (Eigen::Index i = 0; i < scene.points.rows(); ++i)
+    if (scene.labels[i] != without) out.row(r++) = scene.points.row(i);
+  return out;
+}
+
+/// ContactQualitySettings::target_first on the grasps of one target and type: 0 where each finger, closing from
+/// the pre-grasp, meets the target's points (`target`'s cloud) no later than the other objects' (`others`), -inf
+/// where a finger meets another object first (or only another object). The closing parameters are the contact
+/// quality's own (ContactQualityResult::t), so the test is exact for its closing motion.
+Eigen::VectorXd target_first(const ContactQualityExpert& target, const ContactQualityExpert& others,
+                             const std::vector<Grasp>& grasps) {
+  const auto n = static_cast<Eigen::Index>(grasps.size());
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(n);
+  if (n == 0) return out;
+  PoseArray w(n, 7);
+  RowMatrixXd q(n, grasps.front().joints.size());
+  for (Eigen::Index i = 0; i < n; ++i) {
+    w.row(i) = grasps[static_cast<std::size_t>(i)].T_world_wrist.transpose();
+    q.row(i) = grasps[static_cast<std::size_t>(i)].joints.transpose();
+  }
+  const RowMatrixXd t_target = target.evaluate(w, q).t, t_other = others.evaluate(w, q).t;
+  for (Eigen::Index i = 0; i < n; ++i)
+    for (Eigen::Index f = 0; f < t_other.cols(); ++f)
+      if (std::isfinite(t_other(i, f)) && !(t_target(i, f) <= t_other(i, f)))
+        out[i] = -std::numeric_limits<double>::infinity();
+  return out;
+}
+
 /// Object i's surface and, per grasp type, its own experts and the synthesiser's grasps, added to `out`.
 void synthesize_target(int i, const std::vector<SceneGraspType>& types, const SceneSynthesisSettings& settings,
                        const Shared& shared, SceneSynthesis& out) {
@@ -211,9 +244,20 @@ void synthesize_target(int i, const std::vector<SceneGraspType>& types, const Sc
     // refused (Expert::max_log_value), and the contact quality is the expensive one.
     if (settings.grasp_depth)
       experts.push_back(std::make_shared<GraspDepthExpert>(shared.hand, surface.points, *settings.grasp_depth));
-    if (settings.contact_quality)
-      experts.push_back(std::make_shared<ContactQualityExpert>(shared.hand, surface.points, surface.normals, config,
-                                                               *settings.contact_quality));
+    std::shared_ptr<const ContactQualityExpert> quality, others;
+    if (settings.contact_quality) {
+      quality = std::make_shared<ContactQualityExpert>(shared.hand, surface.points, surface.normals, config,
+                                                       *settings.contact_quality);
+      experts.push_back(quality);
+      if (neighbours && settings.contact_quality->target_first) {
+        ContactQualitySettings first = *settings.contact_quality;
+        first.patch_points = 0;  // its closing only: no patch reference to measure
+        const Vec3Array points = others_observed(out.scene, i);
+        Vec3Array up(points.rows(), 3);  // its closing only: the normals score, not the contacts
+        up.rowwise() = Eigen::RowVector3d::UnitZ();
+        others = std::make_shared<ContactQualityExpert>(shared.hand, points, up, config, first);
+      }
+    }
     out.timing.features += seconds_since(te);
     SeedGrasps seeds;
     if (settings.synthesizer.sampling.topdown_seeds && shared.table)
@@ -221,14 +265,22 @@ void synthesize_target(int i, const std::vector<SceneGraspType>& types, const Sc
     SynthesisResult res = types[k].synthesizer->synthesize(surface.frames, surface.curvatures, *shared.collision,
                                                            experts, settings.synthesizer, weights, &seeds);
     out.term_names[k] = res.term_names();
+    const auto add_term = [](Grasp& g, double v) {
+      g.log_experts.conservativeResize(g.log_experts.size() + 1);
+      g.log_experts[g.log_experts.size() - 1] = v;
+      g.log_likelihood += v;
+    };
+    if (others) {
+      out.term_names[k].push_back(kTargetFirstTerm);
+      const Eigen::VectorXd first = target_first(*quality, *others, res.grasps);
+      for (std::size_t j = 0; j < res.grasps.size(); ++j) add_term(res.grasps[j], first[static_cast<Eigen::Index>(j)]);
+      std::stable_sort(res.grasps.begin(), res.grasps.end(),
+                       [](const Grasp& a, const Grasp& b) { return a.log_likelihood > b.log_likelihood; });
+    }
     const std::optional<double> reference = types[k].log_reference;
     if (reference) out.term_names[k].push_back(kTypeReferenceTerm);
     for (auto& g : res.grasps) {
-      if (reference) {
-        g.log_experts.conservativeResize(g.log_experts.size() + 1);
-        g.log_experts[g.log_experts.size() - 1] = -*reference;
-        g.log_likelihood -= *reference;
-      }
+      if (reference) add_term(g, -*reference);
       out.grasps.push_back({std::move(g), i, static_cast<int>(k)});
     }
     out.timing.query += res.timing.query;

@@ -74,6 +74,9 @@ using SceneInput = std::variant<DepthView, OrganizedView, CloudInput>;
 inline constexpr double kCompletedViewDistance = 1.0;
 /// The term of log L that makes the scores of a model's grasp types comparable: -log L_ref of the grasp's type.
 inline constexpr const char* kTypeReferenceTerm = "type_reference";
+/// The term of log L that rejects a grasp whose finger meets another object before the target
+/// (ContactQualitySettings::target_first): 0 or -inf.
+inline constexpr const char* kTargetFirstTerm = "target_first";
 
 /// Object `index`'s surface features as synthesize_scene computes them: its observed points (normals towards the
 /// camera that saw each, `viewpoints` one row per scene point; 0 rows: unknown, normals propagated), then its
@@ -148,8 +151,8 @@ struct SceneSynthesis {
   SceneCompletion completion;
   std::vector<int> targets;            ///< the objects grasps were sampled on
   std::vector<SurfaceCloud> surfaces;  ///< per target, its surface (observed points, then completed ones)
-  /// per type: the names of Grasp::log_terms() (SynthesisResult::term_names(), then kTypeReferenceTerm when the
-  /// type has a log_reference)
+  /// per type: the names of Grasp::log_terms() (SynthesisResult::term_names(), then kTargetFirstTerm when the scene
+  /// has other objects and the check is on, then kTypeReferenceTerm when the type has a log_reference)
   std::vector<std::vector<std::string>> term_names;
   std::vector<SceneGrasp> grasps;  ///< best first
   SceneSynthesisTiming timing;

@@ -44,7 +44,11 @@ LATER_PARTS = ("grasp_depth",)
 # The fields added to a part after runs began to store their options, with the value that gives the behaviour from
 # before: a stored part without one ran that way (SynthesisOptions.from_stored).
 # (A named segment larger than 1 km: the split of a point target's segment never cuts, as before it existed.)
-LATER_FIELDS = {("sampling", "oversample"): 1, ("segmentation", "split_named_max_size"): 1000.0}
+LATER_FIELDS = {
+    ("sampling", "oversample"): 1,
+    ("segmentation", "split_named_max_size"): 1000.0,
+    ("contact_quality", "target_first"): False,
+}
 COLLISION_MODELS = ("surface", "occupancy")
 # m: the default table clearance, for the tools that crop a table outside a synthesis (plots, the top-down planner)
 TABLE_CLEARANCE = _core.SegmentationSettings().table_clearance

@@ -145,16 +145,55 @@ TEST(SceneSynthesis, EqualsItsStepsComposedByHand) {
       surface.frames, surface.curvatures, collision, experts, s.synthesizer,
       query_weights(surface, scene.objects[1].rows.size(), s.synthesizer.query.completed_weight), &seeds);
 
-  EXPECT_EQ(out.targets, std::vector<int>{1});
-  EXPECT_EQ(out.term_names.at(0), by_hand.term_names());
-  ASSERT_EQ(out.grasps.size(), by_hand.grasps.size());
-  for (std::size_t i = 0; i < by_hand.grasps.size(); ++i) {
-    EXPECT_EQ(out.grasps[i].object, 1);
-    EXPECT_EQ(out.grasps[i].grasp.T_world_wrist, by_hand.grasps[i].T_world_wrist) << i;
-    EXPECT_EQ(out.grasps[i].grasp.joints, by_hand.grasps[i].joints) << i;
-    EXPECT_TRUE(same(out.grasps[i].grasp.log_terms(), by_hand.grasps[i].log_terms())) << i;
+  // Then the fingers must meet the target first (ContactQualitySettings::target_first): each grasp's fingers closed
+  // by the contact quality's own motion on the target's surface and on the other object's observed points.
+  Vec3Array observed_others(0, 3);
+  for (Eigen::Index i = 0; i < scene.points.rows(); ++i)
+    if (scene.labels[i] != 1) {
+      observed_others.conservativeResize(observed_others.rows() + 1, 3);
+      observed_others.row(observed_others.rows() - 1) = scene.points.row(i);
+    }
+  ContactQualitySettings closing_only = *s.contact_quality;
+  closing_only.patch_points = 0;
+  Vec3Array up(observed_others.rows(), 3);
+  up.rowwise() = Eigen::RowVector3d::UnitZ();
+  const ContactQualityExpert on_target(hand, surface.points, surface.normals, config, *s.contact_quality);
+  const ContactQualityExpert on_others(hand, observed_others, up, config, closing_only);
+  std::vector<Grasp> expected = by_hand.grasps;
+  const auto n_grasps = static_cast<Eigen::Index>(expected.size());
+  PoseArray w(n_grasps, 7);
+  RowMatrixXd q(n_grasps, hand->n_dofs());
+  for (Eigen::Index i = 0; i < n_grasps; ++i) {
+    w.row(i) = expected[static_cast<std::size_t>(i)].T_world_wrist.transpose();
+    q.row(i) = expected[static_cast<std::size_t>(i)].joints.transpose();
   }
-  ASSERT_TRUE(std::isfinite(by_hand.grasps[0].log_likelihood));  // the comparison covers scored grasps
+  const RowMatrixXd t_target = on_target.evaluate(w, q).t, t_other = on_others.evaluate(w, q).t;
+  for (Eigen::Index i = 0; i < n_grasps; ++i) {
+    double v = 0.0;
+    for (Eigen::Index f = 0; f < t_other.cols(); ++f)
+      if (std::isfinite(t_other(i, f)) && !(t_target(i, f) <= t_other(i, f)))
+        v = -std::numeric_limits<double>::infinity();
+    Grasp& g = expected[static_cast<std::size_t>(i)];
+    g.log_experts.conservativeResize(g.log_experts.size() + 1);
+    g.log_experts[g.log_experts.size() - 1] = v;
+    g.log_likelihood += v;
+  }
+  std::stable_sort(expected.begin(), expected.end(),
+                   [](const Grasp& a, const Grasp& b) { return a.log_likelihood > b.log_likelihood; });
+  std::vector<std::string> names = by_hand.term_names();
+  names.push_back(kTargetFirstTerm);
+
+  EXPECT_EQ(out.targets, std::vector<int>{1});
+  EXPECT_EQ(out.term_names.at(0), names);
+  ASSERT_EQ(out.grasps.size(), expected.size());
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    EXPECT_EQ(out.grasps[i].object, 1);
+    EXPECT_EQ(out.grasps[i].grasp.T_world_wrist, expected[i].T_world_wrist) << i;
+    EXPECT_EQ(out.grasps[i].grasp.joints, expected[i].joints) << i;
+    EXPECT_TRUE(same(out.grasps[i].grasp.log_terms(), expected[i].log_terms())) << i;
+    EXPECT_EQ(out.grasps[i].grasp.log_likelihood, expected[i].log_likelihood) << i;
+  }
+  ASSERT_TRUE(std::isfinite(expected[0].log_likelihood));  // the comparison covers scored grasps
   EXPECT_EQ(out.surfaces.at(0).points, surface.points);
 }
 
@@ -177,6 +216,7 @@ TEST(SceneSynthesis, AllTargetsRankedTogetherWithLogLTheSumOfItsTerms) {
   EXPECT_EQ(objects, (std::set<int>{0, 1}));
   const auto& names = out.term_names.at(0);
   EXPECT_NE(std::find(names.begin(), names.end(), "clear_of_neighbours"), names.end());
+  EXPECT_EQ(names.back(), kTargetFirstTerm);      // two objects: the fingers must meet the target first
   EXPECT_TRUE(out.timing.occupancy.has_value());  // the surface model's map of unseen space
   // The stages are disjoint: their sum (the map of unseen space counted once, not again under features) is within
   // the total.

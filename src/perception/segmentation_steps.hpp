@@ -1,6 +1,7 @@
 #pragma once
 // segment_scene's steps after its input is made points (segmentation.cpp), shared by the scene of a depth image
 // (depth_scene.cpp), which makes its points in image space instead of by the voxel grid alone.
+#include <cstddef>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -68,6 +69,19 @@ void search_support(const Vec3Array& P, const Cameras& cams, const SegmentationS
                     const std::optional<Eigen::Vector4d>& plane, Segmentation& out);
 void segment_on_support(const Vec3Array& P, const Eigen::VectorXi& sources, const Cameras& cams,
                         const SegmentationSettings& s, Segmentation& out, const Vec3Array* table_sample = nullptr);
+
+/// The objects above a plane (or of the whole cloud without one) as groups of rows of P, with what each
+/// step dropped.
+struct Extraction {
+  std::vector<std::vector<int>> groups;
+  std::size_t n_plane = 0, n_outliers = 0, n_small = 0;
+};
+
+/// The objects of an extraction described and ordered as documented (segmentation.hpp) into `out`, from the points
+/// P whose rows carry the input rows `src` (scene_objects.cpp); throws std::invalid_argument ("segment_scene: ...")
+/// for a scene with no object, naming the likely cause.
+void finish(const Vec3Array& P, const Eigen::VectorXi& src, const Extraction& e, const SegmentationSettings& s,
+            Segmentation& out);
 
 /// The scene's objects made again from `groups` (rows of scene.points, each sorted): described, ordered and indexed
 /// as segment_scene does; the counts of points dropped kept.

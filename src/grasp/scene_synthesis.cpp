@@ -189,15 +189,6 @@ Shared shared_part(const SceneInput& input, std::shared_ptr<const Hand> hand, co
   return shared;
 }
 
-/// The observed points of every object of the scene but `without`.
-Vec3Array others_observed(const Segmentation& scene, int without) {
-  Vec3Array out((scene.labels.array() != without).count(), 3);
-  Eigen::Index r = 0;
-  for (Eigen::Index i = 0; i < scene.points.rows(); ++i)
-    if (scene.labels[i] != without) out.row(r++) = scene.points.row(i);
-  return out;
-}
-
 /// ContactQualitySettings::target_first on the grasps of one target and type: 0 where each finger, closing from
 /// the pre-grasp, meets the target's points (`target`'s cloud) no later than the other objects' (`others`), -inf
 /// where a finger meets another object first (or only another object). The closing parameters are the contact
@@ -229,9 +220,16 @@ void synthesize_target(int i, const std::vector<SceneGraspType>& types, const Sc
   const Eigen::VectorXd weights = query_weights(surface, out.scene.objects[static_cast<std::size_t>(i)].rows.size(),
                                                 settings.synthesizer.query.completed_weight);
   std::shared_ptr<CollisionExpert> neighbours;
-  if (out.scene.objects.size() > 1)
+  Vec3Array others_seen(0, 3), up(0, 3);  // the other objects' observed points (target_first closes on them)
+  if (out.scene.objects.size() > 1) {
     neighbours = collision_on(shared.hand, solid_points(out.scene, out.completion.completions, i), std::nullopt,
                               settings.collision, nullptr);
+    if (settings.contact_quality && settings.contact_quality->target_first) {
+      others_seen = solid_points(out.scene, std::vector<std::optional<Completion>>(out.scene.objects.size()), i);
+      up.resize(others_seen.rows(), 3);  // its closing only: the normals score, not the contacts
+      up.rowwise() = Eigen::RowVector3d::UnitZ();
+    }
+  }
   out.timing.features += seconds_since(t0);
   for (std::size_t k = 0; k < types.size(); ++k) {
     const auto te = Clock::now();
@@ -249,13 +247,10 @@ void synthesize_target(int i, const std::vector<SceneGraspType>& types, const Sc
       quality = std::make_shared<ContactQualityExpert>(shared.hand, surface.points, surface.normals, config,
                                                        *settings.contact_quality);
       experts.push_back(quality);
-      if (neighbours && settings.contact_quality->target_first) {
+      if (others_seen.rows() > 0) {
         ContactQualitySettings first = *settings.contact_quality;
         first.patch_points = 0;  // its closing only: no patch reference to measure
-        const Vec3Array points = others_observed(out.scene, i);
-        Vec3Array up(points.rows(), 3);  // its closing only: the normals score, not the contacts
-        up.rowwise() = Eigen::RowVector3d::UnitZ();
-        others = std::make_shared<ContactQualityExpert>(shared.hand, points, up, config, first);
+        others = std::make_shared<ContactQualityExpert>(shared.hand, others_seen, up, config, first);
       }
     }
     out.timing.features += seconds_since(te);

@@ -1,33 +1,15 @@
 // split_object_near: the split rule tried again on the segment a point target names (segmentation.hpp).
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <stdexcept>
 #include <vector>
 
 #include "graspmix/perception/segmentation.hpp"
+#include "graspmix/perception/targets.hpp"
 #include "pile_split.hpp"
 #include "segmentation_steps.hpp"
 
 namespace graspmix {
-
-namespace {
-
-/// The index (into scene.objects) of the object with the point nearest `point`.
-std::size_t nearest_object(const Segmentation& scene, const Eigen::Vector3d& point) {
-  std::size_t named = 0;
-  double nearest = std::numeric_limits<double>::infinity();
-  for (std::size_t k = 0; k < scene.objects.size(); ++k) {
-    const Eigen::VectorXi& rows = scene.objects[k].rows;
-    for (Eigen::Index j = 0; j < rows.size(); ++j) {
-      const double d = (scene.points.row(rows[j]).transpose() - point).squaredNorm();
-      if (d < nearest) nearest = d, named = k;
-    }
-  }
-  return named;
-}
-
-}  // namespace
 
 std::size_t split_object_near(Segmentation& scene, const Vec3Array& viewpoints, const Eigen::Vector3d& point,
                               const SegmentationSettings& settings) {
@@ -36,8 +18,11 @@ std::size_t split_object_near(Segmentation& scene, const Vec3Array& viewpoints, 
   if (viewpoints.rows() > 1 && viewpoints.rows() != scene.points.rows())
     throw std::invalid_argument("split_object_near: viewpoints must be one row, or one per point of the scene");
   if (scene.objects.empty() || viewpoints.rows() == 0) return 0;
-  const std::size_t named = nearest_object(scene, point);
-  const Eigen::VectorXi& rows = scene.objects[named].rows;
+  Target target;
+  target.kind = Target::Kind::Point;
+  target.point = point;
+  const auto named = static_cast<std::size_t>(select_targets(scene, Vec3Array(0, 3), target).front());
+  const Eigen::VectorXi& rows = scene.objects[named].rows;  // objects are indexed in order (segment_scene)
   std::vector<std::vector<int>> pieces = {std::vector<int>(rows.data(), rows.data() + rows.size())};
   std::sort(pieces.front().begin(), pieces.front().end());
   const SegmentationSettings& s = settings;

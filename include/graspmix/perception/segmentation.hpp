@@ -265,14 +265,16 @@ Segmentation segment_scene(const Vec3Array& points, const Vec3Array& viewpoints,
                            const SegmentationSettings& settings = {},
                            const std::optional<Eigen::Vector4d>& plane = std::nullopt);
 
-/// The split rule (above) on the one object of `scene` whose points come nearest `point`, gated at
+/// The split rule (above) on the object of `scene` a point target names (select_targets: the one whose points come
+/// nearest `point`, within kPointTargetMaxDistance), gated at
 /// settings.split_named_max_size instead of split_max_size (its other settings as given): a point target names one
 /// object, so a segment there no larger than one object may still hold two (the named object and a neighbour it
 /// touches, which the size gate leaves whole). The rule's limit: a single object that long with a concave crease (a
 /// mug with its handle) is cut too, and the piece nearest the point is its target. viewpoints: one row, or one per
 /// point of the scene (none: nothing is cut). When it cuts, the objects are described, ordered and indexed again as
 /// segment_scene does (n_split counts the pieces added). Returns the pieces added (0: the scene unchanged). Throws
-/// std::invalid_argument for a non-finite point or viewpoints of another number of rows.
+/// std::invalid_argument for a non-finite point, a point that names no object (select_targets' error) or viewpoints
+/// of another number of rows.
 std::size_t split_object_near(Segmentation& scene, const Vec3Array& viewpoints, const Eigen::Vector3d& point,
                               const SegmentationSettings& settings);
 

@@ -26,6 +26,18 @@ namespace graspmix {
 inline const std::vector<double> kTopdownSeedDepths = {0.01, 0.025, 0.04, 0.06};
 /// m: ... but never lower than this above the table (the segmentation's 5 mm clearance and 5 mm more).
 constexpr double kTopdownSeedMinHeight = 0.01;
+/// An object wider than the hand's widest gap (the free gap between its fingertips at the most open configuration
+/// of the model's line) cannot be closed across as a whole: its parts with parallel walls are seeded too. Its
+/// footprint on the table in cells of kPartSeedCell m; along 18 directions, chords whose neighbours as far to either
+/// side as the fingertip is half wide end within kPartSeedTaper m of its ends; of those the hand's gap spans, the
+/// narrowest first, up to kPartSeedCentres kPartSeedSpacing m apart, each at the configurations whose gap is at
+/// least the part's width and at most kPartSeedSlack m more (on the development objects, flat blobs 10 cm wide, the
+/// xArm gripper, opening 8.9 cm, got no top-down grasp at all before).
+constexpr int kPartSeedCentres = 8;
+constexpr double kPartSeedCell = 0.005;
+constexpr double kPartSeedTaper = 0.01;
+constexpr double kPartSeedSpacing = 0.02;
+constexpr double kPartSeedSlack = 0.03;
 
 /// The top-down seeds of the object whose points (observed and completed, world frame) are given, on the table
 /// `plane` [n, d] (n . x + d >= 0 above it; normalised here). None for fewer than 3 points or a hand without

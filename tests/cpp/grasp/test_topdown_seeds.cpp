@@ -1,6 +1,7 @@
 // The top-down seeds on boxes whose geometry is known exactly: the hand straight down, closing across the box's
 // narrow side, centred over it, the fingertips' far end at each depth below the top (never below the floor), at
-// every configuration of the configuration model's line; and the synthesiser scores them with the drawn grasps.
+// every configuration of the configuration model's line; an object wider than the hand opens also across its parts;
+// and the synthesiser scores them with the drawn grasps.
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -118,6 +119,50 @@ TEST(TopdownSeeds, StraightDownAcrossTheNarrowSideCentredAtEachDepth) {
   }
   // Too few points: none.
   EXPECT_EQ(topdown_seeds(*hand, config, points.topRows(2), Eigen::Vector4d(0, 0, 1, 0)).wrists.rows(), 0);
+}
+
+TEST(TopdownSeeds, AnObjectWiderThanTheHandOpensIsSeededAcrossItsParts) {
+  const auto hand = wsg50(kRepo.string());
+  const auto synth = top_grasp_synthesizer(hand, make_box());
+  const ConfigModel& config = synth->config_model();
+  // An L of two 30 mm bars, 30 mm tall, 200 mm long: no direction across it is narrower than ~140 mm, more than the
+  // WSG 50 opens (110 mm stroke). Bar 1 along x (y in [-15, 15] mm), bar 2 along y (x in [70, 100] mm).
+  const Vec3Array bar1 = box_points(0.0, 0.0, 0.2, 0.03, 0.03), bar2 = box_points(0.085, 0.115, 0.03, 0.2, 0.03);
+  Vec3Array points(bar1.rows() + bar2.rows(), 3);
+  points << bar1, bar2;
+  const SeedGrasps seeds = topdown_seeds(*hand, config, points, Eigen::Vector4d(0, 0, 1, 0));
+  // The whole object's seeds first (its top 30 mm: two heights, 20 and 10 mm), then each part's.
+  const Eigen::Index whole = 2 * 2 * config.kernels().rows();
+  ASSERT_GT(seeds.wrists.rows(), whole);
+  std::vector<Eigen::Vector3d> centres;  // the parts' (seeds within 5 mm of each other: one part)
+  for (Eigen::Index i = whole; i < seeds.wrists.rows(); ++i) {
+    const Eigen::Isometry3d W = pose_from_vector(seeds.wrists.row(i).transpose());
+    EXPECT_NEAR((W.linear() * hand->approach_axis()).z(), -1.0, 1e-9) << i;
+    std::vector<Eigen::Vector3d> middle;
+    const double lowest = lowest_and_middles(fingertip_corners(*hand, seeds.wrists, seeds.joints, i), middle);
+    EXPECT_TRUE(std::abs(lowest - 0.02) < 1e-9 || std::abs(lowest - kTopdownSeedMinHeight) < 1e-9) << lowest;
+    // Closing across a bar, centred on its middle line (the footprint's 5 mm cells): across bar 1 along y, across
+    // bar 2 along x; never across a corner.
+    const Eigen::Vector3d across = (middle[1] - middle[0]).normalized(), centre = 0.5 * (middle[0] + middle[1]);
+    const bool on_bar1 = std::abs(across.y()) > std::cos(1e-6);
+    const bool on_bar2 = std::abs(across.x()) > std::cos(1e-6);
+    ASSERT_TRUE(on_bar1 || on_bar2) << i << ": " << across.transpose();
+    if (on_bar1) {
+      EXPECT_NEAR(centre.y(), 0.0, 0.004) << i;
+      EXPECT_LE(std::abs(centre.x()), 0.1) << i;
+    } else {
+      EXPECT_NEAR(centre.x(), 0.085, 0.004) << i;
+      EXPECT_GE(centre.y(), 0.015 - 0.004) << i;
+    }
+    // The configurations: at least as open as the bar is wide (the fingers' middles further apart than 30 mm).
+    EXPECT_GT((middle[1] - middle[0]).norm(), 0.03) << i;
+    if (std::none_of(centres.begin(), centres.end(),
+                     [&](const Eigen::Vector3d& c) { return (c - centre).head<2>().norm() < 0.005; }))
+      centres.push_back(centre);
+  }
+  // Several parts, kPartSeedSpacing apart, at most kPartSeedCentres.
+  EXPECT_GE(centres.size(), 4u);
+  EXPECT_LE(centres.size(), static_cast<size_t>(kPartSeedCentres));
 }
 
 TEST(TopdownSeeds, TheSynthesiserScoresThemWithTheDrawnGrasps) {

@@ -83,4 +83,17 @@ inline std::unique_ptr<GraspSynthesizer> top_grasp_synthesizer(const std::shared
   return std::make_unique<GraspSynthesizer>(hand, std::move(models), ConfigModel(pre, grasp, hand->joint_limits()));
 }
 
+/// The rows of several point arrays, one after the other.
+inline Vec3Array stack_rows(const std::vector<Vec3Array>& parts) {
+  Eigen::Index n = 0;
+  for (const Vec3Array& p : parts) n += p.rows();
+  Vec3Array out(n, 3);
+  n = 0;
+  for (const Vec3Array& p : parts) {
+    out.middleRows(n, p.rows()) = p;
+    n += p.rows();
+  }
+  return out;
+}
+
 }  // namespace graspmix::test

@@ -112,14 +112,7 @@ TEST(SceneSynthesis, EqualsItsStepsComposedByHand) {
       others.bottomRows(c->points.rows()) = c->points;
     }
   }
-  Eigen::Index n = 0;
-  for (const auto& p : parts) n += p.rows();
-  Vec3Array solid(n, 3);
-  n = 0;
-  for (const auto& p : parts) {
-    solid.middleRows(n, p.rows()) = p;
-    n += p.rows();
-  }
+  const Vec3Array solid = graspmix::test::stack_rows(parts);
   auto unseen = std::make_shared<OccupancyMap>(*scene.visibility, scene.points, plane, s.occupancy);
   const CollisionExpert collision(hand, solid, plane, s.collision, unseen);
   CollisionSettings clear = s.collision;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <set>
 
 #include <gtest/gtest.h>
@@ -16,6 +17,7 @@
 
 using namespace graspmix;
 using graspmix::test::make_box;
+using graspmix::test::stack_rows;
 using graspmix::test::top_grasp_synthesizer;
 using graspmix::test::wsg50;
 namespace fs = std::filesystem;
@@ -121,48 +123,95 @@ TEST(TopdownSeeds, StraightDownAcrossTheNarrowSideCentredAtEachDepth) {
   EXPECT_EQ(topdown_seeds(*hand, config, points.topRows(2), Eigen::Vector4d(0, 0, 1, 0)).wrists.rows(), 0);
 }
 
+/// The free gap between the WSG 50's two fingertips along the line between their middles (their boxes' corners).
+double free_gap(const std::vector<std::vector<Eigen::Vector3d>>& tips) {
+  std::vector<Eigen::Vector3d> middle;
+  lowest_and_middles(tips, middle);
+  const Eigen::Vector3d c = (middle[1] - middle[0]).normalized();
+  double first = -1e9, second = 1e9;
+  for (const Eigen::Vector3d& x : tips[0]) first = std::max(first, c.dot(x));
+  for (const Eigen::Vector3d& x : tips[1]) second = std::min(second, c.dot(x));
+  return second - first;
+}
+
 TEST(TopdownSeeds, AnObjectWiderThanTheHandOpensIsSeededAcrossItsParts) {
   const auto hand = wsg50(kRepo.string());
   const auto synth = top_grasp_synthesizer(hand, make_box());
   const ConfigModel& config = synth->config_model();
-  // An L of two 30 mm bars, 30 mm tall, 200 mm long: no direction across it is narrower than ~140 mm, more than the
-  // WSG 50 opens (110 mm stroke). Bar 1 along x (y in [-15, 15] mm), bar 2 along y (x in [70, 100] mm).
-  const Vec3Array bar1 = box_points(0.0, 0.0, 0.2, 0.03, 0.03), bar2 = box_points(0.085, 0.115, 0.03, 0.2, 0.03);
-  Vec3Array points(bar1.rows() + bar2.rows(), 3);
-  points << bar1, bar2;
-  const SeedGrasps seeds = topdown_seeds(*hand, config, points, Eigen::Vector4d(0, 0, 1, 0));
-  // The whole object's seeds first (its top 30 mm: two heights, 20 and 10 mm), then each part's.
-  const Eigen::Index whole = 2 * 2 * config.kernels().rows();
+  const RowMatrixXd& kernels = config.kernels();
+  // One object of two bars, wider together than the WSG 50 opens (110 mm stroke): bar 1 along x, 160 x 30 mm, 50 mm
+  // tall; bar 2 along y, 25 x 80 mm, 30 mm tall, 25 mm beyond bar 1's end and 25 mm to its side.
+  const Vec3Array points =
+      stack_rows({box_points(0.0, 0.0, 0.16, 0.03, 0.05), box_points(0.12, 0.08, 0.025, 0.08, 0.03)});
+  const Eigen::Vector4d plane(0, 0, 1, 0);
+  const SeedGrasps seeds = topdown_seeds(*hand, config, points, plane);
+  // The whole object's seeds first (its top 50 mm: fingertips at 40, 25 and 10 mm), then each part's.
+  const Eigen::Index whole = 3 * 2 * kernels.rows();
   ASSERT_GT(seeds.wrists.rows(), whole);
+  // Each configuration's free gap (the hand at the origin).
+  std::vector<double> gaps;
+  for (Eigen::Index k = 0; k < kernels.rows(); ++k) {
+    PoseArray w(1, 7);
+    w.row(0) << 0, 0, 0, 0, 0, 0, 1;
+    gaps.push_back(free_gap(fingertip_corners(*hand, w, kernels.middleRows(k, 1), 0)));
+  }
   std::vector<Eigen::Vector3d> centres;  // the parts' (seeds within 5 mm of each other: one part)
+  int on_bar[2] = {0, 0};
   for (Eigen::Index i = whole; i < seeds.wrists.rows(); ++i) {
     const Eigen::Isometry3d W = pose_from_vector(seeds.wrists.row(i).transpose());
     EXPECT_NEAR((W.linear() * hand->approach_axis()).z(), -1.0, 1e-9) << i;
+    const auto tips = fingertip_corners(*hand, seeds.wrists, seeds.joints, i);
     std::vector<Eigen::Vector3d> middle;
-    const double lowest = lowest_and_middles(fingertip_corners(*hand, seeds.wrists, seeds.joints, i), middle);
-    EXPECT_TRUE(std::abs(lowest - 0.02) < 1e-9 || std::abs(lowest - kTopdownSeedMinHeight) < 1e-9) << lowest;
-    // Closing across a bar, centred on its middle line (the footprint's 5 mm cells): across bar 1 along y, across
-    // bar 2 along x; never across a corner.
+    const double lowest = lowest_and_middles(tips, middle);
+    // Closing across a bar, centred on its middle line (measured from the points: exact), the fingertips below
+    // that bar's own top (bar 1: 40, 25, 10 mm; bar 2: 20, 10 mm); never across a corner.
     const Eigen::Vector3d across = (middle[1] - middle[0]).normalized(), centre = 0.5 * (middle[0] + middle[1]);
-    const bool on_bar1 = std::abs(across.y()) > std::cos(1e-6);
-    const bool on_bar2 = std::abs(across.x()) > std::cos(1e-6);
-    ASSERT_TRUE(on_bar1 || on_bar2) << i << ": " << across.transpose();
-    if (on_bar1) {
-      EXPECT_NEAR(centre.y(), 0.0, 0.004) << i;
-      EXPECT_LE(std::abs(centre.x()), 0.1) << i;
+    const int bar = std::abs(across.y()) > 1.0 - 1e-9 ? 0 : std::abs(across.x()) > 1.0 - 1e-9 ? 1 : -1;
+    ASSERT_GE(bar, 0) << i << ": " << across.transpose();
+    ++on_bar[bar];
+    const double width = bar == 0 ? 0.03 : 0.025;
+    if (bar == 0) {
+      EXPECT_NEAR(centre.y(), 0.0, 1e-6) << i;
+      EXPECT_LE(std::abs(centre.x()), 0.08) << i;
+      EXPECT_TRUE(std::abs(lowest - 0.04) < 1e-9 || std::abs(lowest - 0.025) < 1e-9 || std::abs(lowest - 0.01) < 1e-9)
+          << lowest;
     } else {
-      EXPECT_NEAR(centre.x(), 0.085, 0.004) << i;
-      EXPECT_GE(centre.y(), 0.015 - 0.004) << i;
+      EXPECT_NEAR(centre.x(), 0.12, 1e-6) << i;
+      EXPECT_NEAR(centre.y(), 0.08, 0.04 + 1e-9) << i;
+      EXPECT_TRUE(std::abs(lowest - 0.02) < 1e-9 || std::abs(lowest - 0.01) < 1e-9) << lowest;
     }
-    // The configurations: at least as open as the bar is wide (the fingers' middles further apart than 30 mm).
-    EXPECT_GT((middle[1] - middle[0]).norm(), 0.03) << i;
+    // The configurations whose gap spans the bar and at most kPartSeedSlack more.
+    const Eigen::Index k = std::find_if(kernels.rowwise().begin(), kernels.rowwise().end(),
+                                        [&](const auto& r) { return r.isApprox(seeds.joints.row(i), 0.0); }) -
+                           kernels.rowwise().begin();
+    ASSERT_LT(k, kernels.rows()) << i;
+    EXPECT_GE(gaps[static_cast<size_t>(k)], width - 1e-9) << i;
+    EXPECT_LE(gaps[static_cast<size_t>(k)], width + kPartSeedSlack + 1e-9) << i;
     if (std::none_of(centres.begin(), centres.end(),
                      [&](const Eigen::Vector3d& c) { return (c - centre).head<2>().norm() < 0.005; }))
       centres.push_back(centre);
   }
-  // Several parts, kPartSeedSpacing apart, at most kPartSeedCentres.
-  EXPECT_GE(centres.size(), 4u);
+  // Both bars, the narrower first; at most kPartSeedCentres parts, kPartSeedSpacing apart.
+  EXPECT_GT(on_bar[0], 0);
+  EXPECT_GT(on_bar[1], 0);
   EXPECT_LE(centres.size(), static_cast<size_t>(kPartSeedCentres));
+  for (size_t a = 0; a < centres.size(); ++a)
+    for (size_t b = a + 1; b < centres.size(); ++b)
+      EXPECT_GE((centres[a] - centres[b]).head<2>().norm(), kPartSeedSpacing - 1e-9) << a << " " << b;
+
+  // Another object's points within kPartSeedIsolation of the footprint: no part seeds; farther: the same seeds.
+  const Vec3Array near = box_points(0.12, 0.08 + 0.04 + 0.015 + 0.01, 0.02, 0.02, 0.02);  // 15 mm from bar 2's end
+  EXPECT_EQ(topdown_seeds(*hand, config, points, plane, near).wrists.rows(), whole);
+  const Vec3Array far = box_points(0.12, 0.08 + 0.04 + 0.025 + 0.01, 0.02, 0.02, 0.02);  // 25 mm from it
+  const SeedGrasps apart = topdown_seeds(*hand, config, points, plane, far);
+  EXPECT_TRUE(apart.wrists.isApprox(seeds.wrists, 0.0) && apart.joints.isApprox(seeds.joints, 0.0));
+  // A stray point 30 m away: a footprint beyond kPartSeedMaxCells, no part seeds, and no hang.
+  Vec3Array stray = stack_rows({points, box_points(30.0, 0.0, 0.003, 0.003, 0.003).topRows(1)});
+  const SeedGrasps strayed = topdown_seeds(*hand, config, stray, plane);
+  EXPECT_EQ(strayed.wrists.rows(), whole);
+  // A point not finite: no seeds at all.
+  stray(0, 0) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(topdown_seeds(*hand, config, stray, plane).wrists.rows(), 0);
 }
 
 TEST(TopdownSeeds, TheSynthesiserScoresThemWithTheDrawnGrasps) {

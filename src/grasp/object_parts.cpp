@@ -18,10 +18,10 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 struct Footprint {
   double u0 = 0.0, v0 = 0.0;
   long nu = 0, nv = 0;
-  std::vector<double> top;            ///< per cell, -inf where no point
-  std::vector<Eigen::Index> start;    ///< per cell, into `index`; start[c + 1] ends it
-  std::vector<Eigen::Index> index;    ///< the points, cell by cell
-  Eigen::VectorXd u, v, z;            ///< every point's coordinates and height
+  std::vector<double> top;          ///< per cell, -inf where no point
+  std::vector<Eigen::Index> start;  ///< per cell, into `index`; start[c + 1] ends it
+  std::vector<Eigen::Index> index;  ///< the points, cell by cell
+  Eigen::VectorXd u, v, z;          ///< every point's coordinates and height
 
   /// The cell of (x, y), or -1 outside the grid.
   long cell(double x, double y) const {
@@ -58,7 +58,8 @@ bool make_footprint(Eigen::VectorXd u, Eigen::VectorXd v, Eigen::VectorXd z, Foo
   for (std::size_t c = 0; c < cells; ++c) f.start[c + 1] += f.start[c];
   f.index.resize(static_cast<std::size_t>(u.size()));
   std::vector<Eigen::Index> fill(f.start.begin(), f.start.end() - 1);
-  for (Eigen::Index i = 0; i < u.size(); ++i) f.index[static_cast<std::size_t>(fill[static_cast<std::size_t>(of[static_cast<std::size_t>(i)])]++)] = i;
+  for (Eigen::Index i = 0; i < u.size(); ++i)
+    f.index[static_cast<std::size_t>(fill[static_cast<std::size_t>(of[static_cast<std::size_t>(i)])]++)] = i;
   f.u = std::move(u);
   f.v = std::move(v);
   f.z = std::move(z);

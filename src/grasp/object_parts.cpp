@@ -143,18 +143,17 @@ std::vector<Part> chords_within(const Footprint& f, double widest) {
 }
 
 /// A chord measured from the points (within a cell beyond its rough ends along; the side lines farther): on three
-/// lines along its
-/// direction, its middle line and `side` to either side, the extent of the points within half a cell of each; the
-/// part has facing walls when the middle line and at least one side line hold points and every side line that does
-/// ends within kPartSeedTaper of the middle line's ends (a corner's diagonal has a side line inside that ends
-/// elsewhere; a side line beyond the part's edge holds none: the finger overhangs it). Then its width is the extent
-/// of the lines that hold points (what the fingers span), its middle between those ends, its top the highest point
-/// under the fingers (within half_width across). False otherwise.
-bool measure(const Footprint& f, double side, double half_width, Part& p) {
+/// lines along its direction, its middle line and half_width to either side, the extent of the points within half a
+/// cell of each; the part has facing walls when the middle line and at least one side line hold points and every
+/// side line that does ends within kPartSeedTaper of the middle line's ends (a corner's diagonal has a side line
+/// inside that ends elsewhere; a side line beyond the part's edge holds none: the finger overhangs it). Then its
+/// width is the extent of the lines that hold points (what the fingers span), its middle between those ends, its
+/// top the highest point under the fingers (within half_width across). False otherwise.
+bool measure(const Footprint& f, double half_width, Part& p) {
   const Eigen::Vector2d e(-p.direction.y(), p.direction.x());
   // The middle line within a cell of the rough ends; the side lines farther, so that one running on is seen to.
   const double reach = 0.5 * p.width + kPartSeedCell, side_reach = reach + kPartSeedTaper + kPartSeedCell;
-  const double r = side_reach + std::max(side, half_width);
+  const double r = side_reach + half_width;
   double lo[3] = {kInf, kInf, kInf}, hi[3] = {-kInf, -kInf, -kInf}, top = -kInf;
   const long i0 = std::max(0L, static_cast<long>(std::floor((p.middle.x() - r - f.u0) / kPartSeedCell)));
   const long i1 = std::min(f.nu - 1, static_cast<long>(std::floor((p.middle.x() + r - f.u0) / kPartSeedCell)));
@@ -170,7 +169,8 @@ bool measure(const Footprint& f, double side, double half_width, Part& p) {
         if (std::abs(t) > side_reach) continue;
         if (std::abs(t) <= reach && std::abs(across) <= half_width) top = std::max(top, f.z[q]);
         for (int l = 0; l < 3; ++l) {
-          if (std::abs(across - (l - 1) * side) > 0.5 * kPartSeedCell || (l == 1 && std::abs(t) > reach)) continue;
+          if (std::abs(across - (l - 1) * half_width) > 0.5 * kPartSeedCell || (l == 1 && std::abs(t) > reach))
+            continue;
           lo[l] = std::min(lo[l], t);
           hi[l] = std::max(hi[l], t);
         }
@@ -202,7 +202,7 @@ std::vector<ObjectPart> graspable_parts(const Vec3Array& points, const Vec3Array
   if (others.rows() > 0 && anything_near(f, others * e1, others * e2)) return {};
   std::vector<Part> parts = chords_within(f, widest);
   parts.erase(std::remove_if(parts.begin(), parts.end(),
-                             [&](Part& p) { return !measure(f, half_width, half_width, p) || !(p.width <= widest); }),
+                             [&](Part& p) { return !measure(f, half_width, p) || !(p.width <= widest); }),
               parts.end());
   std::stable_sort(parts.begin(), parts.end(), [](const Part& a, const Part& b) { return a.width < b.width; });
   std::vector<ObjectPart> out;

@@ -221,11 +221,14 @@ void synthesize_target(int i, const std::vector<SceneGraspType>& types, const Sc
                                                 settings.synthesizer.query.completed_weight);
   std::shared_ptr<CollisionExpert> neighbours;
   // The other objects' observed points: target_first closes on them, the top-down seeds look for them near.
+  const bool seeded = settings.synthesizer.sampling.topdown_seeds && shared.table;
+  const bool first_check = settings.contact_quality && settings.contact_quality->target_first;
   Vec3Array others_seen(0, 3);
   if (out.scene.objects.size() > 1) {
     neighbours = collision_on(shared.hand, solid_points(out.scene, out.completion.completions, i), std::nullopt,
                               settings.collision, nullptr);
-    others_seen = solid_points(out.scene, std::vector<std::optional<Completion>>(out.scene.objects.size()), i);
+    if (seeded || first_check)
+      others_seen = solid_points(out.scene, std::vector<std::optional<Completion>>(out.scene.objects.size()), i);
   }
   out.timing.features += seconds_since(t0);
   for (std::size_t k = 0; k < types.size(); ++k) {
@@ -244,7 +247,7 @@ void synthesize_target(int i, const std::vector<SceneGraspType>& types, const Sc
       quality = std::make_shared<ContactQualityExpert>(shared.hand, surface.points, surface.normals, config,
                                                        *settings.contact_quality);
       experts.push_back(quality);
-      if (others_seen.rows() > 0 && settings.contact_quality->target_first) {
+      if (others_seen.rows() > 0 && first_check) {
         ContactQualitySettings first = *settings.contact_quality;
         first.patch_points = 0;               // its closing only: no patch reference to measure
         Vec3Array up(others_seen.rows(), 3);  // its closing only: the normals score, not the contacts
@@ -254,8 +257,7 @@ void synthesize_target(int i, const std::vector<SceneGraspType>& types, const Sc
     }
     out.timing.features += seconds_since(te);
     SeedGrasps seeds;
-    if (settings.synthesizer.sampling.topdown_seeds && shared.table)
-      seeds = topdown_seeds(*shared.hand, config, surface.points, *shared.table, others_seen);
+    if (seeded) seeds = topdown_seeds(*shared.hand, config, surface.points, *shared.table, others_seen);
     SynthesisResult res = types[k].synthesizer->synthesize(surface.frames, surface.curvatures, *shared.collision,
                                                            experts, settings.synthesizer, weights, &seeds);
     out.term_names[k] = res.term_names();

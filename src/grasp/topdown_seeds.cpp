@@ -51,6 +51,13 @@ double inner_gap(const std::vector<LinkBounds>& tips) {
   return std::max(0.0, others - first);
 }
 
+/// The bounds (link_bounds) of those of `links` that have collision shapes, at q.
+std::vector<LinkBounds> shaped_bounds(const Hand& hand, const std::vector<int>& links, const Eigen::VectorXd& q) {
+  std::vector<LinkBounds> out = link_bounds(hand, links, q);
+  out.erase(std::remove_if(out.begin(), out.end(), [](const LinkBounds& b) { return b.corners.empty(); }), out.end());
+  return out;
+}
+
 /// The hand at the demonstrated grasp, wrist at the origin: its axes (approach a, closing c, a x c as columns) and
 /// its fingertips' far end on the approach axis; per configuration of the model's line the free gap between the
 /// fingertips (inner_gap); half the first fingertip's width across the closing line. False for a hand whose
@@ -67,10 +74,7 @@ bool hand_at_grasp(const Hand& hand, const ConfigModel& config, HandAtGrasp& out
   const Eigen::Vector3d a = hand.approach_axis().normalized();
   std::vector<Eigen::Vector3d> middles;
   double reach = -std::numeric_limits<double>::infinity();
-  std::vector<LinkBounds> at_grasp = link_bounds(hand, tips, config.grasp());
-  at_grasp.erase(
-      std::remove_if(at_grasp.begin(), at_grasp.end(), [](const LinkBounds& b) { return b.corners.empty(); }),
-      at_grasp.end());
+  const std::vector<LinkBounds> at_grasp = shaped_bounds(hand, tips, config.grasp());
   for (const LinkBounds& b : at_grasp) {
     for (const Eigen::Vector3d& w : b.corners) reach = std::max(reach, a.dot(w));
     middles.push_back(b.middle);
@@ -92,10 +96,7 @@ bool hand_at_grasp(const Hand& hand, const ConfigModel& config, HandAtGrasp& out
   const RowMatrixXd& openings = config.kernels();
   out.gaps.clear();
   for (Eigen::Index k = 0; k < openings.rows(); ++k) {
-    std::vector<LinkBounds> bounds = link_bounds(hand, tips, openings.row(k).transpose());
-    bounds.erase(std::remove_if(bounds.begin(), bounds.end(), [](const LinkBounds& b) { return b.corners.empty(); }),
-                 bounds.end());
-    out.gaps.push_back(inner_gap(bounds));
+    out.gaps.push_back(inner_gap(shaped_bounds(hand, tips, openings.row(k).transpose())));
   }
   return true;
 }

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "core/parallel_rows.hpp"
+#include "core/uniform_grid.hpp"
 #include "graspmix/core/plane.hpp"
 #include "graspmix/grasp/topdown_seeds.hpp"
 #include "graspmix/perception/depth_scene.hpp"
@@ -217,8 +218,8 @@ void synthesize_target(int i, const std::vector<SceneGraspType>& types, const Sc
                        const Shared& shared, SceneSynthesis& out) {
   const auto t0 = Clock::now();
   SurfaceCloud surface = object_surface(out.scene, out.viewpoints, out.completion.completions, i, settings.features);
-  const Eigen::VectorXd weights = query_weights(surface, out.scene.objects[static_cast<std::size_t>(i)].rows.size(),
-                                                settings.synthesizer.query.completed_weight);
+  const auto n_observed = static_cast<Eigen::Index>(out.scene.objects[static_cast<std::size_t>(i)].rows.size());
+  const Eigen::VectorXd weights = query_weights(surface, n_observed, settings.synthesizer.query.completed_weight);
   std::shared_ptr<CollisionExpert> neighbours;
   // The other objects' observed points: target_first closes on them, the top-down seeds look for them near.
   const bool seeded = settings.synthesizer.sampling.topdown_seeds && shared.table;
@@ -268,7 +269,13 @@ void synthesize_target(int i, const std::vector<SceneGraspType>& types, const Sc
     };
     if (others) {
       out.term_names[k].push_back(kTargetFirstTerm);
-      const Eigen::VectorXd first = target_first(*quality, *others, res.grasps);
+      const Eigen::VectorXi mine = target_side(surface, n_observed, others_seen, kTargetSideClearance);
+      const Eigen::VectorXd first =
+          mine.size() == surface.points.rows()
+              ? target_first(*quality, *others, res.grasps)
+              : target_first(ContactQualityExpert(shared.hand, rows_of(surface.points, mine),
+                                                  rows_of(surface.normals, mine), config, *settings.contact_quality),
+                             *others, res.grasps);
       for (std::size_t j = 0; j < res.grasps.size(); ++j) add_term(res.grasps[j], first[static_cast<Eigen::Index>(j)]);
       std::stable_sort(res.grasps.begin(), res.grasps.end(),
                        [](const Grasp& a, const Grasp& b) { return a.log_likelihood > b.log_likelihood; });
@@ -311,6 +318,48 @@ Eigen::VectorXd query_weights(const SurfaceCloud& surface, Eigen::Index n_observ
   if ((surface.indices.array() < n_observed).all()) return {};
   return (surface.indices.array() >= n_observed)
       .select(Eigen::VectorXd::Constant(surface.indices.size(), completed_weight), 1.0);
+}
+
+Eigen::VectorXi target_side(const SurfaceCloud& surface, Eigen::Index n_observed, const Vec3Array& others,
+                            double radius) {
+  if (!(std::isfinite(radius) && radius > 0))
+    throw std::invalid_argument("target_side: the radius must be a finite distance > 0 (m)");
+  if (surface.indices.size() != surface.points.rows())
+    throw std::invalid_argument("target_side: the surface needs one index per point");
+  std::vector<int> rows;
+  rows.reserve(static_cast<std::size_t>(surface.points.rows()));
+  const bool any_completed = (surface.indices.array() >= n_observed).any();
+  std::optional<detail::UniformGrid> grid;
+  Eigen::Vector3d lo = Eigen::Vector3d::Zero();
+  if (any_completed && others.rows() > 0) {
+    lo = others.colwise().minCoeff().transpose().array() - radius;
+    const Eigen::Vector3d span = others.colwise().maxCoeff().transpose() - lo;
+    detail::UniformGrid::Cell dims{};
+    double cells = 1;
+    for (std::size_t k = 0; k < 3; ++k) {
+      dims[k] = std::min(static_cast<std::int64_t>((span[static_cast<Eigen::Index>(k)] + radius) / radius) + 1,
+                         detail::UniformGrid::kMaxCells);
+      cells *= static_cast<double>(dims[k]);
+    }
+    grid.emplace(others, lo, radius, dims,
+                 cells < 1e6 ? detail::UniformGrid::Layout::Dense : detail::UniformGrid::Layout::Sparse);
+  }
+  for (Eigen::Index r = 0; r < surface.points.rows(); ++r) {
+    const Eigen::Vector3d p = surface.points.row(r).transpose();
+    bool near = false;
+    if (grid && surface.indices[r] >= n_observed) {
+      const auto c = grid->cell_of(p);
+      auto c0 = c, c1 = c;
+      for (std::size_t k = 0; k < 3; ++k) {
+        c0[k] = std::max<std::int64_t>(c[k] - 1, 0);
+        c1[k] = std::min<std::int64_t>(c[k] + 1, grid->dims()[k] - 1);
+      }
+      grid->for_each_in_cells(c0, c1,
+                              [&](int j) { near = near || (grid->point(j) - p).squaredNorm() < radius * radius; });
+    }
+    if (!near) rows.push_back(static_cast<int>(r));
+  }
+  return Eigen::Map<const Eigen::VectorXi>(rows.data(), static_cast<Eigen::Index>(rows.size()));
 }
 
 SceneSynthesis synthesize_scene(const SceneInput& input, const std::vector<SceneGraspType>& types,

@@ -77,6 +77,10 @@ inline constexpr const char* kTypeReferenceTerm = "type_reference";
 /// The term of log L that rejects a grasp whose finger meets another object before the target
 /// (ContactQualitySettings::target_first): 0 or -inf.
 inline constexpr const char* kTargetFirstTerm = "target_first";
+/// m: the target-first check does not count as the target's the target's completed points within this of another
+/// object's observed point (CompletionSettings::observed_clearance's two voxels): a completion may reach behind a
+/// neighbour's seen surface, and a finger that meets it there meets the neighbour.
+inline constexpr double kTargetSideClearance = 0.006;
 
 /// Object `index`'s surface features as synthesize_scene computes them: its observed points (normals towards the
 /// camera that saw each, `viewpoints` one row per scene point; 0 rows: unknown, normals propagated), then its
@@ -90,6 +94,12 @@ SurfaceCloud object_surface(const Segmentation& scene, const Vec3Array& viewpoin
 /// Each point of a target's surface, its prior weight in the query densities: 1 where observed (an index below
 /// n_observed, as object_surface orders them), completed_weight where completed; empty when nothing is completed.
 Eigen::VectorXd query_weights(const SurfaceCloud& surface, Eigen::Index n_observed, double completed_weight);
+
+/// The rows of a target's surface (object_surface's order: n_observed observed points first) the target-first check
+/// counts as the target's: every observed point, and every completed point at least `radius` from each row of
+/// `others` (the other objects' observed points). Ascending.
+Eigen::VectorXi target_side(const SurfaceCloud& surface, Eigen::Index n_observed, const Vec3Array& others,
+                            double radius = kTargetSideClearance);
 
 /// One grasp type of a model: its synthesiser (contact models and configuration model), its name and, in a
 /// model of several types, its reference score log L_ref (unset: one type, scores as they are).

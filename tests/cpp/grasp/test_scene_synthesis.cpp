@@ -11,6 +11,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <random>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -139,7 +140,8 @@ TEST(SceneSynthesis, EqualsItsStepsComposedByHand) {
       query_weights(surface, scene.objects[1].rows.size(), s.synthesizer.query.completed_weight), &seeds);
 
   // Then the fingers must meet the target first (ContactQualitySettings::target_first): each grasp's fingers closed
-  // by the contact quality's own motion on the target's surface and on the other object's observed points.
+  // by the contact quality's own motion on the target's side of its surface (target_side) and on the other object's
+  // observed points.
   Vec3Array observed_others(0, 3);
   for (Eigen::Index i = 0; i < scene.points.rows(); ++i)
     if (scene.labels[i] != 1) {
@@ -150,7 +152,9 @@ TEST(SceneSynthesis, EqualsItsStepsComposedByHand) {
   closing_only.patch_points = 0;
   Vec3Array up(observed_others.rows(), 3);
   up.rowwise() = Eigen::RowVector3d::UnitZ();
-  const ContactQualityExpert on_target(hand, surface.points, surface.normals, config, *s.contact_quality);
+  const Eigen::VectorXi mine = target_side(surface, scene.objects[1].rows.size(), observed_others);
+  const ContactQualityExpert on_target(hand, surface.points(mine, Eigen::all), surface.normals(mine, Eigen::all),
+                                       config, *s.contact_quality);
   const ContactQualityExpert on_others(hand, observed_others, up, config, closing_only);
   std::vector<Grasp> expected = by_hand.grasps;
   const auto n_grasps = static_cast<Eigen::Index>(expected.size());
@@ -318,4 +322,41 @@ TEST(SceneSynthesis, BadInputNamesWhatIsWrong) {
   DepthView empty = view();
   empty.depth.setConstant(std::numeric_limits<double>::quiet_NaN());
   EXPECT_NE(error_message([&] { synthesize_scene(empty, one_type(), small_settings()); }), "no error");
+}
+
+TEST(SceneSynthesis, TheTargetsSideLeavesOutItsCompletedPointsAtANeighbour) {
+  // Seeded random surface points (the first half observed, the rest completed) and other objects' points; the rows
+  // kept against a brute-force distance test, and points exactly at the radius and just inside it.
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-0.05, 0.05);
+  const Eigen::Index n = 400, n_observed = 200;
+  SurfaceCloud surface;
+  surface.points.resize(n, 3);
+  for (Eigen::Index i = 0; i < n; ++i) surface.points.row(i) << u(rng), u(rng), u(rng);
+  surface.indices = Eigen::VectorXi::LinSpaced(n, 0, static_cast<int>(n - 1));
+  Vec3Array others(201, 3);
+  for (Eigen::Index i = 0; i < 200; ++i) others.row(i) << u(rng), u(rng), u(rng);
+  others.row(200) << 30.0, 0.0, 0.0;  // a stray point far off
+  const double r = kTargetSideClearance;
+  // completed rows 300 and 301: exactly at the radius from other point 0, and just inside it
+  surface.points.row(300) = others.row(0) + Eigen::RowVector3d(r, 0, 0);
+  surface.points.row(301) = others.row(0) + Eigen::RowVector3d(0, 0.999 * r, 0);
+  std::vector<int> expected;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (Eigen::Index j = 0; j < others.rows(); ++j)
+      nearest = std::min(nearest, (surface.points.row(i) - others.row(j)).norm());
+    if (i < n_observed || nearest >= r) expected.push_back(static_cast<int>(i));
+  }
+  const Eigen::VectorXi kept = target_side(surface, n_observed, others);
+  EXPECT_EQ(std::vector<int>(kept.data(), kept.data() + kept.size()), expected);
+  EXPECT_TRUE(std::find(expected.begin(), expected.end(), 300) != expected.end());
+  EXPECT_TRUE(std::find(expected.begin(), expected.end(), 301) == expected.end());
+  EXPECT_LT(expected.size(), static_cast<std::size_t>(n - 10));  // some completed points were near: the test bites
+  EXPECT_EQ(target_side(surface, n_observed, Vec3Array(0, 3)).size(), n);
+  EXPECT_EQ(target_side(surface, n, others).size(), n);  // nothing completed
+  EXPECT_THROW(target_side(surface, n_observed, others, 0.0), std::invalid_argument);
+  SurfaceCloud bad = surface;
+  bad.indices.resize(3);
+  EXPECT_THROW(target_side(bad, n_observed, others), std::invalid_argument);
 }

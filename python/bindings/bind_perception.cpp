@@ -295,6 +295,8 @@ void bind_perception(py::module_& m) {
       .def_readonly("n_plane", &Segmentation::n_plane, "dropped as the table")
       .def_readonly("n_outliers", &Segmentation::n_outliers)
       .def_readonly("n_small_clusters", &Segmentation::n_small_clusters, "points of clusters dropped as noise")
+      .def_readonly("dropped", &Segmentation::dropped,
+                    "(K, 3) the points above the table the clean-up dropped (outliers, small clusters; voxelised)")
       .def_readonly("n_merged", &Segmentation::n_merged, "clusters joined to a larger one (seen through it)")
       .def_readonly("n_joined", &Segmentation::n_joined, "clusters joined to another (a shadow between them)")
       .def_readonly("n_split", &Segmentation::n_split, "clusters cut off another by the split rule")

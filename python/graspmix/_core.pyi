@@ -1085,6 +1085,11 @@ class Segmentation:
         the support rule's figures, in the order found
         """
     @property
+    def dropped(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        """
+        (K, 3) the points above the table the clean-up dropped (outliers, small clusters; voxelised)
+        """
+    @property
     def labels(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 1]"]:
         """
         (M) object index of every point

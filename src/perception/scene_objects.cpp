@@ -78,6 +78,7 @@ void detail::finish(const Vec3Array& P, const Eigen::VectorXi& src, const Extrac
   out.n_plane = e.n_plane;
   out.n_outliers = e.n_outliers;
   out.n_small_clusters = e.n_small;
+  out.dropped = P(e.dropped, Eigen::all);
   refuse_a_table_seen_from_its_plane(P, out, s.plane_distance);
   if (e.groups.empty()) {
     if (!(out.plane_found || out.plane_given)) bad("no object in the cloud (every cluster is under min_cluster_size)");
@@ -122,10 +123,12 @@ void detail::regroup(Segmentation& scene, std::vector<std::vector<int>> groups, 
   e.n_plane = scene.n_plane;
   e.n_outliers = scene.n_outliers;
   e.n_small = scene.n_small_clusters;
+  const Vec3Array dropped = scene.dropped;
   const Vec3Array P = scene.points;
   const Eigen::VectorXi sources = scene.sources;
   scene.objects.clear();
   finish(P, sources, e, s, scene);
+  scene.dropped = dropped;
 }
 
 }  // namespace graspmix

@@ -204,10 +204,14 @@ Extraction extract(const Vec3Array& P, const Eigen::Vector4d* plane, const Segme
     const pcl::Indices kept = detail::statistical_inliers(cloud, s.outlier_neighbours, s.outlier_std_ratio);
     std::vector<int> kept_rows;
     Cloud::Ptr kept_cloud(new Cloud);
+    std::vector<bool> is_kept(rows.size(), false);
     for (const auto i : kept) {
       kept_rows.push_back(rows[static_cast<std::size_t>(i)]);
       kept_cloud->push_back((*cloud)[static_cast<std::size_t>(i)]);
+      is_kept[static_cast<std::size_t>(i)] = true;
     }
+    for (std::size_t i = 0; i < rows.size(); ++i)
+      if (!is_kept[i]) e.dropped.push_back(rows[i]);
     e.n_outliers = rows.size() - kept_rows.size();
     rows.swap(kept_rows);
     cloud = kept_cloud;
@@ -218,6 +222,7 @@ Extraction extract(const Vec3Array& P, const Eigen::Vector4d* plane, const Segme
     const auto n = static_cast<int>(f.size());
     if (n < s.min_cluster_size || (s.max_cluster_size > 0 && n > s.max_cluster_size)) {
       e.n_small += f.size();
+      for (const auto i : f) e.dropped.push_back(rows[static_cast<std::size_t>(i)]);
       continue;
     }
     std::vector<int> g;

@@ -249,9 +249,12 @@ struct Segmentation {
   std::size_t n_plane = 0;
   std::size_t n_outliers = 0;        ///< dropped by the outlier removal
   std::size_t n_small_clusters = 0;  ///< points of clusters under min_cluster_size (or over the maximum)
-  std::size_t n_merged = 0;          ///< clusters joined to another by the merge rule
-  std::size_t n_joined = 0;          ///< clusters joined to another by the join rule
-  std::size_t n_split = 0;           ///< clusters added by the split rule (pieces cut off another)
+  /// The points above the table the clean-up dropped (voxelised): the outliers and the clusters dropped for their
+  /// size. No object's; what a closing finger may still meet (scene synthesis' target-first check closes on them).
+  Vec3Array dropped = Vec3Array(0, 3);
+  std::size_t n_merged = 0;  ///< clusters joined to another by the merge rule
+  std::size_t n_joined = 0;  ///< clusters joined to another by the join rule
+  std::size_t n_split = 0;   ///< clusters added by the split rule (pieces cut off another)
   std::size_t n_output = 0;
   double seconds = 0.0;     ///< wall time of the whole segmentation
   SegmentationTimes times;  ///< and of each step

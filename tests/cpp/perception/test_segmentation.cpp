@@ -156,6 +156,13 @@ TEST(Segmentation, TableAndThreeBoxesFromOneNoisyCamera) {
   }
   EXPECT_EQ(s.n_input, static_cast<std::size_t>(r.points.rows()));
   EXPECT_EQ(s.n_after_voxel, s.n_plane + s.n_outliers + s.n_small_clusters + s.n_output);
+  // The points the clean-up dropped are kept aside: the outliers and the small clusters, above the table, none kept.
+  EXPECT_GT(s.n_outliers, 0u);
+  ASSERT_EQ(static_cast<std::size_t>(s.dropped.rows()), s.n_outliers + s.n_small_clusters);
+  for (Eigen::Index i = 0; i < s.dropped.rows(); ++i) {
+    EXPECT_GT(s.plane.head<3>().dot(s.dropped.row(i).transpose()) + s.plane[3], SegmentationSettings{}.table_clearance);
+    EXPECT_GT((s.points.rowwise() - s.dropped.row(i)).rowwise().norm().minCoeff(), 0.0);
+  }
 }
 
 TEST(Segmentation, OrientationFollowsTheCameraNotThePoints) {

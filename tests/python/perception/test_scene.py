@@ -390,3 +390,19 @@ def test_pcls_console_stays_quiet(tmp_path, capfd):
     argv = ["synthesize", "--cloud", str(data_path("scenes", "packed4.pcd")), "--out", str(tmp_path / "g.json")]
     assert main([*argv, "--workspace=-0.1,-0.2,-0.05,0.0,0.0,0.2"]) == 0
     assert "pcl::" not in capfd.readouterr().err
+
+
+def test_the_points_the_clean_up_dropped_are_kept_aside(rendered):
+    # The outliers and small clusters above the table, voxelised: as many as the counts say, none kept as an
+    # object's, each within a voxel of an input point pybullet's mask says is an object's (not the table's).
+    from scipy.spatial import cKDTree
+
+    points, eye, ids, bodies, _ = rendered
+    scene = segment_scene(points, eye)
+    r = scene.result
+    dropped = np.asarray(r.dropped)
+    assert dropped.shape == (r.n_outliers + r.n_small_clusters, 3)
+    assert len(dropped) > 0
+    assert cKDTree(scene.points).query(dropped)[0].min() > 0
+    on_objects = cKDTree(points[np.isin(ids, bodies)])
+    assert on_objects.query(dropped)[0].max() <= 0.003 * np.sqrt(3) + 1e-9

@@ -8,7 +8,7 @@
 #include <utility>
 
 #include "core/parallel_rows.hpp"
-#include "core/uniform_grid.hpp"
+#include "grasp/target_first.hpp"
 #include "graspmix/core/plane.hpp"
 #include "graspmix/grasp/topdown_seeds.hpp"
 #include "graspmix/perception/depth_scene.hpp"
@@ -190,29 +190,6 @@ Shared shared_part(const SceneInput& input, std::shared_ptr<const Hand> hand, co
   return shared;
 }
 
-/// ContactQualitySettings::target_first on the grasps of one target and type: 0 where each finger, closing from
-/// the pre-grasp, meets the target's points (`target`'s cloud) no later than the other objects' (`others`), -inf
-/// where a finger meets another object first (or only another object). The closing parameters are the contact
-/// quality's own (ContactQualityResult::t), so the test is exact for its closing motion.
-Eigen::VectorXd target_first(const ContactQualityExpert& target, const ContactQualityExpert& others,
-                             const std::vector<Grasp>& grasps) {
-  const auto n = static_cast<Eigen::Index>(grasps.size());
-  Eigen::VectorXd out = Eigen::VectorXd::Zero(n);
-  if (n == 0) return out;
-  PoseArray w(n, 7);
-  RowMatrixXd q(n, grasps.front().joints.size());
-  for (Eigen::Index i = 0; i < n; ++i) {
-    w.row(i) = grasps[static_cast<std::size_t>(i)].T_world_wrist.transpose();
-    q.row(i) = grasps[static_cast<std::size_t>(i)].joints.transpose();
-  }
-  const RowMatrixXd t_target = target.evaluate(w, q).t, t_other = others.evaluate(w, q).t;
-  for (Eigen::Index i = 0; i < n; ++i)
-    for (Eigen::Index f = 0; f < t_other.cols(); ++f)
-      if (std::isfinite(t_other(i, f)) && !(t_target(i, f) <= t_other(i, f)))
-        out[i] = -std::numeric_limits<double>::infinity();
-  return out;
-}
-
 /// Object i's surface and, per grasp type, its own experts and the synthesiser's grasps, added to `out`.
 void synthesize_target(int i, const std::vector<SceneGraspType>& types, const SceneSynthesisSettings& settings,
                        const Shared& shared, SceneSynthesis& out) {
@@ -221,15 +198,17 @@ void synthesize_target(int i, const std::vector<SceneGraspType>& types, const Sc
   const auto n_observed = static_cast<Eigen::Index>(out.scene.objects[static_cast<std::size_t>(i)].rows.size());
   const Eigen::VectorXd weights = query_weights(surface, n_observed, settings.synthesizer.query.completed_weight);
   std::shared_ptr<CollisionExpert> neighbours;
-  // The other objects' observed points: target_first closes on them, the top-down seeds look for them near.
+  // The other objects' observed points: the top-down seeds look for them near; target_first closes on them and on the
+  // points the segmentation dropped that are not the target's.
   const bool seeded = settings.synthesizer.sampling.topdown_seeds && shared.table;
   const bool first_check = settings.contact_quality && settings.contact_quality->target_first;
-  Vec3Array others_seen(0, 3);
+  Vec3Array others_seen(0, 3), others_met(0, 3);
   if (out.scene.objects.size() > 1) {
     neighbours = collision_on(shared.hand, solid_points(out.scene, out.completion.completions, i), std::nullopt,
                               settings.collision, nullptr);
     if (seeded || first_check)
       others_seen = solid_points(out.scene, std::vector<std::optional<Completion>>(out.scene.objects.size()), i);
+    if (first_check) others_met = stacked(others_seen, detail::dropped_not_of(out.scene, i));
   }
   out.timing.features += seconds_since(t0);
   for (std::size_t k = 0; k < types.size(); ++k) {
@@ -248,12 +227,12 @@ void synthesize_target(int i, const std::vector<SceneGraspType>& types, const Sc
       quality = std::make_shared<ContactQualityExpert>(shared.hand, surface.points, surface.normals, config,
                                                        *settings.contact_quality);
       experts.push_back(quality);
-      if (others_seen.rows() > 0 && first_check) {
+      if (others_met.rows() > 0) {
         ContactQualitySettings first = *settings.contact_quality;
-        first.patch_points = 0;               // its closing only: no patch reference to measure
-        Vec3Array up(others_seen.rows(), 3);  // its closing only: the normals score, not the contacts
+        first.patch_points = 0;              // its closing only: no patch reference to measure
+        Vec3Array up(others_met.rows(), 3);  // its closing only: the normals score, not the contacts
         up.rowwise() = Eigen::RowVector3d::UnitZ();
-        others = std::make_shared<ContactQualityExpert>(shared.hand, others_seen, up, config, first);
+        others = std::make_shared<ContactQualityExpert>(shared.hand, others_met, up, config, first);
       }
     }
     out.timing.features += seconds_since(te);
@@ -272,10 +251,11 @@ void synthesize_target(int i, const std::vector<SceneGraspType>& types, const Sc
       const Eigen::VectorXi mine = target_side(surface, n_observed, others_seen, kTargetSideClearance);
       const Eigen::VectorXd first =
           mine.size() == surface.points.rows()
-              ? target_first(*quality, *others, res.grasps)
-              : target_first(ContactQualityExpert(shared.hand, rows_of(surface.points, mine),
-                                                  rows_of(surface.normals, mine), config, *settings.contact_quality),
-                             *others, res.grasps);
+              ? detail::target_first(*quality, *others, res.grasps)
+              : detail::target_first(
+                    ContactQualityExpert(shared.hand, rows_of(surface.points, mine), rows_of(surface.normals, mine),
+                                         config, *settings.contact_quality),
+                    *others, res.grasps);
       for (std::size_t j = 0; j < res.grasps.size(); ++j) add_term(res.grasps[j], first[static_cast<Eigen::Index>(j)]);
       std::stable_sort(res.grasps.begin(), res.grasps.end(),
                        [](const Grasp& a, const Grasp& b) { return a.log_likelihood > b.log_likelihood; });
@@ -318,48 +298,6 @@ Eigen::VectorXd query_weights(const SurfaceCloud& surface, Eigen::Index n_observ
   if ((surface.indices.array() < n_observed).all()) return {};
   return (surface.indices.array() >= n_observed)
       .select(Eigen::VectorXd::Constant(surface.indices.size(), completed_weight), 1.0);
-}
-
-Eigen::VectorXi target_side(const SurfaceCloud& surface, Eigen::Index n_observed, const Vec3Array& others,
-                            double radius) {
-  if (!(std::isfinite(radius) && radius > 0))
-    throw std::invalid_argument("target_side: the radius must be a finite distance > 0 (m)");
-  if (surface.indices.size() != surface.points.rows())
-    throw std::invalid_argument("target_side: the surface needs one index per point");
-  std::vector<int> rows;
-  rows.reserve(static_cast<std::size_t>(surface.points.rows()));
-  const bool any_completed = (surface.indices.array() >= n_observed).any();
-  std::optional<detail::UniformGrid> grid;
-  Eigen::Vector3d lo = Eigen::Vector3d::Zero();
-  if (any_completed && others.rows() > 0) {
-    lo = others.colwise().minCoeff().transpose().array() - radius;
-    const Eigen::Vector3d span = others.colwise().maxCoeff().transpose() - lo;
-    detail::UniformGrid::Cell dims{};
-    double cells = 1;
-    for (std::size_t k = 0; k < 3; ++k) {
-      dims[k] = std::min(static_cast<std::int64_t>((span[static_cast<Eigen::Index>(k)] + radius) / radius) + 1,
-                         detail::UniformGrid::kMaxCells);
-      cells *= static_cast<double>(dims[k]);
-    }
-    grid.emplace(others, lo, radius, dims,
-                 cells < 1e6 ? detail::UniformGrid::Layout::Dense : detail::UniformGrid::Layout::Sparse);
-  }
-  for (Eigen::Index r = 0; r < surface.points.rows(); ++r) {
-    const Eigen::Vector3d p = surface.points.row(r).transpose();
-    bool near = false;
-    if (grid && surface.indices[r] >= n_observed) {
-      const auto c = grid->cell_of(p);
-      auto c0 = c, c1 = c;
-      for (std::size_t k = 0; k < 3; ++k) {
-        c0[k] = std::max<std::int64_t>(c[k] - 1, 0);
-        c1[k] = std::min<std::int64_t>(c[k] + 1, grid->dims()[k] - 1);
-      }
-      grid->for_each_in_cells(c0, c1,
-                              [&](int j) { near = near || (grid->point(j) - p).squaredNorm() < radius * radius; });
-    }
-    if (!near) rows.push_back(static_cast<int>(r));
-  }
-  return Eigen::Map<const Eigen::VectorXi>(rows.data(), static_cast<Eigen::Index>(rows.size()));
 }
 
 SceneSynthesis synthesize_scene(const SceneInput& input, const std::vector<SceneGraspType>& types,

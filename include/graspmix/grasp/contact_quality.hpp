@@ -72,9 +72,10 @@ struct ContactQualitySettings {
   int closing_steps = 16;                ///< steps of the closing motion before bisection (links that do not translate)
   std::string name = "contact_quality";  ///< the key of its term in a grasp's experts table
   /// Scene synthesis with other objects: a returned grasp whose finger, closing from the pre-grasp, meets another
-  /// object's observed points before the target's (scene_synthesis.hpp's target_side) is rejected (its
-  /// "target_first" term -inf, ranked after the others). Of the neighbours lifted instead of a named object on the
-  /// development scenes, every one had such a finger (docs/one-view.md, "The fingers meet the target first").
+  /// object's observed points (or a point the segmentation dropped that is not the target's) before the target's
+  /// (scene_synthesis.hpp's target_side) is rejected (its "target_first" term -inf, ranked after the others). Of
+  /// the neighbours lifted instead of a named object on the development scenes, every one had such a finger
+  /// (docs/one-view.md, "The fingers meet the target first").
   bool target_first = true;
 };
 

@@ -19,6 +19,7 @@
 
 #include "core/error_message.hpp"
 #include "grasp/synthetic_box.hpp"
+#include "grasp/target_first.hpp"
 #include "graspmix/core/plane.hpp"
 #include "graspmix/core/se3.hpp"
 #include "graspmix/density/pose_mixture.hpp"
@@ -141,21 +142,33 @@ TEST(SceneSynthesis, EqualsItsStepsComposedByHand) {
 
   // Then the fingers must meet the target first (ContactQualitySettings::target_first): each grasp's fingers closed
   // by the contact quality's own motion on the target's side of its surface (target_side) and on the other object's
-  // observed points.
+  // observed points with the points the segmentation dropped that are not the target's (the nearest kept point
+  // within detail::kDroppedOwnerRadius another object's, or none).
   Vec3Array observed_others(0, 3);
   for (Eigen::Index i = 0; i < scene.points.rows(); ++i)
     if (scene.labels[i] != 1) {
       observed_others.conservativeResize(observed_others.rows() + 1, 3);
       observed_others.row(observed_others.rows() - 1) = scene.points.row(i);
     }
+  Vec3Array met = observed_others;
+  ASSERT_GT(scene.dropped.rows(), 0);  // the clean-up dropped points here: the test sees them used
+  for (Eigen::Index i = 0; i < scene.dropped.rows(); ++i) {
+    Eigen::Index owner = -1;
+    double best = detail::kDroppedOwnerRadius;
+    for (Eigen::Index j = 0; j < scene.points.rows(); ++j)
+      if (const double d = (scene.points.row(j) - scene.dropped.row(i)).norm(); d < best) best = d, owner = j;
+    if (owner >= 0 && scene.labels[owner] == 1) continue;
+    met.conservativeResize(met.rows() + 1, 3);
+    met.row(met.rows() - 1) = scene.dropped.row(i);
+  }
   ContactQualitySettings closing_only = *s.contact_quality;
   closing_only.patch_points = 0;
-  Vec3Array up(observed_others.rows(), 3);
+  Vec3Array up(met.rows(), 3);
   up.rowwise() = Eigen::RowVector3d::UnitZ();
   const Eigen::VectorXi mine = target_side(surface, scene.objects[1].rows.size(), observed_others);
   const ContactQualityExpert on_target(hand, surface.points(mine, Eigen::all), surface.normals(mine, Eigen::all),
                                        config, *s.contact_quality);
-  const ContactQualityExpert on_others(hand, observed_others, up, config, closing_only);
+  const ContactQualityExpert on_others(hand, met, up, config, closing_only);
   std::vector<Grasp> expected = by_hand.grasps;
   const auto n_grasps = static_cast<Eigen::Index>(expected.size());
   PoseArray w(n_grasps, 7);

@@ -147,6 +147,7 @@ struct Shared {
   std::optional<Eigen::Vector4d> table;  ///< the scene's plane oriented so the objects stand above it (none: no plane)
   std::shared_ptr<CollisionExpert> collision, approach;
   std::vector<ExpertPtr> experts;
+  Eigen::VectorXi dropped_owners;  ///< the target-first check's: detail::dropped_owners (empty when it is off)
 };
 
 Shared shared_part(const SceneInput& input, std::shared_ptr<const Hand> hand, const SceneSynthesisSettings& settings,
@@ -186,6 +187,8 @@ Shared shared_part(const SceneInput& input, std::shared_ptr<const Hand> hand, co
       },
       detail::RowOrder::AsThreadsFree);
   shared.experts = shared_experts(shared.hand, shared.table, settings, request);
+  if (settings.contact_quality && settings.contact_quality->target_first && out.scene.objects.size() > 1)
+    shared.dropped_owners = detail::dropped_owners(out.scene);
   out.timing.features += seconds_since(t_experts);
   return shared;
 }
@@ -208,8 +211,12 @@ void synthesize_target(int i, const std::vector<SceneGraspType>& types, const Sc
                               settings.collision, nullptr);
     if (seeded || first_check)
       others_seen = solid_points(out.scene, std::vector<std::optional<Completion>>(out.scene.objects.size()), i);
-    if (first_check) others_met = stacked(others_seen, detail::dropped_not_of(out.scene, i));
+    if (first_check) others_met = stacked(others_seen, detail::dropped_not_of(out.scene, shared.dropped_owners, i));
   }
+  // The target's side of the check: its completed points on what the check counts as others' are not the target's.
+  const double side_clearance = settings.completion ? settings.completion->observed_clearance : kTargetSideClearance;
+  const Eigen::VectorXi mine =
+      others_met.rows() > 0 ? target_side(surface, n_observed, others_met, side_clearance) : Eigen::VectorXi();
   out.timing.features += seconds_since(t0);
   for (std::size_t k = 0; k < types.size(); ++k) {
     const auto te = Clock::now();
@@ -248,7 +255,6 @@ void synthesize_target(int i, const std::vector<SceneGraspType>& types, const Sc
     };
     if (others) {
       out.term_names[k].push_back(kTargetFirstTerm);
-      const Eigen::VectorXi mine = target_side(surface, n_observed, others_seen, kTargetSideClearance);
       const Eigen::VectorXd first =
           mine.size() == surface.points.rows()
               ? detail::target_first(*quality, *others, res.grasps)

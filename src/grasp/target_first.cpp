@@ -24,14 +24,16 @@ RadiusGrid::RadiusGrid(const Vec3Array& P, double radius) {
     throw std::invalid_argument("RadiusGrid: the radius must be a finite distance > 0 (m)");
   auto impl = std::make_shared<Impl>();
   impl->radius = radius;
+  if (!P.allFinite()) throw std::invalid_argument("RadiusGrid: the points must be finite");
   if (P.rows() > 0) {
     const Eigen::Vector3d lo = P.colwise().minCoeff().transpose().array() - radius;
     const Eigen::Vector3d span = P.colwise().maxCoeff().transpose() - lo;
     UniformGrid::Cell dims{};
     double cells = 1;
     for (std::size_t k = 0; k < 3; ++k) {
-      dims[k] = std::min(static_cast<std::int64_t>((span[static_cast<Eigen::Index>(k)] + radius) / radius) + 1,
-                         UniformGrid::kMaxCells);
+      // clamped as a double, then cast: a span of any size makes a valid count
+      const double n = std::floor((span[static_cast<Eigen::Index>(k)] + radius) / radius) + 1;
+      dims[k] = static_cast<std::int64_t>(std::min(n, static_cast<double>(UniformGrid::kMaxCells)));
       cells *= static_cast<double>(dims[k]);
     }
     impl->grid.emplace(P, lo, radius, dims, cells < 1e6 ? UniformGrid::Layout::Dense : UniformGrid::Layout::Sparse);
@@ -79,14 +81,23 @@ Eigen::VectorXd target_first(const ContactQualityExpert& target, const ContactQu
   return out;
 }
 
-Vec3Array dropped_not_of(const Segmentation& scene, int target) {
-  if (scene.dropped.rows() == 0) return Vec3Array(0, 3);
+Eigen::VectorXi dropped_owners(const Segmentation& scene) {
+  Eigen::VectorXi owners = Eigen::VectorXi::Constant(scene.dropped.rows(), -1);
+  if (scene.dropped.rows() == 0) return owners;
   const RadiusGrid kept(scene.points, kDroppedOwnerRadius);
-  std::vector<Eigen::Index> rows;
   for (Eigen::Index i = 0; i < scene.dropped.rows(); ++i) {
     const Eigen::Index j = kept.nearest(scene.dropped.row(i).transpose());
-    if (j < 0 || scene.labels[j] != target) rows.push_back(i);
+    if (j >= 0) owners[i] = scene.labels[j];
   }
+  return owners;
+}
+
+Vec3Array dropped_not_of(const Segmentation& scene, const Eigen::VectorXi& owners, int target) {
+  if (owners.size() != scene.dropped.rows())
+    throw std::invalid_argument("dropped_not_of: one owner per dropped point is needed");
+  std::vector<Eigen::Index> rows;
+  for (Eigen::Index i = 0; i < owners.size(); ++i)
+    if (owners[i] != target) rows.push_back(i);
   return scene.dropped(rows, Eigen::all);
 }
 

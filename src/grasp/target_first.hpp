@@ -24,9 +24,13 @@ inline constexpr double kDroppedOwnerRadius = 0.01;
 Eigen::VectorXd target_first(const ContactQualityExpert& target, const ContactQualityExpert& others,
                              const std::vector<Grasp>& grasps);
 
-/// scene.dropped's points that are not object `target`'s: those whose nearest kept point within
-/// kDroppedOwnerRadius is another object's, and those with none within it.
-Vec3Array dropped_not_of(const Segmentation& scene, int target);
+/// Per row of scene.dropped, the object (Segmentation::objects index) whose kept point comes nearest it within
+/// kDroppedOwnerRadius; -1 where none comes within it.
+Eigen::VectorXi dropped_owners(const Segmentation& scene);
+
+/// scene.dropped's points that are not object `target`'s (`owners`: dropped_owners(scene)): another object's, or
+/// no object's.
+Vec3Array dropped_not_of(const Segmentation& scene, const Eigen::VectorXi& owners, int target);
 
 /// P in cells one radius wide: the nearest row of P within the radius of a point.
 class RadiusGrid {

@@ -77,9 +77,10 @@ inline constexpr const char* kTypeReferenceTerm = "type_reference";
 /// The term of log L that rejects a grasp whose finger meets another object before the target
 /// (ContactQualitySettings::target_first): 0 or -inf.
 inline constexpr const char* kTargetFirstTerm = "target_first";
-/// m: the target-first check does not count as the target's the target's completed points within this of another
-/// object's observed point (CompletionSettings::observed_clearance's two voxels): a completion may reach behind a
-/// neighbour's seen surface, and a finger that meets it there meets the neighbour.
+/// m: target_side's radius by default: the target-first check does not count as the target's its completed points
+/// within this of what it counts as other objects' (a completion may reach behind a neighbour's seen surface, and a
+/// finger that meets it there meets the neighbour). synthesize_scene takes the completion's observed_clearance (the
+/// same two voxels by default: no completed point within it of the object's own observed points either).
 inline constexpr double kTargetSideClearance = 0.006;
 
 /// Object `index`'s surface features as synthesize_scene computes them: its observed points (normals towards the
@@ -97,7 +98,9 @@ Eigen::VectorXd query_weights(const SurfaceCloud& surface, Eigen::Index n_observ
 
 /// The rows of a target's surface (object_surface's order: n_observed observed points first) the target-first check
 /// counts as the target's: every observed point, and every completed point at least `radius` from each row of
-/// `others` (the other objects' observed points). Ascending.
+/// `others` (what the check closes on as other objects': their observed points and the points the segmentation
+/// dropped that are not the target's). Ascending. Throws std::invalid_argument for a radius not finite and > 0 or a
+/// surface without one index per point.
 Eigen::VectorXi target_side(const SurfaceCloud& surface, Eigen::Index n_observed, const Vec3Array& others,
                             double radius = kTargetSideClearance);
 

@@ -249,8 +249,10 @@ struct Segmentation {
   std::size_t n_plane = 0;
   std::size_t n_outliers = 0;        ///< dropped by the outlier removal
   std::size_t n_small_clusters = 0;  ///< points of clusters under min_cluster_size (or over the maximum)
-  /// The points above the table the clean-up dropped (voxelised): the outliers and the clusters dropped for their
-  /// size. No object's; what a closing finger may still meet (scene synthesis' target-first check closes on them).
+  /// The points the clean-up dropped (voxelised): the statistical outliers and the clusters dropped for their size
+  /// (under min_cluster_size or over max_cluster_size), of the points above table_clearance when there is a plane
+  /// (a noisy table's small fragments above it among them), of all points when there is none. No object's; what a
+  /// closing finger may still meet (scene synthesis' target-first check closes on them).
   Vec3Array dropped = Vec3Array(0, 3);
   std::size_t n_merged = 0;  ///< clusters joined to another by the merge rule
   std::size_t n_joined = 0;  ///< clusters joined to another by the join rule

@@ -165,7 +165,8 @@ TEST(SceneSynthesis, EqualsItsStepsComposedByHand) {
   closing_only.patch_points = 0;
   Vec3Array up(met.rows(), 3);
   up.rowwise() = Eigen::RowVector3d::UnitZ();
-  const Eigen::VectorXi mine = target_side(surface, scene.objects[1].rows.size(), observed_others);
+  const Eigen::VectorXi mine =
+      target_side(surface, scene.objects[1].rows.size(), met, s.completion->observed_clearance);
   const ContactQualityExpert on_target(hand, surface.points(mine, Eigen::all), surface.normals(mine, Eigen::all),
                                        config, *s.contact_quality);
   const ContactQualityExpert on_others(hand, met, up, config, closing_only);

@@ -89,6 +89,23 @@ class UniformGrid {
     }
   }
 
+  /// A grid of cells `cell_size` wide over the bounds of P (not empty, finite) widened by `pad` on every side: dense
+  /// below a million cells, sparse above; the cell counts clamped as doubles to kMaxCells before the cast.
+  static UniformGrid covering(const Eigen::Ref<const Vec3Array>& P, double cell_size, double pad = 0.0) {
+    if (P.rows() == 0 || !P.allFinite()) throw std::invalid_argument("UniformGrid: no points, or points not finite");
+    const Eigen::Vector3d lo = P.colwise().minCoeff().transpose().array() - pad;
+    const Eigen::Vector3d hi = P.colwise().maxCoeff().transpose();
+    Cell dims{};
+    double cells = 1;
+    for (std::size_t k = 0; k < 3; ++k) {
+      const auto e = static_cast<Eigen::Index>(k);
+      const double n = std::floor((hi[e] - lo[e] + pad) / cell_size) + 1;
+      dims[k] = static_cast<std::int64_t>(std::min(n, static_cast<double>(kMaxCells)));
+      cells *= static_cast<double>(dims[k]);
+    }
+    return UniformGrid(P, lo, cell_size, dims, cells < 1e6 ? Layout::Dense : Layout::Sparse);
+  }
+
   int size() const { return static_cast<int>(p_.size()); }
   double cell_size() const { return h_; }
   const Cell& dims() const { return dims_; }

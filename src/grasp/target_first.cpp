@@ -25,19 +25,8 @@ RadiusGrid::RadiusGrid(const Vec3Array& P, double radius) {
   auto impl = std::make_shared<Impl>();
   impl->radius = radius;
   if (!P.allFinite()) throw std::invalid_argument("RadiusGrid: the points must be finite");
-  if (P.rows() > 0) {
-    const Eigen::Vector3d lo = P.colwise().minCoeff().transpose().array() - radius;
-    const Eigen::Vector3d span = P.colwise().maxCoeff().transpose() - lo;
-    UniformGrid::Cell dims{};
-    double cells = 1;
-    for (std::size_t k = 0; k < 3; ++k) {
-      // clamped as a double, then cast: a span of any size makes a valid count
-      const double n = std::floor((span[static_cast<Eigen::Index>(k)] + radius) / radius) + 1;
-      dims[k] = static_cast<std::int64_t>(std::min(n, static_cast<double>(UniformGrid::kMaxCells)));
-      cells *= static_cast<double>(dims[k]);
-    }
-    impl->grid.emplace(P, lo, radius, dims, cells < 1e6 ? UniformGrid::Layout::Dense : UniformGrid::Layout::Sparse);
-  }
+  // padded by a radius: no point of P lies in a clamped cell
+  if (P.rows() > 0) impl->grid.emplace(UniformGrid::covering(P, radius, radius));
   impl_ = std::move(impl);
 }
 

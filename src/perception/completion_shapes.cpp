@@ -72,14 +72,7 @@ Footprint::Footprint(const TableFrame& f, double cell_size) : cell(cell_size) {
 
 Vec3Array observed_normals(const Eigen::Ref<const Vec3Array>& P, const Eigen::Vector3d& viewpoint, double radius,
                            const std::vector<Eigen::Index>* rows) {
-  const Eigen::Vector3d lo = P.colwise().minCoeff().transpose(), hi = P.colwise().maxCoeff().transpose();
-  UniformGrid::Cell dims{};
-  double cells = 1;
-  for (int k = 0; k < 3; ++k) {
-    dims[k] = std::min<std::int64_t>(static_cast<std::int64_t>((hi[k] - lo[k]) / radius) + 1, UniformGrid::kMaxCells);
-    cells *= static_cast<double>(dims[k]);
-  }
-  const UniformGrid grid(P, lo, radius, dims, cells < 1e6 ? UniformGrid::Layout::Dense : UniformGrid::Layout::Sparse);
+  const UniformGrid grid = UniformGrid::covering(P, radius);
   // The grid positions of the points asked for: all, or those of `rows`.
   std::vector<int> asked;
   if (rows) {

@@ -75,8 +75,8 @@ void segment_on_support(const Vec3Array& P, const Eigen::VectorXi& sources, cons
 struct Extraction {
   std::vector<std::vector<int>> groups;
   std::size_t n_plane = 0, n_outliers = 0, n_small = 0;
-  std::vector<int>
-      dropped;  ///< rows of the outliers and of the clusters dropped for their size (Segmentation::dropped)
+  /// rows of the outliers and of the clusters dropped for their size (Segmentation::dropped)
+  std::vector<int> dropped;
 };
 
 /// The objects of an extraction described and ordered as documented (segmentation.hpp) into `out`, from the points

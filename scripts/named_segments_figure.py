@@ -4,9 +4,10 @@
 
 RUN: a `graspmix_cli clutter --task named` run (its clutter.json and named_attempts.csv[.gz]). Each attempt that
 lifted a neighbour ("wrong object", "two objects lifted") is rebuilt: its scene placed and observed again (the
-protocol's seeds), the scene segmented as the attempt's synthesis segmented it (the run's settings and target; few
-samples, since only the segmentation is drawn), and the segment the named point selects drawn from the camera's
-side (across the view against height), each point coloured by the object the simulator says it lies on.
+protocol's seeds), the scene segmented as the attempt's synthesis segmented it (the run's settings, the attempt's
+seed and target; few samples, since only the segmentation is drawn; checked against the segment the attempt
+recorded), and the segment the named point selects drawn from the camera's side (across the view against height),
+each point coloured by whether the simulator puts it on the named object.
 """
 
 from __future__ import annotations
@@ -25,7 +26,10 @@ def side_view(ax, points, on_target, point, camera, title: str) -> None:
     forward[2] = 0.0
     forward /= np.linalg.norm(forward)
     across = np.array([-forward[1], forward[0], 0.0])
-    for mask, colour, name in [(on_target, "tab:blue", "named object"), (~on_target, "tab:orange", "neighbour")]:
+    for mask, colour, name in [
+        (on_target, "tab:blue", "named object"),
+        (~on_target, "tab:orange", "not the named object"),
+    ]:
         ax.scatter(points[mask] @ across * 100, points[mask, 2] * 100, s=2, c=colour, label=f"{name} ({mask.sum()})")
     ax.scatter([point @ across * 100], [point[2] * 100], c="k", marker="x", s=60, label="named point")
     ax.set_title(title, fontsize=9)
@@ -49,24 +53,30 @@ def main() -> None:
     from graspmix.clutter.named import named_rows, named_scene, point_target
     from graspmix.clutter.protocol import clutter_protocol_from_json
     from graspmix.experiment.attempt import cached_model
+    from graspmix.model.grasps import NoFeasibleGraspWarning
 
     doc = json.loads((args.run / "clutter.json").read_text())
     p = clutter_protocol_from_json(doc["protocol"])
-    model = cached_model(str(p.model_path("gmm").resolve()))
+    model = cached_model(str(p.model_path("gmm").resolve()))  # the segmentation is the same for every method
     rows = [r for r in named_rows(args.run) if r["outcome"] in ("wrong object", "two objects lifted")]
     if not rows:
         raise SystemExit(f"{args.run}: no attempt lifted a neighbour")
     cols = (len(rows) + 1) // 2
     fig, axes = plt.subplots(2, cols, figsize=(3.6 * cols, 6.4), squeeze=False)
-    options = p.synthesis.updated({"sampling.n_samples": 10, "sampling.n_optimise": 1})
     for ax, r in zip(axes.ravel(), rows):
         ns = named_scene(p, r["mode"], int(r["scene"]))
         target = ns.picks[int(r["pick"])]
         point = ns.point(target)
+        # the attempt's seed (it seeds the segmentation's RANSAC too); few samples: the grasps are not drawn
+        options = p.synthesis.updated(
+            {"seed": int(r["synthesis_seed"]), "sampling.n_samples": 10, "sampling.n_optimise": 1}
+        )
         with warnings.catch_warnings():
-            warnings.simplefilter("ignore")  # few samples: the grasps are not what is drawn
+            warnings.simplefilter("ignore", NoFeasibleGraspWarning)
             scene = p.synthesize(model, ns.obs, options, target=point_target(point)).scene
         index = scene.select(point_target(point))[0]
+        if index != int(r["named"]) or point_target(point) != "point:" + r["point"]:
+            raise SystemExit(f"scene {r['scene']} pick {r['pick']}: the rebuilt scene is not the attempt's")
         obj = next(o for o in scene.objects if o.index == index)
         labels = np.asarray(p.object_labels(ns.obs))[scene.sources[obj.rows]]
         camera = np.asarray(ns.obs.viewpoints)[0]

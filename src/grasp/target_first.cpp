@@ -24,8 +24,7 @@ RadiusGrid::RadiusGrid(const Vec3Array& P, double radius) {
     throw std::invalid_argument("RadiusGrid: the radius must be a finite distance > 0 (m)");
   auto impl = std::make_shared<Impl>();
   impl->radius = radius;
-  if (!P.allFinite()) throw std::invalid_argument("RadiusGrid: the points must be finite");
-  // padded by a radius: no point of P lies in a clamped cell
+  // padded by a radius: no point of P lies in a clamped cell (covering refuses points not finite)
   if (P.rows() > 0) impl->grid.emplace(UniformGrid::covering(P, radius, radius));
   impl_ = std::move(impl);
 }

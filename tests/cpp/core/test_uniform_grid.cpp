@@ -1,5 +1,7 @@
 // The library's private uniform grid against brute force on random points.
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <random>
 #include <set>
 #include <vector>
@@ -119,4 +121,30 @@ TEST(UniformGrid, EmptyCloud) {
   int visits = 0;
   grid.for_each_in_cells({0, 0, 0}, {0, 0, 0}, [&](int) { ++visits; });
   EXPECT_EQ(visits, 0);
+}
+
+TEST(UniformGrid, CoveringSpansTheBoundsWidenedByThePad) {
+  const Vec3Array P = random_points(300, 5);
+  const double h = 0.01, pad = 0.01;
+  // Unpadded: the cell counts of the points' own extent (dims_for), every point in a cell of its own floor.
+  const UniformGrid bare = UniformGrid::covering(P, h);
+  EXPECT_EQ(bare.dims(), dims_for(P, h));
+  // Padded: a pad's worth of cells more on each side, and no point in a border cell (none is clamped there).
+  const UniformGrid padded = UniformGrid::covering(P, h, pad);
+  const Eigen::Vector3d ext = P.colwise().maxCoeff() - P.colwise().minCoeff();
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(padded.dims()[k], static_cast<std::int64_t>(std::floor((ext[k] + 2 * pad) / h)) + 1) << k;
+    for (int i = 0; i < padded.size(); ++i) {
+      EXPECT_GT(padded.cell(i)[k], 0) << k;
+      EXPECT_LT(padded.cell(i)[k], padded.dims()[k] - 1) << k;
+    }
+  }
+  // A span of 1e9 cells on one axis is clamped to kMaxCells (sparse), not cast past an integer's range.
+  Vec3Array far(2, 3);
+  far << 0, 0, 0, 1e9 * h, 0, 0;
+  EXPECT_EQ(UniformGrid::covering(far, h).dims()[0], UniformGrid::kMaxCells);
+  EXPECT_THROW(UniformGrid::covering(Vec3Array(0, 3), h), std::invalid_argument);
+  Vec3Array nan = P;
+  nan(4, 1) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(UniformGrid::covering(nan, h), std::invalid_argument);
 }

@@ -40,6 +40,31 @@ def side_view(ax, points, on_target, point, camera, title: str) -> None:
     ax.tick_params(labelsize=6)
 
 
+def rebuilt_segment(p, model, r: dict):
+    """A named attempt's scene rebuilt (placed and observed again from the protocol's seeds) and segmented as its
+    synthesis segmented it (the run's settings, the attempt's seed and target; few samples, only the segmentation is
+    used): (named scene, named point, the segment the point selects, the simulator's label of each of its points).
+    Exits when the rebuilt segment is not the one the attempt recorded."""
+    from graspmix.clutter.named import named_scene, point_target
+    from graspmix.model.grasps import NoFeasibleGraspWarning
+
+    ns = named_scene(p, r["mode"], int(r["scene"]))
+    point = ns.point(ns.picks[int(r["pick"])])
+    # the attempt's seed (it seeds the segmentation's RANSAC too); few samples: the grasps are not used
+    options = p.synthesis.updated(
+        {"seed": int(r["synthesis_seed"]), "sampling.n_samples": 10, "sampling.n_optimise": 1}
+    )
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", NoFeasibleGraspWarning)
+        scene = p.synthesize(model, ns.obs, options, target=point_target(point)).scene
+    index = scene.select(point_target(point))[0]
+    if index != int(r["named"]) or point_target(point) != "point:" + r["point"]:
+        raise SystemExit(f"scene {r['scene']} pick {r['pick']}: the rebuilt scene is not the attempt's")
+    obj = next(o for o in scene.objects if o.index == index)
+    labels = np.asarray(p.object_labels(ns.obs))[scene.sources[obj.rows]]
+    return ns, point, obj, labels
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("run", type=Path)
@@ -50,10 +75,9 @@ def main() -> None:
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    from graspmix.clutter.named import named_rows, named_scene, point_target
+    from graspmix.clutter.named import named_rows
     from graspmix.clutter.protocol import clutter_protocol_from_json
     from graspmix.experiment.attempt import cached_model
-    from graspmix.model.grasps import NoFeasibleGraspWarning
 
     doc = json.loads((args.run / "clutter.json").read_text())
     p = clutter_protocol_from_json(doc["protocol"])
@@ -64,21 +88,8 @@ def main() -> None:
     cols = (len(rows) + 1) // 2
     fig, axes = plt.subplots(2, cols, figsize=(3.6 * cols, 6.4), squeeze=False)
     for ax, r in zip(axes.ravel(), rows):
-        ns = named_scene(p, r["mode"], int(r["scene"]))
+        ns, point, obj, labels = rebuilt_segment(p, model, r)
         target = ns.picks[int(r["pick"])]
-        point = ns.point(target)
-        # the attempt's seed (it seeds the segmentation's RANSAC too); few samples: the grasps are not drawn
-        options = p.synthesis.updated(
-            {"seed": int(r["synthesis_seed"]), "sampling.n_samples": 10, "sampling.n_optimise": 1}
-        )
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", NoFeasibleGraspWarning)
-            scene = p.synthesize(model, ns.obs, options, target=point_target(point)).scene
-        index = scene.select(point_target(point))[0]
-        if index != int(r["named"]) or point_target(point) != "point:" + r["point"]:
-            raise SystemExit(f"scene {r['scene']} pick {r['pick']}: the rebuilt scene is not the attempt's")
-        obj = next(o for o in scene.objects if o.index == index)
-        labels = np.asarray(p.object_labels(ns.obs))[scene.sources[obj.rows]]
         camera = np.asarray(ns.obs.viewpoints)[0]
         side_view(ax, obj.points, labels == target, point, camera, f"scene {r['scene']}, pick {r['pick']}")
         print(

@@ -79,6 +79,11 @@ const Completion* completed(const std::vector<std::optional<Completion>>& comple
   return c && c->points.rows() > 0 ? &*c : nullptr;
 }
 
+/// Whether the target-first check runs (it needs the contact quality's closing).
+bool target_first_on(const SceneSynthesisSettings& settings) {
+  return settings.contact_quality && settings.contact_quality->target_first;
+}
+
 /// The objects' observed points and every completed point, but object `without`'s (-1: none left out).
 Vec3Array solid_points(const Segmentation& scene, const std::vector<std::optional<Completion>>& completions,
                        int without = -1) {
@@ -187,7 +192,7 @@ Shared shared_part(const SceneInput& input, std::shared_ptr<const Hand> hand, co
       },
       detail::RowOrder::AsThreadsFree);
   shared.experts = shared_experts(shared.hand, shared.table, settings, request);
-  if (settings.contact_quality && settings.contact_quality->target_first && out.scene.objects.size() > 1)
+  if (target_first_on(settings) && out.scene.objects.size() > 1)
     shared.dropped_owners = detail::dropped_owners(out.scene);
   out.timing.features += seconds_since(t_experts);
   return shared;
@@ -204,7 +209,7 @@ void synthesize_target(int i, const std::vector<SceneGraspType>& types, const Sc
   // The other objects' observed points: the top-down seeds look for them near; target_first closes on them and on the
   // points the segmentation dropped that are not the target's.
   const bool seeded = settings.synthesizer.sampling.topdown_seeds && shared.table;
-  const bool first_check = settings.contact_quality && settings.contact_quality->target_first;
+  const bool first_check = target_first_on(settings);
   Vec3Array others_seen(0, 3), others_met(0, 3);
   if (out.scene.objects.size() > 1) {
     neighbours = collision_on(shared.hand, solid_points(out.scene, out.completion.completions, i), std::nullopt,

@@ -7,7 +7,8 @@ per variant of the sampling settings, the median over the scenes of each scene's
 stages. The variants lighten what the defaults draw and anneal, down to half the annealing steps and half the query
 samples; none of them is measured here for grasp success (a variant that would become a default must be measured on
 the development sets first). What no variant changes (the segmentation, the surface features and the maps) is the
-path's floor. Figures only: nothing here asserts a time.
+path's floor. A stage a call did not time (occupancy without a map) counts 0. Without --cache the clouds of every
+bench_realtime.py scene kind are made first. Figures only: nothing here asserts a time.
 """
 
 from __future__ import annotations
@@ -54,13 +55,15 @@ def main() -> None:
     print(realtime.machine("start"))
     print(f"GMM, target largest, {len(scenes)} single-object depth images, medians of {args.repeats} calls each")
     print(f"{'variant':48s}" + "".join(f"{s:>13s}" for s in STAGES) + "   (ms)")
-    for name, changes in VARIANTS.items():
-        per_stage: dict[str, list[float]] = {}
-        for _, _, inputs in scenes:
+    # Per scene every variant in turn, so that a drift of the host's load falls on all of them alike.
+    per_stage: dict[str, dict[str, list[float]]] = {name: {} for name in VARIANTS}
+    for _, _, inputs in scenes:
+        for name, changes in VARIANTS.items():
             times, _ = realtime.time_synthesis(model, inputs, args.repeats, 0, **changes)
             for stage in STAGES:
-                per_stage.setdefault(stage, []).append(statistics.median(times[stage]))
-        print(f"{name:48s}" + "".join(f"{1000 * statistics.median(per_stage[s]):13.1f}" for s in STAGES))
+                per_stage[name].setdefault(stage, []).append(statistics.median(times.get(stage, [0.0])))
+    for name in VARIANTS:
+        print(f"{name:48s}" + "".join(f"{1000 * statistics.median(per_stage[name][s]):13.1f}" for s in STAGES))
     print(realtime.machine("end"))
     print(f"OMP_NUM_THREADS={os.environ.get('OMP_NUM_THREADS', '(unset)')}")
 

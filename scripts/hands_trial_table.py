@@ -2,11 +2,12 @@
 
     python scripts/hands_trial_table.py RUN [RUN ...]
 
-Each RUN is a hands_trial.py output folder (its results.json). Every run must hold the same objects (the same
-objects file and count); they differ in the acquisition seeds, so each repeat sees each object in a new noisy cloud
-and the synthesis draws anew. Printed per hand: lifted of 12 in each run (in the order given), the pooled rate with a
-95% interval clustered by object (an object's repeats are not independent: a hand that cannot span it fails every
-time), each object it failed on with how often, and the median over runs of the synthesis time ratio to the WSG 50.
+Each RUN is a hands_trial.py output folder (its results.json). The runs must be repeats of one trial: the same
+objects, objects file, views, noise, closing, executor and hands, and no acquisition seed twice; they differ in the
+seeds, so each repeat sees each object in a new noisy cloud and the synthesis draws anew. Printed per hand: how many
+objects it lifted in each run (in the order given), the pooled rate with a 95% interval clustered by object (the
+repeats of one object are not independent: an object a hand seldom holds tends to fail again), each object it
+failed on with how often, and the median over runs of the synthesis time ratio to the WSG 50.
 """
 
 from __future__ import annotations
@@ -19,10 +20,12 @@ from collections import Counter, defaultdict
 from pathlib import Path
 
 RESULTS_FORMAT = "graspmix.hands_trial/1"  # scripts/hands_trial.py's
+KEYS = ("objects", "summary", "attempts", "seed")
+SAME = ("objects_file", "views", "noise", "closing", "executor")  # what repeats of one trial share
 
 
 def load_run(run: Path) -> dict:
-    """A hands_trial.py results.json; exits naming the run when it is missing or not one."""
+    """A hands_trial.py results.json; exits with one line naming the run when it is missing or not one."""
     path = run / "results.json"
     try:
         doc = json.loads(path.read_text())
@@ -30,7 +33,34 @@ def load_run(run: Path) -> dict:
         sys.exit(f"{path}: cannot read a hands trial's results ({e})")
     if not isinstance(doc, dict) or doc.get("format") != RESULTS_FORMAT:
         sys.exit(f"{path}: not a hands trial's results (format {RESULTS_FORMAT!r} expected)")
+    missing = [k for k in KEYS if k not in doc]
+    if missing:
+        sys.exit(f"{path}: a hands trial's results without {', '.join(missing)}")
     return doc
+
+
+def object_name(obj: str) -> str:
+    """random_urdfs/083/083.urdf -> 083; objects/mug.urdf -> mug."""
+    p = Path(obj)
+    return p.parent.name if p.parent.name and p.parent.name == p.stem else p.stem
+
+
+def check_repeats(runs: list[Path], docs: list[dict]) -> None:
+    """Exits with one line when the runs are not repeats of one trial."""
+    first = docs[0]
+    objects = [o["object"] for o in first["objects"]]
+    seeds: dict[int, Path] = {}
+    for r, d in zip(runs, docs):
+        if [o["object"] for o in d["objects"]] != objects:
+            sys.exit(f"{r}: other objects than {runs[0]}'s; the repeats must be of one list")
+        for key in SAME:
+            if d.get(key) != first.get(key):
+                sys.exit(f"{r}: {key} {d.get(key)!r}, {runs[0]} has {first.get(key)!r}; the repeats must share it")
+        if set(d["summary"]) != set(first["summary"]):
+            sys.exit(f"{r}: hands {', '.join(d['summary'])}, {runs[0]} has {', '.join(first['summary'])}")
+        if d["seed"] in seeds:
+            sys.exit(f"{r}: acquisition seed {d['seed']} again ({seeds[d['seed']]} has it): not a repeat")
+        seeds[d["seed"]] = r
 
 
 def main() -> None:
@@ -42,26 +72,24 @@ def main() -> None:
     from graspmix.experiment.stats import clustered_rate
 
     docs = [load_run(r) for r in args.runs]
+    check_repeats(args.runs, docs)
     objects = [o["object"] for o in docs[0]["objects"]]
-    for r, d in zip(args.runs, docs):
-        if [o["object"] for o in d["objects"]] != objects:
-            sys.exit(f"{r}: other objects than {args.runs[0]}'s; the repeats must be of one list")
-    hands = [h for h in docs[0]["summary"] if all(h in d["summary"] for d in docs)]
     seeds = ", ".join(str(d["seed"]) for d in docs)
     print(f"{len(docs)} runs of the trial (acquisition seeds from {seeds}), {len(objects)} objects each")
     print()
     print(
-        "| hand | lifted of 12, per run | pooled (95%, clustered by object) | failed (runs) | time ratio to WSG 50, median |"
+        f"| hand | lifted of {len(objects)}, per run | pooled (95%, clustered by object) | failed (runs) "
+        "| time ratio to WSG 50, median |"
     )
     print("| --- | --- | --- | --- | --- |")
-    for h in hands:
+    for h in docs[0]["summary"]:
         per_object = defaultdict(int)
         failed = Counter()
         for d in docs:
             for a in d["attempts"][h]:
                 per_object[a["object"]] += bool(a["lifted"])
                 if not a["lifted"]:
-                    failed[a["object"].split("/")[-2]] += 1
+                    failed[object_name(a["object"])] += 1
         rate = clustered_rate([per_object[o] for o in objects], [len(docs)] * len(objects))
         per_run = ", ".join(str(d["summary"][h]["lifted"]) for d in docs)
         ratios = [d["summary"][h]["ratio_to_wsg50"] for d in docs if d["summary"][h].get("ratio_to_wsg50") is not None]

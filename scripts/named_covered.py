@@ -15,6 +15,7 @@ from __future__ import annotations
 import argparse
 import csv
 import json
+import sys
 from collections import Counter
 from pathlib import Path
 
@@ -43,9 +44,17 @@ def main() -> None:
     from graspmix.clutter.protocol import clutter_protocol_from_json
     from graspmix.experiment.attempt import cached_model
 
-    p = clutter_protocol_from_json(json.loads((args.run / "clutter.json").read_text())["protocol"])
+    try:
+        p = clutter_protocol_from_json(json.loads((args.run / "clutter.json").read_text())["protocol"])
+        rows = [r for r in named_rows(args.run) if r["grasp"]]
+    except (OSError, ValueError, KeyError) as e:
+        sys.exit(f"{args.run}: not a named run of graspmix_cli clutter ({e})")
+    kinds = {(r["mode"], r["method"]) for r in rows}
+    if len(kinds) > 1:
+        sys.exit(f"{args.run}: attempts of {len(kinds)} modes or methods; give a run of one mode and one method")
+    if args.csv and not args.csv.parent.is_dir():
+        sys.exit(f"{args.csv}: no such folder for the CSV")
     model = cached_model(str(p.model_path("gmm").resolve()))
-    rows = [r for r in named_rows(args.run) if r["grasp"]]
     measured = []
     for k, r in enumerate(rows):
         _, point, obj, _ = rebuilt_segment(p, model, r)

@@ -57,7 +57,8 @@ def rebuilt_segment(p, model, r: dict):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", NoFeasibleGraspWarning)
         scene = p.synthesize(model, ns.obs, options, target=point_target(point)).scene
-    index = scene.select(point_target(point))[0]
+    selected = scene.select(point_target(point))
+    index = selected[0] if selected else None
     if index != int(r["named"]) or point_target(point) != "point:" + r["point"]:
         raise SystemExit(f"scene {r['scene']} pick {r['pick']}: the rebuilt scene is not the attempt's")
     obj = next(o for o in scene.objects if o.index == index)

@@ -19,13 +19,14 @@ import sys
 from collections import Counter, defaultdict
 from pathlib import Path
 
-RESULTS_FORMAT = "graspmix.hands_trial/1"  # scripts/hands_trial.py's
 KEYS = ("objects", "summary", "attempts", "seed")
 SAME = ("objects_file", "views", "noise", "closing", "executor")  # what repeats of one trial share
 
 
 def load_run(run: Path) -> dict:
     """A hands_trial.py results.json; exits with one line naming the run when it is missing or not one."""
+    from hands_trial import RESULTS_FORMAT
+
     path = run / "results.json"
     try:
         doc = json.loads(path.read_text())
@@ -37,12 +38,6 @@ def load_run(run: Path) -> dict:
     if missing:
         sys.exit(f"{path}: a hands trial's results without {', '.join(missing)}")
     return doc
-
-
-def object_name(obj: str) -> str:
-    """random_urdfs/083/083.urdf -> 083; objects/mug.urdf -> mug."""
-    p = Path(obj)
-    return p.parent.name if p.parent.name and p.parent.name == p.stem else p.stem
 
 
 def check_repeats(runs: list[Path], docs: list[dict]) -> None:
@@ -89,7 +84,7 @@ def main() -> None:
             for a in d["attempts"][h]:
                 per_object[a["object"]] += bool(a["lifted"])
                 if not a["lifted"]:
-                    failed[object_name(a["object"])] += 1
+                    failed[Path(a["object"]).stem] += 1  # as hands_trial.py names them
         rate = clustered_rate([per_object[o] for o in objects], [len(docs)] * len(objects))
         per_run = ", ".join(str(d["summary"][h]["lifted"]) for d in docs)
         ratios = [d["summary"][h]["ratio_to_wsg50"] for d in docs if d["summary"][h].get("ratio_to_wsg50") is not None]

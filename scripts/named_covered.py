@@ -14,24 +14,24 @@ from __future__ import annotations
 
 import argparse
 import csv
-import json
 import sys
 from collections import Counter
 from pathlib import Path
 
 import numpy as np
-from named_segments_figure import rebuilt_segment
+from named_segments_figure import load_named_run, rebuilt_segment
 
 RADII = (0.02, 0.04)  # m, horizontally from the named point
 HEIGHTS = (0.015, 0.03)  # m, above the named point
 AT_LEAST = (1, 10)  # points
+KEYS = [(r, h) for r in RADII for h in HEIGHTS]  # covered_counts' keys, in its order
 
 
 def covered_counts(points: np.ndarray, point: np.ndarray) -> dict[tuple[float, float], int]:
     """{(R, H): the points within R of `point` horizontally and more than H above it}."""
     horizontal = np.linalg.norm(points[:, :2] - point[:2], axis=1)
     above = points[:, 2] - point[2]
-    return {(r, h): int(np.sum((horizontal < r) & (above > h))) for r in RADII for h in HEIGHTS}
+    return {(r, h): int(np.sum((horizontal < r) & (above > h))) for r, h in KEYS}
 
 
 def main() -> None:
@@ -40,21 +40,13 @@ def main() -> None:
     ap.add_argument("--csv", type=Path, help="one row per attempt: scene, pick, outcome, the counts")
     args = ap.parse_args()
 
-    from graspmix.clutter.named import named_rows
-    from graspmix.clutter.protocol import clutter_protocol_from_json
-    from graspmix.experiment.attempt import cached_model
-
-    try:
-        p = clutter_protocol_from_json(json.loads((args.run / "clutter.json").read_text())["protocol"])
-        rows = [r for r in named_rows(args.run) if r["grasp"]]
-    except (OSError, ValueError, KeyError) as e:
-        sys.exit(f"{args.run}: not a named run of graspmix_cli clutter ({e})")
+    if args.csv and not args.csv.parent.is_dir():
+        sys.exit(f"{args.csv}: no such folder for the CSV")
+    p, model, rows = load_named_run(args.run)
+    rows = [r for r in rows if r["grasp"]]
     kinds = {(r["mode"], r["method"]) for r in rows}
     if len(kinds) > 1:
         sys.exit(f"{args.run}: attempts of {len(kinds)} modes or methods; give a run of one mode and one method")
-    if args.csv and not args.csv.parent.is_dir():
-        sys.exit(f"{args.csv}: no such folder for the CSV")
-    model = cached_model(str(p.model_path("gmm").resolve()))
     measured = []
     for k, r in enumerate(rows):
         _, point, obj, _ = rebuilt_segment(p, model, r)
@@ -67,7 +59,7 @@ def main() -> None:
     )
     print("| within R | more than H above | at least N points | attempts marked | by outcome |")
     print("| --- | --- | --- | --- | --- |")
-    for r_, h in measured[0][1] if measured else ():
+    for r_, h in KEYS:
         for n in AT_LEAST:
             marked = Counter(r["outcome"] for r, c in measured if c[(r_, h)] >= n)
             by = ", ".join(f"{o} {m}" for o, m in marked.most_common()) or "none"
@@ -75,10 +67,9 @@ def main() -> None:
     if args.csv:
         with args.csv.open("w", newline="") as f:
             w = csv.writer(f)
-            keys = list(measured[0][1]) if measured else []
-            w.writerow(["scene", "pick", "outcome"] + [f"R{100 * r_:g}cm_H{100 * h:g}cm" for r_, h in keys])
+            w.writerow(["scene", "pick", "outcome"] + [f"R{100 * r_:g}cm_H{100 * h:g}cm" for r_, h in KEYS])
             for r, c in measured:
-                w.writerow([r["scene"], r["pick"], r["outcome"]] + [c[key] for key in keys])
+                w.writerow([r["scene"], r["pick"], r["outcome"]] + [c[key] for key in KEYS])
         print(f"wrote {args.csv}")
 
 

@@ -40,6 +40,21 @@ def side_view(ax, points, on_target, point, camera, title: str) -> None:
     ax.tick_params(labelsize=6)
 
 
+def load_named_run(run: Path):
+    """A named run's protocol, its GMM model (the segmentation is the same for every method) and its attempts;
+    exits with one line naming the run when it is not a named run of `graspmix_cli clutter`."""
+    from graspmix.clutter.named import named_rows
+    from graspmix.clutter.protocol import clutter_protocol_from_json
+    from graspmix.experiment.attempt import cached_model
+
+    try:
+        p = clutter_protocol_from_json(json.loads((run / "clutter.json").read_text())["protocol"])
+        rows = named_rows(run)
+    except (OSError, ValueError, KeyError) as e:
+        raise SystemExit(f"{run}: not a named run of graspmix_cli clutter ({e})") from None
+    return p, cached_model(str(p.model_path("gmm").resolve())), rows
+
+
 def rebuilt_segment(p, model, r: dict):
     """A named attempt's scene rebuilt (placed and observed again from the protocol's seeds) and segmented as its
     synthesis segmented it (the run's settings, the attempt's seed and target; few samples, only the segmentation is
@@ -76,14 +91,9 @@ def main() -> None:
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    from graspmix.clutter.named import named_rows
-    from graspmix.clutter.protocol import clutter_protocol_from_json
-    from graspmix.experiment.attempt import cached_model
 
-    doc = json.loads((args.run / "clutter.json").read_text())
-    p = clutter_protocol_from_json(doc["protocol"])
-    model = cached_model(str(p.model_path("gmm").resolve()))  # the segmentation is the same for every method
-    rows = [r for r in named_rows(args.run) if r["outcome"] in ("wrong object", "two objects lifted")]
+    p, model, rows = load_named_run(args.run)
+    rows = [r for r in rows if r["outcome"] in ("wrong object", "two objects lifted")]
     if not rows:
         raise SystemExit(f"{args.run}: no attempt lifted a neighbour")
     cols = (len(rows) + 1) // 2
